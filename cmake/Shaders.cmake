@@ -1,0 +1,20 @@
+# sward_add_shaders(TARGET target SOURCES a.comp b.vert ... DEPENDS shared headers)
+# Compiles GLSL to SPIR-V in the build folder at build time. Every shader depends on every shared include,
+# so a change to the GPU layout header rebuilds all of them.
+function(sward_add_shaders)
+  cmake_parse_arguments(ARG "" "TARGET;OUTPUT_DIR" "SOURCES;DEPENDS" ${ARGN})
+  set(outputs)
+  foreach(source ${ARG_SOURCES})
+    get_filename_component(name ${source} NAME)
+    set(output ${ARG_OUTPUT_DIR}/${name}.spv)
+    add_custom_command(
+      OUTPUT ${output}
+      COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.3 -I${CMAKE_CURRENT_SOURCE_DIR}
+              $<$<CONFIG:Debug>:-g> -o ${output} ${CMAKE_CURRENT_SOURCE_DIR}/${source}
+      DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${source} ${ARG_DEPENDS}
+      COMMENT "GLSL ${name}"
+      VERBATIM)
+    list(APPEND outputs ${output})
+  endforeach()
+  add_custom_target(${ARG_TARGET} ALL DEPENDS ${outputs})
+endfunction()

@@ -1,0 +1,65 @@
+// Heightfield terrain: a regular grid of heights, triangulated exactly as it is rendered.
+//
+// Coordinates are metres, right-handed, Z up (x east, y north). Cell (i, j) spans
+// [origin.x + i*spacing, +spacing] x [origin.y + j*spacing, +spacing] and is split along its (i,j)-(i+1,j+1)
+// diagonal. height(), normal() and raycast() evaluate that very triangulation, so plants placed with
+// height() sit exactly on the rendered surface and raycast() gives the analytic depth of a rendered pixel.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace sward {
+
+class Heightfield {
+public:
+    Heightfield() = default;
+    // heights: columns * rows values, row-major with x fastest. Requires columns, rows >= 2, spacing > 0.
+    Heightfield(uint32_t columns, uint32_t rows, float spacing, glm::vec2 origin, std::vector<float> heights);
+
+    uint32_t columns() const { return columns_; }
+    uint32_t rows() const { return rows_; }
+    float spacing() const { return spacing_; }
+    glm::vec2 origin() const { return origin_; }
+    glm::vec2 extent() const { return {spacing_ * float(columns_ - 1), spacing_ * float(rows_ - 1)}; }
+    const std::vector<float>& heights() const { return heights_; }
+    float sample(uint32_t i, uint32_t j) const { return heights_[size_t(j) * columns_ + i]; }
+    float minHeight() const { return minHeight_; }
+    float maxHeight() const { return maxHeight_; }
+
+    // Height of the rendered surface at xy (clamped to the grid).
+    float height(glm::vec2 xy) const;
+    // Unit normal of the rendered triangle under xy (flat, as rasterised).
+    glm::vec3 normal(glm::vec2 xy) const;
+    // Smooth per-vertex normal (central differences), used for shading.
+    glm::vec3 vertexNormal(uint32_t i, uint32_t j) const;
+    // Distance t along a unit-length ray to the first hit of the rendered surface, if any within maxDistance.
+    std::optional<double> raycast(glm::dvec3 origin, glm::dvec3 direction, double maxDistance) const;
+
+private:
+    double heightDouble(double x, double y) const;
+
+    uint32_t columns_ = 0, rows_ = 0;
+    float spacing_ = 1.0f;
+    glm::vec2 origin_{0.0f};
+    std::vector<float> heights_;
+    float minHeight_ = 0.0f, maxHeight_ = 0.0f;
+};
+
+struct ProceduralTerrainParams {
+    float size = 500.0f;        // square tile edge, metres
+    float spacing = 2.0f;       // grid spacing, metres
+    float amplitude = 12.0f;    // peak-to-peak height scale, metres
+    float featureSize = 160.0f; // wavelength of the largest hills, metres
+    uint32_t octaves = 4;
+    uint64_t seed = 1;
+};
+
+// Rolling hills from hashed value noise (fBm). Uses only + - * and floor, never libm transcendentals, so
+// the heights are bitwise identical on every x86-64 machine and compiler.
+Heightfield makeProceduralTerrain(const ProceduralTerrainParams& params);
+
+} // namespace sward
