@@ -2,6 +2,8 @@
 
 #include "error.h"
 #include "hash.h"
+#include "image_io.h"
+#include "noise.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,7 +33,9 @@ double Heightfield::heightDouble(double x, double y) const {
     return h00 + fy * (h01 - h00) + fx * (h11 - h01);
 }
 
-float Heightfield::height(glm::vec2 xy) const { return float(heightDouble(xy.x, xy.y)); }
+float Heightfield::height(glm::vec2 xy) const {
+    return float(heightDouble(xy.x, xy.y));
+}
 
 glm::vec3 Heightfield::normal(glm::vec2 xy) const {
     float u = std::clamp((xy.x - origin_.x) / spacing_, 0.0f, float(columns_ - 1));
@@ -86,25 +90,6 @@ std::optional<double> Heightfield::raycast(glm::dvec3 origin, glm::dvec3 directi
     return std::nullopt;
 }
 
-namespace {
-
-double quintic(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
-
-double lattice(uint64_t seed, uint32_t octave, int64_t x, int64_t y) {
-    return unitDouble(hashKey({seed, octave, uint64_t(x), uint64_t(y)})) * 2.0 - 1.0;
-}
-
-double valueNoise(uint64_t seed, uint32_t octave, double x, double y) {
-    double fx = std::floor(x), fy = std::floor(y);
-    int64_t ix = int64_t(fx), iy = int64_t(fy);
-    double u = quintic(x - fx), v = quintic(y - fy);
-    double a = lattice(seed, octave, ix, iy), b = lattice(seed, octave, ix + 1, iy);
-    double c = lattice(seed, octave, ix, iy + 1), d = lattice(seed, octave, ix + 1, iy + 1);
-    return (a + (b - a) * u) + ((c + (d - c) * u) - (a + (b - a) * u)) * v;
-}
-
-} // namespace
-
 Heightfield makeProceduralTerrain(const ProceduralTerrainParams& p) {
     require(p.size > 0.0f && p.spacing > 0.0f && p.size / p.spacing <= 8192.0f,
             "terrain size / spacing must be positive and give at most 8192 cells per side");
@@ -126,6 +111,34 @@ Heightfield makeProceduralTerrain(const ProceduralTerrainParams& p) {
         }
     }
     return Heightfield(n, n, p.spacing, glm::vec2(0.0f), std::move(heights));
+}
+
+} // namespace sward
+
+namespace sward {
+
+Heightfield loadHeightfield(const std::string& path, float verticalScale, float spacing, glm::vec2 origin,
+                            float heightOffset) {
+    require(spacing > 0.0f && std::isfinite(spacing), "heightfield '" + path + "': spacing must be positive");
+    require(std::isfinite(verticalScale) && std::isfinite(heightOffset),
+            "heightfield '" + path + "': vertical scale and offset must be finite");
+    Image image = loadImage(path);
+    require(image.bitDepth != 8,
+            "heightfield '" + path + "' is an 8-bit PNG; use a 16-bit PNG or a float EXR (8 bits give terraces)");
+    require(image.channels == 1, "heightfield '" + path + "' has " + std::to_string(image.channels) +
+                                     " channels; it must have exactly one (grey PNG, or a single/Y EXR channel)");
+    require(image.width >= 2 && image.height >= 2, "heightfield '" + path + "' must be at least 2x2 pixels");
+    std::vector<float> heights(size_t(image.width) * image.height);
+    for (uint32_t row = 0; row < image.height; ++row) {
+        const uint32_t j = image.height - 1 - row; // top image row = north = largest y
+        for (uint32_t i = 0; i < image.width; ++i) {
+            float value = image.at(i, row, 0);
+            require(std::isfinite(value), "heightfield '" + path + "' has a non-finite sample at pixel (" +
+                                              std::to_string(i) + ", " + std::to_string(row) + ")");
+            heights[size_t(j) * image.width + i] = value * verticalScale + heightOffset;
+        }
+    }
+    return Heightfield(image.width, image.height, spacing, origin, std::move(heights));
 }
 
 } // namespace sward

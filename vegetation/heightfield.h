@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace sward {
@@ -61,5 +62,13 @@ struct ProceduralTerrainParams {
 // Rolling hills from hashed value noise (fBm). Uses only + - * and floor, never libm transcendentals, so
 // the heights are bitwise identical on every x86-64 machine and compiler.
 Heightfield makeProceduralTerrain(const ProceduralTerrainParams& params);
+
+// Loads a heightfield from a single-channel 16-bit PNG (height = sample / 65535 * verticalScale + heightOffset)
+// or float OpenEXR (height = value * verticalScale + heightOffset). The image is a top-down map with north (+y)
+// up: its top row is the grid's last row (largest y). Throws sward::Error naming the file for a missing file,
+// an unsupported format, an 8-bit PNG (too coarse: visible terraces), more than one channel, or a non-finite
+// height. Requires spacing > 0 and a finite verticalScale.
+Heightfield loadHeightfield(const std::string& path, float verticalScale, float spacing,
+                            glm::vec2 origin = glm::vec2(0.0f), float heightOffset = 0.0f);
 
 } // namespace sward

@@ -1,0 +1,33 @@
+// Image files for grass maps and heightfields: 8/16-bit PNG and float OpenEXR, decoded to float samples.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sward {
+
+// Decoded image. Row 0 is the top row of the file; samples are interleaved, channels per pixel.
+struct Image {
+    uint32_t width = 0, height = 0;
+    uint32_t channels = 0;      // 1 grey, 2 grey+alpha, 3 RGB, 4 RGBA
+    uint32_t bitDepth = 0;      // 8 or 16 for PNG, 32 for EXR
+    std::vector<float> samples; // PNG: normalised to [0, 1]; EXR: the stored values, unchanged
+    std::string source;         // the file name, for error messages
+
+    float at(uint32_t x, uint32_t y, uint32_t c) const { return samples[(size_t(y) * width + x) * channels + c]; }
+};
+
+// Largest accepted edge, in pixels: guards against corrupt headers asking for gigabytes.
+inline constexpr uint32_t kMaxImageEdge = 32768;
+
+// Loads a .png (8 or 16 bits per sample; palette images count as 8-bit RGB(A)) or .exr (any pixel type, read as
+// float; channels R,G,B[,A], or a single channel such as Y or Z). Throws sward::Error naming the file and the
+// problem for a missing file, an unknown extension, a bit depth below 8, or a corrupt file.
+Image loadImage(const std::string& path);
+
+// Writes float samples to an uncompressed-precision (FLOAT, ZIP) OpenEXR file. channels: 1 (written as Y), 3 or 4.
+void writeExr(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
+              const std::vector<float>& samples);
+
+} // namespace sward

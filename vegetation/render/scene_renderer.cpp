@@ -1,0 +1,172 @@
+#include "scene_renderer.h"
+
+#include "barriers.h"
+#include "shared/gpu_layout.h"
+#include "timestamps.h"
+
+#include <cstring>
+
+namespace sward {
+
+RenderTargetDesc mainPassTargetDesc(uint32_t width, uint32_t height, uint32_t samples) {
+    VkClearColorValue sky{.float32 = {0.0f, 0.0f, 0.0f, 1.0f}};
+    VkClearColorValue infinity{.uint32 = {gpu::kDepthInfinityBits, 0, 0, 0}};
+    return RenderTargetDesc{
+        .width = width,
+        .height = height,
+        .samples = samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
+        .colors = {{VK_FORMAT_R16G16B16A16_SFLOAT, sky}, {VK_FORMAT_R32_UINT, infinity}},
+        .depthFormat = VK_FORMAT_D32_SFLOAT,
+        .depthClear = 0.0f,
+    };
+}
+
+namespace {
+
+std::vector<gpu::TerrainVertex> terrainVertices(const Heightfield& terrain) {
+    std::vector<gpu::TerrainVertex> vertices;
+    vertices.reserve(size_t(terrain.columns()) * terrain.rows());
+    for (uint32_t j = 0; j < terrain.rows(); ++j)
+        for (uint32_t i = 0; i < terrain.columns(); ++i) {
+            glm::vec2 xy = terrain.origin() + glm::vec2(float(i), float(j)) * terrain.spacing();
+            vertices.push_back({glm::vec4(xy, terrain.sample(i, j), 1.0f), glm::vec4(terrain.vertexNormal(i, j), 0.0f)});
+        }
+    return vertices;
+}
+
+// Two counter-clockwise (seen from above) triangles per cell, split along the (i,j)-(i+1,j+1) diagonal
+// exactly as Heightfield::height() interpolates.
+std::vector<uint32_t> terrainIndices(const Heightfield& terrain) {
+    std::vector<uint32_t> indices;
+    indices.reserve(size_t(terrain.columns() - 1) * (terrain.rows() - 1) * 6);
+    for (uint32_t j = 0; j + 1 < terrain.rows(); ++j)
+        for (uint32_t i = 0; i + 1 < terrain.columns(); ++i) {
+            uint32_t p00 = j * terrain.columns() + i, p10 = p00 + 1, p01 = p00 + terrain.columns(), p11 = p01 + 1;
+            indices.insert(indices.end(), {p00, p10, p11, p00, p11, p01});
+        }
+    return indices;
+}
+
+template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) {
+    return {reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(T)};
+}
+
+} // namespace
+
+SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, VkSampleCountFlagBits samples)
+    : ctx_(ctx), scene_(scene) {
+    auto vertices = terrainVertices(terrain);
+    auto indices = terrainIndices(terrain);
+    terrainVertices_ = createBufferWithData(ctx, bytesOf(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    terrainIndices_ = createBufferWithData(ctx, bytesOf(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    terrainIndexCount_ = uint32_t(indices.size());
+
+    uint64_t align = ctx.device.properties().limits.minUniformBufferOffsetAlignment;
+    constantsStride_ = (sizeof(gpu::FrameConstants) + align - 1) / align * align;
+    constants_ = createBuffer(ctx, constantsStride_ * kFramesInFlight, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                              MemoryIntent::Upload);
+
+    RenderTargetDesc target = mainPassTargetDesc(1, 1, samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1);
+    std::vector<VkFormat> formats;
+    for (auto& c : target.colors) formats.push_back(c.format);
+    PipelineLayoutDesc layout{
+        .bindings = {layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                   VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT)}};
+    terrainPipeline_ = createGraphicsPipeline(
+        ctx.device,
+        {.vertexShader = "terrain.vert",
+         .fragmentShader = "terrain.frag",
+         .vertexBindings = {{0, sizeof(gpu::TerrainVertex), VK_VERTEX_INPUT_RATE_VERTEX}},
+         .vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, positionHeight)},
+                              {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, normal)}},
+         .cullMode = VK_CULL_MODE_BACK_BIT,
+         .colorFormats = formats,
+         .depthFormat = target.depthFormat,
+         .samples = target.samples},
+        layout);
+    // The sky writes colour only: ground-truth depth keeps its +inf clear value.
+    skyPipeline_ = createGraphicsPipeline(ctx.device,
+                                          {.vertexShader = "sky.vert",
+                                           .fragmentShader = "sky.frag",
+                                           .cullMode = VK_CULL_MODE_NONE,
+                                           .colorFormats = formats,
+                                           .colorWriteMasks = {0xf, 0},
+                                           .depthFormat = target.depthFormat,
+                                           .depthWrite = false,
+                                           .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL,
+                                           .samples = target.samples},
+                                          layout);
+}
+
+SceneRenderer::~SceneRenderer() {
+    ctx_.submitter.waitIdle();
+    destroyPipeline(ctx_.device, terrainPipeline_);
+    destroyPipeline(ctx_.device, skyPipeline_);
+    destroyBuffer(ctx_, terrainVertices_);
+    destroyBuffer(ctx_, terrainIndices_);
+    destroyBuffer(ctx_, constants_);
+}
+
+void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, double timeSeconds) {
+    gpu::FrameConstants c{};
+    glm::dmat4 viewProj = camera.viewProjection();
+    c.viewProj = glm::mat4(viewProj);
+    c.view = glm::mat4(camera.view());
+    c.invViewProj = glm::mat4(glm::inverse(viewProj));
+    c.cameraPosition = glm::vec4(glm::vec3(camera.position), 1.0f);
+    c.sunDirection = glm::vec4(scene_.sun.direction(), 0.0f);
+    c.sunRadiance = glm::vec4(scene_.sun.radiance, 0.0f);
+    c.skyZenith = glm::vec4(scene_.sky.zenith, 0.0f);
+    c.skyHorizon = glm::vec4(scene_.sky.horizon, 0.0f);
+    c.groundAmbient = glm::vec4(scene_.sky.groundAmbient, 0.0f);
+    c.viewport = glm::vec4(float(camera.width), float(camera.height), 1.0f / float(camera.width), 1.0f / float(camera.height));
+    c.timeParams = glm::vec4(float(timeSeconds), 0.0f, 0.0f, 0.0f);
+    std::memcpy(constants_.mapped() + slot * constantsStride_, &c, sizeof c);
+}
+
+void SceneRenderer::record(VkCommandBuffer cmd, RenderTarget& target, const Camera& camera, double timeSeconds,
+                           uint32_t frameIndex, GpuTimers* timers) {
+    uint32_t slot = frameIndex % kFramesInFlight;
+    writeConstants(slot, camera, timeSeconds);
+    DescriptorBinding frame = uniformBuffer(0, constants_.handle, slot * constantsStride_, sizeof(gpu::FrameConstants));
+
+    if (timers) timers->begin(cmd, "main");
+    target.begin(cmd);
+    bindPipeline(cmd, terrainPipeline_);
+    pushDescriptors(ctx_.device, cmd, terrainPipeline_, {frame});
+    VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &terrainVertices_.handle, &offset);
+    vkCmdBindIndexBuffer(cmd, terrainIndices_.handle, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, terrainIndexCount_, 1, 0, 0, 0);
+
+    // Sky last: the depth test (GREATER_OR_EQUAL against the far-plane clear) shades only uncovered pixels.
+    bindPipeline(cmd, skyPipeline_);
+    pushDescriptors(ctx_.device, cmd, skyPipeline_, {frame});
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    target.end(cmd);
+    if (timers) timers->end(cmd);
+}
+
+FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, uint32_t samples,
+                        double timeSeconds) {
+    RenderTarget target(ctx, mainPassTargetDesc(camera.width, camera.height, samples));
+    uint64_t pixels = uint64_t(camera.width) * camera.height;
+    Buffer color = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    Buffer depth = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    ctx.submitter.immediate([&](VkCommandBuffer cmd) {
+        renderer.record(cmd, target, camera, timeSeconds, 0);
+        target.recordReadback(cmd, 0, color);
+        target.recordReadback(cmd, 1, depth);
+        transferToHostBarrier(cmd);
+    });
+    FrameImages images{.width = camera.width, .height = camera.height};
+    images.rgbaHalf.resize(pixels * 4);
+    images.depth.resize(pixels);
+    std::memcpy(images.rgbaHalf.data(), color.mapped(), pixels * 8);
+    std::memcpy(images.depth.data(), depth.mapped(), pixels * 4); // float bit patterns written by the shader
+    destroyBuffer(ctx, color);
+    destroyBuffer(ctx, depth);
+    return images;
+}
+
+} // namespace sward

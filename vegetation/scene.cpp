@@ -1,0 +1,203 @@
+#include "scene.h"
+
+#include "error.h"
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <set>
+
+namespace sward {
+
+namespace {
+
+// Reads typed, range-checked values from one JSON object and rejects keys nobody asked for.
+class Reader {
+public:
+    Reader(const nlohmann::json& json, std::string source, std::string path)
+        : json_(json), source_(std::move(source)), path_(std::move(path)) {
+        if (!json_.is_object()) fail(path_.empty() ? "the scene must be a JSON object" : path_ + " must be an object");
+    }
+
+    double number(const char* key, double value, double lo, double hi) {
+        if (const nlohmann::json* v = find(key)) {
+            if (!v->is_number()) fail(name(key) + " must be a number");
+            value = v->get<double>();
+            if (!std::isfinite(value) || value < lo || value > hi)
+                fail(name(key) + " must be between " + fmt(lo) + " and " + fmt(hi) + " (got " + fmt(value) + ")");
+        }
+        return value;
+    }
+    uint64_t integer(const char* key, uint64_t value, uint64_t lo, uint64_t hi) {
+        if (const nlohmann::json* v = find(key)) {
+            if (!v->is_number_integer() ||
+                (v->is_number_integer() && v->get<int64_t>() < 0 && !v->is_number_unsigned()))
+                fail(name(key) + " must be a non-negative integer");
+            value = v->get<uint64_t>();
+            if (value < lo || value > hi)
+                fail(name(key) + " must be between " + std::to_string(lo) + " and " + std::to_string(hi) + " (got " +
+                     std::to_string(value) + ")");
+        }
+        return value;
+    }
+    std::string string(const char* key, std::string value) {
+        if (const nlohmann::json* v = find(key)) {
+            if (!v->is_string()) fail(name(key) + " must be a string");
+            value = v->get<std::string>();
+        }
+        return value;
+    }
+    template <int N> glm::vec<N, double> vector(const char* key, glm::vec<N, double> value, double lo, double hi) {
+        if (const nlohmann::json* v = find(key)) {
+            if (!v->is_array() || v->size() != N)
+                fail(name(key) + " must be an array of " + std::to_string(N) + " numbers");
+            for (int i = 0; i < N; ++i) {
+                const nlohmann::json& e = (*v)[size_t(i)];
+                if (!e.is_number() || !std::isfinite(e.get<double>()) || e.get<double>() < lo || e.get<double>() > hi)
+                    fail(name(key) + " must hold numbers between " + fmt(lo) + " and " + fmt(hi));
+                value[i] = e.get<double>();
+            }
+        }
+        return value;
+    }
+    bool has(const char* key) const { return json_.contains(key); }
+    Reader child(const char* key) {
+        seen_.insert(key);
+        static const nlohmann::json empty = nlohmann::json::object();
+        return Reader(json_.contains(key) ? json_.at(key) : empty, source_, name(key));
+    }
+    const nlohmann::json* raw(const char* key) { return find(key); }
+    // Call after reading: any key not read is a typo or an unsupported option.
+    void finish() const {
+        for (auto it = json_.begin(); it != json_.end(); ++it)
+            if (!seen_.count(it.key())) fail("unknown key " + name(it.key().c_str()));
+    }
+
+private:
+    const nlohmann::json* find(const char* key) {
+        seen_.insert(key);
+        auto it = json_.find(key);
+        return it == json_.end() ? nullptr : &*it;
+    }
+    std::string name(const char* key) const {
+        std::string full = "'";
+        if (!path_.empty()) full.append(path_).append(".");
+        return full.append(key).append("'");
+    }
+    static std::string fmt(double v) {
+        char buffer[32];
+        std::snprintf(buffer, sizeof buffer, "%g", v);
+        return buffer;
+    }
+    [[noreturn]] void fail(const std::string& message) const { throw Error(source_ + ": " + message); }
+
+    const nlohmann::json& json_;
+    std::string source_, path_;
+    std::set<std::string> seen_;
+};
+
+glm::vec3 toVec3(glm::dvec3 v) {
+    return glm::vec3(v);
+}
+
+} // namespace
+
+glm::vec3 SunParams::direction() const {
+    double az = azimuthDegrees * std::numbers::pi / 180.0, el = elevationDegrees * std::numbers::pi / 180.0;
+    return glm::vec3(float(std::sin(az) * std::cos(el)), float(std::cos(az) * std::cos(el)), float(std::sin(el)));
+}
+
+Scene parseScene(const nlohmann::json& json, const std::string& source) {
+    Scene scene;
+    scene.source = source;
+    Reader root(json, source, "");
+    scene.name = root.string("name", scene.name);
+    scene.seed = root.integer("seed", scene.seed, 0, UINT64_MAX);
+
+    Reader terrain = root.child("terrain");
+    ProceduralTerrainParams& t = scene.terrain;
+    t.size = float(terrain.number("size", t.size, 10.0, 4000.0));
+    t.spacing = float(terrain.number("spacing", t.spacing, 0.1, 50.0));
+    t.amplitude = float(terrain.number("amplitude", t.amplitude, 0.0, 1000.0));
+    t.featureSize = float(terrain.number("feature_size", t.featureSize, 1.0, 10000.0));
+    t.octaves = uint32_t(terrain.integer("octaves", t.octaves, 1, 8));
+    if (t.size / t.spacing > 8192.0f) throw Error(source + ": 'terrain.size' / 'terrain.spacing' exceeds 8192 cells");
+    terrain.finish();
+    t.seed = scene.seed;
+
+    Reader sun = root.child("sun");
+    scene.sun.azimuthDegrees = sun.number("azimuth_deg", scene.sun.azimuthDegrees, -360.0, 360.0);
+    scene.sun.elevationDegrees = sun.number("elevation_deg", scene.sun.elevationDegrees, -90.0, 90.0);
+    scene.sun.radiance = toVec3(sun.vector<3>("radiance", glm::dvec3(scene.sun.radiance), 0.0, 1e6));
+    sun.finish();
+
+    Reader sky = root.child("sky");
+    scene.sky.zenith = toVec3(sky.vector<3>("zenith", glm::dvec3(scene.sky.zenith), 0.0, 1e6));
+    scene.sky.horizon = toVec3(sky.vector<3>("horizon", glm::dvec3(scene.sky.horizon), 0.0, 1e6));
+    scene.sky.groundAmbient = toVec3(sky.vector<3>("ground", glm::dvec3(scene.sky.groundAmbient), 0.0, 1e6));
+    sky.finish();
+
+    Reader camera = root.child("camera");
+    CameraParams& c = scene.camera;
+    c.position = camera.vector<3>("position", c.position, -1e6, 1e6);
+    c.useHeightAboveGround = camera.has("height_above_ground") || !camera.has("position");
+    c.heightAboveGround = camera.number("height_above_ground", c.heightAboveGround, -1e4, 1e5);
+    c.lookAt = camera.vector<3>("look_at", c.lookAt, -1e6, 1e6);
+    c.lookAtUsesGround = camera.has("look_at_height_above_ground") || !camera.has("look_at");
+    c.lookAtHeightAboveGround = camera.number("look_at_height_above_ground", c.lookAtHeightAboveGround, -1e4, 1e5);
+    c.fovYDegrees = camera.number("fov_y_deg", c.fovYDegrees, 1.0, 170.0);
+    camera.finish();
+
+    Reader render = root.child("render");
+    glm::dvec2 resolution =
+        render.vector<2>("resolution", glm::dvec2(scene.render.width, scene.render.height), 1, 16384);
+    if (resolution.x != std::floor(resolution.x) || resolution.y != std::floor(resolution.y))
+        throw Error(source + ": 'render.resolution' must hold whole numbers");
+    scene.render.width = uint32_t(resolution.x);
+    scene.render.height = uint32_t(resolution.y);
+    scene.render.samples = uint32_t(render.integer("samples", scene.render.samples, 1, 4));
+    if (scene.render.samples != 1 && scene.render.samples != 4)
+        throw Error(source + ": 'render.samples' must be 1 or 4");
+    render.finish();
+
+    if (const nlohmann::json* vegetation = root.raw("vegetation")) scene.vegetation = *vegetation;
+    root.finish();
+    return scene;
+}
+
+Scene loadScene(const std::string& path) {
+    std::ifstream file(path);
+    if (!file) throw Error("cannot open scene file '" + path + "'");
+    nlohmann::json json;
+    try {
+        json = nlohmann::json::parse(file);
+    } catch (const nlohmann::json::parse_error& e) {
+        throw Error("scene file '" + path + "' is not valid JSON: " + e.what());
+    }
+    return parseScene(json, path);
+}
+
+Heightfield buildTerrain(const Scene& scene) {
+    return makeProceduralTerrain(scene.terrain);
+}
+
+Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t width, uint32_t height) {
+    const CameraParams& c = scene.camera;
+    glm::dvec3 position = c.position, target = c.lookAt;
+    if (c.useHeightAboveGround) position.z = terrain.height(glm::vec2(position)) + c.heightAboveGround;
+    if (c.lookAtUsesGround) target.z = terrain.height(glm::vec2(target)) + c.lookAtHeightAboveGround;
+    return Camera::lookAt(position, target, glm::dvec3(0.0, 0.0, 1.0), c.fovYDegrees, width, height);
+}
+
+void parseResolution(const std::string& text, uint32_t& width, uint32_t& height) {
+    unsigned w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 || h < 1 ||
+        w > 16384 || h > 16384 || text.find_first_not_of("0123456789xX") != std::string::npos)
+        throw Error("bad resolution '" + text +
+                    "': expected WIDTHxHEIGHT with each between 1 and 16384, e.g. 1280x720");
+    width = w;
+    height = h;
+}
+
+} // namespace sward

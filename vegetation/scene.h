@@ -1,0 +1,71 @@
+// Scene description: what sward-render and sward-view load from a JSON scene file.
+//
+// Every field is optional and has a documented default (docs/scene-format.md); unknown keys are errors, so
+// a typo never silently falls back to a default. All values are validated (type, finiteness, range) and
+// errors name the file and the JSON path, e.g. "examples/meadow.json: terrain.amplitude must be ...".
+#pragma once
+
+#include "camera.h"
+#include "heightfield.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace sward {
+
+struct SunParams {
+    double azimuthDegrees = 135.0;        // clockwise from north (+y) towards east (+x)
+    double elevationDegrees = 40.0;       // above the horizon
+    glm::vec3 radiance{3.2f, 3.0f, 2.7f}; // linear RGB, arbitrary HDR units
+    glm::vec3 direction() const;          // unit vector towards the sun
+};
+
+struct SkyParams {
+    glm::vec3 zenith{0.25f, 0.45f, 0.95f};
+    glm::vec3 horizon{0.75f, 0.85f, 1.0f};
+    glm::vec3 groundAmbient{0.12f, 0.11f, 0.08f};
+};
+
+struct CameraParams {
+    glm::dvec3 position{250.0, 180.0, 0.0};
+    // When set, position.z is replaced by terrain height at position.xy plus this value.
+    double heightAboveGround = 1.6;
+    bool useHeightAboveGround = true;
+    glm::dvec3 lookAt{250.0, 260.0, 0.0};
+    double lookAtHeightAboveGround = 0.0;
+    bool lookAtUsesGround = true;
+    double fovYDegrees = 60.0;
+};
+
+struct RenderParams {
+    uint32_t width = 1280, height = 720;
+    uint32_t samples = 4; // 1 or 4
+};
+
+struct Scene {
+    std::string source = "<built-in>"; // file the scene came from, for messages
+    std::string name = "default";
+    uint64_t seed = 1;
+    ProceduralTerrainParams terrain;
+    SunParams sun;
+    SkyParams sky;
+    CameraParams camera;
+    RenderParams render;
+    nlohmann::json vegetation = nlohmann::json::object(); // parsed by the vegetation model
+};
+
+// Parses and validates a scene; `source` names it in error messages.
+Scene parseScene(const nlohmann::json& json, const std::string& source);
+// Reads and parses a scene file; throws sward::Error naming the file for missing files and bad JSON.
+Scene loadScene(const std::string& path);
+// Builds the scene's terrain.
+Heightfield buildTerrain(const Scene& scene);
+// The scene camera at the given resolution, resolved against the terrain.
+Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t width, uint32_t height);
+
+// Parses "WxH" (e.g. "1280x720"); throws a clear error for anything else or sizes outside 1..16384.
+void parseResolution(const std::string& text, uint32_t& width, uint32_t& height);
+
+} // namespace sward

@@ -1,0 +1,76 @@
+// Vegetation configuration: densities, sizes and atlas layout per category, the grass-map channel mapping,
+// the tile/field/cluster structure and the memory budget. parseVegetationParams() reads it from a scene file.
+//
+// JSON keys (all optional; defaults in brackets):
+//   seed                 [1]      unsigned integer; every plant is a pure function of (seed, tile, field, cluster,
+//   sample) tile_size            [500]    metres; a whole number of fields field_size           [25] metres, 1..256; a
+//   whole number of clusters; positions quantise to field_size/65536 cluster_size         [5]      metres, >= 0.5
+//   world_origin         [[0,0]]  metres, world xy of tile (0, 0)'s min corner; tile (i, j) starts at origin + size*(i,
+//   j) density_multiplier   [1]      global factor on every category density, 0..100 up_normal_blend      [0.5]    0 =
+//   plants grow along world +z, 1 = along the surface normal memory_budget_mib    [1024]   limit on predicted plant
+//   record memory per tile (static + dynamic), MiB categories           [ferns, grass, flowers] 1..4 objects, index =
+//   atlas row; keys not given in an entry
+//                                 default to the built-in category with the same index:
+//     name               string   for messages and the channel mapping
+//     density            plants per m^2 at full map intensity, 0..1000  [ferns 1.5, grass 16, flowers 1]
+//     height             base plant height in metres, 0.01..20          [0.6, 0.35, 0.45]
+//     height_variation   relative +- spread of the height, 0..0.95       [0.3, 0.35, 0.4]
+//     variants           atlas columns, 1..64                            [4, 8, 8]
+//   channels             [{"r": 0, "g": 1, "b": 2, "a": null}] grass-map channel -> category index or name; null =
+//   unused
+#pragma once
+
+#include "shared/plant_layout.h"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+namespace sward {
+
+struct VegetationCategory {
+    std::string name;
+    float density = 16.0f;         // plants per m^2 where the category's map channel is 1
+    float height = 0.35f;          // base height in metres (the size byte scales it per plant)
+    float heightVariation = 0.35f; // plant height = height * (1 + heightVariation * r), r uniform in [-1, 1]
+    uint32_t variants = 8;         // atlas columns to pick from uniformly
+};
+
+// Built-in defaults of category index i (0 ferns / forest floor, 1 grass, 2 shrubs and flowers, 3 "extra").
+VegetationCategory defaultVegetationCategory(uint32_t index);
+
+inline constexpr int32_t kUnusedChannel = -1;
+
+struct VegetationParams {
+    uint64_t seed = 1;
+    float tileSize = 500.0f;
+    float fieldSize = 25.0f;
+    float clusterSize = 5.0f;
+    glm::vec2 worldOrigin{0.0f};
+    float densityMultiplier = 1.0f;
+    float upNormalBlend = 0.5f;
+    uint64_t memoryBudgetBytes = uint64_t(1024) << 20;
+    uint32_t categoryCount = 3;
+    std::array<VegetationCategory, gpu::kMaxPlantCategories> categories = {
+        defaultVegetationCategory(0), defaultVegetationCategory(1), defaultVegetationCategory(2),
+        defaultVegetationCategory(3)};
+    // channelCategory[c]: category fed by grass-map channel c (R, G, B, A), or kUnusedChannel.
+    std::array<int32_t, 4> channelCategory = {0, 1, 2, kUnusedChannel};
+
+    uint32_t fieldsPerTile() const;    // per side
+    uint32_t clustersPerField() const; // per side
+};
+
+// Throws sward::Error (message names sourceName and the key) unless params is consistent: sizes positive and
+// nested in whole numbers, densities/heights finite and in range, channel mapping pointing at existing categories.
+void validateVegetationParams(const VegetationParams& params, const std::string& sourceName);
+
+// Reads the keys documented above from a JSON object (usually the scene file's "vegetation" object); unknown keys
+// are errors so that typos do not pass silently. Throws sward::Error naming sourceName and the offending key.
+VegetationParams parseVegetationParams(const nlohmann::json& json, const std::string& sourceName);
+
+} // namespace sward
