@@ -17,8 +17,11 @@ Ground::Ground(TriangleMesh mesh, float cellSize) : mesh_(std::move(mesh)) {
     const auto& p = mesh_.positions;
     const auto& idx = mesh_.indices;
     require(idx.size() % 3 == 0, "ground mesh index count is not a multiple of 3");
-    for (uint32_t i : idx) require(i < p.size(), "ground mesh index out of range");
-    for (const glm::vec3& v : p) require(std::isfinite(v.x + v.y + v.z), "ground mesh has a non-finite vertex");
+    // Plain checks rather than require(), whose message string would be built once per element.
+    for (uint32_t i : idx)
+        if (i >= p.size()) throw Error("ground mesh index " + std::to_string(i) + " is out of range");
+    for (const glm::vec3& v : p)
+        if (!std::isfinite(v.x + v.y + v.z)) throw Error("ground mesh has a non-finite vertex");
     const uint32_t triangles = uint32_t(idx.size() / 3);
 
     glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());

@@ -28,14 +28,10 @@ constexpr uint64_t hashKey(std::initializer_list<uint64_t> key) {
 }
 
 // Uniform float in [0, 1) from the top 24 bits: exactly representable, identical on every machine.
-constexpr float unitFloat(uint64_t h) {
-    return float(uint32_t(h >> 40)) * (1.0f / 16777216.0f);
-}
+constexpr float unitFloat(uint64_t h) { return float(uint32_t(h >> 40)) * (1.0f / 16777216.0f); }
 
 // Uniform double in [0, 1) from the top 53 bits.
-constexpr double unitDouble(uint64_t h) {
-    return double(h >> 11) * (1.0 / 9007199254740992.0);
-}
+constexpr double unitDouble(uint64_t h) { return double(h >> 11) * (1.0 / 9007199254740992.0); }
 
 // A stream of independent values under one key: value i of the stream is hashKey({key, i}).
 struct HashStream {

@@ -113,10 +113,6 @@ Heightfield makeProceduralTerrain(const ProceduralTerrainParams& p) {
     return Heightfield(n, n, p.spacing, glm::vec2(0.0f), std::move(heights));
 }
 
-} // namespace sward
-
-namespace sward {
-
 Heightfield loadHeightfield(const std::string& path, float verticalScale, float spacing, glm::vec2 origin,
                             float heightOffset) {
     require(spacing > 0.0f && std::isfinite(spacing), "heightfield '" + path + "': spacing must be positive");
@@ -133,8 +129,9 @@ Heightfield loadHeightfield(const std::string& path, float verticalScale, float 
         const uint32_t j = image.height - 1 - row; // top image row = north = largest y
         for (uint32_t i = 0; i < image.width; ++i) {
             float value = image.at(i, row, 0);
-            require(std::isfinite(value), "heightfield '" + path + "' has a non-finite sample at pixel (" +
-                                              std::to_string(i) + ", " + std::to_string(row) + ")");
+            if (!std::isfinite(value)) // not require(): its message would be built for every pixel
+                throw Error("heightfield '" + path + "' has a non-finite sample at pixel (" + std::to_string(i) + ", " +
+                            std::to_string(row) + ")");
             heights[size_t(j) * image.width + i] = value * verticalScale + heightOffset;
         }
     }

@@ -192,15 +192,15 @@ FieldVegetation generateField(const Ground& ground, const GrassMap& map, const V
                                                  [&](uint32_t b) { return d[b * kDensityGrid + i]; });
                         const double lx = double(cx) * p.clusterSize + (i + fx) * cell;
                         const double ly = double(cy) * p.clusterSize + (j + fy) * cell;
-                        const uint32_t qx = uint32_t(std::min(std::floor(lx * frame.stepsPerMetre), 65535.0));
-                        const uint32_t qy = uint32_t(std::min(std::floor(ly * frame.stepsPerMetre), 65535.0));
+                        // Truncation is floor here (non-negative), without a libm call.
+                        const uint32_t qx = std::min(uint32_t(lx * frame.stepsPerMetre), 65535u);
+                        const uint32_t qy = std::min(uint32_t(ly * frame.stepsPerMetre), 65535u);
                         const glm::vec2 xy = decodePlanarPosition(qx, qy, frame.origin, frame.step);
                         const std::optional<SurfacePoint> ground_ = ground.surface(xy);
                         if (!ground_) continue; // no ground here: the plant does not exist
                         const glm::vec3 blended = worldUp + (ground_->normal - worldUp) * p.upNormalBlend;
                         const double sizeScale = 1.0 + category.heightVariation * (2.0 * unitDouble(g) - 1.0);
-                        const uint32_t size =
-                            uint32_t(std::clamp(std::floor(sizeScale * gpu::kPlantSizeDivisor + 0.5), 1.0, 255.0));
+                        const uint32_t size = std::clamp(uint32_t(sizeScale * gpu::kPlantSizeDivisor + 0.5), 1u, 255u);
                         const PlantInstance plant{
                             .positionX = qx,
                             .positionY = qy,
