@@ -4,13 +4,17 @@
 function(sward_add_shaders)
   cmake_parse_arguments(ARG "" "TARGET;OUTPUT_DIR" "SOURCES;DEPENDS" ${ARGN})
   set(outputs)
+  set(debug_flags)
+  if(CMAKE_BUILD_TYPE STREQUAL "Debug")
+    set(debug_flags -g)
+  endif()
   foreach(source ${ARG_SOURCES})
     get_filename_component(name ${source} NAME)
     set(output ${ARG_OUTPUT_DIR}/${name}.spv)
     add_custom_command(
       OUTPUT ${output}
       COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.3 -I${CMAKE_CURRENT_SOURCE_DIR}
-              $<$<CONFIG:Debug>:-g> -o ${output} ${CMAKE_CURRENT_SOURCE_DIR}/${source}
+              ${debug_flags} -o ${output} ${CMAKE_CURRENT_SOURCE_DIR}/${source}
       DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${source} ${ARG_DEPENDS}
       COMMENT "GLSL ${name}"
       VERBATIM)

@@ -56,7 +56,7 @@ double GrassMap::meanIntensity(uint32_t channel) const {
 }
 
 GrassMap loadGrassMap(const std::string& path) {
-    Image image = loadImage(path);
+    ImageData image = loadImage(path);
     return GrassMap(image.width, image.height, image.channels, std::move(image.samples), path);
 }
 

@@ -118,7 +118,7 @@ Heightfield loadHeightfield(const std::string& path, float verticalScale, float 
     require(spacing > 0.0f && std::isfinite(spacing), "heightfield '" + path + "': spacing must be positive");
     require(std::isfinite(verticalScale) && std::isfinite(heightOffset),
             "heightfield '" + path + "': vertical scale and offset must be finite");
-    Image image = loadImage(path);
+    ImageData image = loadImage(path);
     require(image.bitDepth != 8,
             "heightfield '" + path + "' is an 8-bit PNG; use a 16-bit PNG or a float EXR (8 bits give terraces)");
     require(image.channels == 1, "heightfield '" + path + "' has " + std::to_string(image.channels) +

@@ -58,7 +58,7 @@ std::string decodeFailure(const std::string& path) {
     return "cannot decode PNG '" + path + "': " + (reason ? reason : "corrupt or truncated data");
 }
 
-Image loadPng(const std::string& path) {
+ImageData loadPng(const std::string& path) {
     PngHeader header = readPngHeader(path);
     requireEdges(path, header.width, header.height);
     const bool palette = header.colorType == 3;
@@ -68,7 +68,7 @@ Image loadPng(const std::string& path) {
     const bool wide = !palette && header.bitDepth == 16;
 
     int width = 0, height = 0, channels = 0;
-    Image image{.bitDepth = wide ? 16u : 8u, .source = path};
+    ImageData image{.bitDepth = wide ? 16u : 8u, .source = path};
     if (wide) {
         std::unique_ptr<stbi_us, void (*)(void*)> data(stbi_load_16(path.c_str(), &width, &height, &channels, 0),
                                                        stbi_image_free);
@@ -88,7 +88,7 @@ Image loadPng(const std::string& path) {
     return image;
 }
 
-Image loadExr(const std::string& path) {
+ImageData loadExr(const std::string& path) {
     {
         std::ifstream probe(path, std::ios::binary);
         require(probe.good(), "cannot open image '" + path + "': file missing or unreadable");
@@ -116,7 +116,7 @@ Image loadExr(const std::string& path) {
                                         " EXR channels but neither R,G,B nor a single channel (or Y)");
         }
 
-        Image image{.width = uint32_t(width),
+        ImageData image{.width = uint32_t(width),
                     .height = uint32_t(height),
                     .channels = uint32_t(names.size()),
                     .bitDepth = 32,
@@ -141,7 +141,7 @@ Image loadExr(const std::string& path) {
 
 } // namespace
 
-Image loadImage(const std::string& path) {
+ImageData loadImage(const std::string& path) {
     const std::string ext = lowerExtension(path);
     if (ext == "png") return loadPng(path);
     if (ext == "exr") return loadExr(path);

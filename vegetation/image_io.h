@@ -8,7 +8,7 @@
 namespace sward {
 
 // Decoded image. Row 0 is the top row of the file; samples are interleaved, channels per pixel.
-struct Image {
+struct ImageData {
     uint32_t width = 0, height = 0;
     uint32_t channels = 0;      // 1 grey, 2 grey+alpha, 3 RGB, 4 RGBA
     uint32_t bitDepth = 0;      // 8 or 16 for PNG, 32 for EXR
@@ -24,7 +24,7 @@ inline constexpr uint32_t kMaxImageEdge = 32768;
 // Loads a .png (8 or 16 bits per sample; palette images count as 8-bit RGB(A)) or .exr (any pixel type, read as
 // float; channels R,G,B[,A], or a single channel such as Y or Z). Throws sward::Error naming the file and the
 // problem for a missing file, an unknown extension, a bit depth below 8, or a corrupt file.
-Image loadImage(const std::string& path);
+ImageData loadImage(const std::string& path);
 
 // Writes float samples to an uncompressed-precision (FLOAT, ZIP) OpenEXR file. channels: 1 (written as Y), 3 or 4.
 void writeExr(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,

@@ -64,7 +64,7 @@ public:
     Reader child(const char* key) {
         seen_.insert(key);
         static const nlohmann::json empty = nlohmann::json::object();
-        return Reader(json_.contains(key) ? json_.at(key) : empty, source_, name(key));
+        return Reader(json_.contains(key) ? json_.at(key) : empty, source_, path_.empty() ? key : path_ + "." + key);
     }
     const nlohmann::json* raw(const char* key) { return find(key); }
     // Call after reading: any key not read is a typo or an unsupported option.

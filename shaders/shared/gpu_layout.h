@@ -30,7 +30,7 @@ SWARD_CONST(uint, kDepthInfinityBits, 0x7f800000u);
 // Per-frame constants (uniform buffer, set 0 binding 0).
 struct FrameConstants {
     mat4 viewProj;       // world -> clip (reversed Z, infinite far plane)
-    mat4 view;           // world -> view (right-handed, camera looks along -Z)
+    mat4 view;           // world -> camera, OpenCV axes (x right, y down, z forward)
     mat4 invViewProj;    // clip -> world, for sky rays
     vec4 cameraPosition; // xyz world position, w unused
     vec4 sunDirection;   // xyz unit vector towards the sun, w unused

@@ -9,13 +9,24 @@
 namespace sward {
 
 RenderTargetDesc mainPassTargetDesc(uint32_t width, uint32_t height, uint32_t samples) {
-    VkClearColorValue sky{.float32 = {0.0f, 0.0f, 0.0f, 1.0f}};
-    VkClearColorValue infinity{.uint32 = {gpu::kDepthInfinityBits, 0, 0, 0}};
+    VkClearColorValue black{.float32 = {0.0f, 0.0f, 0.0f, 1.0f}};
     return RenderTargetDesc{
         .width = width,
         .height = height,
         .samples = samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
-        .colors = {{VK_FORMAT_R16G16B16A16_SFLOAT, sky}, {VK_FORMAT_R32_UINT, infinity}},
+        .colors = {{VK_FORMAT_R16G16B16A16_SFLOAT, black}},
+        .depthFormat = VK_FORMAT_D32_SFLOAT,
+        .depthClear = 0.0f,
+    };
+}
+
+RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height) {
+    VkClearColorValue infinity{.uint32 = {gpu::kDepthInfinityBits, 0, 0, 0}};
+    return RenderTargetDesc{
+        .width = width,
+        .height = height,
+        .samples = VK_SAMPLE_COUNT_1_BIT,
+        .colors = {{VK_FORMAT_R32_UINT, infinity}},
         .depthFormat = VK_FORMAT_D32_SFLOAT,
         .depthClear = 0.0f,
     };
@@ -66,41 +77,44 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield
     constants_ = createBuffer(ctx, constantsStride_ * kFramesInFlight, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                               MemoryIntent::Upload);
 
-    RenderTargetDesc target = mainPassTargetDesc(1, 1, samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1);
-    std::vector<VkFormat> formats;
-    for (auto& c : target.colors) formats.push_back(c.format);
+    RenderTargetDesc mainDesc = mainPassTargetDesc(1, 1, samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1);
+    RenderTargetDesc truthDesc = truthPassTargetDesc(1, 1);
     PipelineLayoutDesc layout{
         .bindings = {layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                                    VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT)}};
-    terrainPipeline_ = createGraphicsPipeline(
-        ctx.device,
-        {.vertexShader = "terrain.vert",
-         .fragmentShader = "terrain.frag",
-         .vertexBindings = {{0, sizeof(gpu::TerrainVertex), VK_VERTEX_INPUT_RATE_VERTEX}},
-         .vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, positionHeight)},
-                              {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, normal)}},
-         .cullMode = VK_CULL_MODE_BACK_BIT,
-         .colorFormats = formats,
-         .depthFormat = target.depthFormat,
-         .samples = target.samples},
-        layout);
-    // The sky writes colour only: ground-truth depth keeps its +inf clear value.
+    GraphicsPipelineDesc terrainDesc{
+        .vertexShader = "terrain.vert",
+        .fragmentShader = "terrain.frag",
+        .vertexBindings = {{0, sizeof(gpu::TerrainVertex), VK_VERTEX_INPUT_RATE_VERTEX}},
+        .vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, positionHeight)},
+                             {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, normal)}},
+        .cullMode = VK_CULL_MODE_BACK_BIT,
+        .colorFormats = {mainDesc.colors[0].format},
+        .depthFormat = mainDesc.depthFormat,
+        .samples = mainDesc.samples,
+    };
+    terrainPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, layout);
+    // Same vertices and rasterisation, ground-truth outputs, one sample per pixel.
+    terrainDesc.fragmentShader = "truth.frag";
+    terrainDesc.colorFormats = {truthDesc.colors[0].format};
+    terrainDesc.samples = truthDesc.samples;
+    terrainTruthPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, layout);
     skyPipeline_ = createGraphicsPipeline(ctx.device,
                                           {.vertexShader = "sky.vert",
                                            .fragmentShader = "sky.frag",
                                            .cullMode = VK_CULL_MODE_NONE,
-                                           .colorFormats = formats,
-                                           .colorWriteMasks = {0xf, 0},
-                                           .depthFormat = target.depthFormat,
+                                           .colorFormats = {mainDesc.colors[0].format},
+                                           .depthFormat = mainDesc.depthFormat,
                                            .depthWrite = false,
                                            .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL,
-                                           .samples = target.samples},
+                                           .samples = mainDesc.samples},
                                           layout);
 }
 
 SceneRenderer::~SceneRenderer() {
     ctx_.submitter.waitIdle();
     destroyPipeline(ctx_.device, terrainPipeline_);
+    destroyPipeline(ctx_.device, terrainTruthPipeline_);
     destroyPipeline(ctx_.device, skyPipeline_);
     destroyBuffer(ctx_, terrainVertices_);
     destroyBuffer(ctx_, terrainIndices_);
@@ -124,39 +138,50 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, double t
     std::memcpy(constants_.mapped() + slot * constantsStride_, &c, sizeof c);
 }
 
-void SceneRenderer::record(VkCommandBuffer cmd, RenderTarget& target, const Camera& camera, double timeSeconds,
-                           uint32_t frameIndex, GpuTimers* timers) {
+void SceneRenderer::drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline, const DescriptorBinding& frame) {
+    bindPipeline(cmd, pipeline);
+    pushDescriptors(ctx_.device, cmd, pipeline, {frame});
+    VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &terrainVertices_.handle, &offset);
+    vkCmdBindIndexBuffer(cmd, terrainIndices_.handle, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, terrainIndexCount_, 1, 0, 0, 0);
+}
+
+void SceneRenderer::record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget* truth, const Camera& camera,
+                           double timeSeconds, uint32_t frameIndex, GpuTimers* timers) {
     uint32_t slot = frameIndex % kFramesInFlight;
     writeConstants(slot, camera, timeSeconds);
     DescriptorBinding frame = uniformBuffer(0, constants_.handle, slot * constantsStride_, sizeof(gpu::FrameConstants));
 
     if (timers) timers->begin(cmd, "main");
-    target.begin(cmd);
-    bindPipeline(cmd, terrainPipeline_);
-    pushDescriptors(ctx_.device, cmd, terrainPipeline_, {frame});
-    VkDeviceSize offset = 0;
-    vkCmdBindVertexBuffers(cmd, 0, 1, &terrainVertices_.handle, &offset);
-    vkCmdBindIndexBuffer(cmd, terrainIndices_.handle, 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, terrainIndexCount_, 1, 0, 0, 0);
-
+    main.begin(cmd);
+    drawTerrain(cmd, terrainPipeline_, frame);
     // Sky last: the depth test (GREATER_OR_EQUAL against the far-plane clear) shades only uncovered pixels.
     bindPipeline(cmd, skyPipeline_);
     pushDescriptors(ctx_.device, cmd, skyPipeline_, {frame});
     vkCmdDraw(cmd, 3, 1, 0, 0);
-    target.end(cmd);
+    main.end(cmd);
+    if (timers) timers->end(cmd);
+
+    if (!truth) return;
+    if (timers) timers->begin(cmd, "truth");
+    truth->begin(cmd);
+    drawTerrain(cmd, terrainTruthPipeline_, frame);
+    truth->end(cmd);
     if (timers) timers->end(cmd);
 }
 
 FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, uint32_t samples,
                         double timeSeconds) {
-    RenderTarget target(ctx, mainPassTargetDesc(camera.width, camera.height, samples));
+    RenderTarget main(ctx, mainPassTargetDesc(camera.width, camera.height, samples));
+    RenderTarget truth(ctx, truthPassTargetDesc(camera.width, camera.height));
     uint64_t pixels = uint64_t(camera.width) * camera.height;
     Buffer color = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     Buffer depth = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     ctx.submitter.immediate([&](VkCommandBuffer cmd) {
-        renderer.record(cmd, target, camera, timeSeconds, 0);
-        target.recordReadback(cmd, 0, color);
-        target.recordReadback(cmd, 1, depth);
+        renderer.record(cmd, main, &truth, camera, timeSeconds, 0);
+        main.recordReadback(cmd, 0, color);
+        truth.recordReadback(cmd, 0, depth);
         transferToHostBarrier(cmd);
     });
     FrameImages images{.width = camera.width, .height = camera.height};

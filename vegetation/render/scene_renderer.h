@@ -1,8 +1,10 @@
 // SceneRenderer: draws a scene (terrain, sky; vegetation once loaded) into a RenderTarget.
 //
-// Attachment contract of the main pass (see docs/architecture.md):
-//   0  RGBA16F  linear HDR radiance (averaged over MSAA samples by the resolve)
-//   1  R32_UINT bit pattern of the planar depth in metres (+inf for sky), resolved with SAMPLE_ZERO
+// Two passes per frame (see docs/architecture.md):
+//   main pass   RGBA16F linear HDR radiance, 1x or 4x MSAA (averaged by the resolve)
+//   truth pass  R32_UINT bit pattern of the planar depth in metres (+inf for sky), always 1x: the same
+//               geometry rasterised once at each pixel centre, so ground truth is exact and never a blend
+//               of two surfaces ("flying pixels"), whatever the colour pass's sample count.
 #pragma once
 
 #include "camera.h"
@@ -19,8 +21,9 @@ namespace sward {
 
 class GpuTimers;
 
-// Formats and clear values of the main pass, in attachment order.
+// Formats and clear values of the two passes, in attachment order.
 RenderTargetDesc mainPassTargetDesc(uint32_t width, uint32_t height, uint32_t samples);
+RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height);
 
 class SceneRenderer {
 public:
@@ -29,15 +32,17 @@ public:
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
 
-    // Records the whole frame into `cmd`: constants, terrain, sky. `frameIndex` selects the constants slot,
-    // so up to kFramesInFlight frames may be in flight. Timers (optional) get one entry per pass.
-    void record(VkCommandBuffer cmd, RenderTarget& target, const Camera& camera, double timeSeconds,
-                uint32_t frameIndex, GpuTimers* timers = nullptr);
+    // Records the whole frame into `cmd`: constants, main pass (terrain, sky), truth pass. `frameIndex`
+    // selects the constants slot, so up to kFramesInFlight frames may be in flight. `truth` may be null
+    // (viewer). Timers (optional) get one entry per pass.
+    void record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget* truth, const Camera& camera,
+                double timeSeconds, uint32_t frameIndex, GpuTimers* timers = nullptr);
 
     static constexpr uint32_t kFramesInFlight = 3;
 
 private:
     void writeConstants(uint32_t slot, const Camera& camera, double timeSeconds);
+    void drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline, const DescriptorBinding& frame);
 
     Context& ctx_;
     Scene scene_;
@@ -45,7 +50,7 @@ private:
     uint32_t terrainIndexCount_ = 0;
     Buffer constants_; // kFramesInFlight slots of FrameConstants, host-visible
     uint64_t constantsStride_ = 0;
-    Pipeline terrainPipeline_, skyPipeline_;
+    Pipeline terrainPipeline_, terrainTruthPipeline_, skyPipeline_;
 };
 
 // Host copy of one rendered frame.

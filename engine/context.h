@@ -1,0 +1,21 @@
+// Context: the device, its memory and its submission queue, created and destroyed in the right order.
+// Everything in the engine that creates GPU objects takes a Context&.
+#pragma once
+
+#include "commands.h"
+#include "device.h"
+#include "memory.h"
+
+namespace sward {
+
+struct Context {
+    explicit Context(const DeviceOptions& options) : device(options), allocator(device), submitter(device) {}
+
+    VkDevice vk() const { return device.handle(); }
+
+    Device device;
+    Allocator allocator;   // destroyed after the submitter has released deferred resources
+    Submitter submitter;
+};
+
+} // namespace sward

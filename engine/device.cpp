@@ -1,0 +1,266 @@
+#include "device.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+namespace sward {
+
+namespace {
+
+std::string lowercase(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return s;
+}
+
+bool hasExtension(const std::vector<VkExtensionProperties>& list, const char* name) {
+    return std::any_of(list.begin(), list.end(), [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+std::vector<VkExtensionProperties> deviceExtensions(VkPhysicalDevice physical) {
+    uint32_t count = 0;
+    vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr);
+    std::vector<VkExtensionProperties> list(count);
+    vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, list.data());
+    return list;
+}
+
+int typeRank(VkPhysicalDeviceType type) {
+    switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
+    default: return 0;
+    }
+}
+
+const char* typeName(VkPhysicalDeviceType type) {
+    switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+    default: return "other";
+    }
+}
+
+std::string versionString(uint32_t v) {
+    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
+           std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+// A device is usable when it has Vulkan 1.3, one queue family with graphics + compute, and push descriptors.
+bool usable(VkPhysicalDevice physical, uint32_t* family) {
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(physical, &props);
+    if (props.apiVersion < VK_API_VERSION_1_3) return false;
+    if (!hasExtension(deviceExtensions(physical), VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) return false;
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, families.data());
+    for (uint32_t i = 0; i < count; ++i) {
+        VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+        if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0) {
+            *family = i;
+            return true;
+        }
+    }
+    return false;
+}
+
+} // namespace
+
+bool envFlag(const char* name) {
+    const char* value = std::getenv(name);
+    return value && *value && std::strcmp(value, "0") != 0;
+}
+
+Device::Device(const DeviceOptions& options) {
+    validation_ = options.validation || envFlag("SWARD_VALIDATION");
+    createInstance(options);
+    std::string filter = options.deviceFilter;
+    if (filter.empty() && std::getenv("SWARD_DEVICE")) filter = std::getenv("SWARD_DEVICE");
+    pickPhysicalDevice(filter);
+    createDevice(options);
+    if (!options.quiet)
+        logInfo("device: " + name_ + " (" + typeName(properties_.deviceType) + "), driver " + driver_ +
+                ", Vulkan " + versionString(properties_.apiVersion) + (validation_ ? ", validation on" : ""));
+}
+
+Device::~Device() {
+    if (device_) vkDestroyDevice(device_, nullptr);
+    if (messenger_) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+        destroy(instance_, messenger_, nullptr);
+    }
+    if (instance_) vkDestroyInstance(instance_, nullptr);
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL Device::debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                     VkDebugUtilsMessageTypeFlagsEXT,
+                                                     const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+    auto* self = static_cast<Device*>(user);
+    const char* level = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning";
+    self->validationMessages_.fetch_add(1);
+    std::fprintf(stderr, "sward: validation %s: %s\n", level, data->pMessage);
+    return VK_FALSE;
+}
+
+void Device::createInstance(const DeviceOptions& options) {
+    std::vector<const char*> extensions = options.instanceExtensions;
+    std::vector<const char*> layers;
+    VkDebugUtilsMessengerCreateInfoEXT messengerInfo{
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT,
+        .pfnUserCallback = debugCallback,
+        .pUserData = this,
+    };
+    // Synchronization validation catches missing or too-narrow barriers, which the core layer cannot.
+    VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    VkValidationFeaturesEXT features{
+        .sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT,
+        .pNext = &messengerInfo,
+        .enabledValidationFeatureCount = 1,
+        .pEnabledValidationFeatures = enables,
+    };
+    if (validation_) {
+        uint32_t count = 0;
+        vkEnumerateInstanceLayerProperties(&count, nullptr);
+        std::vector<VkLayerProperties> available(count);
+        vkEnumerateInstanceLayerProperties(&count, available.data());
+        bool found = std::any_of(available.begin(), available.end(), [](auto& l) {
+            return std::strcmp(l.layerName, "VK_LAYER_KHRONOS_validation") == 0;
+        });
+        require(found, "validation was requested but VK_LAYER_KHRONOS_validation is not installed "
+                       "(Debian package vulkan-validationlayers)");
+        layers.push_back("VK_LAYER_KHRONOS_validation");
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    }
+    VkApplicationInfo app{
+        .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+        .pApplicationName = "sward",
+        .applicationVersion = VK_MAKE_API_VERSION(0, 0, 1, 0),
+        .pEngineName = "sward",
+        .apiVersion = VK_API_VERSION_1_3,
+    };
+    VkInstanceCreateInfo info{
+        .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+        .pNext = validation_ ? &features : nullptr,
+        .pApplicationInfo = &app,
+        .enabledLayerCount = uint32_t(layers.size()),
+        .ppEnabledLayerNames = layers.data(),
+        .enabledExtensionCount = uint32_t(extensions.size()),
+        .ppEnabledExtensionNames = extensions.data(),
+    };
+    VkResult result = vkCreateInstance(&info, nullptr, &instance_);
+    require(result != VK_ERROR_INCOMPATIBLE_DRIVER,
+            "no Vulkan driver found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)");
+    VK_CHECK(result);
+    if (validation_) {
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+        VK_CHECK(create(instance_, &messengerInfo, nullptr, &messenger_));
+    }
+}
+
+void Device::pickPhysicalDevice(const std::string& filter) {
+    uint32_t count = 0;
+    VK_CHECK(vkEnumeratePhysicalDevices(instance_, &count, nullptr));
+    std::vector<VkPhysicalDevice> devices(count);
+    VK_CHECK(vkEnumeratePhysicalDevices(instance_, &count, devices.data()));
+
+    std::string names;
+    int bestRank = -1;
+    for (VkPhysicalDevice physical : devices) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(physical, &props);
+        uint32_t family = 0;
+        bool ok = usable(physical, &family);
+        names += (names.empty() ? "" : ", ") + std::string("'") + props.deviceName + "'" + (ok ? "" : " (unsuitable)");
+        if (!ok) continue;
+        if (!filter.empty() && lowercase(props.deviceName).find(lowercase(filter)) == std::string::npos) continue;
+        if (typeRank(props.deviceType) > bestRank) {
+            bestRank = typeRank(props.deviceType);
+            physical_ = physical;
+            queueFamily_ = family;
+        }
+    }
+    if (!physical_) {
+        if (!filter.empty())
+            throw Error("no Vulkan device matches '" + filter + "' (available: " + (names.empty() ? "none" : names) + ")");
+        throw Error("no Vulkan 1.3 device with graphics, compute and push descriptors found (available: " +
+                    (names.empty() ? "none" : names) + ")");
+    }
+    VkPhysicalDeviceDriverProperties driverProps{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 props2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &driverProps};
+    vkGetPhysicalDeviceProperties2(physical_, &props2);
+    properties_ = props2.properties;
+    name_ = properties_.deviceName;
+    driver_ = std::string(driverProps.driverName) + " " + driverProps.driverInfo;
+    vkGetPhysicalDeviceMemoryProperties(physical_, &memoryProperties_);
+}
+
+void Device::createDevice(const DeviceOptions& options) {
+    VkPhysicalDeviceVulkan12Features supported12{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 supported{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &supported12};
+    vkGetPhysicalDeviceFeatures2(physical_, &supported);
+    drawIndirectCount_ = supported12.drawIndirectCount;
+
+    VkPhysicalDeviceVulkan13Features features13{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+        .synchronization2 = VK_TRUE,
+        .dynamicRendering = VK_TRUE,
+        .maintenance4 = VK_TRUE, // required by Vulkan 1.3; glslang's 1.3 target emits LocalSizeId
+    };
+    VkPhysicalDeviceVulkan12Features features12{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+        .pNext = &features13,
+        .drawIndirectCount = supported12.drawIndirectCount,
+        .storageBuffer8BitAccess = supported12.storageBuffer8BitAccess,
+        .shaderInt8 = supported12.shaderInt8,
+        .timelineSemaphore = VK_TRUE,
+    };
+    VkPhysicalDeviceFeatures2 features{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+        .pNext = &features12,
+        .features = {
+            .independentBlend = supported.features.independentBlend,
+            .multiDrawIndirect = supported.features.multiDrawIndirect,
+            .drawIndirectFirstInstance = supported.features.drawIndirectFirstInstance,
+            .depthClamp = supported.features.depthClamp,
+            .samplerAnisotropy = supported.features.samplerAnisotropy,
+            .fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics,
+            .shaderInt16 = supported.features.shaderInt16,
+        },
+    };
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo queueInfo{
+        .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+        .queueFamilyIndex = queueFamily_,
+        .queueCount = 1,
+        .pQueuePriorities = &priority,
+    };
+    std::vector<const char*> extensions = options.deviceExtensions;
+    extensions.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+    VkDeviceCreateInfo info{
+        .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+        .pNext = &features,
+        .queueCreateInfoCount = 1,
+        .pQueueCreateInfos = &queueInfo,
+        .enabledExtensionCount = uint32_t(extensions.size()),
+        .ppEnabledExtensionNames = extensions.data(),
+    };
+    VK_CHECK(vkCreateDevice(physical_, &info, nullptr, &device_));
+    vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+    cmdPushDescriptorSet =
+        reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+    require(cmdPushDescriptorSet != nullptr, "the device does not expose vkCmdPushDescriptorSetKHR");
+}
+
+} // namespace sward

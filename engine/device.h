@@ -1,0 +1,80 @@
+// Device: Vulkan instance, physical-device choice, logical device, one universal queue, validation.
+//
+// Headless first: no window or surface is needed. The viewer adds its instance/device extensions through
+// DeviceOptions. Requires Vulkan 1.3 (dynamic rendering, synchronization2, timeline semaphores) and
+// VK_KHR_push_descriptor, which lavapipe and every current desktop driver provide.
+#pragma once
+
+#include "vk_common.h"
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sward {
+
+struct DeviceOptions {
+    // Case-insensitive substring of the device name; empty = automatic choice (discrete > integrated >
+    // virtual > CPU). The environment variable SWARD_DEVICE is used when this is empty.
+    std::string deviceFilter;
+    // Enable VK_LAYER_KHRONOS_validation and the debug messenger. Also forced on by SWARD_VALIDATION=1.
+    bool validation = false;
+    std::vector<const char*> instanceExtensions; // extra, e.g. from glfwGetRequiredInstanceExtensions
+    std::vector<const char*> deviceExtensions;   // extra, e.g. VK_KHR_swapchain
+    bool quiet = false;                          // don't log the chosen device
+};
+
+class Device {
+public:
+    explicit Device(const DeviceOptions& options);
+    ~Device();
+    Device(const Device&) = delete;
+    Device& operator=(const Device&) = delete;
+
+    VkInstance instance() const { return instance_; }
+    VkPhysicalDevice physical() const { return physical_; }
+    VkDevice handle() const { return device_; }
+    VkQueue queue() const { return queue_; }
+    uint32_t queueFamily() const { return queueFamily_; }
+    const VkPhysicalDeviceProperties& properties() const { return properties_; }
+    const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
+    // "llvmpipe (LLVM 15.0.6, 256 bits)", driver "llvmpipe Mesa 22.3.6", ...: for logs and dataset manifests.
+    const std::string& name() const { return name_; }
+    const std::string& driver() const { return driver_; }
+    bool isCpu() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+    bool validationEnabled() const { return validation_; }
+    bool supportsDrawIndirectCount() const { return drawIndirectCount_; }
+
+    // Number of validation messages (warnings and errors) seen so far. Tests and tools treat any as failure.
+    uint32_t validationMessageCount() const { return validationMessages_.load(); }
+
+    PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
+
+private:
+    static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                        VkDebugUtilsMessageTypeFlagsEXT types,
+                                                        const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                        void* user);
+    void createInstance(const DeviceOptions& options);
+    void pickPhysicalDevice(const std::string& filter);
+    void createDevice(const DeviceOptions& options);
+
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    uint32_t queueFamily_ = 0;
+    VkPhysicalDeviceProperties properties_{};
+    VkPhysicalDeviceMemoryProperties memoryProperties_{};
+    std::string name_, driver_;
+    bool validation_ = false;
+    bool drawIndirectCount_ = false;
+    std::atomic<uint32_t> validationMessages_{0};
+};
+
+// True when the environment variable is set to a non-empty value other than "0".
+bool envFlag(const char* name);
+
+} // namespace sward

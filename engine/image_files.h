@@ -1,0 +1,41 @@
+// Image files: OpenEXR (HDR colour, float depth) and PNG (previews, 8/16-bit masks).
+//
+// Every writer is atomic: it writes "<path>.tmp" and renames it over <path>, so an interrupted or failed
+// run never leaves a half-written file behind. Errors throw sward::Error naming the file.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace sward {
+
+// Colour: single-part scanline EXR with half-float channels R, G, B, A (linear, scene-referred).
+// `rgbaHalf` holds width*height*4 IEEE half bit patterns, row-major, top row first (as read back).
+void writeExrRgbaHalf(const std::string& path, uint32_t width, uint32_t height, std::span<const uint16_t> rgbaHalf);
+
+// Depth: single-part scanline EXR with one float32 channel named "Y" (what OpenCV reads as a one-channel
+// float image) and, by default, a copy named "Z" for tools that expect a Z depth channel. OpenCV 4.6
+// returns zeros for a file whose only channel is "Z", hence "Y" is always present.
+void writeExrDepth(const std::string& path, uint32_t width, uint32_t height, std::span<const float> depth,
+                   bool withZCopy = true);
+
+// Generic float EXR with named channels (channels.size() planes of width*height floats each).
+void writeExrFloatChannels(const std::string& path, uint32_t width, uint32_t height,
+                           const std::vector<std::string>& names, const std::vector<std::span<const float>>& planes);
+
+// 8-bit PNG with 1, 3 or 4 channels.
+void writePng8(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
+               std::span<const uint8_t> pixels);
+
+// Linear HDR half RGBA -> 8-bit sRGB RGB preview with an exposure and Narkowicz's ACES filmic curve fit.
+std::vector<uint8_t> tonemapPreview(std::span<const uint16_t> rgbaHalf, uint32_t width, uint32_t height,
+                                    float exposure = 0.5f);
+
+float halfToFloat(uint16_t h);
+
+// Creates `dir` (and parents) and checks a file can be written there; throws a clear error otherwise.
+void ensureWritableDirectory(const std::string& dir);
+
+} // namespace sward

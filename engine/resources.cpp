@@ -1,0 +1,157 @@
+#include "resources.h"
+
+#include "barriers.h"
+#include "context.h"
+
+#include <cstring>
+
+namespace sward {
+
+Buffer createBuffer(Context& ctx, uint64_t size, VkBufferUsageFlags usage, MemoryIntent intent) {
+    require(size > 0, "cannot create an empty GPU buffer");
+    VkBufferCreateInfo info{
+        .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+        .size = size,
+        .usage = usage,
+        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+    };
+    Buffer buffer{.size = size};
+    VK_CHECK(vkCreateBuffer(ctx.vk(), &info, nullptr, &buffer.handle));
+    VkMemoryRequirements requirements;
+    vkGetBufferMemoryRequirements(ctx.vk(), buffer.handle, &requirements);
+    buffer.memory = ctx.allocator.allocate(requirements, intent, /*linear=*/true);
+    VK_CHECK(vkBindBufferMemory(ctx.vk(), buffer.handle, buffer.memory.memory, buffer.memory.offset));
+    return buffer;
+}
+
+void destroyBuffer(Context& ctx, Buffer& buffer) {
+    if (!buffer) return;
+    vkDestroyBuffer(ctx.vk(), buffer.handle, nullptr);
+    ctx.allocator.free(buffer.memory);
+    buffer = {};
+}
+
+void retireBuffer(Context& ctx, Buffer& buffer) {
+    if (!buffer) return;
+    ctx.submitter.destroyLater([&ctx, b = buffer]() mutable { destroyBuffer(ctx, b); });
+    buffer = {};
+}
+
+static VkImageAspectFlags aspectOf(VkFormat format) {
+    switch (format) {
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_D16_UNORM: return VK_IMAGE_ASPECT_DEPTH_BIT;
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT: return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
+    default: return VK_IMAGE_ASPECT_COLOR_BIT;
+    }
+}
+
+Image createImage(Context& ctx, const ImageDesc& desc) {
+    require(desc.width > 0 && desc.height > 0 && desc.width <= 16384 && desc.height <= 16384,
+            "image size " + std::to_string(desc.width) + "x" + std::to_string(desc.height) + " is out of range");
+    VkImageCreateInfo info{
+        .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+        .imageType = VK_IMAGE_TYPE_2D,
+        .format = desc.format,
+        .extent = {desc.width, desc.height, 1},
+        .mipLevels = desc.mipLevels,
+        .arrayLayers = 1,
+        .samples = desc.samples,
+        .tiling = VK_IMAGE_TILING_OPTIMAL,
+        .usage = desc.usage,
+        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+        .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+    };
+    Image image{
+        .format = desc.format,
+        .extent = {desc.width, desc.height},
+        .mipLevels = desc.mipLevels,
+        .samples = desc.samples,
+        .aspect = aspectOf(desc.format),
+    };
+    VK_CHECK(vkCreateImage(ctx.vk(), &info, nullptr, &image.handle));
+    VkMemoryRequirements requirements;
+    vkGetImageMemoryRequirements(ctx.vk(), image.handle, &requirements);
+    image.memory = ctx.allocator.allocate(requirements, MemoryIntent::DeviceLocal, /*linear=*/false);
+    VK_CHECK(vkBindImageMemory(ctx.vk(), image.handle, image.memory.memory, image.memory.offset));
+    VkImageViewCreateInfo viewInfo{
+        .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+        .image = image.handle,
+        .viewType = VK_IMAGE_VIEW_TYPE_2D,
+        .format = desc.format,
+        .subresourceRange = {image.aspect, 0, desc.mipLevels, 0, 1},
+    };
+    VK_CHECK(vkCreateImageView(ctx.vk(), &viewInfo, nullptr, &image.view));
+    return image;
+}
+
+void destroyImage(Context& ctx, Image& image) {
+    if (!image) return;
+    vkDestroyImageView(ctx.vk(), image.view, nullptr);
+    vkDestroyImage(ctx.vk(), image.handle, nullptr);
+    ctx.allocator.free(image.memory);
+    image = {};
+}
+
+void retireImage(Context& ctx, Image& image) {
+    if (!image) return;
+    ctx.submitter.destroyLater([&ctx, i = image]() mutable { destroyImage(ctx, i); });
+    image = {};
+}
+
+void uploadToBuffer(Context& ctx, const Buffer& dst, uint64_t offset, std::span<const uint8_t> data) {
+    if (data.empty()) return;
+    require(offset + data.size() <= dst.size, "upload past the end of a GPU buffer");
+    Buffer staging = createBuffer(ctx, data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload);
+    std::memcpy(staging.mapped(), data.data(), data.size());
+    ctx.submitter.immediate([&](VkCommandBuffer cmd) {
+        VkBufferCopy region{.srcOffset = 0, .dstOffset = offset, .size = data.size()};
+        vkCmdCopyBuffer(cmd, staging.handle, dst.handle, 1, &region);
+        // Later users of the buffer (any stage) see the copy.
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
+    });
+    destroyBuffer(ctx, staging);
+}
+
+Buffer createBufferWithData(Context& ctx, std::span<const uint8_t> data, VkBufferUsageFlags usage) {
+    Buffer buffer = createBuffer(ctx, data.size(), usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::DeviceLocal);
+    uploadToBuffer(ctx, buffer, 0, data);
+    return buffer;
+}
+
+std::vector<uint8_t> readBuffer(Context& ctx, const Buffer& src, uint64_t offset, uint64_t size) {
+    require(offset + size <= src.size, "readback past the end of a GPU buffer");
+    Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    ctx.submitter.immediate([&](VkCommandBuffer cmd) {
+        // Whatever wrote the buffer before (compute, transfer) must finish before the copy reads it.
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+        VkBufferCopy region{.srcOffset = offset, .dstOffset = 0, .size = size};
+        vkCmdCopyBuffer(cmd, src.handle, staging.handle, 1, &region);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                      VK_ACCESS_2_HOST_READ_BIT);
+    });
+    std::vector<uint8_t> data(staging.mapped(), staging.mapped() + size);
+    destroyBuffer(ctx, staging);
+    return data;
+}
+
+uint32_t formatBytes(VkFormat format) {
+    switch (format) {
+    case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_B8G8R8A8_UNORM:
+    case VK_FORMAT_B8G8R8A8_SRGB:
+    case VK_FORMAT_R32_UINT:
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_D32_SFLOAT: return 4;
+    case VK_FORMAT_R16_UINT: return 2;
+    case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+    default: throw Error("formatBytes: unsupported format " + std::to_string(int(format)));
+    }
+}
+
+} // namespace sward

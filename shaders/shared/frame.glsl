@@ -1,0 +1,23 @@
+// Per-frame constants block (set 0, binding 0) and common helpers, included by every render shader.
+#ifndef SWARD_FRAME_GLSL
+#define SWARD_FRAME_GLSL
+
+#include "gpu_layout.h"
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock {
+    FrameConstants frame;
+};
+
+// Hemisphere sky light arriving along unit direction `dir` (z up), shared by the sky and ambient light.
+vec3 skyRadiance(vec3 dir) {
+    float up = clamp(dir.z, -1.0, 1.0);
+    if (up < 0.0) return mix(frame.skyHorizon.rgb, frame.groundAmbient.rgb, min(-up * 4.0, 1.0));
+    return mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, sqrt(up));
+}
+
+// Irradiance-like ambient term for a surface with unit normal n: sky from above, bounce light from below.
+vec3 ambientLight(vec3 n) {
+    return mix(frame.groundAmbient.rgb, 0.5 * (frame.skyZenith.rgb + frame.skyHorizon.rgb), 0.5 + 0.5 * n.z);
+}
+
+#endif

@@ -1,0 +1,20 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Terrain: a static triangle mesh of the heightfield, positions already in world space.
+#include "shared/frame.glsl"
+
+layout(location = 0) in vec4 inPosition;
+layout(location = 1) in vec4 inNormal;
+
+layout(location = 0) out vec3 outWorld;
+layout(location = 1) out vec3 outNormal;
+layout(location = 2) out float outViewDepth;
+
+void main() {
+    vec4 world = vec4(inPosition.xyz, 1.0);
+    gl_Position = frame.viewProj * world;
+    outWorld = world.xyz;
+    outNormal = inNormal.xyz;
+    // Planar depth along the optical axis: view space uses OpenCV camera axes (z forward).
+    outViewDepth = (frame.view * world).z;
+}

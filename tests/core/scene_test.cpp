@@ -1,0 +1,85 @@
+#include "camera.h"
+#include "error.h"
+#include "memory.h"
+#include "scene.h"
+
+#include <gtest/gtest.h>
+
+using namespace sward;
+
+namespace {
+std::string errorOf(const char* json) {
+    try {
+        parseScene(nlohmann::json::parse(json), "s.json");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+} // namespace
+
+TEST(Scene, DefaultsAreValid) {
+    Scene scene = parseScene(nlohmann::json::object(), "empty");
+    EXPECT_EQ(scene.render.samples, 4u);
+    EXPECT_GT(scene.terrain.size, 0.0f);
+}
+
+TEST(Scene, RejectsBadValuesNamingFileAndKey) {
+    EXPECT_NE(errorOf(R"({"terrain": {"amplitude": -1}})").find("s.json: 'terrain.amplitude'"), std::string::npos);
+    EXPECT_NE(errorOf(R"({"terrain": {"spacing": "2"}})").find("'terrain.spacing' must be a number"), std::string::npos);
+    EXPECT_NE(errorOf(R"({"terain": {}})").find("unknown key 'terain'"), std::string::npos);
+    EXPECT_NE(errorOf(R"({"render": {"samples": 2}})").find("render.samples"), std::string::npos);
+    EXPECT_NE(errorOf(R"({"camera": {"position": [1, 2]}})").find("camera.position"), std::string::npos);
+    EXPECT_NE(errorOf(R"([1, 2])").find("JSON object"), std::string::npos);
+}
+
+TEST(Scene, MissingFileNamesIt) {
+    try {
+        loadScene("/nonexistent/scene.json");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.json"), std::string::npos);
+    }
+}
+
+TEST(Scene, ParsesResolution) {
+    uint32_t w = 0, h = 0;
+    parseResolution("640x480", w, h);
+    EXPECT_EQ(w, 640u);
+    EXPECT_EQ(h, 480u);
+    for (const char* bad : {"", "640", "640x", "x480", "0x1", "640x480x2", "-1x5", "17000x10", "64 0x480"})
+        EXPECT_THROW(parseResolution(bad, w, h), Error) << bad;
+}
+
+TEST(Camera, ProjectsItsOwnRaysBackToThePixel) {
+    Camera camera = Camera::lookAt({1, 2, 3}, {10, 20, 1}, {0, 0, 1}, 50.0, 320, 240);
+    glm::dvec3 p = camera.position + 7.5 * camera.ray(100.5, 30.5);
+    glm::dvec3 q = camera.project(p);
+    EXPECT_NEAR(q.x, 100.5, 1e-9);
+    EXPECT_NEAR(q.y, 30.5, 1e-9);
+    EXPECT_NEAR(q.z, 7.5, 1e-9);
+    // Clip space: x/w, y/w map to the same pixel; depth = near / z (reversed Z).
+    glm::dvec4 clip = camera.viewProjection() * glm::dvec4(p, 1.0);
+    EXPECT_NEAR((clip.x / clip.w + 1.0) * 0.5 * 320, 100.5, 1e-6);
+    EXPECT_NEAR((clip.y / clip.w + 1.0) * 0.5 * 240, 30.5, 1e-6);
+    EXPECT_NEAR(clip.z / clip.w, camera.nearPlane / 7.5, 1e-12);
+}
+
+TEST(RangeAllocator, AlignsReusesAndCoalesces) {
+    RangeAllocator ranges(1024);
+    auto a = ranges.allocate(100, 1);
+    auto b = ranges.allocate(100, 256);
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ(*a, 0u);
+    EXPECT_EQ(*b, 256u);
+    EXPECT_EQ(ranges.used(), 200u);
+    EXPECT_FALSE(ranges.allocate(2000, 1).has_value());
+    ranges.free(*a, 100);
+    ranges.free(*b, 100);
+    EXPECT_EQ(ranges.used(), 0u);
+    EXPECT_EQ(ranges.freeRangeCount(), 1u) << "free ranges were not merged";
+    auto whole = ranges.allocate(1024, 1);
+    ASSERT_TRUE(whole.has_value());
+    EXPECT_EQ(*whole, 0u);
+    EXPECT_THROW(ranges.free(0, 2048), Error);
+}

@@ -1,0 +1,107 @@
+// sward-render as a user runs it: output files, determinism across lavapipe thread counts, clear errors.
+#include "gpu_test.h"
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+using sward::test::tempDir;
+
+namespace {
+
+struct RunResult {
+    int exitCode = -1;
+    std::string err;
+};
+
+// Runs sward-render with `args` (shell-quoted by the caller) and an environment prefix; captures stderr.
+RunResult runRender(const std::string& args, const std::string& env = "") {
+    std::string errFile = tempDir("stderr") + "/err.txt";
+    std::string command = env + " " SWARD_RENDER_EXE " " + args + " >/dev/null 2>" + errFile;
+    int status = std::system(command.c_str());
+    std::ifstream file(errFile);
+    std::stringstream text;
+    text << file.rdbuf();
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::stringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+int countLines(const std::string& s, const std::string& needle) {
+    int n = 0;
+    std::istringstream lines(s);
+    for (std::string line; std::getline(lines, line);) n += line.find(needle) != std::string::npos;
+    return n;
+}
+
+const std::string kSmall = "--resolution 160x120 --samples 4 --validation";
+
+} // namespace
+
+TEST(SwardRender, WritesColourDepthAndPreview) {
+    std::string out = tempDir("cli-out");
+    RunResult r = runRender(kSmall + " --out " + out);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* file : {"/left/000000.exr", "/depth/000000.exr", "/preview/000000.png"})
+        EXPECT_TRUE(std::filesystem::file_size(out + file) > 0) << file;
+    EXPECT_EQ(countLines(r.err, "validation"), 1) << "only the device line may mention validation:\n" << r.err;
+}
+
+TEST(SwardRender, OutputIsBitwiseIdenticalWithOneOrManyLavapipeThreads) {
+    std::string a = tempDir("cli-threads1"), b = tempDir("cli-threadsN"), c = tempDir("cli-threadsN2");
+    ASSERT_EQ(runRender(kSmall + " --out " + a, "LP_NUM_THREADS=1").exitCode, 0);
+    ASSERT_EQ(runRender(kSmall + " --out " + b).exitCode, 0);
+    ASSERT_EQ(runRender(kSmall + " --out " + c, "LP_NUM_THREADS=3").exitCode, 0);
+    for (const char* file : {"/left/000000.exr", "/depth/000000.exr", "/preview/000000.png"}) {
+        std::string reference = readFile(a + file);
+        ASSERT_FALSE(reference.empty()) << file;
+        EXPECT_TRUE(reference == readFile(b + file)) << file << " differs between 1 thread and the default";
+        EXPECT_TRUE(reference == readFile(c + file)) << file << " differs between 1 and 3 threads";
+    }
+}
+
+TEST(SwardRender, UnknownDeviceIsOneClearError) {
+    RunResult r = runRender("--device no-such-gpu --out " + tempDir("cli-dev"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(countLines(r.err, "error"), 1) << r.err;
+    EXPECT_NE(r.err.find("no-such-gpu"), std::string::npos) << r.err;
+}
+
+TEST(SwardRender, UnwritableOutputIsOneClearError) {
+    std::string dir = tempDir("cli-unwritable");
+    std::ofstream(dir + "/file") << "x"; // a regular file cannot hold an output folder
+    RunResult r = runRender("--out " + dir + "/file/out");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(countLines(r.err, "error"), 1) << r.err;
+    EXPECT_NE(r.err.find("file/out"), std::string::npos) << r.err;
+    EXPECT_EQ(countLines(r.err, "device"), 0) << "failed before touching the GPU:\n" << r.err;
+}
+
+TEST(SwardRender, BadResolutionIsOneClearError) {
+    for (const char* bad : {"12x", "0x10", "640*480", "99999x10", "axb"}) {
+        RunResult r = runRender(std::string("--resolution '") + bad + "' --out " + tempDir("cli-res"));
+        EXPECT_NE(r.exitCode, 0) << bad;
+        EXPECT_EQ(countLines(r.err, "error"), 1) << bad << ": " << r.err;
+        EXPECT_NE(r.err.find("resolution"), std::string::npos) << r.err;
+    }
+}
+
+TEST(SwardRender, MissingOrMalformedSceneIsOneClearError) {
+    std::string dir = tempDir("cli-scene");
+    RunResult missing = runRender(dir + "/nope.json --out " + dir + "/o");
+    EXPECT_NE(missing.exitCode, 0);
+    EXPECT_NE(missing.err.find("nope.json"), std::string::npos) << missing.err;
+    std::ofstream(dir + "/bad.json") << R"({"terrain": {"amplitude": "tall"}})";
+    RunResult malformed = runRender(dir + "/bad.json --out " + dir + "/o");
+    EXPECT_NE(malformed.exitCode, 0);
+    EXPECT_EQ(countLines(malformed.err, "error"), 1) << malformed.err;
+    EXPECT_NE(malformed.err.find("terrain.amplitude"), std::string::npos) << malformed.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/o/left/000000.exr")) << "nothing is written for a bad scene";
+}

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs every Debian package sward's build, tests and tools need. Idempotent and fast when everything is
+# already there: it asks dpkg first and only runs apt-get for what is missing.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  g++ cmake ninja-build pkg-config git
+  # Vulkan: loader + headers, lavapipe (Mesa's CPU driver), validation layers, shader compiler, vulkaninfo
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools vulkan-tools
+  # maths, windowing, assets, image formats
+  libglm-dev libglfw3-dev libtinygltf-dev libstb-dev libopenexr-dev libpng-dev
+  # OpenCV modules used by tests and sward-eval (the per-module packages avoid 40+ unrelated ones)
+  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-calib3d-dev
+  # configuration, command line, UI
+  nlohmann-json3-dev libcli11-dev libimgui-dev
+  # tests and benchmarks; a virtual X server for the viewer test
+  libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
+  [ "$status" = "installed" ] || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
