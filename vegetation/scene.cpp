@@ -1,6 +1,10 @@
 #include "scene.h"
 
 #include "error.h"
+#include "ground.h"
+#include "placement.h"
+
+#include <filesystem>
 
 #include <cmath>
 #include <fstream>
@@ -160,7 +164,23 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
         throw Error(source + ": 'render.samples' must be 1 or 4");
     render.finish();
 
-    if (const nlohmann::json* vegetation = root.raw("vegetation")) scene.vegetation = *vegetation;
+    if (const nlohmann::json* vegetation = root.raw("vegetation")) {
+        scene.vegetation = parseVegetationParams(*vegetation, source);
+        if (!vegetation->contains("seed")) scene.vegetation.seed = scene.seed;
+    } else {
+        scene.vegetation.seed = scene.seed;
+    }
+    scene.vegetationEnabled = root.number("vegetation_enabled", 1.0, 0.0, 1.0) != 0.0;
+    std::string grassMap = root.string("grass_map", "");
+    if (!grassMap.empty()) {
+        std::filesystem::path path(grassMap);
+        if (path.is_relative() && source.find('<') == std::string::npos)
+            path = std::filesystem::path(source).parent_path() / path;
+        scene.grassMapPath = path.string();
+    }
+    if (scene.vegetation.tileSize > scene.terrain.size + 1e-3f)
+        throw Error(source + ": 'vegetation.tile_size' (" + std::to_string(scene.vegetation.tileSize) +
+                    " m) must not exceed 'terrain.size' (" + std::to_string(scene.terrain.size) + " m)");
     root.finish();
     return scene;
 }

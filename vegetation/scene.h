@@ -6,7 +6,10 @@
 #pragma once
 
 #include "camera.h"
+#include "grass_map.h"
 #include "heightfield.h"
+#include "vegetation_params.h"
+#include "vegetation_tile.h"
 
 #include <nlohmann/json.hpp>
 
@@ -53,7 +56,9 @@ struct Scene {
     SkyParams sky;
     CameraParams camera;
     RenderParams render;
-    nlohmann::json vegetation = nlohmann::json::object(); // parsed by the vegetation model
+    VegetationParams vegetation;   // "vegetation" object, see vegetation_params.h
+    bool vegetationEnabled = true; // false: bare ground (paired studies, --no-vegetation)
+    std::string grassMapPath;      // "grass_map", resolved against the scene's folder; empty = procedural meadow
 };
 
 // Parses and validates a scene; `source` names it in error messages.
@@ -62,6 +67,10 @@ Scene parseScene(const nlohmann::json& json, const std::string& source);
 Scene loadScene(const std::string& path);
 // Builds the scene's terrain.
 Heightfield buildTerrain(const Scene& scene);
+// The scene's grass map: the file it names, or the procedural meadow (seeded by the scene seed).
+GrassMap buildGrassMap(const Scene& scene);
+// Places the scene's vegetation on its terrain (threads: 0 = all cores). Checks the memory budget first.
+VegetationTile buildVegetation(const Scene& scene, const Heightfield& terrain, uint32_t threads = 0);
 // The scene camera at the given resolution, resolved against the terrain.
 Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t width, uint32_t height);
 
