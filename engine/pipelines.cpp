@@ -92,7 +92,8 @@ Pipeline createGraphicsPipeline(Device& device, const GraphicsPipelineDesc& desc
     Pipeline pipeline{.bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS};
     createLayout(device, layout, pipeline);
     VkShaderModule vs = loadShaderModule(device.handle(), desc.vertexShader);
-    VkShaderModule fs = loadShaderModule(device.handle(), desc.fragmentShader);
+    // No fragment shader is valid: depth-only passes (shadow maps) need none.
+    VkShaderModule fs = desc.fragmentShader.empty() ? VK_NULL_HANDLE : loadShaderModule(device.handle(), desc.fragmentShader);
     Specialization spec(desc.specialization);
     VkPipelineShaderStageCreateInfo stages[2] = {
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
@@ -122,11 +123,15 @@ Pipeline createGraphicsPipeline(Device& device, const GraphicsPipelineDesc& desc
         .polygonMode = VK_POLYGON_MODE_FILL,
         .cullMode = desc.cullMode,
         .frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE,
+        .depthBiasEnable = desc.depthBias != 0.0f,
+        .depthBiasConstantFactor = desc.depthBias,
+        .depthBiasSlopeFactor = desc.depthBiasSlope,
         .lineWidth = 1.0f,
     };
     VkPipelineMultisampleStateCreateInfo multisample{
         .sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
         .rasterizationSamples = desc.samples,
+        .minSampleShading = 1.0f,
         .alphaToCoverageEnable = desc.alphaToCoverage,
     };
     VkPipelineDepthStencilStateCreateInfo depth{
@@ -157,7 +162,7 @@ Pipeline createGraphicsPipeline(Device& device, const GraphicsPipelineDesc& desc
     VkGraphicsPipelineCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
         .pNext = &rendering,
-        .stageCount = 2,
+        .stageCount = fs ? 2u : 1u,
         .pStages = stages,
         .pVertexInputState = &vertexInput,
         .pInputAssemblyState = &inputAssembly,
@@ -171,7 +176,7 @@ Pipeline createGraphicsPipeline(Device& device, const GraphicsPipelineDesc& desc
     };
     VkResult result = vkCreateGraphicsPipelines(device.handle(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline.handle);
     vkDestroyShaderModule(device.handle(), vs, nullptr);
-    vkDestroyShaderModule(device.handle(), fs, nullptr);
+    if (fs) vkDestroyShaderModule(device.handle(), fs, nullptr);
     VK_CHECK(result);
     return pipeline;
 }

@@ -40,7 +40,7 @@ struct Pipeline {
 };
 
 struct GraphicsPipelineDesc {
-    std::string vertexShader, fragmentShader; // SPIR-V names without ".spv", e.g. "terrain.vert"
+    std::string vertexShader, fragmentShader; // SPIR-V names without ".spv"; no fragment shader = depth only
     std::vector<VkVertexInputBindingDescription> vertexBindings;
     std::vector<VkVertexInputAttributeDescription> vertexAttributes;
     VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
@@ -52,6 +52,7 @@ struct GraphicsPipelineDesc {
     VkCompareOp depthCompare = VK_COMPARE_OP_GREATER; // reversed Z
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     bool alphaToCoverage = false;
+    float depthBias = 0.0f, depthBiasSlope = 0.0f; // e.g. shadow casters
     SpecConstants specialization; // applied to both stages
 };
 

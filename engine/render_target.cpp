@@ -39,7 +39,8 @@ RenderTarget::RenderTarget(Context& ctx, const RenderTargetDesc& desc) : ctx_(ct
                                    .width = desc.width,
                                    .height = desc.height,
                                    .samples = desc.samples,
-                                   .usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
+                                   .usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
+                                            (desc.sampleDepth ? VkImageUsageFlags(VK_IMAGE_USAGE_SAMPLED_BIT) : 0u)});
 }
 
 RenderTarget::~RenderTarget() {
@@ -70,8 +71,8 @@ void RenderTarget::begin(VkCommandBuffer cmd) {
         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
     if (depth_)
         imageBarrier(cmd, depth_.handle, depth_.aspect, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                     depthStages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, depthStages,
-                     VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+                     depthStages | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                     depthStages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
 
     std::vector<VkRenderingAttachmentInfo> colors;
     for (size_t i = 0; i < attachments_.size(); ++i) {
@@ -96,7 +97,7 @@ void RenderTarget::begin(VkCommandBuffer cmd) {
         .imageView = depth_.view,
         .imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
         .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
-        .storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE,
+        .storeOp = desc_.sampleDepth ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE,
         .clearValue = {.depthStencil = {desc_.depthClear, 0}},
     };
     VkRenderingInfo rendering{
@@ -116,6 +117,11 @@ void RenderTarget::begin(VkCommandBuffer cmd) {
 
 void RenderTarget::end(VkCommandBuffer cmd) {
     vkCmdEndRendering(cmd);
+    if (desc_.sampleDepth)
+        imageBarrier(cmd, depth_.handle, depth_.aspect, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                     VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                     VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     // Resolves and stores happen in COLOR_ATTACHMENT_OUTPUT; make them visible to copies and blits.
     for (uint32_t i = 0; i < attachments_.size(); ++i)
         imageBarrier(cmd, output(i).handle, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,

@@ -25,6 +25,7 @@ struct RenderTargetDesc {
     std::vector<ColorAttachmentDesc> colors;
     VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
     float depthClear = 0.0f; // reversed Z: 0 is the far plane
+    bool sampleDepth = false; // keep depth and leave it in DEPTH_READ_ONLY_OPTIMAL for sampling (shadow maps)
 };
 
 class RenderTarget {

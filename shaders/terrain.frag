@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Terrain shading: soil / dry-grass albedo varied by slope and height, sun (Lambert) + hemispherical ambient.
 #include "shared/frame.glsl"
+#include "shared/shadow.glsl"
 
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inNormal;
@@ -17,7 +18,7 @@ void main() {
     // Low-frequency variation from position only (no texture): keeps large flat areas from looking uniform.
     float variation = 0.5 + 0.5 * sin(inWorld.x * 0.071 + 1.3 * sin(inWorld.y * 0.053));
     vec3 albedo = mix(turf, soil, clamp(slope * 4.0 + 0.25 * variation, 0.0, 1.0));
-    float sun = max(dot(n, frame.sunDirection.xyz), 0.0);
+    float sun = max(dot(n, frame.sunDirection.xyz), 0.0) * sunShadow(inWorld);
     vec3 light = frame.sunRadiance.rgb * sun + ambientLight(n);
     outColor = vec4(albedo * light, 1.0);
 }

@@ -106,6 +106,11 @@ glm::vec3 toVec3(glm::dvec3 v) {
 
 } // namespace
 
+glm::vec2 WindParams::direction() const {
+    double a = directionDegrees * std::numbers::pi / 180.0;
+    return glm::vec2(float(std::sin(a)), float(std::cos(a)));
+}
+
 glm::vec3 SunParams::direction() const {
     double az = azimuthDegrees * std::numbers::pi / 180.0, el = elevationDegrees * std::numbers::pi / 180.0;
     return glm::vec3(float(std::sin(az) * std::cos(el)), float(std::cos(az) * std::cos(el)), float(std::sin(el)));
@@ -162,7 +167,41 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
     scene.render.samples = uint32_t(render.integer("samples", scene.render.samples, 1, 4));
     if (scene.render.samples != 1 && scene.render.samples != 4)
         throw Error(source + ": 'render.samples' must be 1 or 4");
+    scene.render.shadowMapSize = uint32_t(render.integer("shadow_map_size", scene.render.shadowMapSize, 0, 8192));
+    scene.render.shadowDistance = float(render.number("shadow_distance", scene.render.shadowDistance, 1.0, 2000.0));
     render.finish();
+
+    Reader lod = root.child("lod");
+    LodParams& l = scene.lod;
+    l.nearToMid = float(lod.number("near", l.nearToMid, 0.0, 1e4));
+    l.midToFar = float(lod.number("mid", l.midToFar, 0.0, 1e4));
+    l.farLimit = float(lod.number("far", l.farLimit, 0.0, 1e5));
+    l.band = float(lod.number("band", l.band, 0.01, 100.0));
+    if (!(l.nearToMid <= l.midToFar && l.midToFar <= l.farLimit))
+        throw Error(source + ": 'lod' distances must satisfy near <= mid <= far");
+    lod.finish();
+
+    Reader wind = root.child("wind");
+    WindParams& w = scene.wind;
+    w.directionDegrees = wind.number("direction_deg", w.directionDegrees, -360.0, 360.0);
+    w.strength = float(wind.number("strength", w.strength, 0.0, 0.9));
+    w.gustStrength = float(wind.number("gust_strength", w.gustStrength, 0.0, 0.9));
+    w.gustFrequency = float(wind.number("gust_frequency", w.gustFrequency, 0.0, 10.0));
+    w.gustWavelength = float(wind.number("gust_wavelength", w.gustWavelength, 1.0, 1e4));
+    w.flutter = float(wind.number("flutter", w.flutter, 0.0, 0.5));
+    wind.finish();
+
+    Reader atlas = root.child("atlas");
+    auto resolve = [&](std::string path) {
+        if (!path.empty() && std::filesystem::path(path).is_relative() && source.find('<') == std::string::npos)
+            path = (std::filesystem::path(source).parent_path() / path).string();
+        return path;
+    };
+    scene.atlasPngPath = resolve(atlas.string("png", ""));
+    scene.atlasJsonPath = resolve(atlas.string("json", ""));
+    if (scene.atlasPngPath.empty() != scene.atlasJsonPath.empty())
+        throw Error(source + ": 'atlas' needs both 'png' and 'json'");
+    atlas.finish();
 
     if (const nlohmann::json* vegetation = root.raw("vegetation")) {
         scene.vegetation = parseVegetationParams(*vegetation, source);
@@ -171,13 +210,7 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
         scene.vegetation.seed = scene.seed;
     }
     scene.vegetationEnabled = root.number("vegetation_enabled", 1.0, 0.0, 1.0) != 0.0;
-    std::string grassMap = root.string("grass_map", "");
-    if (!grassMap.empty()) {
-        std::filesystem::path path(grassMap);
-        if (path.is_relative() && source.find('<') == std::string::npos)
-            path = std::filesystem::path(source).parent_path() / path;
-        scene.grassMapPath = path.string();
-    }
+    scene.grassMapPath = resolve(root.string("grass_map", ""));
     if (scene.vegetation.tileSize > scene.terrain.size + 1e-3f)
         throw Error(source + ": 'vegetation.tile_size' (" + std::to_string(scene.vegetation.tileSize) +
                     " m) must not exceed 'terrain.size' (" + std::to_string(scene.terrain.size) + " m)");
@@ -199,6 +232,22 @@ Scene loadScene(const std::string& path) {
 
 Heightfield buildTerrain(const Scene& scene) {
     return makeProceduralTerrain(scene.terrain);
+}
+
+Atlas buildAtlas(const Scene& scene) {
+    Atlas atlas = scene.atlasPngPath.empty() ? generateAtlas(AtlasGenParams{.seed = 7})
+                                             : loadAtlas(scene.atlasPngPath, scene.atlasJsonPath);
+    buildMipChain(atlas);
+    return atlas;
+}
+
+GrassMap buildGrassMap(const Scene& scene) {
+    if (!scene.grassMapPath.empty()) return loadGrassMap(scene.grassMapPath);
+    return makeMeadowGrassMap({.tileSize = scene.vegetation.tileSize, .seed = scene.seed});
+}
+
+VegetationTile buildVegetation(const Scene& scene, const Heightfield& terrain, uint32_t threads) {
+    return generateTile(Ground(terrain), buildGrassMap(scene), scene.vegetation, TileCoord{0, 0}, threads);
 }
 
 Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t width, uint32_t height) {

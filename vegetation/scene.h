@@ -5,6 +5,7 @@
 // errors name the file and the JSON path, e.g. "examples/meadow.json: terrain.amplitude must be ...".
 #pragma once
 
+#include "atlas.h"
 #include "camera.h"
 #include "grass_map.h"
 #include "heightfield.h"
@@ -45,6 +46,27 @@ struct CameraParams {
 struct RenderParams {
     uint32_t width = 1280, height = 720;
     uint32_t samples = 4; // 1 or 4
+    uint32_t shadowMapSize = 2048; // texels per edge; 0 disables sun shadows
+    float shadowDistance = 60.0f;  // metres in front of the camera covered by the shadow map
+};
+
+// Level-of-detail distances (paper Figure 3), metres from the camera to the plant base.
+struct LodParams {
+    float nearToMid = 12.0f; // closer: 4 quads
+    float midToFar = 40.0f;  // closer: 2 crossed quads; farther: 1 billboard
+    float farLimit = 150.0f; // plants beyond are not drawn (the terrain colour stands in)
+    float band = 4.0f;       // width of the dithered cross-fade around each distance
+};
+
+// Procedural wind (a pure function of simulation time; see shaders/shared/vegetation.glsl).
+struct WindParams {
+    double directionDegrees = 60.0; // direction the wind blows towards, clockwise from north (+y)
+    float strength = 0.12f;         // steady lean: tip offset in plant heights
+    float gustStrength = 0.18f;     // extra tip offset at gust peaks
+    float gustFrequency = 0.25f;    // gust waves per second
+    float gustWavelength = 30.0f;   // metres between gust fronts
+    float flutter = 0.03f;          // fast cross-wind flutter, plant heights
+    glm::vec2 direction() const;    // unit xy
 };
 
 struct Scene {
@@ -56,15 +78,20 @@ struct Scene {
     SkyParams sky;
     CameraParams camera;
     RenderParams render;
+    LodParams lod;
+    WindParams wind;
     VegetationParams vegetation;   // "vegetation" object, see vegetation_params.h
     bool vegetationEnabled = true; // false: bare ground (paired studies, --no-vegetation)
     std::string grassMapPath;      // "grass_map", resolved against the scene's folder; empty = procedural meadow
+    std::string atlasPngPath, atlasJsonPath; // "atlas": {"png", "json"}; empty = the built-in procedural atlas
 };
 
 // Parses and validates a scene; `source` names it in error messages.
 Scene parseScene(const nlohmann::json& json, const std::string& source);
 // Reads and parses a scene file; throws sward::Error naming the file for missing files and bad JSON.
 Scene loadScene(const std::string& path);
+// The scene's atlas with its coverage-preserving mip chain: the files it names, or the built-in procedural one.
+Atlas buildAtlas(const Scene& scene);
 // Builds the scene's terrain.
 Heightfield buildTerrain(const Scene& scene);
 // The scene's grass map: the file it names, or the procedural meadow (seeded by the scene seed).

@@ -40,6 +40,8 @@ struct FrameConstants {
     vec4 groundAmbient;  // rgb radiance from below the horizon
     vec4 viewport;       // width, height, 1/width, 1/height
     vec4 timeParams;     // x simulation time in seconds, yzw reserved
+    mat4 shadowViewProj; // world -> sun shadow map clip space (orthographic, reversed Z)
+    vec4 shadowParams;   // x enabled (0/1), y depth bias, z 1/shadow map size, w unused
 };
 
 // Vertex of the terrain mesh (vertex buffer, binding 0).
@@ -48,8 +50,53 @@ struct TerrainVertex {
     vec4 normal;         // xyz smooth normal, w unused
 };
 
+// Vegetation expansion: the three levels of detail of paper Figure 3.
+SWARD_CONST(uint, kLodNear, 0u); // 4 textured quads at different horizontal and vertical angles
+SWARD_CONST(uint, kLodMid, 1u);  // 2 crossed vertical quads
+SWARD_CONST(uint, kLodFar, 2u);  // 1 camera-facing billboard
+SWARD_CONST(uint, kLodCount, 3u);
+SWARD_CONST(uint, kExpandGroupSize, 64u); // one workgroup per plant cluster, 64 plants per step
+SWARD_CONST(uint, kScanGroupSize, 1024u); // single-workgroup scan over all clusters
+
+// Per-frame constants of the vegetation expansion (uniform buffer).
+struct VegetationConstants {
+    vec4 frustumPlanes[5]; // world space, xyz inward normal, w offset: inside when dot(n, p) + w >= 0
+    vec4 cameraPosition;   // xyz
+    vec4 lodDistances;     // x near->mid, y mid->far, z far limit (beyond: not drawn), w cross-fade band width, m
+    vec4 wind;             // xy unit direction, z steady bend (tip offset in plant heights), w gust frequency, Hz
+    vec4 windGusts;        // x gust bend (plant heights), y gust wavelength (m), z simulation time (s), w flutter
+    vec4 categoryHeight;   // base height per category, metres
+    uvec4 counts;          // x clusters, y clusters per field, z instance capacity, w atlas max columns
+    uvec4 atlasColumns;    // variants (atlas columns) per category
+};
+
+// One expanded plant in one level of detail (storage buffer written by vegetation_expand.comp).
+struct PlantInstance {
+    vec4 positionHeight; // xyz world position of the base, w plant height in metres (after size and cut)
+    uint up;             // octahedral unit up vector, as PlantStatic::up
+    uint attributes;     // as PlantStatic::attributes (category, variant, orientation, random, size)
+    uint tip;            // packHalf2x16: horizontal tip offset (wind + interaction) in plant heights, world xy
+    uint fade;           // bits 0-15 cross-fade t (unorm16), bit 16 set on the upper-LOD copy, bits 24-31 state
+};
+
+// Atlas cell mapping (storage buffer, row * maxColumns + column).
+struct AtlasCellGpu {
+    vec4 uvRect;         // u0, v0, u1, v1
+    vec4 baseAspect;     // x base u, y base v (cell uv of the plant base), z width / height, w unused
+};
+
+// Expansion statistics written by the scan (storage buffer), for benchmarks and the viewer.
+struct ExpansionStats {
+    uvec4 instances;     // instances per LOD (x near, y mid, z far), w total
+    uvec4 info;          // x clusters visible, y instances dropped for lack of capacity, zw unused
+};
+
 #ifdef __cplusplus
-static_assert(sizeof(FrameConstants) == 3 * 64 + 8 * 16);
+static_assert(sizeof(FrameConstants) == 4 * 64 + 9 * 16);
+static_assert(sizeof(VegetationConstants) == 12 * 16);
+static_assert(sizeof(PlantInstance) == 32);
+static_assert(sizeof(AtlasCellGpu) == 32);
+static_assert(sizeof(ExpansionStats) == 32);
 static_assert(sizeof(TerrainVertex) == 32);
 } // namespace sward::gpu
 #endif

@@ -1,5 +1,6 @@
 #include "render_job.h"
 
+#include "atlas.h"
 #include "context.h"
 #include "image_files.h"
 #include "scene.h"
@@ -37,12 +38,22 @@ void runRenderJob(const RenderJobOptions& options) {
 
     Heightfield terrain = buildTerrain(scene);
     Camera camera = sceneCamera(scene, terrain, width, height);
+    // All CPU-side loading (and its errors) happens before the GPU is touched: a scene that fails to load
+    // allocates nothing on the device.
+    std::optional<VegetationTile> vegetation;
+    std::optional<Atlas> atlas;
+    if (scene.vegetationEnabled && !options.noVegetation) {
+        vegetation = buildVegetation(scene, terrain);
+        atlas = buildAtlas(scene);
+    }
 
     Context ctx(DeviceOptions{.deviceFilter = options.device, .validation = options.validation});
     FrameImages frame;
     {
-        SceneRenderer renderer(ctx, scene, terrain, samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT);
-        frame = renderFrame(ctx, renderer, camera, samples);
+        SceneRenderer renderer(ctx, scene, terrain, samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
+                               vegetation ? &*vegetation : nullptr, atlas ? &*atlas : nullptr);
+        vegetation.reset(); // uploaded: the CPU copy is no longer needed
+        frame = renderFrame(ctx, renderer, camera, samples, options.time);
     }
     const std::string name = "000000";
     writeExrRgbaHalf(options.outDir + "/left/" + name + ".exr", width, height, frame.rgbaHalf);

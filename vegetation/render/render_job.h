@@ -18,6 +18,8 @@ struct RenderJobOptions {
     std::optional<glm::dvec3> cameraPosition, cameraLookAt; // absolute world positions, override the scene
     std::optional<double> fovYDegrees;
     bool validation = false;
+    bool noVegetation = false;              // bare ground (same scene otherwise)
+    double time = 0.0;                      // simulation time of the frame, seconds
 };
 
 // Runs the job; throws sward::Error with a one-line message on bad input or failure. Writes

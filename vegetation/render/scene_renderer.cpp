@@ -3,6 +3,9 @@
 #include "barriers.h"
 #include "shared/gpu_layout.h"
 #include "timestamps.h"
+#include "vegetation_renderer.h"
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cstring>
 
@@ -64,8 +67,11 @@ template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) 
 
 } // namespace
 
-SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, VkSampleCountFlagBits samples)
+SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, VkSampleCountFlagBits samples,
+                             const VegetationTile* vegetation, const Atlas* atlas)
     : ctx_(ctx), scene_(scene) {
+    terrainMinHeight_ = terrain.minHeight();
+    terrainMaxHeight_ = terrain.maxHeight();
     auto vertices = terrainVertices(terrain);
     auto indices = terrainIndices(terrain);
     terrainVertices_ = createBufferWithData(ctx, bytesOf(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
@@ -79,9 +85,31 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield
 
     RenderTargetDesc mainDesc = mainPassTargetDesc(1, 1, samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1);
     RenderTargetDesc truthDesc = truthPassTargetDesc(1, 1);
-    PipelineLayoutDesc layout{
-        .bindings = {layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                   VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT)}};
+    const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    PipelineLayoutDesc layout{.bindings = {layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, stages)}};
+    PipelineLayoutDesc shadedLayout = layout; // + the sun shadow map
+    shadedLayout.bindings.push_back(
+        layoutBinding(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
+
+    // Sun shadow map: always present (1x1 and disabled when shadow_map_size is 0) so bindings stay valid.
+    uint32_t shadowSize = std::max(scene.render.shadowMapSize, 1u);
+    shadowMap_ = std::make_unique<RenderTarget>(ctx, RenderTargetDesc{.width = shadowSize,
+                                                                      .height = shadowSize,
+                                                                      .depthFormat = VK_FORMAT_D32_SFLOAT,
+                                                                      .depthClear = 0.0f,
+                                                                      .sampleDepth = true});
+    VkSamplerCreateInfo shadowSampler{
+        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+        .magFilter = VK_FILTER_LINEAR,
+        .minFilter = VK_FILTER_LINEAR,
+        .mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST,
+        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .compareEnable = VK_TRUE,
+        .compareOp = VK_COMPARE_OP_GREATER_OR_EQUAL, // reversed Z: lit when not behind the stored occluder
+    };
+    VK_CHECK(vkCreateSampler(ctx.vk(), &shadowSampler, nullptr, &shadowSampler_));
     GraphicsPipelineDesc terrainDesc{
         .vertexShader = "terrain.vert",
         .fragmentShader = "terrain.frag",
@@ -93,12 +121,30 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield
         .depthFormat = mainDesc.depthFormat,
         .samples = mainDesc.samples,
     };
-    terrainPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, layout);
+    terrainPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, shadedLayout);
     // Same vertices and rasterisation, ground-truth outputs, one sample per pixel.
     terrainDesc.fragmentShader = "truth.frag";
     terrainDesc.colorFormats = {truthDesc.colors[0].format};
     terrainDesc.samples = truthDesc.samples;
+    terrainDesc.specialization = {/* PASS= */ 1};
     terrainTruthPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, layout);
+    terrainDesc.fragmentShader = "";
+    terrainDesc.colorFormats = {};
+    terrainDesc.cullMode = VK_CULL_MODE_NONE; // hills facing away from the sun still cast shadows
+    terrainDesc.specialization = {/* PASS= */ 2};
+    terrainDesc.depthBias = -1.0f; // reversed Z: push casters away from the sun
+    terrainDesc.depthBiasSlope = -1.5f;
+    terrainShadowPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, layout);
+
+    if (vegetation && atlas)
+        vegetation_ = std::make_unique<VegetationRenderer>(
+            ctx, scene, *vegetation, *atlas,
+            VegetationPassFormats{.mainColor = mainDesc.colors[0].format,
+                                  .mainDepth = mainDesc.depthFormat,
+                                  .mainSamples = mainDesc.samples,
+                                  .truthColor = truthDesc.colors[0].format,
+                                  .truthDepth = truthDesc.depthFormat,
+                                  .shadowDepth = VK_FORMAT_D32_SFLOAT});
     skyPipeline_ = createGraphicsPipeline(ctx.device,
                                           {.vertexShader = "sky.vert",
                                            .fragmentShader = "sky.frag",
@@ -113,8 +159,12 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield
 
 SceneRenderer::~SceneRenderer() {
     ctx_.submitter.waitIdle();
+    vegetation_.reset();
+    shadowMap_.reset();
+    vkDestroySampler(ctx_.vk(), shadowSampler_, nullptr);
     destroyPipeline(ctx_.device, terrainPipeline_);
     destroyPipeline(ctx_.device, terrainTruthPipeline_);
+    destroyPipeline(ctx_.device, terrainShadowPipeline_);
     destroyPipeline(ctx_.device, skyPipeline_);
     destroyBuffer(ctx_, terrainVertices_);
     destroyBuffer(ctx_, terrainIndices_);
@@ -135,12 +185,40 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, double t
     c.groundAmbient = glm::vec4(scene_.sky.groundAmbient, 0.0f);
     c.viewport = glm::vec4(float(camera.width), float(camera.height), 1.0f / float(camera.width), 1.0f / float(camera.height));
     c.timeParams = glm::vec4(float(timeSeconds), 0.0f, 0.0f, 0.0f);
+
+    // Sun shadow map: an orthographic box around the first shadowDistance metres in front of the camera,
+    // snapped to whole texels in light space so it does not shimmer as the camera moves.
+    const float size = float(std::max(scene_.render.shadowMapSize, 1u));
+    const double radius = 0.5 * scene_.render.shadowDistance * 1.15;
+    glm::dvec3 forward = camera.worldFromCamera[2];
+    glm::dvec3 center = camera.position + forward * (0.5 * scene_.render.shadowDistance);
+    glm::dvec3 toSun = glm::dvec3(scene_.sun.direction());
+    glm::dvec3 up = std::abs(toSun.z) > 0.99 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+    glm::dmat4 lightView = glm::lookAt(glm::dvec3(0.0), -toSun, up); // rotation only
+    glm::dvec4 centerLight = lightView * glm::dvec4(center, 1.0);
+    double texel = 2.0 * radius / size;
+    centerLight.x = std::floor(centerLight.x / texel) * texel;
+    centerLight.y = std::floor(centerLight.y / texel) * texel;
+    // Depth range: from above the highest terrain (plus plants) to below the lowest, along the light ray.
+    double reach = radius + double(terrainMaxHeight_ - terrainMinHeight_) + 50.0;
+    glm::dmat4 ortho(0.0);
+    ortho[0][0] = 1.0 / radius;
+    ortho[1][1] = 1.0 / radius;
+    ortho[2][2] = 1.0 / (2.0 * reach); // view z in [-(c+reach), -(c-reach)] -> depth 1 .. 0 (reversed)
+    ortho[3][0] = -centerLight.x / radius;
+    ortho[3][1] = -centerLight.y / radius;
+    ortho[3][2] = 0.5 - centerLight.z / (2.0 * reach);
+    ortho[3][3] = 1.0;
+    c.shadowViewProj = glm::mat4(ortho * lightView);
+    const bool shadows = scene_.render.shadowMapSize > 0;
+    c.shadowParams = glm::vec4(shadows ? 1.0f : 0.0f, float(0.05 / (2.0 * reach)), 1.0f / size, 0.0f);
     std::memcpy(constants_.mapped() + slot * constantsStride_, &c, sizeof c);
 }
 
-void SceneRenderer::drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline, const DescriptorBinding& frame) {
+void SceneRenderer::drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline,
+                                std::initializer_list<DescriptorBinding> bindings) {
     bindPipeline(cmd, pipeline);
-    pushDescriptors(ctx_.device, cmd, pipeline, {frame});
+    pushDescriptors(ctx_.device, cmd, pipeline, bindings);
     VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &terrainVertices_.handle, &offset);
     vkCmdBindIndexBuffer(cmd, terrainIndices_.handle, 0, VK_INDEX_TYPE_UINT32);
@@ -153,20 +231,42 @@ void SceneRenderer::record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget
     writeConstants(slot, camera, timeSeconds);
     DescriptorBinding frame = uniformBuffer(0, constants_.handle, slot * constantsStride_, sizeof(gpu::FrameConstants));
 
+    DescriptorBinding shadow = sampledImage(5, shadowMap_->depth().view, shadowSampler_,
+                                            VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
+
+    if (vegetation_) {
+        if (timers) timers->begin(cmd, "expansion");
+        vegetation_->expand(cmd, camera, timeSeconds, slot);
+        if (timers) timers->end(cmd);
+    }
+
+    if (timers) timers->begin(cmd, "shadow");
+    shadowMap_->begin(cmd);
+    if (scene_.render.shadowMapSize > 0) {
+        drawTerrain(cmd, terrainShadowPipeline_, {frame});
+        if (vegetation_) vegetation_->draw(cmd, PlantPass::Shadow, frame, shadow, slot);
+    }
+    shadowMap_->end(cmd);
+    if (timers) timers->end(cmd);
+
     if (timers) timers->begin(cmd, "main");
     main.begin(cmd);
-    drawTerrain(cmd, terrainPipeline_, frame);
+    drawTerrain(cmd, terrainPipeline_, {frame, shadow});
+    if (vegetation_) vegetation_->draw(cmd, PlantPass::Main, frame, shadow, slot);
     // Sky last: the depth test (GREATER_OR_EQUAL against the far-plane clear) shades only uncovered pixels.
     bindPipeline(cmd, skyPipeline_);
     pushDescriptors(ctx_.device, cmd, skyPipeline_, {frame});
     vkCmdDraw(cmd, 3, 1, 0, 0);
+    if (timers) timers->end(cmd);
+    if (timers) timers->begin(cmd, "resolve");
     main.end(cmd);
     if (timers) timers->end(cmd);
 
     if (!truth) return;
     if (timers) timers->begin(cmd, "truth");
     truth->begin(cmd);
-    drawTerrain(cmd, terrainTruthPipeline_, frame);
+    drawTerrain(cmd, terrainTruthPipeline_, {frame});
+    if (vegetation_) vegetation_->draw(cmd, PlantPass::Truth, frame, shadow, slot);
     truth->end(cmd);
     if (timers) timers->end(cmd);
 }

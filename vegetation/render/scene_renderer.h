@@ -1,12 +1,15 @@
-// SceneRenderer: draws a scene (terrain, sky; vegetation once loaded) into a RenderTarget.
+// SceneRenderer: draws a scene (terrain, vegetation, sky) into render targets.
 //
-// Two passes per frame (see docs/architecture.md):
-//   main pass   RGBA16F linear HDR radiance, 1x or 4x MSAA (averaged by the resolve)
-//   truth pass  R32_UINT bit pattern of the planar depth in metres (+inf for sky), always 1x: the same
-//               geometry rasterised once at each pixel centre, so ground truth is exact and never a blend
-//               of two surfaces ("flying pixels"), whatever the colour pass's sample count.
+// Passes per frame (see docs/architecture.md):
+//   expansion   compute: cull clusters, choose LODs, write plant instances + indirect draws
+//   shadow      D32 sun shadow map (terrain + alpha-tested plants), orthographic, fitted in front of the camera
+//   main        RGBA16F linear HDR radiance, 1x or 4x MSAA (alpha-to-coverage), resolved by averaging
+//   truth       R32_UINT bit pattern of the planar depth in metres (+inf for sky), always 1x: the same
+//               geometry rasterised once at each pixel centre, so ground truth is exact and never a blend of
+//               two surfaces ("flying pixels"), whatever the colour pass's sample count.
 #pragma once
 
+#include "atlas.h"
 #include "camera.h"
 #include "context.h"
 #include "heightfield.h"
@@ -14,43 +17,50 @@
 #include "render_target.h"
 #include "scene.h"
 
-#include <array>
 #include <memory>
 
 namespace sward {
 
 class GpuTimers;
+class VegetationRenderer;
+struct VegetationTile;
 
-// Formats and clear values of the two passes, in attachment order.
+// Formats and clear values of the passes, in attachment order.
 RenderTargetDesc mainPassTargetDesc(uint32_t width, uint32_t height, uint32_t samples);
 RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height);
 
 class SceneRenderer {
 public:
-    SceneRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, VkSampleCountFlagBits samples);
+    // vegetation / atlas may be null (bare terrain). The tile and atlas are uploaded; the CPU copies may go.
+    SceneRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, VkSampleCountFlagBits samples,
+                  const VegetationTile* vegetation = nullptr, const Atlas* atlas = nullptr);
     ~SceneRenderer();
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
 
-    // Records the whole frame into `cmd`: constants, main pass (terrain, sky), truth pass. `frameIndex`
-    // selects the constants slot, so up to kFramesInFlight frames may be in flight. `truth` may be null
-    // (viewer). Timers (optional) get one entry per pass.
+    // Records the whole frame into `cmd`. `frameIndex` selects the constants slot, so up to kFramesInFlight
+    // frames may be in flight. `truth` may be null (viewer). Timers (optional) get one entry per pass.
     void record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget* truth, const Camera& camera,
                 double timeSeconds, uint32_t frameIndex, GpuTimers* timers = nullptr);
 
+    VegetationRenderer* vegetation() { return vegetation_.get(); }
     static constexpr uint32_t kFramesInFlight = 3;
 
 private:
     void writeConstants(uint32_t slot, const Camera& camera, double timeSeconds);
-    void drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline, const DescriptorBinding& frame);
+    void drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline, std::initializer_list<DescriptorBinding> bindings);
 
     Context& ctx_;
     Scene scene_;
     Buffer terrainVertices_, terrainIndices_;
     uint32_t terrainIndexCount_ = 0;
+    float terrainMinHeight_ = 0.0f, terrainMaxHeight_ = 0.0f;
     Buffer constants_; // kFramesInFlight slots of FrameConstants, host-visible
     uint64_t constantsStride_ = 0;
-    Pipeline terrainPipeline_, terrainTruthPipeline_, skyPipeline_;
+    Pipeline terrainPipeline_, terrainTruthPipeline_, terrainShadowPipeline_, skyPipeline_;
+    std::unique_ptr<RenderTarget> shadowMap_;
+    VkSampler shadowSampler_ = VK_NULL_HANDLE;
+    std::unique_ptr<VegetationRenderer> vegetation_;
 };
 
 // Host copy of one rendered frame.
@@ -60,7 +70,7 @@ struct FrameImages {
     std::vector<float> depth;       // planar metres, +inf where nothing was hit
 };
 
-// Renders one frame into a fresh target and reads colour and depth back (waits for the GPU).
+// Renders one frame into fresh targets and reads colour and depth back (waits for the GPU).
 FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, uint32_t samples,
                         double timeSeconds = 0.0);
 

@@ -1,0 +1,26 @@
+// Fragment-side plant helpers: atlas alpha and the LOD cross-fade dither shared by colour, truth and shadow.
+#ifndef SWARD_PLANT_FRAGMENT_GLSL
+#define SWARD_PLANT_FRAGMENT_GLSL
+
+layout(set = 0, binding = 4) uniform sampler2D atlas;
+
+layout(location = 0) in vec2 inUv;
+layout(location = 1) in vec3 inWorld;
+layout(location = 2) in float inViewDepth;
+layout(location = 3) in vec3 inUp;
+layout(location = 4) flat in uint inFade;
+layout(location = 5) in float inHeightFraction;
+layout(location = 6) flat in float inRandom;
+
+// Cross-fade between two LOD copies of one plant: both copies compute the same threshold per pixel, the lower
+// copy keeps the pixel when threshold >= t, the upper copy when threshold < t: exactly one survives.
+bool keepFragment() {
+    float t = float(inFade & 0xffffu) * (1.0 / 65535.0);
+    if (t == 0.0 && (inFade & 0x10000u) == 0u) return true;
+    // Interleaved gradient noise (Jimenez 2014), shifted per plant so neighbours do not dissolve in lockstep.
+    vec2 p = gl_FragCoord.xy + vec2(inRandom * 97.0, inRandom * 61.0);
+    float threshold = fract(52.9829189 * fract(dot(p, vec2(0.06711056, 0.00583715))));
+    return (inFade & 0x10000u) != 0u ? threshold < t : threshold >= t;
+}
+
+#endif

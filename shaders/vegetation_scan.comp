@@ -1,0 +1,61 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Exclusive prefix sum of the per-cluster LOD counts, in cluster order, by a single workgroup; turns counts
+// into instance offsets (in place) and writes the three indirect draw commands. Instances are laid out as
+// [all near | all mid | all far], each LOD in cluster order.
+#include "shared/gpu_layout.h"
+
+layout(local_size_x = 1024) in;
+
+struct DrawIndirectCommand {
+    uint vertexCount;
+    uint instanceCount;
+    uint firstVertex;
+    uint firstInstance;
+};
+
+layout(set = 0, binding = 0, std430) buffer ClusterCounts { uvec4 clusterCounts[]; };
+layout(set = 0, binding = 1, std430) writeonly buffer Draws { DrawIndirectCommand draws[]; };
+layout(set = 0, binding = 2, std430) writeonly buffer Stats { ExpansionStats stats; };
+layout(push_constant) uniform Push {
+    uint clusterCount;
+    uint capacity;
+} push;
+
+shared uvec4 partial[1024];
+
+void main() {
+    uint lane = gl_LocalInvocationID.x;
+    uint perLane = (push.clusterCount + 1023u) / 1024u;
+    uint begin = min(lane * perLane, push.clusterCount), end = min(begin + perLane, push.clusterCount);
+    uvec4 sum = uvec4(0u);
+    for (uint i = begin; i < end; ++i) sum += clusterCounts[i];
+    partial[lane] = sum;
+    barrier();
+    for (uint offset = 1u; offset < 1024u; offset <<= 1u) {
+        uvec4 add = lane >= offset ? partial[lane - offset] : uvec4(0u);
+        barrier();
+        partial[lane] += add;
+        barrier();
+    }
+    uvec4 total = partial[1023];
+    uvec4 lodBase = uvec4(0u, total.x, total.x + total.y, 0u);
+    uvec4 running = partial[lane] - sum; // exclusive prefix of this lane's chunk
+    for (uint i = begin; i < end; ++i) {
+        uvec4 counts = clusterCounts[i];
+        clusterCounts[i] = uvec4(lodBase.xyz + running.xyz, 0u);
+        running += counts;
+    }
+    if (lane < kLodCount) {
+        const uint quads[3] = uint[](4u, 2u, 1u);
+        uint base = lodBase[lane];
+        uint count = total[lane];
+        uint kept = base >= push.capacity ? 0u : min(count, push.capacity - base);
+        draws[lane] = DrawIndirectCommand(6u * quads[lane], kept, 0u, base);
+    }
+    if (lane == 0u) {
+        uint all = total.x + total.y + total.z;
+        stats.instances = uvec4(total.xyz, all);
+        stats.info = uvec4(total.w, all > push.capacity ? all - push.capacity : 0u, 0u, 0u);
+    }
+}

@@ -1,0 +1,76 @@
+// VegetationRenderer: per-frame compute expansion of point plants into LOD instances and their draws.
+//
+// Frame flow (docs/architecture.md):
+//   expand()  count pass (workgroup per cluster: frustum + distance cull, LOD choice, per-LOD counts)
+//             -> scan (one workgroup: exclusive prefix sums in cluster order -> offsets + 3 indirect draws)
+//             -> write pass (same choices; instances written at offset + rank: a fixed, deterministic order)
+//   draw()    three vkCmdDrawIndirect (near 4 quads, mid 2 quads, far 1 billboard) into the current pass:
+//             main colour (alpha-to-coverage at 4x MSAA, alpha test at 1x), ground truth or sun shadow map.
+#pragma once
+
+#include "atlas.h"
+#include "camera.h"
+#include "context.h"
+#include "pipelines.h"
+#include "scene.h"
+#include "vegetation_buffers.h"
+
+#include "shared/gpu_layout.h"
+
+namespace sward {
+
+enum class PlantPass { Main, Truth, Shadow };
+
+struct VegetationPassFormats {
+    VkFormat mainColor, mainDepth;
+    VkSampleCountFlagBits mainSamples;
+    VkFormat truthColor, truthDepth;
+    VkFormat shadowDepth;
+};
+
+class VegetationRenderer {
+public:
+    // Uploads the tile and the atlas (with its mip chain) and builds the pipelines.
+    VegetationRenderer(Context& ctx, const Scene& scene, const VegetationTile& tile, const Atlas& atlas,
+                       const VegetationPassFormats& formats);
+    ~VegetationRenderer();
+    VegetationRenderer(const VegetationRenderer&) = delete;
+    VegetationRenderer& operator=(const VegetationRenderer&) = delete;
+
+    // Records the three expansion dispatches for this camera and simulation time. `slot` selects the
+    // constants slot (frames in flight).
+    void expand(VkCommandBuffer cmd, const Camera& camera, double timeSeconds, uint32_t slot);
+    // Records the plant draws into the current rendering pass. `frame` is the frame-constants binding 0;
+    // `shadowMap` is the sampled sun shadow map for the main pass (ignored otherwise).
+    void draw(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame, const DescriptorBinding& shadowMap,
+              uint32_t slot);
+
+    // Statistics of the latest expansion (reads back; waits for the GPU).
+    gpu::ExpansionStats readStats();
+    const VegetationBuffers& buffers() const { return buffers_; }
+    uint32_t instanceCapacity() const { return capacity_; }
+    // Instances and their draw commands, for benchmarks that re-draw a frozen expansion.
+    const Buffer& instances() const { return instances_; }
+    const Buffer& drawCommands() const { return draws_; }
+
+    static constexpr uint32_t kSlots = 3;
+
+private:
+    void uploadAtlas(const Atlas& atlas);
+    DescriptorBinding constantsBinding(uint32_t slot) const;
+
+    Context& ctx_;
+    Scene scene_;
+    VegetationBuffers buffers_;
+    uint32_t capacity_ = 0;
+    uint32_t atlasMaxColumns_ = 1;
+    glm::uvec4 atlasColumns_{1u};
+    Buffer constants_, clusterCounts_, instances_, draws_, stats_, atlasCells_;
+    uint64_t constantsStride_ = 0;
+    Image atlasImage_;
+    VkSampler atlasSampler_ = VK_NULL_HANDLE;
+    Pipeline countPipeline_, scanPipeline_, writePipeline_;
+    Pipeline mainPipeline_, truthPipeline_, shadowPipeline_;
+};
+
+} // namespace sward
