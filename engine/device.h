@@ -18,8 +18,13 @@ struct DeviceOptions {
     // Case-insensitive substring of the device name; empty = automatic choice (discrete > integrated >
     // virtual > CPU). The environment variable SWARD_DEVICE is used when this is empty.
     std::string deviceFilter;
-    // Enable VK_LAYER_KHRONOS_validation and the debug messenger. Also forced on by SWARD_VALIDATION=1.
+    // Enable VK_LAYER_KHRONOS_validation and the debug messenger. On by default in Debug builds; also forced
+    // on by SWARD_VALIDATION=1.
+#ifdef NDEBUG
     bool validation = false;
+#else
+    bool validation = true;
+#endif
     std::vector<const char*> instanceExtensions; // extra, e.g. from glfwGetRequiredInstanceExtensions
     std::vector<const char*> deviceExtensions;   // extra, e.g. VK_KHR_swapchain
     bool quiet = false;                          // don't log the chosen device

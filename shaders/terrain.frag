@@ -13,8 +13,9 @@ layout(location = 0) out vec4 outColor;
 void main() {
     vec3 n = normalize(inNormal);
     float slope = 1.0 - n.z;
-    vec3 soil = vec3(0.30, 0.22, 0.14);
-    vec3 turf = vec3(0.20, 0.28, 0.09);
+    // Dark turf: under the vegetation the ground reads as the dense base of the sward, not as bare soil.
+    vec3 soil = vec3(0.16, 0.12, 0.07);
+    vec3 turf = vec3(0.07, 0.10, 0.03);
     // Low-frequency variation from position only (no texture): keeps large flat areas from looking uniform.
     float variation = 0.5 + 0.5 * sin(inWorld.x * 0.071 + 1.3 * sin(inWorld.y * 0.053));
     vec3 albedo = mix(turf, soil, clamp(slope * 4.0 + 0.25 * variation, 0.0, 1.0));

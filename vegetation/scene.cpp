@@ -203,11 +203,13 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
         throw Error(source + ": 'atlas' needs both 'png' and 'json'");
     atlas.finish();
 
-    if (const nlohmann::json* vegetation = root.raw("vegetation")) {
-        scene.vegetation = parseVegetationParams(*vegetation, source);
-        if (!vegetation->contains("seed")) scene.vegetation.seed = scene.seed;
-    } else {
-        scene.vegetation.seed = scene.seed;
+    const nlohmann::json* vegetation = root.raw("vegetation");
+    if (vegetation) scene.vegetation = parseVegetationParams(*vegetation, source);
+    if (!vegetation || !vegetation->contains("seed")) scene.vegetation.seed = scene.seed;
+    // The vegetation tile covers the terrain unless told otherwise.
+    if (!vegetation || !vegetation->contains("tile_size")) {
+        scene.vegetation.tileSize = scene.terrain.size;
+        validateVegetationParams(scene.vegetation, source + " (vegetation.tile_size = terrain.size)");
     }
     scene.vegetationEnabled = root.number("vegetation_enabled", 1.0, 0.0, 1.0) != 0.0;
     scene.grassMapPath = resolve(root.string("grass_map", ""));

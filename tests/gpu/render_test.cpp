@@ -33,7 +33,7 @@ class RenderTest : public GpuTest {
 protected:
     FrameImages render(uint32_t samples) {
         SceneRenderer renderer(*ctx, scene, terrain, samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT);
-        return renderFrame(*ctx, renderer, camera, samples);
+        return renderFrame(*ctx, renderer, camera);
     }
     Scene scene = testScene();
     Heightfield terrain = buildTerrain(scene);

@@ -4,7 +4,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <optional>
 
 namespace {
 
@@ -23,8 +25,8 @@ int main(int argc, char** argv) {
     CLI::App app{"sward-render: render a sward scene to HDR EXR colour and depth"};
     sward::RenderJobOptions options;
     std::string resolution, position, lookAt;
-    uint32_t samples = 0;
-    double fov = 0.0;
+    std::optional<uint32_t> samples;
+    std::optional<double> fov;
     app.add_option("scene", options.scenePath, "Scene JSON file (default: built-in meadow)");
     app.add_option("--out,-o", options.outDir, "Output folder (created if missing)")->capture_default_str();
     app.add_option("--resolution", resolution, "Image size WIDTHxHEIGHT, e.g. 1280x720");
@@ -33,6 +35,8 @@ int main(int argc, char** argv) {
     app.add_option("--camera", position, "Camera position X,Y,Z in world metres");
     app.add_option("--look-at", lookAt, "Camera target X,Y,Z in world metres");
     app.add_option("--fov", fov, "Vertical field of view in degrees");
+    app.add_option("--time", options.time, "Simulation time of the frame in seconds (wind)")->capture_default_str();
+    app.add_flag("--no-vegetation", options.noVegetation, "Render the same scene without vegetation");
     app.add_flag("--validation", options.validation, "Enable Vulkan validation; any message fails the run");
     try {
         app.parse(argc, argv);
@@ -44,8 +48,8 @@ int main(int argc, char** argv) {
     }
     try {
         if (!resolution.empty()) options.resolution = resolution;
-        if (samples) options.samples = samples;
-        if (fov > 0.0) options.fovYDegrees = fov;
+        options.samples = samples;
+        options.fovYDegrees = fov;
         if (!position.empty()) options.cameraPosition = parseVec3(position, "--camera");
         if (!lookAt.empty()) options.cameraLookAt = parseVec3(lookAt, "--look-at");
         sward::runRenderJob(options);

@@ -7,6 +7,7 @@
 #include "scene_renderer.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 namespace sward {
@@ -21,6 +22,7 @@ void runRenderJob(const RenderJobOptions& options) {
     uint32_t width = scene.render.width, height = scene.render.height;
     if (options.resolution) parseResolution(*options.resolution, width, height);
     uint32_t samples = options.samples.value_or(scene.render.samples);
+    require(std::isfinite(options.time) && options.time >= 0.0, "--time must be a finite, non-negative number of seconds");
     require(samples == 1 || samples == 4, "--samples must be 1 or 4 (got " + std::to_string(samples) + ")");
     if (options.cameraPosition) {
         scene.camera.position = *options.cameraPosition;
@@ -31,7 +33,7 @@ void runRenderJob(const RenderJobOptions& options) {
         scene.camera.lookAtUsesGround = false;
     }
     if (options.fovYDegrees) {
-        require(*options.fovYDegrees > 1.0 && *options.fovYDegrees < 170.0, "--fov must be between 1 and 170 degrees");
+        require(*options.fovYDegrees >= 1.0 && *options.fovYDegrees <= 170.0, "--fov must be between 1 and 170 degrees");
         scene.camera.fovYDegrees = *options.fovYDegrees;
     }
     for (const char* sub : {"", "/left", "/depth", "/preview"}) ensureWritableDirectory(options.outDir + sub);
@@ -47,13 +49,13 @@ void runRenderJob(const RenderJobOptions& options) {
         atlas = buildAtlas(scene);
     }
 
-    Context ctx(DeviceOptions{.deviceFilter = options.device, .validation = options.validation});
+    Context ctx(DeviceOptions{.deviceFilter = options.device, .validation = options.validation || DeviceOptions{}.validation});
     FrameImages frame;
     {
         SceneRenderer renderer(ctx, scene, terrain, samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
                                vegetation ? &*vegetation : nullptr, atlas ? &*atlas : nullptr);
         vegetation.reset(); // uploaded: the CPU copy is no longer needed
-        frame = renderFrame(ctx, renderer, camera, samples, options.time);
+        frame = renderFrame(ctx, renderer, camera, options.time);
     }
     const std::string name = "000000";
     writeExrRgbaHalf(options.outDir + "/left/" + name + ".exr", width, height, frame.rgbaHalf);

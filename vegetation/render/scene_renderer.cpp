@@ -69,7 +69,7 @@ template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) 
 
 SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, VkSampleCountFlagBits samples,
                              const VegetationTile* vegetation, const Atlas* atlas)
-    : ctx_(ctx), scene_(scene) {
+    : ctx_(ctx), scene_(scene), samples_(samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1) {
     terrainMinHeight_ = terrain.minHeight();
     terrainMaxHeight_ = terrain.maxHeight();
     auto vertices = terrainVertices(terrain);
@@ -271,9 +271,8 @@ void SceneRenderer::record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget
     if (timers) timers->end(cmd);
 }
 
-FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, uint32_t samples,
-                        double timeSeconds) {
-    RenderTarget main(ctx, mainPassTargetDesc(camera.width, camera.height, samples));
+FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, double timeSeconds) {
+    RenderTarget main(ctx, mainPassTargetDesc(camera.width, camera.height, renderer.samples()));
     RenderTarget truth(ctx, truthPassTargetDesc(camera.width, camera.height));
     uint64_t pixels = uint64_t(camera.width) * camera.height;
     Buffer color = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);

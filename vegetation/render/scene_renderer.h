@@ -44,6 +44,7 @@ public:
                 double timeSeconds, uint32_t frameIndex, GpuTimers* timers = nullptr);
 
     VegetationRenderer* vegetation() { return vegetation_.get(); }
+    uint32_t samples() const { return samples_; }
     static constexpr uint32_t kFramesInFlight = 3;
 
 private:
@@ -52,6 +53,7 @@ private:
 
     Context& ctx_;
     Scene scene_;
+    uint32_t samples_ = 1;
     Buffer terrainVertices_, terrainIndices_;
     uint32_t terrainIndexCount_ = 0;
     float terrainMinHeight_ = 0.0f, terrainMaxHeight_ = 0.0f;
@@ -70,8 +72,7 @@ struct FrameImages {
     std::vector<float> depth;       // planar metres, +inf where nothing was hit
 };
 
-// Renders one frame into fresh targets and reads colour and depth back (waits for the GPU).
-FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, uint32_t samples,
-                        double timeSeconds = 0.0);
+// Renders one frame into fresh targets (the renderer's sample count) and reads colour and depth back (waits).
+FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, double timeSeconds = 0.0);
 
 } // namespace sward
