@@ -1,11 +1,14 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Vegetation expansion, run twice per frame with one workgroup per 5x5 m plant cluster (the "task shader"
+// Vegetation expansion, run twice per frame with one invocation per 5x5 m plant cluster (the "task shader"
 // of a mesh-shader pipeline, done in compute because lavapipe has no mesh shaders):
 //   WRITE_PASS = 0  count: cull the cluster, choose each plant's LOD(s), store per-LOD counts of the cluster
 //   WRITE_PASS = 1  write: same choices, each instance written at clusterOffset[lod] + its rank among the
 //                   cluster's plants, so the output order is a pure function of the plant order (no atomic
 //                   append order can leak into pixels).
+// One invocation walks its cluster's plants in order: the ranks need no workgroup scan and no barrier, which
+// keeps CPU implementations (lavapipe) fast; a cluster holds a few hundred plants, and culled clusters cost
+// one box test.
 #include "shared/vegetation.glsl"
 
 layout(constant_id = 0) const uint WRITE_PASS = 0;
@@ -18,94 +21,60 @@ layout(set = 0, binding = 4, std430) readonly buffer Fields { PlantField fields[
 layout(set = 0, binding = 5, std430) buffer ClusterCounts { uvec4 clusterCounts[]; }; // count: out, write: offsets in
 layout(set = 0, binding = 6, std430) writeonly buffer Instances { PlantInstance instances[]; };
 
-shared uint lodCounts[kLodCount];
-shared uvec4 ranks[64]; // per-thread inclusive prefix of (near, mid, far) memberships
-
-float categoryHeight(uint category) {
-    return veg.categoryHeight[category];
-}
-
 void main() {
-    uint cluster = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
+    uint cluster = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u;
     if (cluster >= veg.counts.x) return;
-    uint lane = gl_LocalInvocationID.x;
     PlantCluster box = clusters[cluster];
-    bool visible = box.range.y > 0u && clusterVisible(box.boundsMin.xyz, box.boundsMax.xyz);
-    if (!visible) {
-        if (WRITE_PASS == 0u && lane == 0u) clusterCounts[cluster] = uvec4(0u, 0u, 0u, 0u);
-        return; // uniform across the workgroup: every lane reads the same cluster
+    if (box.range.y == 0u || !clusterVisible(box.boundsMin.xyz, box.boundsMax.xyz)) {
+        if (WRITE_PASS == 0u) clusterCounts[cluster] = uvec4(0u);
+        return;
     }
     PlantField field = fields[cluster / veg.counts.y];
     uint first = field.range.x + box.range.x;
     uint count = box.range.y;
-
-    if (lane < kLodCount) lodCounts[lane] = 0u;
-    uvec4 base = WRITE_PASS == 1u ? clusterCounts[cluster] : uvec4(0u);
-    uvec3 running = uvec3(0u);
-    barrier();
-
-    for (uint start = 0u; start < count; start += 64u) {
-        uint index = start + lane;
-        LodChoice choice = LodChoice(kNoLod, kNoLod, 0.0);
-        PlantStatic plant;
-        vec3 position = vec3(0.0);
-        if (index < count) {
-            plant = statics[first + index];
-            position = plantPosition(plant, field.originStep);
-            choice = chooseLod(distance(position, veg.cameraPosition.xyz));
-        }
-        uvec3 member = uvec3(0u);
-        if (choice.lodA != kNoLod) member[choice.lodA] = 1u;
-        if (choice.lodB != kNoLod) member[choice.lodB] = 1u;
-
-        if (WRITE_PASS == 0u) {
-            for (uint k = 0u; k < kLodCount; ++k)
-                if (member[k] != 0u) atomicAdd(lodCounts[k], 1u); // a sum: order-independent
-            continue;
-        }
-
-        // Workgroup inclusive scan (Hillis-Steele) of the membership flags: each plant's rank in its chunk.
-        ranks[lane] = uvec4(member, 0u);
-        barrier();
-        for (uint offset = 1u; offset < 64u; offset <<= 1u) {
-            uvec4 add = lane >= offset ? ranks[lane - offset] : uvec4(0u);
-            barrier();
-            ranks[lane] += add;
-            barrier();
-        }
-        uvec3 inclusive = ranks[lane].xyz;
-        uvec3 chunkTotal = ranks[63].xyz;
-        barrier();
-
-        if (choice.lodA != kNoLod) {
-            PlantDynamic dyn = dynamics[first + index];
-            float time = veg.windGusts.z;
-            float random = plantRandom(plant);
-            float cut = plantState(dyn) == kPlantStateCut ? plantCutFraction(dyn) : 1.0;
-            float height = categoryHeight(plantCategory(plant)) * plantSizeScale(plant) * cut;
-            vec2 tip = plantBend(dyn) + windTip(position, random, time);
-            float len = length(tip);
-            if (len > 0.95) tip *= 0.95 / len; // a blade bends, it does not stretch
-            PlantInstance instance;
-            instance.positionHeight = vec4(position, height);
-            instance.up = plant.up;
-            instance.attributes = plant.attributes;
-            instance.tip = packHalf2x16(tip);
-            uint cutByte = bitfieldExtract(dyn.state, 24, 8);
-            uint fadeBits = uint(clamp(choice.t, 0.0, 1.0) * 65535.0 + 0.5) | (cutByte << 24);
-            for (uint k = 0u; k < kLodCount; ++k) {
-                if (member[k] == 0u) continue;
-                uint slot = base[k] + running[k] + inclusive[k] - 1u;
-                if (slot >= veg.counts.z) continue; // capacity exhausted: drop deterministically
-                instance.fade = fadeBits | (k == choice.lodB ? 0x10000u : 0u);
-                instances[slot] = instance;
-            }
-        }
-        running += chunkTotal;
-    }
+    vec3 camera = veg.cameraPosition.xyz;
 
     if (WRITE_PASS == 0u) {
-        barrier();
-        if (lane == 0u) clusterCounts[cluster] = uvec4(lodCounts[0], lodCounts[1], lodCounts[2], 1u);
+        uvec3 lodCounts = uvec3(0u);
+        for (uint i = 0u; i < count; ++i) {
+            vec3 position = plantPosition(statics[first + i], field.originStep);
+            LodChoice choice = chooseLod(distance(position, camera));
+            if (choice.lodA != kNoLod) lodCounts[choice.lodA] += 1u;
+            if (choice.lodB != kNoLod) lodCounts[choice.lodB] += 1u;
+        }
+        // w: plants whose per-plant work was done (statistics; 0 marks a culled cluster)
+        clusterCounts[cluster] = uvec4(lodCounts, count);
+        return;
+    }
+
+    uvec3 slot = clusterCounts[cluster].xyz; // first instance of this cluster in each LOD range
+    float time = veg.windGusts.z;
+    for (uint i = 0u; i < count; ++i) {
+        PlantStatic plant = statics[first + i];
+        vec3 position = plantPosition(plant, field.originStep);
+        LodChoice choice = chooseLod(distance(position, camera));
+        if (choice.lodA == kNoLod) continue;
+        PlantDynamic dyn = dynamics[first + i];
+        float random = plantRandom(plant);
+        float cut = plantState(dyn) == kPlantStateCut ? plantCutFraction(dyn) : 1.0;
+        float height = veg.categoryHeight[plantCategory(plant)] * plantSizeScale(plant) * cut;
+        vec2 tip = plantBend(dyn) + windTip(position, random, time);
+        float len = length(tip);
+        if (len > 0.95) tip *= 0.95 / len; // a blade bends, it does not stretch
+        PlantInstance instance;
+        instance.positionHeight = vec4(position, height);
+        instance.up = plant.up;
+        instance.attributes = plant.attributes;
+        instance.tip = packHalf2x16(tip);
+        uint fadeBits = uint(clamp(choice.t, 0.0, 1.0) * 65535.0 + 0.5) | (bitfieldExtract(dyn.state, 24, 8) << 24);
+
+        instance.fade = fadeBits;
+        if (slot[choice.lodA] < veg.counts.z) instances[slot[choice.lodA]] = instance; // else: capacity, dropped
+        slot[choice.lodA] += 1u;
+        if (choice.lodB != kNoLod) {
+            instance.fade = fadeBits | 0x10000u; // the upper-LOD copy of a plant in a cross-fade band
+            if (slot[choice.lodB] < veg.counts.z) instances[slot[choice.lodB]] = instance;
+            slot[choice.lodB] += 1u;
+        }
     }
 }

@@ -23,13 +23,22 @@ layout(push_constant) uniform Push {
 } push;
 
 shared uvec4 partial[1024];
+shared uint visibleClusters;
 
 void main() {
     uint lane = gl_LocalInvocationID.x;
     uint perLane = (push.clusterCount + 1023u) / 1024u;
     uint begin = min(lane * perLane, push.clusterCount), end = min(begin + perLane, push.clusterCount);
+    if (lane == 0u) visibleClusters = 0u;
+    barrier();
     uvec4 sum = uvec4(0u);
-    for (uint i = begin; i < end; ++i) sum += clusterCounts[i];
+    uint visible = 0u;
+    for (uint i = begin; i < end; ++i) {
+        uvec4 counts = clusterCounts[i]; // w: plants of the cluster if it was visible, else 0
+        sum += counts;
+        visible += counts.w > 0u ? 1u : 0u;
+    }
+    atomicAdd(visibleClusters, visible); // a sum: order-independent
     partial[lane] = sum;
     barrier();
     for (uint offset = 1u; offset < 1024u; offset <<= 1u) {
@@ -56,6 +65,6 @@ void main() {
     if (lane == 0u) {
         uint all = total.x + total.y + total.z;
         stats.instances = uvec4(total.xyz, all);
-        stats.info = uvec4(total.w, all > push.capacity ? all - push.capacity : 0u, 0u, 0u);
+        stats.info = uvec4(visibleClusters, all > push.capacity ? all - push.capacity : 0u, total.w, 0u);
     }
 }

@@ -55,7 +55,7 @@ SWARD_CONST(uint, kLodNear, 0u); // 4 textured quads at different horizontal and
 SWARD_CONST(uint, kLodMid, 1u);  // 2 crossed vertical quads
 SWARD_CONST(uint, kLodFar, 2u);  // 1 camera-facing billboard
 SWARD_CONST(uint, kLodCount, 3u);
-SWARD_CONST(uint, kExpandGroupSize, 64u); // one workgroup per plant cluster, 64 plants per step
+SWARD_CONST(uint, kExpandGroupSize, 64u); // expansion: one invocation per plant cluster, 64 per workgroup
 SWARD_CONST(uint, kScanGroupSize, 1024u); // single-workgroup scan over all clusters
 
 // Per-frame constants of the vegetation expansion (uniform buffer).
@@ -85,10 +85,18 @@ struct AtlasCellGpu {
     vec4 baseAspect;     // x base u, y base v (cell uv of the plant base), z width / height, w unused
 };
 
+// One pre-expanded plant vertex (plant_bake.comp -> plant_static.vert), for baselines and reference tests.
+struct BakedVertex {
+    vec4 positionFraction; // xyz world position, w height fraction (0 base, 1 top)
+    vec4 uvRandom;         // xy atlas uv, z plant random value, w unused
+    uvec4 upFade;          // x octahedral up, y fade bits (as PlantInstance::fade), zw unused
+};
+
 // Expansion statistics written by the scan (storage buffer), for benchmarks and the viewer.
 struct ExpansionStats {
     uvec4 instances;     // instances per LOD (x near, y mid, z far), w total
-    uvec4 info;          // x clusters visible, y instances dropped for lack of capacity, zw unused
+    uvec4 info;          // x clusters visible, y instances dropped for lack of capacity, z plants in visible
+                         // clusters (the per-plant work done), w unused
 };
 
 #ifdef __cplusplus
@@ -97,6 +105,7 @@ static_assert(sizeof(VegetationConstants) == 12 * 16);
 static_assert(sizeof(PlantInstance) == 32);
 static_assert(sizeof(AtlasCellGpu) == 32);
 static_assert(sizeof(ExpansionStats) == 32);
+static_assert(sizeof(BakedVertex) == 48);
 static_assert(sizeof(TerrainVertex) == 32);
 } // namespace sward::gpu
 #endif

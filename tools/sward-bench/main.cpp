@@ -1,6 +1,7 @@
 // sward-bench: prints benchmark figures (and writes them as JSON with --json). Thin: parsing and printing only.
 #include "benchmarks.h"
 #include "error.h"
+#include "scene.h"
 
 #include <CLI/CLI.hpp>
 
@@ -40,6 +41,16 @@ int main(int argc, char** argv) {
     gen->add_flag("!--no-upload", generate.upload, "Skip the GPU upload");
     gen->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
+    sward::FrameBenchOptions frame;
+    std::string resolution = "1024x768";
+    CLI::App* frm = app.add_subcommand("frame", "Render a scene and time the GPU passes and the expansion overhead");
+    frm->add_option("scene", frame.scenePath, "Scene JSON (default: examples/meadow.json)");
+    frm->add_option("--resolution", resolution, "WIDTHxHEIGHT")->capture_default_str();
+    frm->add_option("--samples", frame.samples, "MSAA samples (1 or 4)")->capture_default_str();
+    frm->add_option("--frames", frame.frames, "Measured frames per figure (medians)")->capture_default_str();
+    frm->add_option("--device", frame.device, "Vulkan device name substring");
+    frm->add_option("--json", json, "Also write the figures as a JSON object to this file");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -50,6 +61,10 @@ int main(int argc, char** argv) {
     }
     try {
         if (gen->parsed()) emit(sward::benchGenerate(generate), json);
+        if (frm->parsed()) {
+            sward::parseResolution(resolution, frame.width, frame.height);
+            emit(sward::benchFrame(frame), json);
+        }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "sward-bench: error: %s\n", e.what());
         return 1;

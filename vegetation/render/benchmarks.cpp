@@ -1,11 +1,17 @@
 #include "benchmarks.h"
 
 #include "context.h"
+#include "render_target.h"
+#include "scene.h"
+#include "scene_renderer.h"
+#include "timestamps.h"
+#include "vegetation_renderer.h"
 #include "ground.h"
 #include "placement.h"
 #include "vegetation_buffers.h"
 
 #include <algorithm>
+#include <map>
 #include <chrono>
 #include <thread>
 
@@ -15,6 +21,11 @@ namespace {
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    return values.empty() ? 0.0 : values[values.size() / 2];
+}
+
 } // namespace
 
 nlohmann::json benchGenerate(const GenerateBenchOptions& options) {
@@ -63,6 +74,81 @@ nlohmann::json benchGenerate(const GenerateBenchOptions& options) {
         result["total_seconds"] = seconds + buffers.uploadSeconds;
     }
     return result;
+}
+
+nlohmann::json benchFrame(const FrameBenchOptions& options) {
+    require(options.frames >= 1, "--frames must be at least 1");
+    require(options.samples == 1 || options.samples == 4, "--samples must be 1 or 4");
+    Scene scene = loadScene(options.scenePath.empty() ? std::string(SWARD_SOURCE_DIR "/examples/meadow.json")
+                                                      : options.scenePath);
+    Heightfield terrain = buildTerrain(scene);
+    VegetationTile tile = buildVegetation(scene, terrain);
+    Atlas atlas = buildAtlas(scene);
+    Camera camera = sceneCamera(scene, terrain, options.width, options.height);
+
+    Context ctx(DeviceOptions{.deviceFilter = options.device, .quiet = true});
+    SceneRenderer renderer(ctx, scene, terrain, options.samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
+                           &tile, &atlas);
+    const uint64_t plantsTotal = countVegetation(tile).plants;
+    tile = {};
+    RenderTarget main(ctx, mainPassTargetDesc(options.width, options.height, options.samples));
+    RenderTarget truth(ctx, truthPassTargetDesc(options.width, options.height));
+    GpuTimers timers(ctx.device, 8);
+    auto timed = [&](const std::function<void(VkCommandBuffer)>& record) {
+        VkCommandBuffer cmd = ctx.submitter.begin();
+        timers.reset(cmd);
+        record(cmd);
+        ctx.submitter.wait(ctx.submitter.submit(cmd));
+        return timers.read();
+    };
+
+    // Full frames: every pass, timed. The first frame warms up caches and pipelines and is not counted.
+    std::map<std::string, std::vector<double>> passes;
+    for (uint32_t i = 0; i <= options.frames; ++i) {
+        auto times = timed([&](VkCommandBuffer cmd) { renderer.record(cmd, main, &truth, camera, 0.0, i, &timers); });
+        if (i > 0)
+            for (auto& [name, ms] : times) passes[name].push_back(ms);
+    }
+    VegetationRenderer& vegetation = *renderer.vegetation();
+    BakedPlants baked = vegetation.bake(0);
+
+    // Expansion overhead: expansion + main pass against the same main pass drawing the same quads from the
+    // baked static buffer; interleaved so both see the same machine state.
+    std::vector<double> dynamicMs, staticMs;
+    for (uint32_t i = 0; i <= options.frames; ++i) {
+        auto dyn = timed([&](VkCommandBuffer cmd) { renderer.recordMainOnly(cmd, main, camera, 0.0, i, &timers, nullptr); });
+        auto fix = timed([&](VkCommandBuffer cmd) { renderer.recordMainOnly(cmd, main, camera, 0.0, i, &timers, &baked); });
+        if (i == 0) continue;
+        double d = 0.0, f = 0.0;
+        for (auto& [name, ms] : dyn) d += ms;
+        for (auto& [name, ms] : fix) f += ms;
+        dynamicMs.push_back(d);
+        staticMs.push_back(f);
+    }
+    gpu::ExpansionStats stats = baked.stats;
+    vegetation.destroyBaked(baked);
+
+    nlohmann::json passMs = nlohmann::json::object();
+    for (auto& [name, values] : passes) passMs[name] = median(values);
+    double expansionMs = median(passes["expansion"]);
+    double frameMs = median(dynamicMs), staticFrameMs = median(staticMs);
+    return {
+        {"pass_ms", passMs},
+        {"plants_drawn_per_lod", {stats.instances.x, stats.instances.y, stats.instances.z}},
+        {"plants_considered", stats.info.z},
+        {"plants_total", plantsTotal},
+        {"clusters_visible", stats.info.x},
+        {"clusters_total", vegetation.buffers().clusterCount},
+        {"expansion_plants_per_second", expansionMs > 0.0 ? double(stats.info.z) / (expansionMs * 1e-3) : 0.0},
+        {"frame_ms", frameMs},
+        {"static_frame_ms", staticFrameMs},
+        {"expansion_overhead_ratio", staticFrameMs > 0.0 ? frameMs / staticFrameMs : 0.0},
+        {"device", ctx.device.name()},
+        {"width", options.width},
+        {"height", options.height},
+        {"samples", options.samples},
+        {"frames", options.frames},
+    };
 }
 
 } // namespace sward

@@ -23,4 +23,19 @@ struct GenerateBenchOptions {
 // device, runs_seconds.
 nlohmann::json benchGenerate(const GenerateBenchOptions& options);
 
+struct FrameBenchOptions {
+    std::string scenePath;            // empty: examples/meadow.json of this source tree
+    uint32_t width = 1024, height = 768;
+    uint32_t samples = 4;
+    uint32_t frames = 5;              // measured frames per figure (medians are reported)
+    std::string device;
+};
+
+// Renders the scene and reports GPU pass times and expansion figures. Keys: pass_ms (pass -> median ms),
+// plants_drawn_per_lod [near, mid, far], plants_considered, plants_total, clusters_visible, clusters_total,
+// expansion_plants_per_second, frame_ms (expansion + main + resolve), static_frame_ms (main + resolve drawing
+// the same quads from a pre-expanded static buffer), expansion_overhead_ratio (frame_ms / static_frame_ms),
+// device, width, height, samples.
+nlohmann::json benchFrame(const FrameBenchOptions& options);
+
 } // namespace sward

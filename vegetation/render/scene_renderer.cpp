@@ -225,14 +225,37 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline,
     vkCmdDrawIndexed(cmd, terrainIndexCount_, 1, 0, 0, 0);
 }
 
+DescriptorBinding SceneRenderer::frameBinding(uint32_t slot) const {
+    return uniformBuffer(0, constants_.handle, slot * constantsStride_, sizeof(gpu::FrameConstants));
+}
+
+DescriptorBinding SceneRenderer::shadowBinding() const {
+    return sampledImage(5, shadowMap_->depth().view, shadowSampler_, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
+}
+
+void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint32_t slot, GpuTimers* timers,
+                                   const BakedPlants* baked) {
+    DescriptorBinding frame = frameBinding(slot), shadow = shadowBinding();
+    if (timers) timers->begin(cmd, "main");
+    main.begin(cmd);
+    drawTerrain(cmd, terrainPipeline_, {frame, shadow});
+    if (vegetation_ && baked) vegetation_->drawBaked(cmd, *baked, frame, shadow, slot);
+    else if (vegetation_) vegetation_->draw(cmd, PlantPass::Main, frame, shadow, slot);
+    // Sky last: the depth test (GREATER_OR_EQUAL against the far-plane clear) shades only uncovered pixels.
+    bindPipeline(cmd, skyPipeline_);
+    pushDescriptors(ctx_.device, cmd, skyPipeline_, {frame});
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    if (timers) timers->end(cmd);
+    if (timers) timers->begin(cmd, "resolve");
+    main.end(cmd);
+    if (timers) timers->end(cmd);
+}
+
 void SceneRenderer::record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget* truth, const Camera& camera,
                            double timeSeconds, uint32_t frameIndex, GpuTimers* timers) {
     uint32_t slot = frameIndex % kFramesInFlight;
     writeConstants(slot, camera, timeSeconds);
-    DescriptorBinding frame = uniformBuffer(0, constants_.handle, slot * constantsStride_, sizeof(gpu::FrameConstants));
-
-    DescriptorBinding shadow = sampledImage(5, shadowMap_->depth().view, shadowSampler_,
-                                            VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
+    DescriptorBinding frame = frameBinding(slot), shadow = shadowBinding();
 
     if (vegetation_) {
         if (timers) timers->begin(cmd, "expansion");
@@ -249,18 +272,7 @@ void SceneRenderer::record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget
     shadowMap_->end(cmd);
     if (timers) timers->end(cmd);
 
-    if (timers) timers->begin(cmd, "main");
-    main.begin(cmd);
-    drawTerrain(cmd, terrainPipeline_, {frame, shadow});
-    if (vegetation_) vegetation_->draw(cmd, PlantPass::Main, frame, shadow, slot);
-    // Sky last: the depth test (GREATER_OR_EQUAL against the far-plane clear) shades only uncovered pixels.
-    bindPipeline(cmd, skyPipeline_);
-    pushDescriptors(ctx_.device, cmd, skyPipeline_, {frame});
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-    if (timers) timers->end(cmd);
-    if (timers) timers->begin(cmd, "resolve");
-    main.end(cmd);
-    if (timers) timers->end(cmd);
+    recordMainPass(cmd, main, slot, timers, nullptr);
 
     if (!truth) return;
     if (timers) timers->begin(cmd, "truth");
@@ -269,6 +281,18 @@ void SceneRenderer::record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget
     if (vegetation_) vegetation_->draw(cmd, PlantPass::Truth, frame, shadow, slot);
     truth->end(cmd);
     if (timers) timers->end(cmd);
+}
+
+void SceneRenderer::recordMainOnly(VkCommandBuffer cmd, RenderTarget& main, const Camera& camera, double timeSeconds,
+                                   uint32_t frameIndex, GpuTimers* timers, const BakedPlants* baked) {
+    uint32_t slot = frameIndex % kFramesInFlight;
+    writeConstants(slot, camera, timeSeconds);
+    if (vegetation_ && !baked) {
+        if (timers) timers->begin(cmd, "expansion");
+        vegetation_->expand(cmd, camera, timeSeconds, slot);
+        if (timers) timers->end(cmd);
+    }
+    recordMainPass(cmd, main, slot, timers, baked);
 }
 
 FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, double timeSeconds) {

@@ -23,6 +23,7 @@ namespace sward {
 
 class GpuTimers;
 class VegetationRenderer;
+struct BakedPlants;
 struct VegetationTile;
 
 // Formats and clear values of the passes, in attachment order.
@@ -43,6 +44,12 @@ public:
     void record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget* truth, const Camera& camera,
                 double timeSeconds, uint32_t frameIndex, GpuTimers* timers = nullptr);
 
+    // Benchmark variant: expansion (unless `baked` is given) and the main pass only, no shadow or truth pass.
+    // With `baked`, the plants are drawn from those static vertices instead of this frame's expansion.
+    // Requires one full record() before (the shadow map must hold a frame).
+    void recordMainOnly(VkCommandBuffer cmd, RenderTarget& main, const Camera& camera, double timeSeconds,
+                        uint32_t frameIndex, GpuTimers* timers, const BakedPlants* baked);
+
     VegetationRenderer* vegetation() { return vegetation_.get(); }
     uint32_t samples() const { return samples_; }
     static constexpr uint32_t kFramesInFlight = 3;
@@ -50,6 +57,10 @@ public:
 private:
     void writeConstants(uint32_t slot, const Camera& camera, double timeSeconds);
     void drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline, std::initializer_list<DescriptorBinding> bindings);
+    void recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint32_t slot, GpuTimers* timers,
+                        const BakedPlants* baked);
+    DescriptorBinding frameBinding(uint32_t slot) const;
+    DescriptorBinding shadowBinding() const;
 
     Context& ctx_;
     Scene scene_;

@@ -24,7 +24,7 @@ std::array<glm::vec4, 5> frustumPlanes(const Camera& camera) {
 
 VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const VegetationTile& tile, const Atlas& atlas,
                                        const VegetationPassFormats& formats)
-    : ctx_(ctx), scene_(scene), buffers_(ctx, tile) {
+    : ctx_(ctx), scene_(scene), buffers_(ctx, tile), formats_(formats) {
     require(atlas.desc.rows.size() >= scene.vegetation.categoryCount,
             "the atlas has " + std::to_string(atlas.desc.rows.size()) + " rows but the scene has " +
                 std::to_string(scene.vegetation.categoryCount) + " vegetation categories");
@@ -95,7 +95,8 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
 
 VegetationRenderer::~VegetationRenderer() {
     ctx_.submitter.waitIdle();
-    for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &truthPipeline_, &shadowPipeline_})
+    for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &truthPipeline_,
+                        &shadowPipeline_, &bakePipeline_, &staticPipeline_})
         destroyPipeline(ctx_.device, *p);
     for (Buffer* b : {&constants_, &clusterCounts_, &instances_, &draws_, &stats_, &atlasCells_}) destroyBuffer(ctx_, *b);
     destroyImage(ctx_, atlasImage_);
@@ -196,8 +197,10 @@ void VegetationRenderer::expand(VkCommandBuffer cmd, const Camera& camera, doubl
                          storageBuffer(4, buffers_.fields.handle), storageBuffer(5, clusterCounts_.handle),
                          storageBuffer(6, instances_.handle)});
     };
-    const uint32_t groupsX = std::min(buffers_.clusterCount, 65535u);
-    const uint32_t groupsY = (buffers_.clusterCount + groupsX - 1) / groupsX;
+    // One invocation per cluster, 64 per workgroup.
+    const uint32_t groups = (buffers_.clusterCount + gpu::kExpandGroupSize - 1) / gpu::kExpandGroupSize;
+    const uint32_t groupsX = std::min(groups, 65535u);
+    const uint32_t groupsY = (groups + groupsX - 1) / groupsX;
     const auto computeToCompute = [&] {
         memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -246,6 +249,91 @@ gpu::ExpansionStats VegetationRenderer::readStats() {
     gpu::ExpansionStats stats;
     std::memcpy(&stats, bytes.data(), sizeof stats);
     return stats;
+}
+
+} // namespace sward
+
+namespace sward {
+
+BakedPlants VegetationRenderer::bake(uint32_t slot) {
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    if (!bakePipeline_.handle)
+        bakePipeline_ = createComputePipeline(
+            ctx_.device, "plant_bake.comp",
+            {.bindings = {layoutBinding(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs),
+                          layoutBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
+                          layoutBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
+                          layoutBinding(4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)},
+             .pushConstantSize = 16,
+             .pushConstantStages = cs});
+    BakedPlants baked{.stats = readStats()};
+    const uint32_t verticesPerPlant[gpu::kLodCount] = {24, 12, 6};
+    uint32_t kept = std::min(baked.stats.instances.w, capacity_);
+    for (uint32_t lod = 0, first = 0; lod < gpu::kLodCount; ++lod) {
+        uint32_t count = std::min(baked.stats.instances[int(lod)], kept - std::min(kept, first));
+        baked.vertexCount += count * verticesPerPlant[lod];
+        first += baked.stats.instances[int(lod)];
+    }
+    baked.vertices = createBuffer(ctx_, std::max<uint64_t>(uint64_t(baked.vertexCount) * sizeof(gpu::BakedVertex), 16),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                  MemoryIntent::DeviceLocal);
+    ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
+        bindPipeline(cmd, bakePipeline_);
+        pushDescriptors(ctx_.device, cmd, bakePipeline_,
+                        {constantsBinding(slot), storageBuffer(2, instances_.handle),
+                         storageBuffer(3, atlasCells_.handle), storageBuffer(4, baked.vertices.handle)});
+        for (uint32_t lod = 0, firstInstance = 0, firstVertex = 0; lod < gpu::kLodCount; ++lod) {
+            uint32_t count = std::min(baked.stats.instances[int(lod)], kept - std::min(kept, firstInstance));
+            uint32_t push[4] = {lod, firstInstance, firstVertex, count * verticesPerPlant[lod]};
+            if (push[3] > 0) {
+                pushConstants(cmd, bakePipeline_, push, sizeof push);
+                uint32_t groups = (push[3] + 63) / 64;
+                uint32_t x = std::min(groups, 65535u);
+                vkCmdDispatch(cmd, x, (groups + x - 1) / x, 1);
+            }
+            firstInstance += baked.stats.instances[int(lod)];
+            firstVertex += push[3];
+        }
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    });
+    return baked;
+}
+
+void VegetationRenderer::drawBaked(VkCommandBuffer cmd, const BakedPlants& baked, const DescriptorBinding& frame,
+                                   const DescriptorBinding& shadowMap, uint32_t slot) {
+    if (!staticPipeline_.handle) {
+        std::vector<VkDescriptorSetLayoutBinding> bindings = {
+            layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages),
+            layoutBinding(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages),
+            layoutBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kDrawStages),
+            layoutBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kDrawStages),
+            layoutBinding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT),
+            layoutBinding(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT)};
+        const bool msaa = formats_.mainSamples != VK_SAMPLE_COUNT_1_BIT;
+        staticPipeline_ = createGraphicsPipeline(
+            ctx_.device,
+            {.vertexShader = "plant_static.vert",
+             .fragmentShader = "plant.frag",
+             .cullMode = VK_CULL_MODE_NONE,
+             .colorFormats = {formats_.mainColor},
+             .depthFormat = formats_.mainDepth,
+             .samples = formats_.mainSamples,
+             .alphaToCoverage = msaa,
+             .specialization = {/* PASS= */ 0, /* ALPHA_TO_COVERAGE= */ msaa ? 1u : 0u}},
+            {.bindings = bindings});
+    }
+    bindPipeline(cmd, staticPipeline_);
+    pushDescriptors(ctx_.device, cmd, staticPipeline_,
+                    {frame, constantsBinding(slot), storageBuffer(2, baked.vertices.handle),
+                     storageBuffer(3, atlasCells_.handle), sampledImage(4, atlasImage_.view, atlasSampler_), shadowMap});
+    if (baked.vertexCount) vkCmdDraw(cmd, baked.vertexCount, 1, 0, 0);
+}
+
+void VegetationRenderer::destroyBaked(BakedPlants& baked) {
+    retireBuffer(ctx_, baked.vertices);
+    baked.vertexCount = 0;
 }
 
 } // namespace sward

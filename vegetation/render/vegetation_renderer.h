@@ -21,6 +21,13 @@ namespace sward {
 
 enum class PlantPass { Main, Truth, Shadow };
 
+// The latest expansion baked into static vertices ([near | mid | far]), for baselines and reference tests.
+struct BakedPlants {
+    Buffer vertices;          // gpu::BakedVertex[vertexCount]
+    uint32_t vertexCount = 0;
+    gpu::ExpansionStats stats{};
+};
+
 struct VegetationPassFormats {
     VkFormat mainColor, mainDepth;
     VkSampleCountFlagBits mainSamples;
@@ -47,6 +54,12 @@ public:
 
     // Statistics of the latest expansion (reads back; waits for the GPU).
     gpu::ExpansionStats readStats();
+    // Bakes the latest expansion's quads into static vertices (one submission; waits).
+    BakedPlants bake(uint32_t slot);
+    // Draws baked vertices into the current main pass, with the main pass's fragment shading.
+    void drawBaked(VkCommandBuffer cmd, const BakedPlants& baked, const DescriptorBinding& frame,
+                   const DescriptorBinding& shadowMap, uint32_t slot);
+    void destroyBaked(BakedPlants& baked);
     const VegetationBuffers& buffers() const { return buffers_; }
     uint32_t instanceCapacity() const { return capacity_; }
     // Instances and their draw commands, for benchmarks that re-draw a frozen expansion.
@@ -71,6 +84,8 @@ private:
     VkSampler atlasSampler_ = VK_NULL_HANDLE;
     Pipeline countPipeline_, scanPipeline_, writePipeline_;
     Pipeline mainPipeline_, truthPipeline_, shadowPipeline_;
+    Pipeline bakePipeline_, staticPipeline_; // created on first use (benchmarks, tests)
+    VegetationPassFormats formats_;
 };
 
 } // namespace sward
