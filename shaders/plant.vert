@@ -9,7 +9,7 @@
 layout(constant_id = 0) const uint PASS = 0;
 layout(push_constant) uniform Push { uint lod; } push;
 
-layout(set = 0, binding = 2, std430) readonly buffer Instances { PlantInstance instances[]; };
+layout(set = 0, binding = 2, std430) readonly buffer Instances { ExpandedPlant instances[]; };
 
 layout(location = 0) out vec2 outUv;
 layout(location = 1) out vec3 outWorld;
@@ -20,7 +20,7 @@ layout(location = 5) out float outHeightFraction;
 layout(location = 6) flat out float outRandom;
 
 void main() {
-    PlantInstance instance = instances[gl_InstanceIndex];
+    ExpandedPlant instance = instances[gl_InstanceIndex];
     PlantVertex v = plantVertex(instance, push.lod, uint(gl_VertexIndex));
     outUv = v.uv;
     outWorld = v.position;

@@ -6,7 +6,7 @@
 #include "shared/plant_vertex.glsl"
 
 layout(local_size_x = 64) in;
-layout(set = 0, binding = 2, std430) readonly buffer Instances { PlantInstance instances[]; };
+layout(set = 0, binding = 2, std430) readonly buffer Instances { ExpandedPlant instances[]; };
 layout(set = 0, binding = 4, std430) writeonly buffer Baked { BakedVertex baked[]; };
 layout(push_constant) uniform Push {
     uint lod;
@@ -19,7 +19,7 @@ void main() {
     uint i = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u;
     if (i >= push.vertexCount) return;
     uint verticesPerPlant = push.lod == kLodNear ? 24u : push.lod == kLodMid ? 12u : 6u;
-    PlantInstance instance = instances[push.firstInstance + i / verticesPerPlant];
+    ExpandedPlant instance = instances[push.firstInstance + i / verticesPerPlant];
     PlantVertex v = plantVertex(instance, push.lod, i % verticesPerPlant);
     baked[push.firstVertex + i] = BakedVertex(vec4(v.position, v.heightFraction), vec4(v.uv, v.random, 0.0),
                                               uvec4(instance.up, instance.fade, 0u, 0u));

@@ -19,7 +19,7 @@ layout(set = 0, binding = 2, std430) readonly buffer Dynamics { PlantDynamic dyn
 layout(set = 0, binding = 3, std430) readonly buffer Clusters { PlantCluster clusters[]; };
 layout(set = 0, binding = 4, std430) readonly buffer Fields { PlantField fields[]; };
 layout(set = 0, binding = 5, std430) buffer ClusterCounts { uvec4 clusterCounts[]; }; // count: out, write: offsets in
-layout(set = 0, binding = 6, std430) writeonly buffer Instances { PlantInstance instances[]; };
+layout(set = 0, binding = 6, std430) writeonly buffer Instances { ExpandedPlant instances[]; };
 
 void main() {
     uint cluster = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u;
@@ -61,7 +61,7 @@ void main() {
         vec2 tip = plantBend(dyn) + windTip(position, random, time);
         float len = length(tip);
         if (len > 0.95) tip *= 0.95 / len; // a blade bends, it does not stretch
-        PlantInstance instance;
+        ExpandedPlant instance;
         instance.positionHeight = vec4(position, height);
         instance.up = plant.up;
         instance.attributes = plant.attributes;

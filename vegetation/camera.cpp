@@ -60,3 +60,16 @@ glm::dvec3 Camera::project(glm::dvec3 world) const {
 }
 
 } // namespace sward
+
+namespace sward {
+
+std::array<glm::vec4, 5> Camera::frustumPlanes() const {
+    // Gribb & Hartmann: combinations of the rows of the clip matrix. Reversed Z: near is depth <= 1, w - z >= 0.
+    glm::dmat4 m = glm::transpose(viewProjection());
+    glm::dvec4 planes[5] = {m[3] - m[2], m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1]};
+    std::array<glm::vec4, 5> out;
+    for (int i = 0; i < 5; ++i) out[size_t(i)] = glm::vec4(planes[i] / glm::length(glm::dvec3(planes[i])));
+    return out;
+}
+
+} // namespace sward

@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstdint>
 
 namespace sward {
@@ -32,6 +33,9 @@ struct Camera {
     glm::dvec3 ray(double u, double v) const;
     // Pixel coordinate and planar depth of a world point.
     glm::dvec3 project(glm::dvec3 world) const;
+    // World-space frustum planes: near, left, right, top, bottom (the far plane is at infinity). xyz is the
+    // unit inward normal, w the offset: a point p is inside when dot(xyz, p) + w >= 0 for all five.
+    std::array<glm::vec4, 5> frustumPlanes() const;
 };
 
 } // namespace sward

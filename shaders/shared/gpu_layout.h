@@ -71,7 +71,7 @@ struct VegetationConstants {
 };
 
 // One expanded plant in one level of detail (storage buffer written by vegetation_expand.comp).
-struct PlantInstance {
+struct ExpandedPlant {
     vec4 positionHeight; // xyz world position of the base, w plant height in metres (after size and cut)
     uint up;             // octahedral unit up vector, as PlantStatic::up
     uint attributes;     // as PlantStatic::attributes (category, variant, orientation, random, size)
@@ -89,7 +89,7 @@ struct AtlasCellGpu {
 struct BakedVertex {
     vec4 positionFraction; // xyz world position, w height fraction (0 base, 1 top)
     vec4 uvRandom;         // xy atlas uv, z plant random value, w unused
-    uvec4 upFade;          // x octahedral up, y fade bits (as PlantInstance::fade), zw unused
+    uvec4 upFade;          // x octahedral up, y fade bits (as ExpandedPlant::fade), zw unused
 };
 
 // Expansion statistics written by the scan (storage buffer), for benchmarks and the viewer.
@@ -102,7 +102,7 @@ struct ExpansionStats {
 #ifdef __cplusplus
 static_assert(sizeof(FrameConstants) == 4 * 64 + 9 * 16);
 static_assert(sizeof(VegetationConstants) == 12 * 16);
-static_assert(sizeof(PlantInstance) == 32);
+static_assert(sizeof(ExpandedPlant) == 32);
 static_assert(sizeof(AtlasCellGpu) == 32);
 static_assert(sizeof(ExpansionStats) == 32);
 static_assert(sizeof(BakedVertex) == 48);

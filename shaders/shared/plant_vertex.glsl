@@ -10,8 +10,10 @@ layout(set = 0, binding = 3, std430) readonly buffer Cells { AtlasCellGpu cells[
 
 // Corners of the two triangles of a quad: x across (0 left, 1 right), y up (0 bottom, 1 top).
 const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
-// Near LOD: (angle offset about up, tilt away from vertical) per quad, radians.
-const vec2 kNearQuads[4] = vec2[](vec2(0.0, 0.0), vec2(1.5707963, 0.0), vec2(0.7853982, 0.7), vec2(3.9269908, 0.7));
+// (angle offset about up, tilt away from vertical) per quad, radians. Near: two upright crossed quads and two
+// leaning ones; mid: two crossed quads leaning apart. The lean is what covers the ground seen from above.
+const vec2 kNearQuads[4] = vec2[](vec2(0.0, 0.0), vec2(1.5707963, 0.0), vec2(0.7853982, 0.95), vec2(3.9269908, 0.95));
+const vec2 kMidQuads[2] = vec2[](vec2(0.0, 0.6), vec2(4.712389, 0.6));
 
 struct PlantVertex {
     vec3 position;        // world, metres
@@ -20,7 +22,7 @@ struct PlantVertex {
     float random;         // the plant's random value
 };
 
-PlantVertex plantVertex(PlantInstance instance, uint lod, uint vertexIndex) {
+PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex) {
     uint quad = vertexIndex / 6u;
     vec2 corner = kCorners[vertexIndex % 6u];
 
@@ -36,12 +38,14 @@ PlantVertex plantVertex(PlantInstance instance, uint lod, uint vertexIndex) {
 
     vec3 side, rise;
     if (lod == kLodFar) {
-        vec3 toCamera = veg.cameraPosition.xyz - base;
+        // Faces the camera: upright when seen from the side, lying towards the camera when seen from above.
+        vec3 toCamera = normalize(veg.cameraPosition.xyz - base);
         side = cross(up, toCamera);
-        side = dot(side, side) > 1e-8 ? normalize(side) : vec3(1.0, 0.0, 0.0);
-        rise = up;
+        if (dot(side, side) < 1e-4) side = vec3(cos(orientation), sin(orientation), 0.0);
+        side = normalize(side);
+        rise = normalize(cross(toCamera, side));
     } else {
-        vec2 angleTilt = kNearQuads[quad];
+        vec2 angleTilt = lod == kLodNear ? kNearQuads[quad] : kMidQuads[quad];
         float angle = orientation + angleTilt.x;
         vec3 horizontal = vec3(cos(angle), sin(angle), 0.0);
         side = normalize(horizontal - up * dot(horizontal, up));

@@ -41,9 +41,9 @@ protected:
                                                samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
                                                withVegetation ? &tile : nullptr, withVegetation ? &atlas : nullptr);
     }
-    std::vector<gpu::PlantInstance> readInstances(VegetationRenderer& vegetation, uint32_t count) {
-        std::vector<uint8_t> bytes = readBuffer(*ctx, vegetation.instances(), 0, uint64_t(count) * sizeof(gpu::PlantInstance));
-        std::vector<gpu::PlantInstance> instances(count);
+    std::vector<gpu::ExpandedPlant> readInstances(VegetationRenderer& vegetation, uint32_t count) {
+        std::vector<uint8_t> bytes = readBuffer(*ctx, vegetation.instances(), 0, uint64_t(count) * sizeof(gpu::ExpandedPlant));
+        std::vector<gpu::ExpandedPlant> instances(count);
         std::memcpy(instances.data(), bytes.data(), bytes.size());
         return instances;
     }
@@ -93,7 +93,7 @@ TEST_F(VegetationTest, LodFollowsDistanceWithComplementaryCrossFadeCopies) {
     ASSERT_GT(stats.instances.y, 0u);
     ASSERT_GT(stats.instances.z, 0u);
     EXPECT_EQ(stats.info.y, 0u) << "no instance may be dropped for lack of capacity here";
-    std::vector<gpu::PlantInstance> instances = readInstances(vegetation, stats.instances.w);
+    std::vector<gpu::ExpandedPlant> instances = readInstances(vegetation, stats.instances.w);
 
     const float half = 0.5f * scene.lod.band;
     const float edges[4] = {0.0f, scene.lod.nearToMid, scene.lod.midToFar, scene.lod.farLimit};
@@ -101,7 +101,7 @@ TEST_F(VegetationTest, LodFollowsDistanceWithComplementaryCrossFadeCopies) {
     for (uint32_t lod = 0; lod < 3; ++lod) {
         uint32_t end = begin + stats.instances[int(lod)];
         for (uint32_t i = begin; i < end; ++i) {
-            const gpu::PlantInstance& p = instances[i];
+            const gpu::ExpandedPlant& p = instances[i];
             float d = float(glm::distance(glm::dvec3(glm::vec3(p.positionHeight)), camera.position));
             ASSERT_GE(d, edges[lod] - half - 1e-3f) << "LOD " << lod;
             ASSERT_LT(d, edges[lod + 1] + half + 1e-3f) << "LOD " << lod;

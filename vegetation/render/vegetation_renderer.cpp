@@ -11,15 +11,6 @@ namespace {
 
 constexpr VkShaderStageFlags kDrawStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
-// World-space frustum planes (near + 4 sides) of a reversed-Z, infinite-far projection (Gribb & Hartmann).
-std::array<glm::vec4, 5> frustumPlanes(const Camera& camera) {
-    glm::dmat4 m = glm::transpose(camera.viewProjection()); // rows of the combined matrix
-    glm::dvec4 planes[5] = {m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[3] - m[2]};
-    std::array<glm::vec4, 5> out;
-    for (int i = 0; i < 5; ++i) out[i] = glm::vec4(planes[i] / glm::length(glm::dvec3(planes[i])));
-    return out;
-}
-
 } // namespace
 
 VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const VegetationTile& tile, const Atlas& atlas,
@@ -38,7 +29,7 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     clusterCounts_ = createBuffer(ctx, uint64_t(std::max(buffers_.clusterCount, 1u)) * 16, storage,
                                   MemoryIntent::DeviceLocal);
-    instances_ = createBuffer(ctx, uint64_t(capacity_) * sizeof(gpu::PlantInstance), storage, MemoryIntent::DeviceLocal);
+    instances_ = createBuffer(ctx, uint64_t(capacity_) * sizeof(gpu::ExpandedPlant), storage, MemoryIntent::DeviceLocal);
     draws_ = createBuffer(ctx, gpu::kLodCount * sizeof(VkDrawIndirectCommand),
                           storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryIntent::DeviceLocal);
     stats_ = createBuffer(ctx, sizeof(gpu::ExpansionStats), storage, MemoryIntent::DeviceLocal);
@@ -172,7 +163,7 @@ DescriptorBinding VegetationRenderer::constantsBinding(uint32_t slot) const {
 
 void VegetationRenderer::expand(VkCommandBuffer cmd, const Camera& camera, double timeSeconds, uint32_t slot) {
     gpu::VegetationConstants c{};
-    auto planes = frustumPlanes(camera);
+    auto planes = camera.frustumPlanes();
     for (int i = 0; i < 5; ++i) c.frustumPlanes[i] = planes[i];
     c.cameraPosition = glm::vec4(glm::vec3(camera.position), 1.0f);
     c.lodDistances = glm::vec4(scene_.lod.nearToMid, scene_.lod.midToFar, scene_.lod.farLimit, scene_.lod.band);

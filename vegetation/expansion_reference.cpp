@@ -1,0 +1,138 @@
+#include "expansion_reference.h"
+
+#include "records.h"
+
+#include <glm/gtc/packing.hpp>
+
+#include <cmath>
+
+namespace sward {
+
+namespace {
+
+constexpr uint32_t kNoLod = 0xffffffffu;
+
+struct LodChoice {
+    uint32_t lodA = kNoLod, lodB = kNoLod;
+    float t = 0.0f;
+};
+
+LodChoice chooseLod(const LodParams& lod, float distance) {
+    float band = std::max(lod.band, 1e-3f), half = 0.5f * band;
+    float d0 = lod.nearToMid, d1 = lod.midToFar, d2 = lod.farLimit;
+    if (distance >= d2 + half) return {};
+    if (distance < d0 - half) return {gpu::kLodNear, kNoLod, 0.0f};
+    if (distance < d0 + half) return {gpu::kLodNear, gpu::kLodMid, (distance - (d0 - half)) / band};
+    if (distance < d1 - half) return {gpu::kLodMid, kNoLod, 0.0f};
+    if (distance < d1 + half) return {gpu::kLodMid, gpu::kLodFar, (distance - (d1 - half)) / band};
+    if (distance < d2 - half) return {gpu::kLodFar, kNoLod, 0.0f};
+    return {gpu::kLodFar, kNoLod, (distance - (d2 - half)) / band};
+}
+
+bool clusterVisible(const std::array<glm::vec4, 5>& planes, const LodParams& lod, glm::vec3 camera, glm::vec3 lo,
+                    glm::vec3 hi) {
+    for (const glm::vec4& plane : planes) {
+        glm::vec3 farthest(plane.x > 0 ? hi.x : lo.x, plane.y > 0 ? hi.y : lo.y, plane.z > 0 ? hi.z : lo.z);
+        if (glm::dot(glm::vec3(plane), farthest) + plane.w < 0.0f) return false;
+    }
+    glm::vec3 nearest = glm::clamp(camera, lo, hi);
+    return glm::distance(nearest, camera) < lod.farLimit + 0.5f * lod.band;
+}
+
+glm::vec2 windTip(const WindParams& wind, glm::vec3 position, float random, float time) {
+    glm::vec2 dir = wind.direction();
+    float phase = random * 6.2831853f;
+    float speed = 0.8f + 0.4f * random;
+    float sway = std::sin(time * 2.1f * speed + phase + glm::dot(glm::vec2(position), glm::vec2(0.21f, 0.13f)));
+    float travel = glm::dot(glm::vec2(position), dir) / std::max(wind.gustWavelength, 1.0f);
+    float wave = std::max(std::sin(6.2831853f * (wind.gustFrequency * time - travel)), 0.0f);
+    float gust = wind.gustStrength * wave * wave;
+    float flutter = wind.flutter * std::sin(time * 6.3f * speed + phase * 3.0f);
+    return dir * (wind.strength * (0.8f + 0.2f * sway) + gust) + glm::vec2(-dir.y, dir.x) * flutter;
+}
+
+} // namespace
+
+ReferenceExpansion referenceExpand(const VegetationTile& tile, const Scene& scene, const Camera& camera, double time) {
+    ReferenceExpansion out;
+    const auto planes = camera.frustumPlanes();
+    const glm::vec3 eye(camera.position);
+    for (const FieldVegetation& field : tile.fields) {
+        for (const gpu::PlantCluster& box : field.clusters) {
+            if (box.range.y == 0 || !clusterVisible(planes, scene.lod, eye, glm::vec3(box.boundsMin), glm::vec3(box.boundsMax)))
+                continue;
+            ++out.visibleClusters;
+            out.plantsConsidered += box.range.y;
+            for (uint32_t i = box.range.x; i < box.range.x + box.range.y; ++i) {
+                const gpu::PlantStatic& plant = field.staticRecords[i];
+                glm::vec3 position = decodePlantPosition(plant, field.origin, field.positionStep);
+                LodChoice choice = chooseLod(scene.lod, glm::distance(position, eye));
+                if (choice.lodA == kNoLod) continue;
+                PlantInstance decoded = decodePlantStatic(plant);
+                PlantMotion motion = decodePlantDynamic(field.dynamicRecords[i]);
+                float random = float(decoded.random) / 255.0f;
+                float cut = motion.state == gpu::kPlantStateCut ? motion.cutFraction : 1.0f;
+                float height = scene.vegetation.categories[decoded.category].height *
+                               (float(decoded.size) / gpu::kPlantSizeDivisor) * cut;
+                glm::vec2 tip = motion.bend + windTip(scene.wind, position, random, float(time));
+                float len = glm::length(tip);
+                if (len > 0.95f) tip *= 0.95f / len;
+                uint32_t cutByte = (field.dynamicRecords[i].state >> 24) & 0xffu;
+                uint32_t fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 65535.0f + 0.5f) | (cutByte << 24);
+                gpu::ExpandedPlant expanded{glm::vec4(position, height), plant.up, plant.attributes,
+                                            glm::packHalf2x16(tip), fade};
+                out.lods[choice.lodA].push_back(expanded);
+                if (choice.lodB != kNoLod) {
+                    expanded.fade = fade | 0x10000u;
+                    out.lods[choice.lodB].push_back(expanded);
+                }
+            }
+        }
+    }
+    return out;
+}
+
+std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cameraPosition,
+                                              glm::vec3 cellBaseAspect) {
+    static const glm::vec2 corners[6] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}};
+    static const glm::vec2 nearQuads[4] = {{0.0f, 0.0f}, {1.5707963f, 0.0f}, {0.7853982f, 0.95f}, {3.9269908f, 0.95f}};
+    static const glm::vec2 midQuads[2] = {{0.0f, 0.6f}, {4.712389f, 0.6f}};
+    const uint32_t quads = lod == gpu::kLodNear ? 4 : lod == gpu::kLodMid ? 2 : 1;
+    glm::vec3 base(plant.positionHeight);
+    float height = plant.positionHeight.w;
+    glm::vec3 up = decodeOctahedral(plant.up);
+    float orientation = float((plant.attributes >> 8) & 0xffu) * (6.2831853f / 256.0f);
+    float width = height * cellBaseAspect.z;
+    glm::vec2 tip = glm::unpackHalf2x16(plant.tip);
+    std::vector<glm::vec3> vertices;
+    for (uint32_t v = 0; v < 6 * quads; ++v) {
+        uint32_t quad = v / 6;
+        glm::vec2 corner = corners[v % 6];
+        glm::vec3 side, rise;
+        if (lod == gpu::kLodFar) {
+            glm::vec3 toCamera = glm::normalize(cameraPosition - base);
+            side = glm::cross(up, toCamera);
+            if (glm::dot(side, side) < 1e-4f) side = glm::vec3(std::cos(orientation), std::sin(orientation), 0.0f);
+            side = glm::normalize(side);
+            rise = glm::normalize(glm::cross(toCamera, side));
+        } else {
+            glm::vec2 angleTilt = lod == gpu::kLodNear ? nearQuads[quad] : midQuads[quad];
+            float angle = orientation + angleTilt.x;
+            glm::vec3 horizontal(std::cos(angle), std::sin(angle), 0.0f);
+            side = glm::normalize(horizontal - up * glm::dot(horizontal, up));
+            glm::vec3 normal = glm::cross(side, up);
+            rise = glm::normalize(up * std::cos(angleTilt.y) + normal * std::sin(angleTilt.y));
+        }
+        float cellV = 1.0f - corner.y;
+        float along = (cellBaseAspect.y - cellV) * height;
+        float fraction = cellBaseAspect.y > 0.0f ? along / (cellBaseAspect.y * std::max(height, 1e-6f)) : 0.0f;
+        glm::vec3 position = base + side * (width * (corner.x - cellBaseAspect.x)) + rise * along;
+        float bend = fraction * fraction;
+        float drop = height * (1.0f - std::sqrt(std::max(1.0f - glm::dot(tip, tip), 0.0f)));
+        position += glm::vec3(tip * height, 0.0f) * bend - up * (drop * bend);
+        vertices.push_back(position);
+    }
+    return vertices;
+}
+
+} // namespace sward

@@ -1,0 +1,33 @@
+// CPU reference of the GPU vegetation expansion (shaders/vegetation_expand.comp, shared/vegetation.glsl,
+// shared/plant_vertex.glsl): the same math in C++, in the same order, for tests that check the GPU result.
+// Not used for rendering. Float arithmetic mirrors the shaders; results agree to rounding (FMA contraction
+// and transcendental precision may differ on a GPU), which the tests allow for.
+#pragma once
+
+#include "camera.h"
+#include "scene.h"
+#include "vegetation_tile.h"
+
+#include "shared/gpu_layout.h"
+
+#include <array>
+#include <vector>
+
+namespace sward {
+
+struct ReferenceExpansion {
+    std::array<std::vector<gpu::ExpandedPlant>, gpu::kLodCount> lods; // each in cluster order, then plant order
+    uint32_t visibleClusters = 0;
+    uint64_t plantsConsidered = 0; // plants of visible clusters
+};
+
+// Expands every plant of `tile` for `camera` at simulation time `time`, with the scene's LOD, wind and
+// category heights. The atlas column counts bound the variant as in the shader.
+ReferenceExpansion referenceExpand(const VegetationTile& tile, const Scene& scene, const Camera& camera, double time);
+
+// The 6 * quads(lod) vertex positions of one expanded plant (plant_vertex.glsl), for an atlas cell with
+// base (baseU, baseV) and width / height `aspect`.
+std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cameraPosition,
+                                              glm::vec3 cellBaseAspect);
+
+} // namespace sward
