@@ -21,11 +21,13 @@ uint32_t packSnorm16(float v) {
 float unpackSnorm16(uint32_t bits) {
     return std::max(float(int16_t(uint16_t(bits))) / 32767.0f, -1.0f);
 }
-uint32_t packSnorm8(float v) {
-    return uint32_t(roundToInt(std::clamp(v, -1.0f, 1.0f) * 127.0f)) & 0xffu;
+uint32_t packSnorm10(float v) {
+    return uint32_t(roundToInt(std::clamp(v, -1.0f, 1.0f) * 511.0f)) & 0x3ffu;
 }
-float unpackSnorm8(uint32_t bits) {
-    return std::max(float(int8_t(uint8_t(bits))) / 127.0f, -1.0f);
+float unpackSnorm10(uint32_t bits) {
+    int32_t q = int32_t(bits & 0x3ffu);
+    if (q >= 512) q -= 1024; // sign-extend 10 bits
+    return std::max(float(q) / 511.0f, -1.0f);
 }
 
 } // namespace
@@ -94,20 +96,20 @@ float orientationRadians(uint32_t orientation) {
 
 gpu::PlantDynamic encodePlantDynamic(const PlantMotion& m) {
     uint32_t cut = uint32_t(roundToInt(std::clamp(m.cutFraction, 0.0f, 1.0f) * 255.0f));
-    uint32_t velocity = packSnorm8(m.bendVelocity.x / gpu::kMaxBendVelocity) |
-                        (packSnorm8(m.bendVelocity.y / gpu::kMaxBendVelocity) << 8);
-    assert(m.state < 256);
+    uint32_t velocity = packSnorm10(m.bendVelocity.x / gpu::kMaxBendVelocity) |
+                        (packSnorm10(m.bendVelocity.y / gpu::kMaxBendVelocity) << 10);
+    assert(m.state < 16);
     return gpu::PlantDynamic{
         .bend = packSnorm16(m.bend.x) | (packSnorm16(m.bend.y) << 16),
-        .state = velocity | (m.state << 16) | (cut << 24),
+        .state = velocity | (m.state << 20) | (cut << 24),
     };
 }
 
 PlantMotion decodePlantDynamic(const gpu::PlantDynamic& r) {
     return PlantMotion{
         .bend = {unpackSnorm16(r.bend), unpackSnorm16(r.bend >> 16)},
-        .bendVelocity = glm::vec2(unpackSnorm8(r.state), unpackSnorm8(r.state >> 8)) * gpu::kMaxBendVelocity,
-        .state = (r.state >> 16) & 255u,
+        .bendVelocity = glm::vec2(unpackSnorm10(r.state), unpackSnorm10(r.state >> 10)) * gpu::kMaxBendVelocity,
+        .state = (r.state >> 20) & 15u,
         .cutFraction = float(r.state >> 24) / 255.0f,
     };
 }

@@ -92,6 +92,24 @@ struct BakedVertex {
     uvec4 upFade;          // x octahedral up, y fade bits (as ExpandedPlant::fade), zw unused
 };
 
+// Interaction contacts (CPU collision pass -> GPU recovery pass), at most one per plant per tick.
+SWARD_CONST(uint, kContactPush, 1u); // hold the plant bent to `push`; it springs back once released
+SWARD_CONST(uint, kContactFell, 2u); // flatten the plant for good along `push` (tyre tracks)
+SWARD_CONST(uint, kContactCut, 3u);  // cut the plant to the height byte in flags (mower); also pushes
+struct PlantContact {
+    uint plant; // index into the tile's record buffers
+    uint push;  // 2 x snorm16: horizontal tip offset imposed by the collider, plant heights
+    uint flags; // bits 0-3 kContact*, bits 8-15 cut height byte (kContactCut)
+    uint field; // index of the plant's field (for bookkeeping and checks)
+};
+
+// Recovery pass parameters (push constants).
+struct RecoveryConstants {
+    vec4 spring;  // x time step (s), y stiffness (1/s^2), z damping (1/s), w rest threshold
+    vec4 fell;    // x tip offset of felled plants (plant heights), yzw unused
+    uvec4 range;  // x first plant, y plant count (one active field), z contact count, w first contact
+};
+
 // Expansion statistics written by the scan (storage buffer), for benchmarks and the viewer.
 struct ExpansionStats {
     uvec4 instances;     // instances per LOD (x near, y mid, z far), w total
@@ -106,6 +124,8 @@ static_assert(sizeof(ExpandedPlant) == 32);
 static_assert(sizeof(AtlasCellGpu) == 32);
 static_assert(sizeof(ExpansionStats) == 32);
 static_assert(sizeof(BakedVertex) == 48);
+static_assert(sizeof(PlantContact) == 16);
+static_assert(sizeof(RecoveryConstants) == 48);
 static_assert(sizeof(TerrainVertex) == 32);
 } // namespace sward::gpu
 #endif

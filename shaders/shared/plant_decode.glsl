@@ -32,17 +32,28 @@ float plantSizeScale(PlantStatic p) { return float(bitfieldExtract(p.attributes,
 // Horizontal tip offset in plant heights.
 vec2 plantBend(PlantDynamic d) { return unpackSnorm2x16(d.bend); }
 // Bend velocity in plant heights per second.
-vec2 plantBendVelocity(PlantDynamic d) { return unpackSnorm4x8(d.state).xy * kMaxBendVelocity; }
-uint plantState(PlantDynamic d) { return bitfieldExtract(d.state, 16, 8); }
+vec2 plantBendVelocity(PlantDynamic d) {
+    ivec2 q = ivec2(bitfieldExtract(int(d.state), 0, 10), bitfieldExtract(int(d.state), 10, 10)); // sign-extends
+    return max(vec2(q) / 511.0, vec2(-1.0)) * kMaxBendVelocity;
+}
+uint plantState(PlantDynamic d) { return bitfieldExtract(d.state, 20, 4); }
 // Remaining height fraction after cutting; 1 when uncut.
 float plantCutFraction(PlantDynamic d) { return float(bitfieldExtract(d.state, 24, 8)) * (1.0 / 255.0); }
 
-PlantDynamic packPlantDynamic(vec2 bend, vec2 bendVelocity, uint state, float cutFraction) {
+// Snorm quantisation that rounds half away from zero, identically to vegetation/records.cpp (the GLSL
+// packSnorm* built-ins leave the rounding of halves to the implementation).
+uint packSnormBits(float v, float scale, uint bits) {
+    precise float x = clamp(v, -1.0, 1.0) * scale;
+    int q = x >= 0.0 ? int(x + 0.5) : -int(-x + 0.5);
+    return uint(q) & ((1u << bits) - 1u);
+}
+
+PlantDynamic packPlantDynamic(vec2 bend, vec2 bendVelocity, uint state, uint cutByte) {
     PlantDynamic d;
-    d.bend = packSnorm2x16(bend);
-    uint velocity = packSnorm4x8(vec4(bendVelocity / kMaxBendVelocity, 0.0, 0.0)) & 0xffffu;
-    uint cut = uint(round(clamp(cutFraction, 0.0, 1.0) * 255.0));
-    d.state = velocity | (state << 16) | (cut << 24);
+    d.bend = packSnormBits(bend.x, 32767.0, 16u) | (packSnormBits(bend.y, 32767.0, 16u) << 16);
+    precise vec2 v = bendVelocity / kMaxBendVelocity;
+    uint velocity = packSnormBits(v.x, 511.0, 10u) | (packSnormBits(v.y, 511.0, 10u) << 10);
+    d.state = velocity | (state << 20) | (cutByte << 24);
     return d;
 }
 

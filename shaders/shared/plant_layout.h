@@ -30,7 +30,7 @@ SWARD_PLANT_CONST(uint, kMaxPlantVariants, 64u);
 // Size byte s scales the category's base height by s / kPlantSizeDivisor (0 .. 1.99).
 SWARD_PLANT_CONST(float, kPlantSizeDivisor, 128.0);
 // Bend velocity snorm8 1.0 means this many plant heights per second.
-SWARD_PLANT_CONST(float, kMaxBendVelocity, 8.0);
+SWARD_PLANT_CONST(float, kMaxBendVelocity, 4.0);
 // PlantDynamic state byte.
 SWARD_PLANT_CONST(uint, kPlantStateRest, 0u);       // untouched (inactive): bend may still hold wind-free rest pose
 SWARD_PLANT_CONST(uint, kPlantStateRecovering, 1u); // bent by a collider, springing back
@@ -54,9 +54,10 @@ struct PlantStatic {
 // Interaction state, 8 bytes, read and written by the simulation every step.
 struct PlantDynamic {
     uint bend;  // 2 x snorm16 (bits 0-15 x, bits 16-31 y): horizontal tip offset in plant heights, [-1, 1]
-    uint state; // bits 0-7 / 8-15: bend velocity x / y, snorm8 times kMaxBendVelocity plant heights per second;
-                // bits 16-23: kPlantState*; bits 24-31: cut height as a fraction v / 255 of the plant height
-                // (kPlantUncut = 255 means uncut)
+    uint state; // bits 0-9 / 10-19: bend velocity x / y, snorm10 times kMaxBendVelocity plant heights per
+                // second (10 bits: a spring near rest still moves by more than half a quantum per tick);
+                // bits 20-23: kPlantState*; bits 24-31: cut height as a fraction v / 255 of the plant height
+                // (kPlantUncut = 255 means uncut). All snorm fields round half away from zero, on CPU and GPU.
 };
 
 // One 5x5 m plant cluster: culling box and the cluster's plants in its field's record arrays.

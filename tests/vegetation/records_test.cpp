@@ -49,12 +49,12 @@ TEST(Records, PositionDecodesFromFieldOriginAndStep) {
 
 TEST(Records, DynamicRecordRoundTripsAndRestsUncut) {
     const PlantMotion m{
-        .bend = {0.5f, -1.0f}, .bendVelocity = {2.0f, -8.0f}, .state = gpu::kPlantStateCut, .cutFraction = 0.4f};
+        .bend = {0.5f, -1.0f}, .bendVelocity = {2.0f, -4.0f}, .state = gpu::kPlantStateCut, .cutFraction = 0.4f};
     const PlantMotion d = decodePlantDynamic(encodePlantDynamic(m));
     EXPECT_NEAR(d.bend.x, 0.5f, 1e-4f);
     EXPECT_EQ(d.bend.y, -1.0f);
-    EXPECT_NEAR(d.bendVelocity.x, 2.0f, gpu::kMaxBendVelocity / 127.0f);
-    EXPECT_EQ(d.bendVelocity.y, -8.0f);
+    EXPECT_NEAR(d.bendVelocity.x, 2.0f, gpu::kMaxBendVelocity / 511.0f);
+    EXPECT_EQ(d.bendVelocity.y, -4.0f);
     EXPECT_EQ(d.state, gpu::kPlantStateCut);
     EXPECT_NEAR(d.cutFraction, 0.4f, 1.0f / 255.0f);
 

@@ -60,7 +60,7 @@ public:
     void drawBaked(VkCommandBuffer cmd, const BakedPlants& baked, const DescriptorBinding& frame,
                    const DescriptorBinding& shadowMap, uint32_t slot);
     void destroyBaked(BakedPlants& baked);
-    const VegetationBuffers& buffers() const { return buffers_; }
+    VegetationBuffers& buffers() { return buffers_; }
     uint32_t instanceCapacity() const { return capacity_; }
     // Instances and their draw commands, for benchmarks that re-draw a frozen expansion.
     const Buffer& instances() const { return instances_; }
