@@ -111,50 +111,63 @@ void ColliderBvh::build(std::span<const Collider> colliders, const Aabb& keep) {
         input_[r] = kept[r].input;
         bounds_[r] = kept[r].box;
     }
-    items_.resize(n);
-    for (uint32_t r = 0; r < n; ++r) items_[r] = r;
+    items_.clear();
     nodes_.clear();
     if (n == 0) return;
-    std::vector<glm::vec3> centre(n);
-    for (uint32_t r = 0; r < n; ++r) centre[r] = (bounds_[r].min + bounds_[r].max) * 0.5f;
-
-    nodes_.reserve(2 * n);
-    nodes_.push_back({});
-    struct Task {
-        uint32_t node, begin, end;
-    };
-    std::vector<Task> stack{{0, 0, n}};
-    while (!stack.empty()) {
-        Task t = stack.back();
-        stack.pop_back();
-        Aabb box = bounds_[items_[t.begin]];
-        glm::vec3 cmin = centre[items_[t.begin]], cmax = cmin;
-        for (uint32_t i = t.begin; i < t.end; ++i) {
-            box.min = glm::min(box.min, bounds_[items_[i]].min);
-            box.max = glm::max(box.max, bounds_[items_[i]].max);
-            cmin = glm::min(cmin, centre[items_[i]]);
-            cmax = glm::max(cmax, centre[items_[i]]);
-        }
-        if (t.end - t.begin <= 4) {
-            nodes_[t.node] = {box, t.begin, t.end - t.begin};
-            continue;
-        }
-        glm::vec3 extent = cmax - cmin;
-        int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-        uint32_t mid = (t.begin + t.end) / 2;
-        // Ties broken by rank: a total order, so the tree does not depend on the sort implementation.
-        std::nth_element(items_.begin() + t.begin, items_.begin() + mid, items_.begin() + t.end,
-                         [&](uint32_t a, uint32_t b) {
-                             float ca = centre[a][axis], cb = centre[b][axis];
-                             return ca != cb ? ca < cb : a < b;
-                         });
-        uint32_t left = uint32_t(nodes_.size());
-        nodes_.push_back({});
-        nodes_.push_back({});
-        nodes_[t.node] = {box, left, 0};
-        stack.push_back({left, t.begin, mid});
-        stack.push_back({left + 1, mid, t.end});
+    // Linear BVH: ranks sorted along a Morton curve of their xy centres (vegetation is flat, so xy carries the
+    // locality), leaves of 4 consecutive colliders, then pairs of consecutive nodes merged level by level. The
+    // keys hold the rank below the code, so the order is total and the tree deterministic; O(n) after one sort.
+    glm::vec2 lo(bounds_[0].min), hi(bounds_[0].max);
+    for (const Aabb& box : bounds_) {
+        lo = glm::min(lo, glm::vec2(box.min + box.max) * 0.5f);
+        hi = glm::max(hi, glm::vec2(box.min + box.max) * 0.5f);
     }
+    const glm::vec2 scale = 65535.0f / glm::max(hi - lo, glm::vec2(1e-6f));
+    auto spread = [](uint64_t v) { // 16 bits -> every other bit of 32
+        v = (v | (v << 8)) & 0x00ff00ffull;
+        v = (v | (v << 4)) & 0x0f0f0f0full;
+        v = (v | (v << 2)) & 0x33333333ull;
+        return (v | (v << 1)) & 0x55555555ull;
+    };
+    std::vector<uint64_t> keys(n);
+    for (uint32_t r = 0; r < n; ++r) {
+        glm::vec2 c = (glm::vec2(bounds_[r].min + bounds_[r].max) * 0.5f - lo) * scale;
+        uint64_t qx = uint64_t(std::clamp(c.x, 0.0f, 65535.0f)), qy = uint64_t(std::clamp(c.y, 0.0f, 65535.0f));
+        keys[r] = ((spread(qx) | (spread(qy) << 1)) << 32) | r;
+    }
+    std::sort(keys.begin(), keys.end());
+    items_.resize(n);
+    for (uint32_t i = 0; i < n; ++i) items_[i] = uint32_t(keys[i]);
+
+    constexpr uint32_t kLeaf = 4;
+    nodes_.reserve(2 * (n / kLeaf + 1) + 64);
+    uint32_t levelBegin = 0;
+    for (uint32_t first = 0; first < n; first += kLeaf) {
+        Node leaf{bounds_[items_[first]], first, std::min(kLeaf, n - first)};
+        for (uint32_t i = first; i < first + leaf.count; ++i) {
+            leaf.box.min = glm::min(leaf.box.min, bounds_[items_[i]].min);
+            leaf.box.max = glm::max(leaf.box.max, bounds_[items_[i]].max);
+        }
+        nodes_.push_back(leaf);
+    }
+    uint32_t levelEnd = uint32_t(nodes_.size());
+    // Each level is contiguous in nodes_, so the two children of a parent are always neighbours; an odd last node
+    // is copied up unchanged.
+    while (levelEnd - levelBegin > 1) {
+        for (uint32_t i = levelBegin; i < levelEnd; i += 2) {
+            if (i + 1 == levelEnd) {
+                Node copy = nodes_[i];
+                nodes_.push_back(copy);
+                continue;
+            }
+            Aabb box{glm::min(nodes_[i].box.min, nodes_[i + 1].box.min),
+                     glm::max(nodes_[i].box.max, nodes_[i + 1].box.max)};
+            nodes_.push_back({box, i, 0});
+        }
+        levelBegin = levelEnd;
+        levelEnd = uint32_t(nodes_.size());
+    }
+    root_ = levelBegin;
 }
 
 void ColliderBvh::query(const Aabb& box, std::vector<uint32_t>& ranks) const {
@@ -162,7 +175,7 @@ void ColliderBvh::query(const Aabb& box, std::vector<uint32_t>& ranks) const {
     const size_t first = ranks.size();
     uint32_t stack[64];
     uint32_t top = 0;
-    stack[top++] = 0;
+    stack[top++] = root_;
     while (top > 0) {
         const Node& node = nodes_[stack[--top]];
         if (!node.box.overlaps(box)) continue;

@@ -1,7 +1,7 @@
 // The CPU collision pass of paper 3.3 / issue 6: each fixed tick, colliders become per-plant contacts for the GPU.
 //
-// Colliders overlapping the tile's vegetation go into a BVH rebuilt every tick (median split, total-order tie
-// breaks, so the tree and every result are deterministic). Each field whose box meets a collider is visited, then
+// Colliders overlapping the tile's vegetation go into a BVH rebuilt every tick (Morton order with the rank as
+// tie break, so the tree and every result are deterministic). Each field whose box meets a collider is visited, then
 // only its clusters whose boxes meet one, then only the plants of the cluster's sub-cells under the collider's
 // footprint (TileCollisionIndex: positions decoded once, bucketed in an 8x8 grid per cluster). A plant is its
 // upright stem, the vertical segment from its base up by its full height; it is touched when the collider
@@ -60,7 +60,7 @@ struct InteractionParams {
 // Throws sward::Error naming `source` and the offending key.
 InteractionParams parseInteractionParams(const nlohmann::json& json, const std::string& source);
 
-// Colliders in a bounding volume hierarchy, rebuilt per tick. Ranks are positions in (id, input index) order.
+// Colliders in a linear bounding volume hierarchy (Morton order), rebuilt per tick. Ranks are positions in (id, input index) order.
 class ColliderBvh {
 public:
     // Keeps the colliders whose bounds overlap `keep` (the vegetation's bounds) and builds the tree over them.
@@ -81,6 +81,7 @@ private:
     std::vector<Aabb> bounds_;    // by rank
     std::vector<uint32_t> items_; // ranks in tree order
     std::vector<Node> nodes_;
+    uint32_t root_ = 0;
 };
 
 // Plant positions and heights of a tile decoded once, bucketed per cluster into an 8x8 grid of sub-cells so a
