@@ -155,7 +155,18 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
     c.lookAtUsesGround = camera.has("look_at_height_above_ground") || !camera.has("look_at");
     c.lookAtHeightAboveGround = camera.number("look_at_height_above_ground", c.lookAtHeightAboveGround, -1e4, 1e5);
     c.fovYDegrees = camera.number("fov_y_deg", c.fovYDegrees, 1.0, 170.0);
+    if (const nlohmann::json* path = camera.raw("path")) {
+        c.hasPath = true;
+        c.path = parsePath(*path, source + ": 'camera.path'");
+        if (!path->contains("height_above_ground")) c.path.heightAboveGround = c.heightAboveGround;
+    }
+    c.lookAhead = camera.number("look_ahead", c.lookAhead, 0.1, 1e4);
     camera.finish();
+
+    Reader sequence = root.child("sequence");
+    scene.sequence.frames = uint32_t(sequence.integer("frames", scene.sequence.frames, 1, 1000000));
+    scene.sequence.timeStep = sequence.number("time_step", scene.sequence.timeStep, 1e-4, 10.0);
+    sequence.finish();
 
     Reader render = root.child("render");
     glm::dvec2 resolution =
@@ -190,6 +201,12 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
     w.gustWavelength = float(wind.number("gust_wavelength", w.gustWavelength, 1.0, 1e4));
     w.flutter = float(wind.number("flutter", w.flutter, 0.0, 0.5));
     wind.finish();
+
+    if (const nlohmann::json* interaction = root.raw("interaction"))
+        scene.interaction = parseInteractionParams(*interaction, source);
+    // One clock: the interaction ticks with the sequence's frames.
+    scene.interaction.recovery.timeStep = float(scene.sequence.timeStep);
+    scene.actors = parseActors(root.raw("vehicles"), root.raw("colliders"), root.raw("gusts"), source);
 
     Reader atlas = root.child("atlas");
     auto resolve = [&](std::string path) {
@@ -252,8 +269,14 @@ VegetationTile buildVegetation(const Scene& scene, const Heightfield& terrain, u
     return generateTile(Ground(terrain), buildGrassMap(scene), scene.vegetation, TileCoord{0, 0}, threads);
 }
 
-Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t width, uint32_t height) {
+Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t width, uint32_t height, double time) {
     const CameraParams& c = scene.camera;
+    if (c.hasPath) {
+        glm::dvec3 position = pathPose(c.path, terrain, time).position;
+        glm::dvec3 target = pathPointAhead(c.path, terrain, time, c.lookAhead);
+        target.z += c.lookAtHeightAboveGround;
+        return Camera::lookAt(position, target, glm::dvec3(0.0, 0.0, 1.0), c.fovYDegrees, width, height);
+    }
     glm::dvec3 position = c.position, target = c.lookAt;
     if (c.useHeightAboveGround) position.z = terrain.height(glm::vec2(position)) + c.heightAboveGround;
     if (c.lookAtUsesGround) target.z = terrain.height(glm::vec2(target)) + c.lookAtHeightAboveGround;

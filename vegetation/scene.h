@@ -9,6 +9,9 @@
 #include "camera.h"
 #include "grass_map.h"
 #include "heightfield.h"
+#include "collision.h"
+#include "path.h"
+#include "vehicles.h"
 #include "vegetation_params.h"
 #include "vegetation_tile.h"
 
@@ -41,6 +44,17 @@ struct CameraParams {
     double lookAtHeightAboveGround = 0.0;
     bool lookAtUsesGround = true;
     double fovYDegrees = 60.0;
+    // Optional moving camera: along `path`, looking `lookAhead` metres further along it at the ground plus
+    // lookAtHeightAboveGround. Replaces position / look_at when present.
+    bool hasPath = false;
+    PathParams path;
+    double lookAhead = 10.0;
+};
+
+// A fixed-step sequence (issue 7 renders datasets from it).
+struct SequenceParams {
+    uint32_t frames = 1;           // frames 0 .. frames-1, frame i at time i * timeStep
+    double timeStep = 1.0 / 30.0;  // seconds per frame and per simulation tick
 };
 
 struct RenderParams {
@@ -78,9 +92,12 @@ struct Scene {
     SkyParams sky;
     CameraParams camera;
     RenderParams render;
+    SequenceParams sequence;
     LodParams lod;
     WindParams wind;
     VegetationParams vegetation;   // "vegetation" object, see vegetation_params.h
+    InteractionParams interaction; // "interaction" object, see collision.h (recovery time step = sequence's)
+    ActorParams actors;            // "vehicles", "colliders", "gusts"
     bool vegetationEnabled = true; // false: bare ground (paired studies, --no-vegetation)
     std::string grassMapPath;      // "grass_map", resolved against the scene's folder; empty = procedural meadow
     std::string atlasPngPath, atlasJsonPath; // "atlas": {"png", "json"}; empty = the built-in procedural atlas
@@ -98,8 +115,8 @@ Heightfield buildTerrain(const Scene& scene);
 GrassMap buildGrassMap(const Scene& scene);
 // Places the scene's vegetation on its terrain (threads: 0 = all cores). Checks the memory budget first.
 VegetationTile buildVegetation(const Scene& scene, const Heightfield& terrain, uint32_t threads = 0);
-// The scene camera at the given resolution, resolved against the terrain.
-Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t width, uint32_t height);
+// The scene camera at the given resolution and simulation time, resolved against the terrain.
+Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t width, uint32_t height, double time = 0.0);
 
 // Parses "WxH" (e.g. "1280x720"); throws a clear error for anything else or sizes outside 1..16384.
 void parseResolution(const std::string& text, uint32_t& width, uint32_t& height);

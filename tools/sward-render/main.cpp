@@ -35,6 +35,8 @@ int main(int argc, char** argv) {
     app.add_option("--camera", position, "Camera position X,Y,Z in world metres");
     app.add_option("--look-at", lookAt, "Camera target X,Y,Z in world metres");
     app.add_option("--fov", fov, "Vertical field of view in degrees");
+    std::string frames;
+    app.add_option("--frames", frames, "Frame range A:B (frames A .. B-1); default: the scene's sequence");
     app.add_option("--time", options.time, "Simulation time of the frame in seconds (wind)")->capture_default_str();
     app.add_flag("--no-vegetation", options.noVegetation, "Render the same scene without vegetation");
     app.add_flag("--validation", options.validation, "Enable Vulkan validation; any message fails the run");
@@ -48,6 +50,7 @@ int main(int argc, char** argv) {
     }
     try {
         if (!resolution.empty()) options.resolution = resolution;
+        if (!frames.empty()) options.frames = frames;
         options.samples = samples;
         options.fovYDegrees = fov;
         if (!position.empty()) options.cameraPosition = parseVec3(position, "--camera");

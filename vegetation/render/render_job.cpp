@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <unistd.h>
 
 namespace sward {
 
@@ -38,8 +39,10 @@ void runRenderJob(const RenderJobOptions& options) {
     }
     for (const char* sub : {"", "/left", "/depth", "/preview"}) ensureWritableDirectory(options.outDir + sub);
 
+    uint32_t firstFrame = 0, endFrame = scene.sequence.frames;
+    if (options.frames) parseFrameRange(*options.frames, firstFrame, endFrame);
+
     Heightfield terrain = buildTerrain(scene);
-    Camera camera = sceneCamera(scene, terrain, width, height);
     // All CPU-side loading (and its errors) happens before the GPU is touched: a scene that fails to load
     // allocates nothing on the device.
     std::optional<VegetationTile> vegetation;
@@ -50,24 +53,50 @@ void runRenderJob(const RenderJobOptions& options) {
     }
 
     Context ctx(DeviceOptions{.deviceFilter = options.device, .validation = options.validation || DeviceOptions{}.validation});
-    FrameImages frame;
     {
         SceneRenderer renderer(ctx, scene, terrain, samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
                                vegetation ? &*vegetation : nullptr, atlas ? &*atlas : nullptr);
         vegetation.reset(); // uploaded: the CPU copy is no longer needed
-        frame = renderFrame(ctx, renderer, camera, options.time);
+        OffscreenFrame target(ctx, width, height, samples);
+        const bool terminal = isatty(fileno(stderr));
+        auto frameStart = Clock::now();
+        for (uint32_t frame = firstFrame; frame < endFrame; ++frame) {
+            double time = options.time + double(frame) * scene.sequence.timeStep;
+            Camera camera = sceneCamera(scene, terrain, width, height, time);
+            FrameImages images = target.render(renderer, camera, time, frame);
+            char name[16];
+            std::snprintf(name, sizeof name, "%06u", frame);
+            writeExrRgbaHalf(options.outDir + "/left/" + name + ".exr", width, height, images.rgbaHalf);
+            writeExrDepth(options.outDir + "/depth/" + name + ".exr", width, height, images.depth);
+            writePng8(options.outDir + "/preview/" + name + ".png", width, height, 3,
+                      tonemapPreview(images.rgbaHalf, width, height));
+            if (terminal) {
+                uint32_t done = frame + 1 - firstFrame, total = endFrame - firstFrame;
+                double elapsed = std::chrono::duration<double>(Clock::now() - frameStart).count();
+                double fps = done / std::max(elapsed, 1e-9);
+                std::fprintf(stderr, "\rsward-render: frame %u/%u  %.2f frames/s  ETA %.0f s   ", done, total, fps,
+                             double(total - done) / fps);
+                if (done == total) std::fprintf(stderr, "\n");
+            }
+        }
     }
-    const std::string name = "000000";
-    writeExrRgbaHalf(options.outDir + "/left/" + name + ".exr", width, height, frame.rgbaHalf);
-    writeExrDepth(options.outDir + "/depth/" + name + ".exr", width, height, frame.depth);
-    writePng8(options.outDir + "/preview/" + name + ".png", width, height, 3,
-              tonemapPreview(frame.rgbaHalf, width, height));
 
     uint32_t messages = ctx.device.validationMessageCount();
     require(messages == 0, std::to_string(messages) + " Vulkan validation message(s) were reported (see above)");
     double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    std::printf("sward-render: %s, %ux%u, %ux MSAA -> %s (left/, depth/, preview/) in %.2f s\n", scene.name.c_str(),
-                width, height, samples, options.outDir.c_str(), seconds);
+    std::printf("sward-render: %s, %u frame(s) %u:%u, %ux%u, %ux MSAA -> %s (left/, depth/, preview/) in %.2f s\n",
+                scene.name.c_str(), endFrame - firstFrame, firstFrame, endFrame, width, height, samples,
+                options.outDir.c_str(), seconds);
+}
+
+void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end) {
+    unsigned a = 0, b = 0;
+    char colon = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%u%c%u%c", &a, &colon, &b, &extra) != 3 || colon != ':' || a >= b ||
+        text.find_first_not_of("0123456789:") != std::string::npos)
+        throw Error("bad frame range '" + text + "': expected A:B with A < B (frames A .. B-1), e.g. 0:60");
+    first = a;
+    end = b;
 }
 
 } // namespace sward

@@ -19,11 +19,16 @@ struct RenderJobOptions {
     std::optional<double> fovYDegrees;
     bool validation = false;
     bool noVegetation = false;              // bare ground (same scene otherwise)
-    double time = 0.0;                      // simulation time of the frame, seconds
+    double time = 0.0;                      // simulation time offset added to every frame, seconds
+    std::optional<std::string> frames;      // "A:B" = frames A .. B-1; default: the scene's whole sequence
 };
 
-// Runs the job; throws sward::Error with a one-line message on bad input or failure. Writes
-// <out>/left/000000.exr, <out>/depth/000000.exr and <out>/preview/000000.png.
+// Parses "A:B" (0 <= A < B): frames A .. B-1. Throws a clear error otherwise.
+void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end);
+
+// Runs the job; throws sward::Error with a one-line message on bad input or failure. Writes, per frame NNNNNN,
+// <out>/left/NNNNNN.exr, <out>/depth/NNNNNN.exr and <out>/preview/NNNNNN.png. Frame i is at simulation time
+// options.time + i * sequence.time_step.
 void runRenderJob(const RenderJobOptions& options);
 
 } // namespace sward

@@ -295,26 +295,42 @@ void SceneRenderer::recordMainOnly(VkCommandBuffer cmd, RenderTarget& main, cons
     recordMainPass(cmd, main, slot, timers, baked);
 }
 
-FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, double timeSeconds) {
-    RenderTarget main(ctx, mainPassTargetDesc(camera.width, camera.height, renderer.samples()));
-    RenderTarget truth(ctx, truthPassTargetDesc(camera.width, camera.height));
-    uint64_t pixels = uint64_t(camera.width) * camera.height;
-    Buffer color = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-    Buffer depth = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-    ctx.submitter.immediate([&](VkCommandBuffer cmd) {
-        renderer.record(cmd, main, &truth, camera, timeSeconds, 0);
-        main.recordReadback(cmd, 0, color);
-        truth.recordReadback(cmd, 0, depth);
+OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples)
+    : ctx_(ctx), main_(ctx, mainPassTargetDesc(width, height, samples)), truth_(ctx, truthPassTargetDesc(width, height)) {
+    uint64_t pixels = uint64_t(width) * height;
+    color_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    depth_ = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+}
+
+OffscreenFrame::~OffscreenFrame() {
+    retireBuffer(ctx_, color_);
+    retireBuffer(ctx_, depth_);
+}
+
+FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
+                                   const std::function<void(VkCommandBuffer)>& prologue) {
+    const RenderTargetDesc& desc = main_.desc();
+    require(camera.width == desc.width && camera.height == desc.height, "camera and frame sizes differ");
+    require(renderer.samples() == uint32_t(desc.samples), "renderer and frame sample counts differ");
+    ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
+        if (prologue) prologue(cmd);
+        renderer.record(cmd, main_, &truth_, camera, timeSeconds, frameIndex);
+        main_.recordReadback(cmd, 0, color_);
+        truth_.recordReadback(cmd, 0, depth_);
         transferToHostBarrier(cmd);
     });
-    FrameImages images{.width = camera.width, .height = camera.height};
+    uint64_t pixels = uint64_t(desc.width) * desc.height;
+    FrameImages images{.width = desc.width, .height = desc.height};
     images.rgbaHalf.resize(pixels * 4);
     images.depth.resize(pixels);
-    std::memcpy(images.rgbaHalf.data(), color.mapped(), pixels * 8);
-    std::memcpy(images.depth.data(), depth.mapped(), pixels * 4); // float bit patterns written by the shader
-    destroyBuffer(ctx, color);
-    destroyBuffer(ctx, depth);
+    std::memcpy(images.rgbaHalf.data(), color_.mapped(), pixels * 8);
+    std::memcpy(images.depth.data(), depth_.mapped(), pixels * 4); // float bit patterns written by the shader
     return images;
+}
+
+FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, double timeSeconds) {
+    OffscreenFrame frame(ctx, camera.width, camera.height, renderer.samples());
+    return frame.render(renderer, camera, timeSeconds, 0);
 }
 
 } // namespace sward

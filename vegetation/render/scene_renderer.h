@@ -17,6 +17,7 @@
 #include "render_target.h"
 #include "scene.h"
 
+#include <functional>
 #include <memory>
 
 namespace sward {
@@ -81,6 +82,24 @@ struct FrameImages {
     uint32_t width = 0, height = 0;
     std::vector<uint16_t> rgbaHalf; // width*height*4 half floats, top row first
     std::vector<float> depth;       // planar metres, +inf where nothing was hit
+};
+
+// Targets and readback buffers for rendering frames of one size to host images, reused across a sequence.
+class OffscreenFrame {
+public:
+    OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples);
+    ~OffscreenFrame();
+    OffscreenFrame(const OffscreenFrame&) = delete;
+    OffscreenFrame& operator=(const OffscreenFrame&) = delete;
+
+    // Records `prologue` (e.g. the interaction tick), the frame and the readbacks in one submission and waits.
+    FrameImages render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
+                       const std::function<void(VkCommandBuffer)>& prologue = {});
+
+private:
+    Context& ctx_;
+    RenderTarget main_, truth_;
+    Buffer color_, depth_;
 };
 
 // Renders one frame into fresh targets (the renderer's sample count) and reads colour and depth back (waits).
