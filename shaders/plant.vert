@@ -10,6 +10,7 @@ layout(constant_id = 0) const uint PASS = 0;
 layout(push_constant) uniform Push { uint lod; } push;
 
 layout(set = 0, binding = 2, std430) readonly buffer Instances { ExpandedPlant instances[]; };
+layout(set = 0, binding = 6, std430) readonly buffer InstancePlants { uint instancePlants[]; };
 
 layout(location = 0) out vec2 outUv;
 layout(location = 1) out vec3 outWorld;
@@ -18,6 +19,7 @@ layout(location = 3) out vec3 outUp;
 layout(location = 4) flat out uint outFade;
 layout(location = 5) out float outHeightFraction;
 layout(location = 6) flat out float outRandom;
+layout(location = 7) flat out uint outLabel; // ground truth: (semantic class << 24) | instance id
 
 void main() {
     ExpandedPlant instance = instances[gl_InstanceIndex];
@@ -26,8 +28,17 @@ void main() {
     outWorld = v.position;
     outViewDepth = (frame.view * vec4(v.position, 1.0)).z;
     outUp = octahedralDecode(instance.up);
-    outFade = instance.fade;
+    outFade = instance.fade | (push.lod << 21); // bits 21-22: the LOD, for the viewer's LOD colours
     outHeightFraction = v.heightFraction;
     outRandom = v.random;
+    if (PASS == 1) {
+        uint state = bitfieldExtract(instance.fade, 17, 4);
+        uint semantic = state == kPlantStateFelled ? kSemanticFelled
+                      : state == kPlantStateCut    ? kSemanticCut
+                                                   : kSemanticVegetation + bitfieldExtract(instance.attributes, 0, 2);
+        outLabel = (semantic << kInstanceBits) | (instancePlants[gl_InstanceIndex] + 1u);
+    } else {
+        outLabel = 0u;
+    }
     gl_Position = (PASS == 2 ? frame.shadowViewProj : frame.viewProj) * vec4(v.position, 1.0);
 }

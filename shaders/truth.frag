@@ -1,13 +1,15 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Ground-truth pass (1 sample per pixel): the planar depth of the surface at the pixel centre, stored as
-// float bits in an R32_UINT attachment. Integer attachments are never filtered or blended, so the value
-// read back is exactly what the shader computed.
+// Terrain ground truth (1 sample per pixel): the planar depth of the surface at the pixel centre, stored as
+// float bits in an R32_UINT attachment, and the label (semantic class "ground", no instance). Integer
+// attachments are never filtered or blended, so the values read back are exactly what the shader computed.
 #include "shared/frame.glsl"
 
 layout(location = 2) in float inViewDepth;
 layout(location = 0) out uint outDepthBits;
+layout(location = 1) out uint outLabel;
 
 void main() {
     outDepthBits = floatBitsToUint(inViewDepth);
+    outLabel = kSemanticGround << kInstanceBits;
 }

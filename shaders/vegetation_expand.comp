@@ -20,6 +20,8 @@ layout(set = 0, binding = 3, std430) readonly buffer Clusters { PlantCluster clu
 layout(set = 0, binding = 4, std430) readonly buffer Fields { PlantField fields[]; };
 layout(set = 0, binding = 5, std430) buffer ClusterCounts { uvec4 clusterCounts[]; }; // count: out, write: offsets in
 layout(set = 0, binding = 6, std430) writeonly buffer Instances { ExpandedPlant instances[]; };
+// Parallel to instances: the plant's index in the tile's record buffers (ground-truth instance ids).
+layout(set = 0, binding = 7, std430) writeonly buffer InstancePlants { uint instancePlants[]; };
 
 void main() {
     uint cluster = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u;
@@ -66,14 +68,21 @@ void main() {
         instance.up = plant.up;
         instance.attributes = plant.attributes;
         instance.tip = packHalf2x16(tip);
-        uint fadeBits = uint(clamp(choice.t, 0.0, 1.0) * 65535.0 + 0.5) | (bitfieldExtract(dyn.state, 24, 8) << 24);
+        uint fadeBits = uint(clamp(choice.t, 0.0, 1.0) * 65535.0 + 0.5) | (plantState(dyn) << 17) |
+                        (bitfieldExtract(dyn.state, 24, 8) << 24);
 
         instance.fade = fadeBits;
-        if (slot[choice.lodA] < veg.counts.z) instances[slot[choice.lodA]] = instance; // else: capacity, dropped
+        if (slot[choice.lodA] < veg.counts.z) { // else: over capacity, dropped (counted by the scan)
+            instances[slot[choice.lodA]] = instance;
+            instancePlants[slot[choice.lodA]] = first + i;
+        }
         slot[choice.lodA] += 1u;
         if (choice.lodB != kNoLod) {
             instance.fade = fadeBits | 0x10000u; // the upper-LOD copy of a plant in a cross-fade band
-            if (slot[choice.lodB] < veg.counts.z) instances[slot[choice.lodB]] = instance;
+            if (slot[choice.lodB] < veg.counts.z) {
+                instances[slot[choice.lodB]] = instance;
+                instancePlants[slot[choice.lodB]] = first + i;
+            }
             slot[choice.lodB] += 1u;
         }
     }

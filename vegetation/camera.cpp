@@ -72,4 +72,10 @@ std::array<glm::vec4, 5> Camera::frustumPlanes() const {
     return out;
 }
 
+std::array<glm::vec4, 5> stereoFrustumPlanes(const Camera& left, const Camera& right) {
+    std::array<glm::vec4, 5> planes = left.frustumPlanes();
+    planes[2] = right.frustumPlanes()[2];
+    return planes;
+}
+
 } // namespace sward

@@ -38,4 +38,9 @@ struct Camera {
     std::array<glm::vec4, 5> frustumPlanes() const;
 };
 
+// Planes of the union of a rectified stereo pair's frusta (`right` = `left` moved along left's +x axis, same
+// orientation and intrinsics): the two cameras' top and bottom planes coincide, so the union is bounded by
+// left's near, left and top/bottom planes and right's right plane.
+std::array<glm::vec4, 5> stereoFrustumPlanes(const Camera& left, const Camera& right);
+
 } // namespace sward

@@ -27,6 +27,17 @@ SWARD_CONST(uint, kComputeGroupSize, 64u);
 // which would blend foreground and background into "flying pixels"). Sky keeps the clear value: +inf.
 SWARD_CONST(uint, kDepthInfinityBits, 0x7f800000u);
 
+// Ground-truth labels: a second R32_UINT truth attachment holds (semantic class << 24) | instance id, written
+// by the same fragments as the depth, so masks and depth always agree. Class ids (docs/dataset-format.md):
+SWARD_CONST(uint, kSemanticSky, 0u);        // clear value: nothing hit
+SWARD_CONST(uint, kSemanticGround, 1u);     // terrain
+SWARD_CONST(uint, kSemanticVegetation, 2u); // + category index (0..3): standing or recovering plants
+SWARD_CONST(uint, kSemanticObject, 8u);     // glTF scene objects (the rover, ...)
+SWARD_CONST(uint, kSemanticFelled, 9u);     // felled plants: tyre tracks
+SWARD_CONST(uint, kSemanticCut, 10u);       // mowed plants
+SWARD_CONST(uint, kInstanceBits, 24u);      // instance id: 0 sky / ground, plant index + 1, kInstanceObjectBase + object
+SWARD_CONST(uint, kInstanceObjectBase, 16000000u);
+
 // Per-frame constants (uniform buffer, set 0 binding 0).
 struct FrameConstants {
     mat4 viewProj;       // world -> clip (reversed Z, infinite far plane)
@@ -42,6 +53,17 @@ struct FrameConstants {
     vec4 timeParams;     // x simulation time in seconds, yzw reserved
     mat4 shadowViewProj; // world -> sun shadow map clip space (orthographic, reversed Z)
     vec4 shadowParams;   // x enabled (0/1), y depth bias, z 1/shadow map size, w unused
+    uvec4 debug;         // x kDebug* flags (sward-view overlays; 0 for renders), yzw unused
+};
+
+// FrameConstants::debug.x flags: viewer visualisations drawn by the main-pass shaders.
+SWARD_CONST(uint, kDebugLodColors, 1u);      // tint plants by level of detail (near red, mid green, far blue)
+SWARD_CONST(uint, kDebugUpdatedPlants, 2u);  // tint plants the interaction moved (recovering, felled, cut)
+
+// Vertex of the viewer's debug lines (field rectangles, cluster boxes, collider wireframes).
+struct DebugLineVertex {
+    vec4 position; // xyz world, w unused
+    vec4 color;    // linear HDR rgb, a unused
 };
 
 // Vertex of the terrain mesh (vertex buffer, binding 0).
@@ -76,7 +98,8 @@ struct ExpandedPlant {
     uint up;             // octahedral unit up vector, as PlantStatic::up
     uint attributes;     // as PlantStatic::attributes (category, variant, orientation, random, size)
     uint tip;            // packHalf2x16: horizontal tip offset (wind + interaction) in plant heights, world xy
-    uint fade;           // bits 0-15 cross-fade t (unorm16), bit 16 set on the upper-LOD copy, bits 24-31 state
+    uint fade;           // bits 0-15 cross-fade t (unorm16), bit 16 set on the upper-LOD copy, bits 17-20 plant
+                         // state (PlantDynamic state bits 20-23), bits 24-31 cut height byte
 };
 
 // Atlas cell mapping (storage buffer, row * maxColumns + column).
@@ -118,7 +141,8 @@ struct ExpansionStats {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameConstants) == 4 * 64 + 9 * 16);
+static_assert(sizeof(FrameConstants) == 4 * 64 + 10 * 16);
+static_assert(sizeof(DebugLineVertex) == 32);
 static_assert(sizeof(VegetationConstants) == 12 * 16);
 static_assert(sizeof(ExpandedPlant) == 32);
 static_assert(sizeof(AtlasCellGpu) == 32);

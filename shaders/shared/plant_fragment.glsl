@@ -11,6 +11,7 @@ layout(location = 3) in vec3 inUp;
 layout(location = 4) flat in uint inFade;
 layout(location = 5) in float inHeightFraction;
 layout(location = 6) flat in float inRandom;
+layout(location = 7) flat in uint inLabel; // ground truth only
 
 // Cross-fade between two LOD copies of one plant: both copies compute the same threshold per pixel, the lower
 // copy keeps the pixel when threshold >= t, the upper copy when threshold < t: exactly one survives.

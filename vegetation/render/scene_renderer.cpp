@@ -25,11 +25,12 @@ RenderTargetDesc mainPassTargetDesc(uint32_t width, uint32_t height, uint32_t sa
 
 RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height) {
     VkClearColorValue infinity{.uint32 = {gpu::kDepthInfinityBits, 0, 0, 0}};
+    VkClearColorValue sky{.uint32 = {gpu::kSemanticSky << gpu::kInstanceBits, 0, 0, 0}};
     return RenderTargetDesc{
         .width = width,
         .height = height,
         .samples = VK_SAMPLE_COUNT_1_BIT,
-        .colors = {{VK_FORMAT_R32_UINT, infinity}},
+        .colors = {{VK_FORMAT_R32_UINT, infinity}, {VK_FORMAT_R32_UINT, sky}}, // depth bits, label
         .depthFormat = VK_FORMAT_D32_SFLOAT,
         .depthClear = 0.0f,
     };
@@ -80,7 +81,7 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield
 
     uint64_t align = ctx.device.properties().limits.minUniformBufferOffsetAlignment;
     constantsStride_ = (sizeof(gpu::FrameConstants) + align - 1) / align * align;
-    constants_ = createBuffer(ctx, constantsStride_ * kFramesInFlight, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+    constants_ = createBuffer(ctx, constantsStride_ * kFramesInFlight * kMaxViews, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                               MemoryIntent::Upload);
 
     RenderTargetDesc mainDesc = mainPassTargetDesc(1, 1, samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1);
@@ -124,7 +125,7 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield
     terrainPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, shadedLayout);
     // Same vertices and rasterisation, ground-truth outputs, one sample per pixel.
     terrainDesc.fragmentShader = "truth.frag";
-    terrainDesc.colorFormats = {truthDesc.colors[0].format};
+    terrainDesc.colorFormats = {truthDesc.colors[0].format, truthDesc.colors[1].format};
     terrainDesc.samples = truthDesc.samples;
     terrainDesc.specialization = {/* PASS= */ 1};
     terrainTruthPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, layout);
@@ -142,7 +143,8 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield
             VegetationPassFormats{.mainColor = mainDesc.colors[0].format,
                                   .mainDepth = mainDesc.depthFormat,
                                   .mainSamples = mainDesc.samples,
-                                  .truthColor = truthDesc.colors[0].format,
+                                  .truthDepthBits = truthDesc.colors[0].format,
+                                  .truthLabel = truthDesc.colors[1].format,
                                   .truthDepth = truthDesc.depthFormat,
                                   .shadowDepth = VK_FORMAT_D32_SFLOAT});
     skyPipeline_ = createGraphicsPipeline(ctx.device,
@@ -171,7 +173,7 @@ SceneRenderer::~SceneRenderer() {
     destroyBuffer(ctx_, constants_);
 }
 
-void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, double timeSeconds) {
+void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Camera& shadowCamera, double timeSeconds) {
     gpu::FrameConstants c{};
     glm::dmat4 viewProj = camera.viewProjection();
     c.viewProj = glm::mat4(viewProj);
@@ -190,8 +192,8 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, double t
     // snapped to whole texels in light space so it does not shimmer as the camera moves.
     const float size = float(std::max(scene_.render.shadowMapSize, 1u));
     const double radius = 0.5 * scene_.render.shadowDistance * 1.15;
-    glm::dvec3 forward = camera.worldFromCamera[2];
-    glm::dvec3 center = camera.position + forward * (0.5 * scene_.render.shadowDistance);
+    glm::dvec3 forward = shadowCamera.worldFromCamera[2];
+    glm::dvec3 center = shadowCamera.position + forward * (0.5 * scene_.render.shadowDistance);
     glm::dvec3 toSun = glm::dvec3(scene_.sun.direction());
     glm::dvec3 up = std::abs(toSun.z) > 0.99 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
     glm::dmat4 lightView = glm::lookAt(glm::dvec3(0.0), -toSun, up); // rotation only
@@ -212,6 +214,7 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, double t
     c.shadowViewProj = glm::mat4(ortho * lightView);
     const bool shadows = scene_.render.shadowMapSize > 0;
     c.shadowParams = glm::vec4(shadows ? 1.0f : 0.0f, float(0.05 / (2.0 * reach)), 1.0f / size, 0.0f);
+    c.debug = glm::uvec4(debugFlags_, 0u, 0u, 0u);
     std::memcpy(constants_.mapped() + slot * constantsStride_, &c, sizeof c);
 }
 
@@ -233,9 +236,9 @@ DescriptorBinding SceneRenderer::shadowBinding() const {
     return sampledImage(5, shadowMap_->depth().view, shadowSampler_, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
 }
 
-void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint32_t slot, GpuTimers* timers,
-                                   const BakedPlants* baked) {
-    DescriptorBinding frame = frameBinding(slot), shadow = shadowBinding();
+void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint32_t frameSlot, uint32_t slot,
+                                   GpuTimers* timers, const BakedPlants* baked) {
+    DescriptorBinding frame = frameBinding(frameSlot), shadow = shadowBinding();
     if (timers) timers->begin(cmd, "main");
     main.begin(cmd);
     drawTerrain(cmd, terrainPipeline_, {frame, shadow});
@@ -245,6 +248,7 @@ void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint
     bindPipeline(cmd, skyPipeline_);
     pushDescriptors(ctx_.device, cmd, skyPipeline_, {frame});
     vkCmdDraw(cmd, 3, 1, 0, 0);
+    if (overlay_) overlay_(cmd, frame);
     if (timers) timers->end(cmd);
     if (timers) timers->begin(cmd, "resolve");
     main.end(cmd);
@@ -253,13 +257,23 @@ void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint
 
 void SceneRenderer::record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget* truth, const Camera& camera,
                            double timeSeconds, uint32_t frameIndex, GpuTimers* timers) {
-    uint32_t slot = frameIndex % kFramesInFlight;
-    writeConstants(slot, camera, timeSeconds);
-    DescriptorBinding frame = frameBinding(slot), shadow = shadowBinding();
+    View view{&camera, &main, truth};
+    recordViews(cmd, {&view, 1}, timeSeconds, frameIndex, timers);
+}
+
+void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views, double timeSeconds,
+                                uint32_t frameIndex, GpuTimers* timers) {
+    require(!views.empty() && views.size() <= kMaxViews, "a frame has one or two views");
+    const Camera& reference = *views[0].camera;
+    const uint32_t firstSlot = (frameIndex % kFramesInFlight) * kMaxViews;
+    for (uint32_t v = 0; v < views.size(); ++v) writeConstants(firstSlot + v, *views[v].camera, reference, timeSeconds);
+    DescriptorBinding frame = frameBinding(firstSlot), shadow = shadowBinding();
 
     if (vegetation_) {
         if (timers) timers->begin(cmd, "expansion");
-        vegetation_->expand(cmd, camera, timeSeconds, slot);
+        std::array<glm::vec4, 5> planes =
+            views.size() == 2 ? stereoFrustumPlanes(reference, *views[1].camera) : reference.frustumPlanes();
+        vegetation_->expand(cmd, reference, timeSeconds, frameIndex % kFramesInFlight, &planes);
         if (timers) timers->end(cmd);
     }
 
@@ -267,32 +281,34 @@ void SceneRenderer::record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget
     shadowMap_->begin(cmd);
     if (scene_.render.shadowMapSize > 0) {
         drawTerrain(cmd, terrainShadowPipeline_, {frame});
-        if (vegetation_) vegetation_->draw(cmd, PlantPass::Shadow, frame, shadow, slot);
+        if (vegetation_) vegetation_->draw(cmd, PlantPass::Shadow, frame, shadow, frameIndex % kFramesInFlight);
     }
     shadowMap_->end(cmd);
     if (timers) timers->end(cmd);
 
-    recordMainPass(cmd, main, slot, timers, nullptr);
-
-    if (!truth) return;
-    if (timers) timers->begin(cmd, "truth");
-    truth->begin(cmd);
-    drawTerrain(cmd, terrainTruthPipeline_, {frame});
-    if (vegetation_) vegetation_->draw(cmd, PlantPass::Truth, frame, shadow, slot);
-    truth->end(cmd);
-    if (timers) timers->end(cmd);
+    for (uint32_t v = 0; v < views.size(); ++v) {
+        const uint32_t slot = firstSlot + v;
+        recordMainPass(cmd, *views[v].main, slot, frameIndex % kFramesInFlight, timers, nullptr);
+        if (!views[v].truth) continue;
+        if (timers) timers->begin(cmd, "truth");
+        views[v].truth->begin(cmd);
+        drawTerrain(cmd, terrainTruthPipeline_, {frameBinding(slot)});
+        if (vegetation_) vegetation_->draw(cmd, PlantPass::Truth, frameBinding(slot), shadow, frameIndex % kFramesInFlight);
+        views[v].truth->end(cmd);
+        if (timers) timers->end(cmd);
+    }
 }
 
 void SceneRenderer::recordMainOnly(VkCommandBuffer cmd, RenderTarget& main, const Camera& camera, double timeSeconds,
                                    uint32_t frameIndex, GpuTimers* timers, const BakedPlants* baked) {
-    uint32_t slot = frameIndex % kFramesInFlight;
-    writeConstants(slot, camera, timeSeconds);
+    const uint32_t slot = frameIndex % kFramesInFlight;
+    writeConstants(slot * kMaxViews, camera, camera, timeSeconds);
     if (vegetation_ && !baked) {
         if (timers) timers->begin(cmd, "expansion");
         vegetation_->expand(cmd, camera, timeSeconds, slot);
         if (timers) timers->end(cmd);
     }
-    recordMainPass(cmd, main, slot, timers, baked);
+    recordMainPass(cmd, main, slot * kMaxViews, slot, timers, baked);
 }
 
 OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples)
@@ -300,31 +316,45 @@ OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, ui
     uint64_t pixels = uint64_t(width) * height;
     color_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     depth_ = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    labels_ = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
 }
 
 OffscreenFrame::~OffscreenFrame() {
-    retireBuffer(ctx_, color_);
-    retireBuffer(ctx_, depth_);
+    for (Buffer* b : {&color_, &depth_, &labels_, &rightColor_}) retireBuffer(ctx_, *b);
 }
 
 FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
-                                   const std::function<void(VkCommandBuffer)>& prologue) {
+                                   const std::function<void(VkCommandBuffer)>& prologue, const Camera* right) {
     const RenderTargetDesc& desc = main_.desc();
     require(camera.width == desc.width && camera.height == desc.height, "camera and frame sizes differ");
+    require(!right || (right->width == desc.width && right->height == desc.height), "left and right sizes differ");
     require(renderer.samples() == uint32_t(desc.samples), "renderer and frame sample counts differ");
+    const uint64_t pixels = uint64_t(desc.width) * desc.height;
+    if (right && !rightMain_) {
+        rightMain_ = std::make_unique<RenderTarget>(ctx_, desc);
+        rightColor_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    }
     ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
         if (prologue) prologue(cmd);
-        renderer.record(cmd, main_, &truth_, camera, timeSeconds, frameIndex);
+        SceneRenderer::View views[2] = {{&camera, &main_, &truth_}, {right, rightMain_.get(), nullptr}};
+        renderer.recordViews(cmd, {views, right ? 2u : 1u}, timeSeconds, frameIndex);
         main_.recordReadback(cmd, 0, color_);
         truth_.recordReadback(cmd, 0, depth_);
+        truth_.recordReadback(cmd, 1, labels_);
+        if (right) rightMain_->recordReadback(cmd, 0, rightColor_);
         transferToHostBarrier(cmd);
     });
-    uint64_t pixels = uint64_t(desc.width) * desc.height;
     FrameImages images{.width = desc.width, .height = desc.height};
     images.rgbaHalf.resize(pixels * 4);
     images.depth.resize(pixels);
+    images.labels.resize(pixels);
     std::memcpy(images.rgbaHalf.data(), color_.mapped(), pixels * 8);
     std::memcpy(images.depth.data(), depth_.mapped(), pixels * 4); // float bit patterns written by the shader
+    std::memcpy(images.labels.data(), labels_.mapped(), pixels * 4);
+    if (right) {
+        images.rightRgbaHalf.resize(pixels * 4);
+        std::memcpy(images.rightRgbaHalf.data(), rightColor_.mapped(), pixels * 8);
+    }
     return images;
 }
 

@@ -18,6 +18,7 @@
 #include "scene.h"
 
 #include <functional>
+#include <span>
 #include <memory>
 
 namespace sward {
@@ -40,10 +41,24 @@ public:
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
 
+    // One view of a frame: its camera, colour target and (optional) ground-truth target.
+    struct View {
+        const Camera* camera;
+        RenderTarget* main;
+        RenderTarget* truth = nullptr;
+    };
+    static constexpr uint32_t kMaxViews = 2;
+
     // Records the whole frame into `cmd`. `frameIndex` selects the constants slot, so up to kFramesInFlight
     // frames may be in flight. `truth` may be null (viewer). Timers (optional) get one entry per pass.
     void record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget* truth, const Camera& camera,
                 double timeSeconds, uint32_t frameIndex, GpuTimers* timers = nullptr);
+    // One instant seen by a rectified stereo rig (views[1] = views[0] moved along its own +x axis) or a single
+    // view. The vegetation is expanded once — LODs, cross-fades and billboard orientation from views[0]'s
+    // position, culling against the union of the frusta — and the sun shadow map is rendered once, so both
+    // eyes see exactly the same geometry and shadows (a stereo matcher must not be shown two scenes).
+    void recordViews(VkCommandBuffer cmd, std::span<const View> views, double timeSeconds, uint32_t frameIndex,
+                     GpuTimers* timers = nullptr);
 
     // Benchmark variant: expansion (unless `baked` is given) and the main pass only, no shadow or truth pass.
     // With `baked`, the plants are drawn from those static vertices instead of this frame's expansion.
@@ -51,14 +66,22 @@ public:
     void recordMainOnly(VkCommandBuffer cmd, RenderTarget& main, const Camera& camera, double timeSeconds,
                         uint32_t frameIndex, GpuTimers* timers, const BakedPlants* baked);
 
+    // Viewer hooks (sward-view): gpu::kDebug* flags for FrameConstants::debug.x, and an overlay recorded into
+    // every main colour pass after the scene (before the resolve), given that pass's frame-constants binding.
+    void setDebugFlags(uint32_t flags) { debugFlags_ = flags; }
+    using Overlay = std::function<void(VkCommandBuffer, const DescriptorBinding& frame)>;
+    void setMainPassOverlay(Overlay overlay) { overlay_ = std::move(overlay); }
+
     VegetationRenderer* vegetation() { return vegetation_.get(); }
     uint32_t samples() const { return samples_; }
     static constexpr uint32_t kFramesInFlight = 3;
 
 private:
-    void writeConstants(uint32_t slot, const Camera& camera, double timeSeconds);
+    // Frame constants of `camera`, with the shadow map fitted in front of `shadowCamera`.
+    void writeConstants(uint32_t slot, const Camera& camera, const Camera& shadowCamera, double timeSeconds);
     void drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline, std::initializer_list<DescriptorBinding> bindings);
-    void recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint32_t slot, GpuTimers* timers,
+    // `frameSlot`: frame-constants slot (frame x view); `slot`: vegetation constants slot (frame).
+    void recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint32_t frameSlot, uint32_t slot, GpuTimers* timers,
                         const BakedPlants* baked);
     DescriptorBinding frameBinding(uint32_t slot) const;
     DescriptorBinding shadowBinding() const;
@@ -69,12 +92,14 @@ private:
     Buffer terrainVertices_, terrainIndices_;
     uint32_t terrainIndexCount_ = 0;
     float terrainMinHeight_ = 0.0f, terrainMaxHeight_ = 0.0f;
-    Buffer constants_; // kFramesInFlight slots of FrameConstants, host-visible
+    Buffer constants_; // kFramesInFlight * kMaxViews slots of FrameConstants, host-visible
     uint64_t constantsStride_ = 0;
     Pipeline terrainPipeline_, terrainTruthPipeline_, terrainShadowPipeline_, skyPipeline_;
     std::unique_ptr<RenderTarget> shadowMap_;
     VkSampler shadowSampler_ = VK_NULL_HANDLE;
     std::unique_ptr<VegetationRenderer> vegetation_;
+    uint32_t debugFlags_ = 0;
+    Overlay overlay_;
 };
 
 // Host copy of one rendered frame.
@@ -82,6 +107,8 @@ struct FrameImages {
     uint32_t width = 0, height = 0;
     std::vector<uint16_t> rgbaHalf; // width*height*4 half floats, top row first
     std::vector<float> depth;       // planar metres, +inf where nothing was hit
+    std::vector<uint32_t> labels;   // (semantic class << 24) | instance id, see gpu::kSemantic*
+    std::vector<uint16_t> rightRgbaHalf; // stereo only: the right view's colour
 };
 
 // Targets and readback buffers for rendering frames of one size to host images, reused across a sequence.
@@ -93,13 +120,15 @@ public:
     OffscreenFrame& operator=(const OffscreenFrame&) = delete;
 
     // Records `prologue` (e.g. the interaction tick), the frame and the readbacks in one submission and waits.
+    // With `right`, also renders the right view of a stereo rig (see SceneRenderer::recordViews).
     FrameImages render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
-                       const std::function<void(VkCommandBuffer)>& prologue = {});
+                       const std::function<void(VkCommandBuffer)>& prologue = {}, const Camera* right = nullptr);
 
 private:
     Context& ctx_;
     RenderTarget main_, truth_;
-    Buffer color_, depth_;
+    std::unique_ptr<RenderTarget> rightMain_; // created on the first stereo frame
+    Buffer color_, depth_, labels_, rightColor_;
 };
 
 // Renders one frame into fresh targets (the renderer's sample count) and reads colour and depth back (waits).

@@ -30,6 +30,7 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
     clusterCounts_ = createBuffer(ctx, uint64_t(std::max(buffers_.clusterCount, 1u)) * 16, storage,
                                   MemoryIntent::DeviceLocal);
     instances_ = createBuffer(ctx, uint64_t(capacity_) * sizeof(gpu::ExpandedPlant), storage, MemoryIntent::DeviceLocal);
+    instancePlants_ = createBuffer(ctx, uint64_t(capacity_) * sizeof(uint32_t), storage, MemoryIntent::DeviceLocal);
     draws_ = createBuffer(ctx, gpu::kLodCount * sizeof(VkDrawIndirectCommand),
                           storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryIntent::DeviceLocal);
     stats_ = createBuffer(ctx, sizeof(gpu::ExpansionStats), storage, MemoryIntent::DeviceLocal);
@@ -40,7 +41,8 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
     };
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
     PipelineLayoutDesc expandLayout{.bindings = {ssbo(0, cs), layoutBinding(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs),
-                                                 ssbo(2, cs), ssbo(3, cs), ssbo(4, cs), ssbo(5, cs), ssbo(6, cs)}};
+                                                 ssbo(2, cs), ssbo(3, cs), ssbo(4, cs), ssbo(5, cs), ssbo(6, cs),
+                                                 ssbo(7, cs)}};
     countPipeline_ = createComputePipeline(ctx.device, "vegetation_expand.comp", expandLayout, {/* WRITE_PASS= */ 0});
     writePipeline_ = createComputePipeline(ctx.device, "vegetation_expand.comp", expandLayout, {/* WRITE_PASS= */ 1});
     scanPipeline_ = createComputePipeline(ctx.device, "vegetation_scan.comp",
@@ -51,7 +53,8 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
     std::vector<VkDescriptorSetLayoutBinding> drawBindings = {
         layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages),
         layoutBinding(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages), ssbo(2, kDrawStages), ssbo(3, kDrawStages),
-        layoutBinding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT)};
+        layoutBinding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT),
+        ssbo(6, VK_SHADER_STAGE_VERTEX_BIT)};
     PipelineLayoutDesc shadowLayout{.bindings = drawBindings, .pushConstantSize = 4, .pushConstantStages = kDrawStages};
     PipelineLayoutDesc mainLayout = shadowLayout;
     mainLayout.bindings.push_back(layoutBinding(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
@@ -69,7 +72,7 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
     };
     mainPipeline_ = createGraphicsPipeline(ctx.device, plants, mainLayout);
     plants.fragmentShader = "plant_truth.frag";
-    plants.colorFormats = {formats.truthColor};
+    plants.colorFormats = {formats.truthDepthBits, formats.truthLabel};
     plants.depthFormat = formats.truthDepth;
     plants.samples = VK_SAMPLE_COUNT_1_BIT;
     plants.alphaToCoverage = false;
@@ -89,7 +92,7 @@ VegetationRenderer::~VegetationRenderer() {
     for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &truthPipeline_,
                         &shadowPipeline_, &bakePipeline_, &staticPipeline_})
         destroyPipeline(ctx_.device, *p);
-    for (Buffer* b : {&constants_, &clusterCounts_, &instances_, &draws_, &stats_, &atlasCells_}) destroyBuffer(ctx_, *b);
+    for (Buffer* b : {&constants_, &clusterCounts_, &instances_, &instancePlants_, &draws_, &stats_, &atlasCells_}) destroyBuffer(ctx_, *b);
     destroyImage(ctx_, atlasImage_);
     vkDestroySampler(ctx_.vk(), atlasSampler_, nullptr);
 }
@@ -161,9 +164,10 @@ DescriptorBinding VegetationRenderer::constantsBinding(uint32_t slot) const {
     return uniformBuffer(1, constants_.handle, (slot % kSlots) * constantsStride_, sizeof(gpu::VegetationConstants));
 }
 
-void VegetationRenderer::expand(VkCommandBuffer cmd, const Camera& camera, double timeSeconds, uint32_t slot) {
+void VegetationRenderer::expand(VkCommandBuffer cmd, const Camera& camera, double timeSeconds, uint32_t slot,
+                                const std::array<glm::vec4, 5>* cullPlanes) {
     gpu::VegetationConstants c{};
-    auto planes = camera.frustumPlanes();
+    auto planes = cullPlanes ? *cullPlanes : camera.frustumPlanes();
     for (int i = 0; i < 5; ++i) c.frustumPlanes[i] = planes[i];
     c.cameraPosition = glm::vec4(glm::vec3(camera.position), 1.0f);
     c.lodDistances = glm::vec4(scene_.lod.nearToMid, scene_.lod.midToFar, scene_.lod.farLimit, scene_.lod.band);
@@ -186,7 +190,7 @@ void VegetationRenderer::expand(VkCommandBuffer cmd, const Camera& camera, doubl
                         {storageBuffer(0, buffers_.statics.handle), constantsBinding(slot),
                          storageBuffer(2, buffers_.dynamics.handle), storageBuffer(3, buffers_.clusters.handle),
                          storageBuffer(4, buffers_.fields.handle), storageBuffer(5, clusterCounts_.handle),
-                         storageBuffer(6, instances_.handle)});
+                         storageBuffer(6, instances_.handle), storageBuffer(7, instancePlants_.handle)});
     };
     // One invocation per cluster, 64 per workgroup.
     const uint32_t groups = (buffers_.clusterCount + gpu::kExpandGroupSize - 1) / gpu::kExpandGroupSize;
@@ -221,14 +225,15 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
     const Pipeline& pipeline = pass == PlantPass::Main ? mainPipeline_ : pass == PlantPass::Truth ? truthPipeline_ : shadowPipeline_;
     bindPipeline(cmd, pipeline);
     DescriptorBinding atlas = sampledImage(4, atlasImage_.view, atlasSampler_);
+    DescriptorBinding plants = storageBuffer(6, instancePlants_.handle);
     if (pass == PlantPass::Main)
         pushDescriptors(ctx_.device, cmd, pipeline,
                         {frame, constantsBinding(slot), storageBuffer(2, instances_.handle),
-                         storageBuffer(3, atlasCells_.handle), atlas, shadowMap});
+                         storageBuffer(3, atlasCells_.handle), atlas, shadowMap, plants});
     else
         pushDescriptors(ctx_.device, cmd, pipeline,
                         {frame, constantsBinding(slot), storageBuffer(2, instances_.handle),
-                         storageBuffer(3, atlasCells_.handle), atlas});
+                         storageBuffer(3, atlasCells_.handle), atlas, plants});
     for (uint32_t lod = 0; lod < gpu::kLodCount; ++lod) {
         pushConstants(cmd, pipeline, lod);
         vkCmdDrawIndirect(cmd, draws_.handle, lod * sizeof(VkDrawIndirectCommand), 1, sizeof(VkDrawIndirectCommand));

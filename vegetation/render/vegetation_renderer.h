@@ -31,7 +31,7 @@ struct BakedPlants {
 struct VegetationPassFormats {
     VkFormat mainColor, mainDepth;
     VkSampleCountFlagBits mainSamples;
-    VkFormat truthColor, truthDepth;
+    VkFormat truthDepthBits, truthLabel, truthDepth; // truth colour attachments: depth bits, label
     VkFormat shadowDepth;
 };
 
@@ -46,7 +46,9 @@ public:
 
     // Records the three expansion dispatches for this camera and simulation time. `slot` selects the
     // constants slot (frames in flight).
-    void expand(VkCommandBuffer cmd, const Camera& camera, double timeSeconds, uint32_t slot);
+    // `cullPlanes` (optional) replaces the camera's frustum for culling, e.g. the union of a stereo pair's.
+    void expand(VkCommandBuffer cmd, const Camera& camera, double timeSeconds, uint32_t slot,
+                const std::array<glm::vec4, 5>* cullPlanes = nullptr);
     // Records the plant draws into the current rendering pass. `frame` is the frame-constants binding 0;
     // `shadowMap` is the sampled sun shadow map for the main pass (ignored otherwise).
     void draw(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame, const DescriptorBinding& shadowMap,
@@ -60,6 +62,11 @@ public:
     void drawBaked(VkCommandBuffer cmd, const BakedPlants& baked, const DescriptorBinding& frame,
                    const DescriptorBinding& shadowMap, uint32_t slot);
     void destroyBaked(BakedPlants& baked);
+    // Live changes from the viewer's panel; used by the next expand().
+    void setWindAndLod(const WindParams& wind, const LodParams& lod) {
+        scene_.wind = wind;
+        scene_.lod = lod;
+    }
     VegetationBuffers& buffers() { return buffers_; }
     uint32_t instanceCapacity() const { return capacity_; }
     // Instances and their draw commands, for benchmarks that re-draw a frozen expansion.
@@ -78,7 +85,7 @@ private:
     uint32_t capacity_ = 0;
     uint32_t atlasMaxColumns_ = 1;
     glm::uvec4 atlasColumns_{1u};
-    Buffer constants_, clusterCounts_, instances_, draws_, stats_, atlasCells_;
+    Buffer constants_, clusterCounts_, instances_, instancePlants_, draws_, stats_, atlasCells_;
     uint64_t constantsStride_ = 0;
     Image atlasImage_;
     VkSampler atlasSampler_ = VK_NULL_HANDLE;
