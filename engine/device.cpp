@@ -52,19 +52,23 @@ std::string versionString(uint32_t v) {
            std::to_string(VK_API_VERSION_PATCH(v));
 }
 
-// A device is usable when it has Vulkan 1.3, one queue family with graphics + compute, and push descriptors.
-bool usable(VkPhysicalDevice physical, uint32_t* family) {
+// A device is usable when it has Vulkan 1.3, one queue family with graphics + compute, and push descriptors;
+// with a surface, that family must also present to it.
+bool usable(VkPhysicalDevice physical, VkSurfaceKHR surface, uint32_t* family) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(physical, &props);
     if (props.apiVersion < VK_API_VERSION_1_3) return false;
     if (!hasExtension(deviceExtensions(physical), VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) return false;
+    if (surface && !hasExtension(deviceExtensions(physical), VK_KHR_SWAPCHAIN_EXTENSION_NAME)) return false;
     uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, nullptr);
     std::vector<VkQueueFamilyProperties> families(count);
     vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, families.data());
     for (uint32_t i = 0; i < count; ++i) {
         VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-        if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0) {
+        VkBool32 present = VK_TRUE;
+        if (surface) vkGetPhysicalDeviceSurfaceSupportKHR(physical, i, surface, &present);
+        if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0 && present) {
             *family = i;
             return true;
         }
@@ -82,6 +86,10 @@ bool envFlag(const char* name) {
 Device::Device(const DeviceOptions& options) {
     validation_ = options.validation || envFlag("SWARD_VALIDATION");
     createInstance(options);
+    if (options.createSurface) {
+        surface_ = options.createSurface(instance_);
+        require(surface_ != VK_NULL_HANDLE, "could not create a Vulkan surface for the window");
+    }
     std::string filter = options.deviceFilter;
     if (filter.empty() && std::getenv("SWARD_DEVICE")) filter = std::getenv("SWARD_DEVICE");
     pickPhysicalDevice(filter);
@@ -93,6 +101,7 @@ Device::Device(const DeviceOptions& options) {
 
 Device::~Device() {
     if (device_) vkDestroyDevice(device_, nullptr);
+    if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
     if (messenger_) {
         auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
@@ -181,7 +190,7 @@ void Device::pickPhysicalDevice(const std::string& filter) {
         VkPhysicalDeviceProperties props;
         vkGetPhysicalDeviceProperties(physical, &props);
         uint32_t family = 0;
-        bool ok = usable(physical, &family);
+        bool ok = usable(physical, surface_, &family);
         names += (names.empty() ? "" : ", ") + std::string("'") + props.deviceName + "'" + (ok ? "" : " (unsuitable)");
         if (!ok) continue;
         if (!filter.empty() && lowercase(props.deviceName).find(lowercase(filter)) == std::string::npos) continue;
@@ -248,6 +257,10 @@ void Device::createDevice(const DeviceOptions& options) {
     };
     std::vector<const char*> extensions = options.deviceExtensions;
     extensions.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+    if (surface_ && std::none_of(extensions.begin(), extensions.end(), [](const char* e) {
+            return std::strcmp(e, VK_KHR_SWAPCHAIN_EXTENSION_NAME) == 0;
+        }))
+        extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
     VkDeviceCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .pNext = &features,

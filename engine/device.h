@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,10 @@ struct DeviceOptions {
     std::vector<const char*> instanceExtensions; // extra, e.g. from glfwGetRequiredInstanceExtensions
     std::vector<const char*> deviceExtensions;   // extra, e.g. VK_KHR_swapchain
     bool quiet = false;                          // don't log the chosen device
+    // Window output (viewer): creates the surface once the instance exists (e.g. glfwCreateWindowSurface).
+    // The device then owns the surface, requires a queue family that can present to it and enables
+    // VK_KHR_swapchain. Pass the window system's instance extensions in instanceExtensions.
+    std::function<VkSurfaceKHR(VkInstance)> createSurface;
 };
 
 class Device {
@@ -47,6 +52,7 @@ public:
     // "llvmpipe (LLVM 15.0.6, 256 bits)", driver "llvmpipe Mesa 22.3.6", ...: for logs and dataset manifests.
     const std::string& name() const { return name_; }
     const std::string& driver() const { return driver_; }
+    VkSurfaceKHR surface() const { return surface_; } // null without DeviceOptions::createSurface
     bool isCpu() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
     bool validationEnabled() const { return validation_; }
     bool supportsDrawIndirectCount() const { return drawIndirectCount_; }
@@ -67,6 +73,7 @@ private:
 
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VkSurfaceKHR surface_ = VK_NULL_HANDLE;
     VkPhysicalDevice physical_ = VK_NULL_HANDLE;
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;

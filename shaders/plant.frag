@@ -6,6 +6,7 @@
 #include "shared/frame.glsl"
 #include "shared/plant_fragment.glsl"
 #include "shared/shadow.glsl"
+#include "shared/plant_layout.h"
 
 layout(constant_id = 1) const bool ALPHA_TO_COVERAGE = false;
 layout(location = 0) out vec4 outColor;
@@ -22,6 +23,16 @@ void main() {
     }
     vec3 up = normalize(inUp);
     vec3 albedo = texel.rgb * mix(0.8, 1.15, inRandom);
+    // Viewer overlays (sward-view): LOD bands, and the plants the interaction has moved (paper Figure 7).
+    if ((frame.debug.x & kDebugLodColors) != 0u) {
+        uint lod = bitfieldExtract(inFade, 21, 2); // set by plant.vert
+        albedo = (lod == kLodNear ? vec3(0.9, 0.15, 0.1) : lod == kLodMid ? vec3(0.15, 0.8, 0.1) : vec3(0.15, 0.3, 0.95)) *
+                 (0.6 + 0.4 * texel.g);
+    }
+    uint state = bitfieldExtract(inFade, 17, 4);
+    if ((frame.debug.x & kDebugUpdatedPlants) != 0u && state != kPlantStateRest)
+        albedo = state == kPlantStateRecovering ? vec3(1.0, 0.55, 0.05) : state == kPlantStateFelled ? vec3(0.9, 0.05, 0.05)
+                                                                                                    : vec3(0.7, 0.1, 0.9);
     // Thin leaves: wrap lighting lets light through from behind, ambient occlusion darkens the base.
     float sun = clamp(dot(up, frame.sunDirection.xyz) * 0.6 + 0.4, 0.0, 1.0) * sunShadow(inWorld);
     float occlusion = mix(0.35, 1.0, inHeightFraction);

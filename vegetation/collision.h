@@ -32,6 +32,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -77,6 +78,12 @@ private:
         Aabb box;
         uint32_t first = 0, count = 0; // leaf: items_[first, first + count); inner (count 0): children first, first+1
     };
+    struct Kept {
+        uint32_t id, input;
+        Aabb box;
+    };
+    std::vector<Kept> kept_;                // scratch of build(), kept for its capacity
+    std::vector<uint64_t> keys_, keysTmp_;  // likewise
     std::vector<uint32_t> input_; // rank -> input index
     std::vector<Aabb> bounds_;    // by rank
     std::vector<uint32_t> items_; // ranks in tree order
@@ -86,29 +93,44 @@ private:
 
 // Plant positions and heights of a tile decoded once, bucketed per cluster into an 8x8 grid of sub-cells so a
 // collider visits only the plants under its footprint. Built from the tile's static records; immutable.
+// The pass is bound by memory latency (a worst-case tick reads thousands of scattered runs of a 64 MB index), so
+// each plant is one 16-byte Stem (four per cache line) holding everything the tests need, and all stems live in
+// one block backed by huge pages where the system allows (fewer TLB misses).
 class TileCollisionIndex {
 public:
     static constexpr uint32_t kCellsPerSide = 8;
-    struct Plant {
-        float x, y, z, height; // base position (decodePlantPosition) and full height, metres
-        uint32_t plant;        // index within the field's records
-        uint32_t category;
+    static constexpr uint32_t kMaxFieldPlants = 1u << 22;
+    struct Stem {
+        float x, y, z;  // base position (decodePlantPosition), metres
+        uint32_t packed; // bits 0-21 plant index within the field's records, 22-23 category, 24-31 size byte
+        uint32_t plant() const { return packed & (kMaxFieldPlants - 1); }
+        uint32_t category() const { return (packed >> 22) & 3u; }
+        uint32_t shape() const { return packed >> 22; } // category | size << 2: the index into heights()
     };
     struct Field {
-        std::vector<Plant> plants;       // by cluster, then cell (row-major, x fastest)
-        std::vector<uint32_t> cellStart; // clusters * 64 + 1 offsets into plants
+        const Stem* stems = nullptr;     // by cluster, then cell (row-major, x fastest), then record index
+        std::vector<uint32_t> cellStart; // clusters * 64 + 1 offsets into stems
+        uint32_t clustersWithPlants = 0;
     };
 
     TileCollisionIndex() = default;
-    // Requires params to be the ones the tile was generated with (category heights).
+    // Requires params to be the ones the tile was generated with (category heights). Throws sward::Error if a
+    // field holds more than kMaxFieldPlants plants.
     TileCollisionIndex(const VegetationTile& tile, const VegetationParams& params);
 
     const Field& field(uint32_t f) const { return fields_[f]; }
     const Aabb& bounds() const { return bounds_; } // union of every field's bounds
     float cellSize() const { return cellSize_; }
+    // Full plant height in metres by Stem::shape(): the same expression as placement's cluster bounds.
+    const float* heights() const { return heights_.data(); }
 
 private:
+    struct Free {
+        void operator()(void* p) const;
+    };
+    std::unique_ptr<Stem[], Free> stems_;
     std::vector<Field> fields_;
+    std::array<float, 4 * 256> heights_{};
     Aabb bounds_;
     float cellSize_ = 0.0f;
 };
@@ -143,12 +165,17 @@ PlantTouch touchPlant(const Collider& c, glm::vec3 base, float height, const Cat
 // Combines the touches of one plant given in collider id order into its contact (rules above; plant/field unset).
 gpu::PlantContact combineTouches(std::span<const PlantTouch> touches, const RecoveryParams& recovery);
 
-// The collision pass. Owns the plant index, the BVH and per-field output slots so a tick allocates little; not thread-safe itself, but
-// runs on `threads` threads inside and its result does not depend on the thread count.
+// The collision pass. Owns the plant index, the BVH, per-field output slots and a persistent worker pool, so a
+// tick neither allocates much nor starts threads; not thread-safe itself, but runs on `threads` threads inside and
+// its result does not depend on the thread count (each field is collided by one thread into its own slot, and the
+// slots are merged in field order).
 class CollisionPass {
 public:
     // tile must outlive the pass; vegetation are the params it was generated with. Builds the plant index.
     CollisionPass(const VegetationTile& tile, const VegetationParams& vegetation, const InteractionParams& params);
+    ~CollisionPass();
+    CollisionPass(CollisionPass&&) noexcept;
+    CollisionPass& operator=(CollisionPass&&) noexcept;
     // Contacts of this tick; threads >= 1.
     CollisionResult run(std::span<const Collider> colliders, uint32_t threads);
 
@@ -161,6 +188,7 @@ private:
         bool tested = false;
     };
     struct Scratch;
+    class Workers;
     void collideField(uint32_t f, std::span<const Collider> colliders, Scratch& scratch, FieldOutput& out) const;
 
     const VegetationTile* tile_;
@@ -168,6 +196,8 @@ private:
     InteractionParams params_;
     ColliderBvh bvh_;
     std::vector<FieldOutput> outputs_;
+    std::vector<Scratch> scratch_;     // one per thread, kept between ticks
+    std::unique_ptr<Workers> workers_; // threads - 1 helpers, started on first use
 };
 
 } // namespace sward

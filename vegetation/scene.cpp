@@ -161,6 +161,23 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
         if (!path->contains("height_above_ground")) c.path.heightAboveGround = c.heightAboveGround;
     }
     c.lookAhead = camera.number("look_ahead", c.lookAhead, 0.1, 1e4);
+    RigParams& rig = c.rig;
+    rig.baseline = camera.number("baseline", rig.baseline, 0.0, 100.0);
+    rig.minDepth = camera.number("min_depth", rig.minDepth, 0.01, 1e4);
+    rig.focalLengthPx = camera.number("focal_length_px", rig.focalLengthPx, 0.0, 1e6);
+    rig.hasPrincipalPoint = camera.has("principal_point");
+    rig.principalPoint = camera.vector<2>("principal_point", rig.principalPoint, -1e5, 1e5);
+    if (camera.has("mount")) {
+        Reader mount = camera.child("mount");
+        rig.mountObject = mount.string("object", "");
+        rig.mountNode = mount.string("node", "");
+        if (rig.mountObject.empty() || rig.mountNode.empty())
+            throw Error(source + ": 'camera.mount' needs 'object' and 'node' (names of a scene object and a node of its model)");
+        rig.mountOffset = mount.vector<3>("offset", rig.mountOffset, -1e3, 1e3);
+        rig.mountPitchDegrees = mount.number("pitch_deg", rig.mountPitchDegrees, -90.0, 90.0);
+        mount.finish();
+    }
+    if (const nlohmann::json* sensor = camera.raw("sensor")) rig.sensor = parseSensor(*sensor, "camera.sensor", source);
     camera.finish();
 
     Reader sequence = root.child("sequence");
@@ -207,6 +224,10 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
     // One clock: the interaction ticks with the sequence's frames.
     scene.interaction.recovery.timeStep = float(scene.sequence.timeStep);
     scene.actors = parseActors(root.raw("vehicles"), root.raw("colliders"), root.raw("gusts"), source);
+    // Model paths are relative to the scene file's folder (built-in scenes, "<...>", use them as given).
+    scene.objects = parseObjects(root.raw("objects"), source,
+                                 source.find('<') == std::string::npos ? std::filesystem::path(source).parent_path().string()
+                                                                      : std::string());
 
     Reader atlas = root.child("atlas");
     auto resolve = [&](std::string path) {
@@ -281,6 +302,24 @@ Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t widt
     if (c.useHeightAboveGround) position.z = terrain.height(glm::vec2(position)) + c.heightAboveGround;
     if (c.lookAtUsesGround) target.z = terrain.height(glm::vec2(target)) + c.lookAtHeightAboveGround;
     return Camera::lookAt(position, target, glm::dvec3(0.0, 0.0, 1.0), c.fovYDegrees, width, height);
+}
+
+std::vector<Collider> sceneColliders(const Scene& scene, const std::vector<ObjectModel>& models,
+                                     const Heightfield& terrain, uint64_t tick) {
+    const double time = double(tick) * scene.sequence.timeStep;
+    std::vector<Collider> colliders = actorColliders(scene.actors, terrain, time, tick, float(scene.sequence.timeStep));
+    if (!models.empty()) {
+        std::vector<Collider> objects = objectColliders(scene.objects, models, terrain, time);
+        colliders.insert(colliders.end(), objects.begin(), objects.end());
+    }
+    return colliders;
+}
+
+bool sceneHasColliders(const Scene& scene) {
+    if (!scene.actors.empty()) return true;
+    for (const ObjectParams& object : scene.objects)
+        if (!object.colliders.empty()) return true;
+    return false;
 }
 
 void parseResolution(const std::string& text, uint32_t& width, uint32_t& height) {

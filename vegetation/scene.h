@@ -7,10 +7,12 @@
 
 #include "atlas.h"
 #include "camera.h"
+#include "camera_rig.h"
 #include "grass_map.h"
 #include "heightfield.h"
 #include "collision.h"
 #include "path.h"
+#include "objects.h"
 #include "vehicles.h"
 #include "vegetation_params.h"
 #include "vegetation_tile.h"
@@ -49,6 +51,7 @@ struct CameraParams {
     bool hasPath = false;
     PathParams path;
     double lookAhead = 10.0;
+    RigParams rig; // stereo baseline, intrinsics, mount, sensor (camera_rig.h)
 };
 
 // A fixed-step sequence (issue 7 renders datasets from it).
@@ -98,6 +101,7 @@ struct Scene {
     VegetationParams vegetation;   // "vegetation" object, see vegetation_params.h
     InteractionParams interaction; // "interaction" object, see collision.h (recovery time step = sequence's)
     ActorParams actors;            // "vehicles", "colliders", "gusts"
+    std::vector<ObjectParams> objects; // "objects": glTF models on paths (vegetation/objects.h), object k = index k
     bool vegetationEnabled = true; // false: bare ground (paired studies, --no-vegetation)
     std::string grassMapPath;      // "grass_map", resolved against the scene's folder; empty = procedural meadow
     std::string atlasPngPath, atlasJsonPath; // "atlas": {"png", "json"}; empty = the built-in procedural atlas
@@ -117,6 +121,13 @@ GrassMap buildGrassMap(const Scene& scene);
 VegetationTile buildVegetation(const Scene& scene, const Heightfield& terrain, uint32_t threads = 0);
 // The scene camera at the given resolution and simulation time, resolved against the terrain.
 Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t width, uint32_t height, double time = 0.0);
+
+// Every collider acting on the vegetation during tick `tick` (at time tick * sequence.time_step): the scene's
+// vehicles, free colliders and gusts (actorColliders) followed by the objects' node colliders (objectColliders).
+std::vector<Collider> sceneColliders(const Scene& scene, const std::vector<ObjectModel>& models,
+                                     const Heightfield& terrain, uint64_t tick);
+// True when anything in the scene can touch the vegetation (the interaction simulation must run).
+bool sceneHasColliders(const Scene& scene);
 
 // Parses "WxH" (e.g. "1280x720"); throws a clear error for anything else or sizes outside 1..16384.
 void parseResolution(const std::string& text, uint32_t& width, uint32_t& height);

@@ -11,29 +11,39 @@ namespace sward {
 
 std::vector<WheelPose> vehicleWheels(const VehicleParams& v, const Heightfield& terrain, double time) {
     PathPose pose = pathPose(v.path, terrain, time);
-    glm::dvec2 forward = pose.heading, left(-forward.y, forward.x);
+    return vehicleWheelsAt(v, terrain, glm::dvec2(pose.position), pose.heading);
+}
+
+std::vector<WheelPose> vehicleWheelsAt(const VehicleParams& v, const Heightfield& terrain, glm::dvec2 position,
+                                       glm::dvec2 heading) {
+    glm::dvec2 forward = heading, left(-forward.y, forward.x);
     std::vector<WheelPose> wheels;
     for (int w = 0; w < 4; ++w) {
         double along = (w < 2 ? 0.5 : -0.5) * v.wheelBase, across = (w % 2 == 0 ? 0.5 : -0.5) * v.trackWidth;
-        glm::dvec2 xy = glm::dvec2(pose.position) + forward * along + left * across;
+        glm::dvec2 xy = position + forward * along + left * across;
         double ground = terrain.height(glm::vec2(xy));
         wheels.push_back({glm::vec3(glm::dvec3(xy, ground + v.wheelRadius - v.sink)), glm::vec3(glm::dvec3(left, 0.0))});
     }
     return wheels;
 }
 
+std::vector<Collider> wheelColliders(const VehicleParams& vehicle, const std::vector<WheelPose>& wheels, uint32_t index) {
+    std::vector<Collider> colliders;
+    for (uint32_t w = 0; w < wheels.size(); ++w) {
+        // A wheel is a capsule along its axle: radius = wheel radius, length = wheel width.
+        glm::vec3 half = wheels[w].axle * (0.5f * std::max(vehicle.wheelWidth - 2.0f * vehicle.wheelRadius, 0.0f));
+        colliders.push_back(makeCapsule(uint32_t(1000 * (index + 1) + w), wheels[w].centre - half,
+                                        wheels[w].centre + half, vehicle.wheelRadius, vehicle.weight));
+    }
+    return colliders;
+}
+
 std::vector<Collider> actorColliders(const ActorParams& actors, const Heightfield& terrain, double time, uint64_t tick,
                                      float timeStep) {
     std::vector<Collider> colliders;
     for (size_t v = 0; v < actors.vehicles.size(); ++v) {
-        const VehicleParams& vehicle = actors.vehicles[v];
-        auto wheels = vehicleWheels(vehicle, terrain, time);
-        for (uint32_t w = 0; w < wheels.size(); ++w) {
-            // A wheel is a capsule along its axle: radius = wheel radius, length = wheel width.
-            glm::vec3 half = wheels[w].axle * (0.5f * std::max(vehicle.wheelWidth - 2.0f * vehicle.wheelRadius, 0.0f));
-            colliders.push_back(makeCapsule(uint32_t(1000 * (v + 1) + w), wheels[w].centre - half, wheels[w].centre + half,
-                                            vehicle.wheelRadius, vehicle.weight));
-        }
+        auto wheels = wheelColliders(actors.vehicles[v], vehicleWheels(actors.vehicles[v], terrain, time), uint32_t(v));
+        colliders.insert(colliders.end(), wheels.begin(), wheels.end());
     }
     for (size_t i = 0; i < actors.colliders.size(); ++i) {
         const MovingColliderParams& m = actors.colliders[i];

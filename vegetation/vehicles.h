@@ -50,6 +50,12 @@ struct WheelPose {
     glm::vec3 axle; // unit, pointing to the vehicle's left
 };
 std::vector<WheelPose> vehicleWheels(const VehicleParams& vehicle, const Heightfield& terrain, double time);
+// The same wheels for the vehicle centre at `position` heading along the unit xy vector `heading` (a pose not
+// given by a path, e.g. a vehicle driven from the keyboard in sward-view).
+std::vector<WheelPose> vehicleWheelsAt(const VehicleParams& vehicle, const Heightfield& terrain, glm::dvec2 position,
+                                       glm::dvec2 heading);
+// One capsule collider per wheel (along the axle), ids 1000 * (index + 1) + w: what actorColliders uses.
+std::vector<Collider> wheelColliders(const VehicleParams& vehicle, const std::vector<WheelPose>& wheels, uint32_t index);
 
 // Every collider of the scene's actors at simulation time `time` (tick = time / timeStep for gusts), with
 // stable ids: vehicle v wheel w -> 1000 * (v + 1) + w, free collider i -> 100000 + i, gusts from 0x80000000.

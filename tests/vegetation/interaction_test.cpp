@@ -347,6 +347,40 @@ TEST(Collision, IdenticalContactsWithOneAndFourThreads) {
     EXPECT_GT(total, 10000u);
 }
 
+// One world per thread count, plus one whose pool is resized between ticks: every tick's contacts, fields and
+// statistics, and the simulated records, must be bitwise the same.
+TEST(Collision, BitwiseIdenticalWithOneTwoAndThreeThreads) {
+    const VegetationTile& tile = smallTile();
+    Sim one = makeSim(tile, {}, 1), two = makeSim(tile, {}, 2), three = makeSim(tile, {}, 3);
+    Sim switching = makeSim(tile, {}, 1);
+    size_t total = 0;
+    for (uint32_t t = 0; t < 40; ++t) {
+        std::vector<Collider> colliders = makeGusts(4, 25, {{0, 0, 0.0f}, {50, 50, 0.5f}}, t);
+        for (uint32_t k = 0; k < 20; ++k) // one sphere per 5 x 5 m cluster of a row, as in the benchmark
+            colliders.push_back(makeSphere(100 + k, {2.5f + 2.5f * float(k) + 0.3f * float(t % 7), 7.5f, 0.3f}, 0.5f,
+                                           0.4f));
+        colliders.push_back(makeCapsule(3, {2.0f + t, 33, 0.4f}, {2.0f + t, 33.3f, 0.4f}, 0.4f, 3.0f));
+        colliders.push_back(makeMower(makeBox(5, {44, 2.0f + t, 0.1f}, {0.6f, 0.3f, 0.06f}, glm::mat3(1.0f), 0.3f), 0.1f));
+        switching.world.setThreads(1 + t % 3);
+        TickResult a = one.step(colliders), b = two.step(colliders), c = three.step(colliders),
+                   d = switching.step(colliders);
+        for (const TickResult* r : {&b, &c, &d}) {
+            ASSERT_TRUE(sameBytes(a.contacts, r->contacts)) << "tick " << t;
+            EXPECT_EQ(a.touchedFields, r->touchedFields);
+            EXPECT_EQ(a.touchedClusters, r->touchedClusters);
+            EXPECT_EQ(a.activeFields, r->activeFields);
+            EXPECT_EQ(a.stats.plantsTested, r->stats.plantsTested);
+            EXPECT_EQ(a.stats.clustersTested, r->stats.clustersTested);
+            EXPECT_EQ(a.stats.fieldsTested, r->stats.fieldsTested);
+        }
+        total += a.contacts.size();
+    }
+    EXPECT_GT(total, 5000u);
+    EXPECT_TRUE(sameBytes(one.dynamics, two.dynamics));
+    EXPECT_TRUE(sameBytes(one.dynamics, three.dynamics));
+    EXPECT_TRUE(sameBytes(one.dynamics, switching.dynamics));
+}
+
 TEST(StateFile, SaveRestoreContinueIsBitwiseIdenticalToAnUninterruptedRun) {
     const VegetationTile& tile = smallTile();
     const std::string path = (tempDir() / "state.bin").string();
@@ -476,6 +510,11 @@ TEST(CollisionPerf, FourHundredFieldsWithTwentyFiveCollidersEach) {
             ms.push_back(r.stats.cpuMs);
         }
         std::sort(ms.begin(), ms.end());
+        // FNV-1a of the contact bytes: the same figure for every thread count and every optimisation of the pass.
+        uint64_t hash = 14695981039346656037ull;
+        for (const gpu::PlantContact& c : r.contacts)
+            for (size_t b = 0; b < sizeof(c); ++b) hash = (hash ^ reinterpret_cast<const uint8_t*>(&c)[b]) * 1099511628211ull;
+        std::printf("[ perf ] contacts hash %016llx\n", (unsigned long long)hash);
         EXPECT_EQ(r.touchedFields.size(), 400u);
         EXPECT_EQ(r.touchedClusters.size(), 10000u);
         std::printf("[ perf ] 400 fields x 25 colliders, %u thread(s): median %.3f ms, best %.3f ms; %zu contacts "

@@ -10,9 +10,10 @@
 
 namespace {
 
-void emit(const nlohmann::json& result, const std::string& jsonPath) {
+// Prints every key except `tableKey` (printed as a table by the caller) and writes the JSON file atomically.
+void emit(const nlohmann::json& result, const std::string& jsonPath, const std::string& tableKey = "") {
     for (auto it = result.begin(); it != result.end(); ++it)
-        std::printf("%-26s %s\n", it.key().c_str(), it.value().dump().c_str());
+        if (it.key() != tableKey) std::printf("%-32s %s\n", it.key().c_str(), it.value().dump().c_str());
     if (jsonPath.empty()) return;
     std::string tmp = jsonPath + ".tmp";
     {
@@ -51,6 +52,20 @@ int main(int argc, char** argv) {
     frm->add_option("--device", frame.device, "Vulkan device name substring");
     frm->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
+    sward::CollideBenchOptions collide;
+    CLI::App* col = app.add_subcommand(
+        "collide", "Interaction worst case: one colliding sphere per 5 x 5 m cluster of N fields (CPU collision, "
+                   "upload, GPU recovery), 10,000 colliders above the grass, and no GPU work with 0 active fields");
+    col->add_option("--fields", collide.fields, "Fields with colliders, one case per value (repeatable)")
+        ->capture_default_str();
+    col->add_option("--ticks", collide.ticks, "Measured ticks per case (medians)")->capture_default_str();
+    col->add_option("--warmup", collide.warmup, "Ticks per case before measuring")->capture_default_str();
+    col->add_option("--threads", collide.threads, "Collision threads (0 = all cores)")->capture_default_str();
+    col->add_option("--density", collide.density, "Grass plants per m^2")->capture_default_str();
+    col->add_option("--radius", collide.radius, "Collider sphere radius, metres")->capture_default_str();
+    col->add_option("--device", collide.device, "Vulkan device name substring");
+    col->add_option("--json", json, "Also write the figures as a JSON object to this file");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -64,6 +79,11 @@ int main(int argc, char** argv) {
         if (frm->parsed()) {
             sward::parseResolution(resolution, frame.width, frame.height);
             emit(sward::benchFrame(frame), json);
+        }
+        if (col->parsed()) {
+            nlohmann::json result = sward::benchCollide(collide);
+            std::fputs(sward::collideTable(result).c_str(), stdout);
+            emit(result, json, "results");
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "sward-bench: error: %s\n", e.what());

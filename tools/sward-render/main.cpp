@@ -22,7 +22,7 @@ glm::dvec3 parseVec3(const std::string& text, const char* option) {
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"sward-render: render a sward scene to HDR EXR colour and depth"};
+    CLI::App app{"sward-render: render a sward scene to a stereo dataset: HDR EXR colour, depth, disparity, semantic and instance ground truth"};
     sward::RenderJobOptions options;
     std::string resolution, position, lookAt;
     std::optional<uint32_t> samples;
@@ -37,6 +37,11 @@ int main(int argc, char** argv) {
     app.add_option("--fov", fov, "Vertical field of view in degrees");
     std::string frames;
     app.add_option("--frames", frames, "Frame range A:B (frames A .. B-1); default: the scene's sequence");
+    std::string shard;
+    app.add_option("--shard", shard, "Render only block I of N of the frames, I/N (e.g. 0/4): for job arrays");
+    std::optional<uint64_t> seed;
+    app.add_option("--seed", seed, "Override the scene's seed (terrain, plants, gusts, sensor noise)");
+    app.add_flag("--quiet,-q", options.quiet, "No progress line");
     app.add_option("--time", options.time, "Simulation time of the frame in seconds (wind)")->capture_default_str();
     app.add_flag("--no-vegetation", options.noVegetation, "Render the same scene without vegetation");
     app.add_flag("--validation", options.validation, "Enable Vulkan validation; any message fails the run");
@@ -51,6 +56,8 @@ int main(int argc, char** argv) {
     try {
         if (!resolution.empty()) options.resolution = resolution;
         if (!frames.empty()) options.frames = frames;
+        if (!shard.empty()) options.shard = shard;
+        options.seed = seed;
         options.samples = samples;
         options.fovYDegrees = fov;
         if (!position.empty()) options.cameraPosition = parseVec3(position, "--camera");

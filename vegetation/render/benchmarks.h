@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace sward {
 
@@ -37,5 +38,27 @@ struct FrameBenchOptions {
 // the same quads from a pre-expanded static buffer), expansion_overhead_ratio (frame_ms / static_frame_ms),
 // device, width, height, samples.
 nlohmann::json benchFrame(const FrameBenchOptions& options);
+
+struct CollideBenchOptions {
+    std::vector<uint32_t> fields = {10, 100, 400}; // cases: colliders on the first N fields of the tile (1..400)
+    uint32_t ticks = 30;   // measured ticks per case, after the warm-up (medians are reported)
+    uint32_t warmup = 5;   // ticks per case before measuring
+    uint32_t threads = 0;  // collision threads, 0 = all cores
+    float density = 16.0f; // grass plants per m^2 (flat 500 x 500 m tile: 400 fields of 25 clusters)
+    float radius = 0.5f;   // collider sphere radius, metres
+    std::string device;
+};
+
+// The paper's interaction worst case on a synthetic flat tile (no scene file): one pushing sphere per 5 x 5 m
+// cluster of N fields, circling slowly (its contacts change every tick), through the CPU collision pass and the
+// GPU contact + recovery passes. Keys: results (per case: fields, colliders, contacts, active_fields,
+// cpu_collision_ms (wall clock), cpu_collision_cpu_time_ms (process CPU time, all collision threads together),
+// upload_bytes, upload_ms, gpu_recovery_ms, gpu_recovery_ms_per_field, total_ms; medians per tick),
+// idle_colliders (10,000 spheres 50 m above the grass), idle_colliders_ms (their collision + upload + GPU cost per
+// tick), zero_active_recovery_dispatches (GPU dispatches over ticks with no active field: must be 0),
+// zero_active_ticks, plants, density, radius, threads, ticks, device.
+nlohmann::json benchCollide(const CollideBenchOptions& options);
+// The per-case figures of benchCollide's result as an aligned text table.
+std::string collideTable(const nlohmann::json& result);
 
 } // namespace sward

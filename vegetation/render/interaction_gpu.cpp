@@ -4,6 +4,7 @@
 #include "timestamps.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 
 namespace sward {
@@ -53,6 +54,7 @@ void InteractionGpu::record(VkCommandBuffer cmd, std::span<const gpu::PlantConta
                             std::span<const uint32_t> activeFields, const RecoveryParams& params, uint32_t slotIndex,
                             GpuTimers* timers) {
     if (contacts.empty() && activeFields.empty()) return; // idle grass costs nothing
+    const auto uploadStart = std::chrono::steady_clock::now();
     Slot& slot = slots_[slotIndex % kSlots];
     uint64_t contactBytes = contacts.size_bytes(), rangeBytes = activeFields.size() * sizeof(glm::uvec2);
     reserve(slot, contactBytes, rangeBytes);
@@ -66,6 +68,7 @@ void InteractionGpu::record(VkCommandBuffer cmd, std::span<const gpu::PlantConta
         maxPlants = std::max(maxPlants, fieldPlantCount_[f]);
     }
     stats_.uploadBytes += contactBytes + rangeBytes;
+    stats_.uploadMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - uploadStart).count();
 
     gpu::RecoveryConstants constants{
         .spring = glm::vec4(params.timeStep, params.stiffness, params.damping, params.restBend),

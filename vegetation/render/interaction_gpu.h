@@ -20,6 +20,7 @@ struct InteractionGpuStats {
     uint64_t dispatches = 0;       // recovery + contact dispatches recorded so far
     uint64_t fieldsDispatched = 0; // sum over ticks of active fields dispatched
     uint64_t uploadBytes = 0;      // contact + active-range bytes written for the GPU so far
+    double uploadMs = 0.0;         // wall time of those writes (into host-visible memory the shader reads)
 };
 
 class InteractionGpu {

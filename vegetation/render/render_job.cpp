@@ -2,24 +2,99 @@
 
 #include "atlas.h"
 #include "context.h"
+#include "dataset_writer.h"
 #include "image_files.h"
 #include "scene.h"
 #include "scene_renderer.h"
+#include "sha256.h"
+#include "simulation.h"
+#include "vegetation_renderer.h"
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <unistd.h>
 
+#ifndef SWARD_REVISION
+#define SWARD_REVISION "unknown"
+#endif
+
 namespace sward {
+
+namespace {
+
+nlohmann::json matrixJson(const glm::dmat4& m) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (int r = 0; r < 4; ++r) rows.push_back({m[0][r], m[1][r], m[2][r], m[3][r]});
+    return rows;
+}
+
+// Camera-to-world, OpenCV camera axes (x right, y down, z forward).
+nlohmann::json poseJson(const Camera& camera) {
+    glm::dmat4 m(camera.worldFromCamera);
+    m[3] = glm::dvec4(camera.position, 1.0);
+    return matrixJson(m);
+}
+
+nlohmann::json vec3Json(glm::vec3 v) { return {v.x, v.y, v.z}; }
+
+nlohmann::json colliderJson(const Collider& c) {
+    static const char* shapes[] = {"sphere", "capsule", "box"};
+    static const char* kinds[] = {"push", "gust", "downwash", "mower"};
+    nlohmann::json j = {{"id", c.id}, {"shape", shapes[uint32_t(c.shape)]}, {"kind", kinds[uint32_t(c.kind)]},
+                        {"centre", vec3Json(c.centre)}, {"force", c.force}};
+    if (c.shape == ColliderShape::Capsule) j["end"] = vec3Json(c.end);
+    if (c.shape != ColliderShape::Box) j["radius"] = c.radius;
+    else {
+        j["half_extents"] = vec3Json(c.halfExtents);
+        j["rotation"] = {vec3Json(c.rotation[0]), vec3Json(c.rotation[1]), vec3Json(c.rotation[2])};
+    }
+    if (c.kind == ColliderKind::Mower) j["cut_height"] = c.cutHeight;
+    return j;
+}
+
+
+struct Progress {
+    using Clock = std::chrono::steady_clock;
+    bool enabled;
+    uint32_t total;
+    Clock::time_point start = Clock::now();
+    void frameDone(uint32_t done, uint32_t frame) const {
+        if (!enabled) return;
+        double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+        double fps = done / std::max(elapsed, 1e-9);
+        std::fprintf(stderr, "\rsward-render: frame %u (%u/%u)  %.2f frames/s  ETA %.0f s   ", frame, done, total, fps,
+                     double(total - done) / fps);
+        if (done == total) std::fprintf(stderr, "\n");
+    }
+};
+
+} // namespace
 
 void runRenderJob(const RenderJobOptions& options) {
     using Clock = std::chrono::steady_clock;
     auto start = Clock::now();
 
-    // Everything that can be checked without a GPU is checked first, so bad input fails fast and cleanly.
-    Scene scene = options.scenePath.empty() ? parseScene(nlohmann::json::object(), "<built-in>")
-                                            : loadScene(options.scenePath);
+    // Everything that can be checked without a GPU is checked first, so bad input fails fast and writes nothing.
+    Scene scene;
+    if (options.scenePath.empty()) {
+        nlohmann::json json = nlohmann::json::object();
+        if (options.seed) json["seed"] = *options.seed;
+        scene = parseScene(json, "<built-in>");
+    } else {
+        std::ifstream file(options.scenePath);
+        if (!file) throw Error("cannot open scene file '" + options.scenePath + "'");
+        nlohmann::json json;
+        try {
+            json = nlohmann::json::parse(file);
+        } catch (const nlohmann::json::parse_error& e) {
+            throw Error("scene file '" + options.scenePath + "' is not valid JSON: " + e.what());
+        }
+        if (options.seed && json.is_object()) json["seed"] = *options.seed; // before parsing: every seed follows it
+        scene = parseScene(json, options.scenePath);
+    }
     uint32_t width = scene.render.width, height = scene.render.height;
     if (options.resolution) parseResolution(*options.resolution, width, height);
     uint32_t samples = options.samples.value_or(scene.render.samples);
@@ -28,6 +103,8 @@ void runRenderJob(const RenderJobOptions& options) {
     if (options.cameraPosition) {
         scene.camera.position = *options.cameraPosition;
         scene.camera.useHeightAboveGround = false;
+        scene.camera.hasPath = false;
+        scene.camera.rig.mountObject.clear();
     }
     if (options.cameraLookAt) {
         scene.camera.lookAt = *options.cameraLookAt;
@@ -37,56 +114,148 @@ void runRenderJob(const RenderJobOptions& options) {
         require(*options.fovYDegrees >= 1.0 && *options.fovYDegrees <= 170.0, "--fov must be between 1 and 170 degrees");
         scene.camera.fovYDegrees = *options.fovYDegrees;
     }
-    for (const char* sub : {"", "/left", "/depth", "/preview"}) ensureWritableDirectory(options.outDir + sub);
-
     uint32_t firstFrame = 0, endFrame = scene.sequence.frames;
     if (options.frames) parseFrameRange(*options.frames, firstFrame, endFrame);
+    uint32_t shardIndex = 0, shardCount = 1;
+    if (options.shard) {
+        parseShard(*options.shard, shardIndex, shardCount);
+        shardRange(firstFrame, endFrame, shardIndex, shardCount, firstFrame, endFrame);
+    }
 
     Heightfield terrain = buildTerrain(scene);
-    // All CPU-side loading (and its errors) happens before the GPU is touched: a scene that fails to load
-    // allocates nothing on the device.
+    std::vector<ObjectModel> models = loadObjectModels(scene.objects, scene.source);
+    // All CPU-side loading (and its errors) happens before the GPU is touched or a file is written.
+    const bool withVegetation = scene.vegetationEnabled && !options.noVegetation;
     std::optional<VegetationTile> vegetation;
     std::optional<Atlas> atlas;
-    if (scene.vegetationEnabled && !options.noVegetation) {
+    if (withVegetation) {
         vegetation = buildVegetation(scene, terrain);
         atlas = buildAtlas(scene);
     }
+    const RigParams& rig = scene.camera.rig;
+    auto rigAt = [&](uint32_t frame) {
+        return sceneRig(scene, terrain, models, width, height, double(frame) * scene.sequence.timeStep);
+    };
+    const RigCameras firstRig = rigAt(firstFrame); // also checks the mount before anything is written
+
+    DatasetWriter dataset(options.outDir, rig.stereo());
+    dataset.prepare();
+    if (rig.stereo()) dataset.writeCalib(firstRig.left, rig.baseline, rig.minDepth);
+
+    // frames.jsonl covers the scene's whole sequence, whatever this run renders: every record is a pure function
+    // of the scene and the tick, so shards and resumed runs write the very same file.
+    std::vector<nlohmann::json> records;
+    for (uint32_t frame = 0; frame < scene.sequence.frames; ++frame) {
+        const double time = double(frame) * scene.sequence.timeStep;
+        RigCameras cameras = rigAt(frame);
+        nlohmann::json colliders = nlohmann::json::array();
+        if (withVegetation)
+            for (const Collider& c : sceneColliders(scene, models, terrain, frame)) colliders.push_back(colliderJson(c));
+        nlohmann::json objects = nlohmann::json::array();
+        for (size_t k = 0; k < scene.objects.size(); ++k)
+            objects.push_back({{"name", scene.objects[k].name},
+                               {"instance", objectInstanceId(k)},
+                               {"pose", matrixJson(objectPose(scene.objects[k], models[k], terrain, time).worldFromModel)}});
+        const WindParams& w = scene.wind;
+        nlohmann::json record = {
+            {"frame", frame},
+            {"tick", frame},
+            {"time", time},
+            {"wind_time", options.time + time},
+            {"left_pose", poseJson(cameras.left)},
+            // OpenCV convention (pixel centres at whole coordinates), as in calib.txt
+            {"intrinsics", {{"fx", cameras.left.fx}, {"fy", cameras.left.fy}, {"cx", cameras.left.cx - 0.5},
+                            {"cy", cameras.left.cy - 0.5}, {"width", width}, {"height", height}}},
+            {"wind", {{"direction_deg", w.directionDegrees}, {"strength", w.strength}, {"gust_strength", w.gustStrength},
+                      {"gust_frequency", w.gustFrequency}, {"gust_wavelength", w.gustWavelength}, {"flutter", w.flutter}}},
+            {"colliders", colliders},
+            {"objects", objects}};
+        if (rig.stereo()) {
+            record["right_pose"] = poseJson(cameras.right);
+            record["baseline"] = rig.baseline;
+        }
+        if (rig.sensor.enabled) record["sensor"] = sensorToJson(rig.sensor);
+        records.push_back(std::move(record));
+    }
+    dataset.writeFrameLog(records);
+
+    std::vector<uint32_t> todo;
+    for (uint32_t frame = firstFrame; frame < endFrame; ++frame)
+        if (!dataset.frameComplete(frame)) todo.push_back(frame);
+    const uint32_t skipped = (endFrame - firstFrame) - uint32_t(todo.size());
 
     Context ctx(DeviceOptions{.deviceFilter = options.device, .validation = options.validation || DeviceOptions{}.validation});
     {
         SceneRenderer renderer(ctx, scene, terrain, samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
                                vegetation ? &*vegetation : nullptr, atlas ? &*atlas : nullptr);
-        vegetation.reset(); // uploaded: the CPU copy is no longer needed
+        // The interaction simulation reads the tile's static records on the CPU; without colliders the upload
+        // is all that is needed and the CPU copy goes.
+        std::optional<Simulation> simulation;
+        if (renderer.vegetation() && sceneHasColliders(scene)) {
+            simulation.emplace(ctx, scene, terrain, *vegetation, renderer.vegetation()->buffers());
+            simulation->setObjectModels(&models);
+        } else {
+            vegetation.reset();
+        }
+        std::optional<SensorModel> sensor;
+        if (rig.sensor.enabled) sensor.emplace(rig.sensor, Intrinsics::of(firstRig.left));
+
         OffscreenFrame target(ctx, width, height, samples);
-        const bool terminal = isatty(fileno(stderr));
-        auto frameStart = Clock::now();
-        for (uint32_t frame = firstFrame; frame < endFrame; ++frame) {
-            double time = options.time + double(frame) * scene.sequence.timeStep;
-            Camera camera = sceneCamera(scene, terrain, width, height, time);
-            FrameImages images = target.render(renderer, camera, time, frame);
-            char name[16];
-            std::snprintf(name, sizeof name, "%06u", frame);
-            writeExrRgbaHalf(options.outDir + "/left/" + name + ".exr", width, height, images.rgbaHalf);
-            writeExrDepth(options.outDir + "/depth/" + name + ".exr", width, height, images.depth);
-            writePng8(options.outDir + "/preview/" + name + ".png", width, height, 3,
-                      tonemapPreview(images.rgbaHalf, width, height));
-            if (terminal) {
-                uint32_t done = frame + 1 - firstFrame, total = endFrame - firstFrame;
-                double elapsed = std::chrono::duration<double>(Clock::now() - frameStart).count();
-                double fps = done / std::max(elapsed, 1e-9);
-                std::fprintf(stderr, "\rsward-render: frame %u/%u  %.2f frames/s  ETA %.0f s   ", done, total, fps,
-                             double(total - done) / fps);
-                if (done == total) std::fprintf(stderr, "\n");
+        Progress progress{!options.quiet && isatty(fileno(stderr)), uint32_t(todo.size())};
+        uint32_t done = 0;
+        for (uint32_t frame : todo) {
+            const double time = double(frame) * scene.sequence.timeStep;
+            RigCameras cameras = rigAt(frame);
+            std::function<void(VkCommandBuffer)> tick;
+            if (simulation) {
+                simulation->runTicksBefore(frame); // ticks of frames skipped or rendered elsewhere (shards)
+                tick = [&](VkCommandBuffer cmd) { simulation->recordNextTick(cmd, frame); };
             }
+            FrameImages images = target.render(renderer, cameras.left, options.time + time, frame, tick,
+                                               rig.stereo() ? &cameras.right : nullptr);
+            if (sensor) {
+                sensor->applyHalf(scene.seed, frame, 0, images.rgbaHalf);
+                if (rig.stereo()) sensor->applyHalf(scene.seed, frame, 1, images.rightRgbaHalf);
+            }
+            dataset.writeFrame(frame, images, cameras.left, rig.baseline);
+            progress.frameDone(++done, frame);
         }
     }
-
     uint32_t messages = ctx.device.validationMessageCount();
     require(messages == 0, std::to_string(messages) + " Vulkan validation message(s) were reported (see above)");
+
+    // The manifest: everything needed to reproduce and verify the files, and nothing that changes between two
+    // runs of the same command (no dates, no timings), so identical datasets have identical manifests.
+    std::vector<std::string> files = {"frames.jsonl"};
+    if (rig.stereo()) files.push_back("calib.txt");
+    for (uint32_t frame = firstFrame; frame < endFrame; ++frame)
+        for (std::string& file : dataset.frameFiles(frame)) files.push_back(std::move(file));
+    nlohmann::json options_ = {{"resolution", std::to_string(width) + "x" + std::to_string(height)},
+                               {"samples", samples},
+                               {"no_vegetation", options.noVegetation},
+                               {"time", options.time}};
+    if (options.cameraPosition || options.cameraLookAt || options.fovYDegrees) options_["camera_override"] = true;
+    std::string sceneHash = options.scenePath.empty() ? sha256Hex(std::string_view("<built-in>"))
+                                                      : sha256File(options.scenePath);
+    nlohmann::json info = {{"format", "sward-dataset-1"},
+                           {"scene", options.scenePath.empty() ? "<built-in>" : options.scenePath},
+                           {"scene_sha256", sceneHash},
+                           {"seed", scene.seed},
+                           {"frames", {firstFrame, endFrame}},
+                           {"shard", options.shard ? nlohmann::json(*options.shard) : nlohmann::json(nullptr)},
+                           {"options", options_},
+                           {"sward_revision", SWARD_REVISION},
+                           {"device", ctx.device.name()},
+                           {"driver", ctx.device.driver()}};
+    std::string manifest = options.shard ? "manifest.shard-" + std::to_string(shardIndex) + "-of-" +
+                                               std::to_string(shardCount) + ".json"
+                                         : "manifest.json";
+    dataset.writeManifest(manifest, info, files);
+
     double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    std::printf("sward-render: %s, %u frame(s) %u:%u, %ux%u, %ux MSAA -> %s (left/, depth/, preview/) in %.2f s\n",
-                scene.name.c_str(), endFrame - firstFrame, firstFrame, endFrame, width, height, samples,
-                options.outDir.c_str(), seconds);
+    std::printf("sward-render: %s, frames %u:%u (%zu rendered, %u already complete), %ux%u, %ux MSAA, %s -> %s in %.2f s\n",
+                scene.name.c_str(), firstFrame, endFrame, todo.size(), skipped, width, height, samples,
+                rig.stereo() ? "stereo" : "mono", options.outDir.c_str(), seconds);
 }
 
 void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end) {

@@ -21,14 +21,18 @@ struct RenderJobOptions {
     bool noVegetation = false;              // bare ground (same scene otherwise)
     double time = 0.0;                      // simulation time offset added to every frame, seconds
     std::optional<std::string> frames;      // "A:B" = frames A .. B-1; default: the scene's whole sequence
+    std::optional<std::string> shard;       // "I/N": the I-th of N contiguous blocks of the selected frames
+    std::optional<uint64_t> seed;           // overrides the scene's seed (terrain, placement, gusts, noise)
+    bool quiet = false;                     // no progress line even on a terminal
 };
 
 // Parses "A:B" (0 <= A < B): frames A .. B-1. Throws a clear error otherwise.
 void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end);
 
-// Runs the job; throws sward::Error with a one-line message on bad input or failure. Writes, per frame NNNNNN,
-// <out>/left/NNNNNN.exr, <out>/depth/NNNNNN.exr and <out>/preview/NNNNNN.png. Frame i is at simulation time
-// options.time + i * sequence.time_step.
+// Runs the job; throws sward::Error with a one-line message on bad input or failure. Writes the dataset described
+// in docs/dataset-format.md (dataset_writer.h). Frame i shows simulation tick i (time i * sequence.time_step;
+// the wind sees options.time added). Frames whose files all exist already are skipped (resume); the interaction
+// simulation still runs every tick from 0, so any frame range or shard shows exactly what a full run shows.
 void runRenderJob(const RenderJobOptions& options);
 
 } // namespace sward

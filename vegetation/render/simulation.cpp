@@ -12,10 +12,11 @@ Simulation::Simulation(Context& ctx, const Scene& scene, const Heightfield& terr
 
 void Simulation::recordNextTick(VkCommandBuffer cmd, uint32_t slot) {
     uint64_t tick = world_.tick();
-    double time = double(tick) * scene_.sequence.timeStep;
-    std::vector<Collider> colliders =
-        actorColliders(scene_.actors, terrain_, time, tick, float(scene_.sequence.timeStep));
+    static const std::vector<ObjectModel> kNoModels;
+    std::vector<Collider> colliders = sceneColliders(scene_, models_ ? *models_ : kNoModels, terrain_, tick);
+    colliders.insert(colliders.end(), external_.begin(), external_.end());
     last_ = world_.step(colliders);
+    lastColliders_ = std::move(colliders);
     collisionMs_ += last_.stats.cpuMs;
     gpu_.record(cmd, last_.contacts, last_.activeFields, scene_.interaction.recovery, slot);
 }

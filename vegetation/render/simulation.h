@@ -24,6 +24,12 @@ public:
     void runTicksBefore(uint64_t tick);
     // Runs the collision pass of the next tick and records its GPU update into `cmd`.
     void recordNextTick(VkCommandBuffer cmd, uint32_t slot);
+    // The scene objects' models (loadObjectModels), for their node colliders; must outlive the simulation.
+    void setObjectModels(const std::vector<ObjectModel>* models) { models_ = models; }
+    // Colliders not described by the scene (e.g. a vehicle driven live in sward-view), added to the scene
+    // actors' colliders of every following tick until replaced. Ids must not clash with actorColliders' ids.
+    void setExternalColliders(std::vector<Collider> colliders) { external_ = std::move(colliders); }
+    const std::vector<Collider>& lastColliders() const { return lastColliders_; } // of the latest tick
 
     InteractionWorld& world() { return world_; }
     InteractionGpu& gpu() { return gpu_; }
@@ -37,6 +43,8 @@ private:
     InteractionWorld world_;
     InteractionGpu gpu_;
     TickResult last_;
+    std::vector<Collider> external_, lastColliders_;
+    const std::vector<ObjectModel>* models_ = nullptr;
     double collisionMs_ = 0.0;
 };
 

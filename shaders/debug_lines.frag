@@ -1,0 +1,6 @@
+#version 460
+// sward-view overlay lines: unlit linear HDR colour (bright enough to read after the tonemap).
+layout(location = 0) in vec3 inColor;
+layout(location = 0) out vec4 outColor;
+
+void main() { outColor = vec4(inColor, 1.0); }

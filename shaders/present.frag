@@ -1,0 +1,18 @@
+#version 460
+// sward-view: tonemaps the resolved linear HDR image into the swapchain with exactly the curve of
+// engine/image_files.cpp tonemapPreview (exposure, then Narkowicz's ACES fit), so the window shows what the
+// PNG previews show. SRGB_TARGET: the swapchain format encodes sRGB itself; else it is encoded here.
+layout(constant_id = 0) const bool SRGB_TARGET = true;
+
+layout(set = 0, binding = 0) uniform sampler2D hdr;
+layout(push_constant) uniform Push { float exposure; } push;
+
+layout(location = 0) in vec2 inUv;
+layout(location = 0) out vec4 outColor;
+
+void main() {
+    vec3 x = max(texelFetch(hdr, ivec2(gl_FragCoord.xy), 0).rgb * push.exposure, vec3(0.0));
+    x = clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+    if (!SRGB_TARGET) x = mix(12.92 * x, 1.055 * pow(x, vec3(1.0 / 2.4)) - 0.055, greaterThan(x, vec3(0.0031308)));
+    outColor = vec4(x, 1.0);
+}

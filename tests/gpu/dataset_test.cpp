@@ -1,0 +1,284 @@
+// sward-render datasets read back as a user's tools read them (OpenCV, a PFM reader of our own, the JSON files):
+// ground-truth consistency, shards, resume after a kill, identical manifests, bare-ground runs, rover tracks.
+#include "gpu_test.h"
+
+#include "shared/gpu_layout.h"
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <sys/wait.h>
+
+using sward::test::tempDir;
+
+namespace {
+
+const std::string kScene = SWARD_TEST_DATA_DIR "/dataset_scene.json";
+
+struct RunResult {
+    int exitCode = -1;
+    std::string out, err;
+};
+
+std::string readFile(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::stringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+RunResult render(const std::string& args, const std::string& prefix = "") {
+    std::string dir = tempDir("dataset-log");
+    std::string command = prefix + " " SWARD_RENDER_EXE " " + args + " --validation >" + dir + "/out.txt 2>" + dir + "/err.txt";
+    int status = std::system(command.c_str());
+    int code = WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
+    return {code, readFile(dir + "/out.txt"), readFile(dir + "/err.txt")};
+}
+
+nlohmann::json readJson(const std::string& path) { return nlohmann::json::parse(readFile(path)); }
+
+// Middlebury calib.txt as key -> value text.
+std::map<std::string, std::string> readCalib(const std::string& path) {
+    std::map<std::string, std::string> values;
+    std::istringstream lines(readFile(path));
+    for (std::string line; std::getline(lines, line);)
+        if (auto eq = line.find('='); eq != std::string::npos) values[line.substr(0, eq)] = line.substr(eq + 1);
+    return values;
+}
+
+// A deliberately independent PFM reader: "Pf", width height, negative scale = little endian, bottom row first.
+cv::Mat readPfm(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::string magic;
+    int width = 0, height = 0;
+    double scale = 0;
+    file >> magic >> width >> height >> scale;
+    file.get(); // the single whitespace byte before the data
+    EXPECT_EQ(magic, "Pf");
+    EXPECT_LT(scale, 0.0) << "expected little-endian data";
+    cv::Mat image(height, width, CV_32F);
+    for (int row = height - 1; row >= 0; --row) file.read(reinterpret_cast<char*>(image.ptr<float>(row)), width * 4);
+    EXPECT_TRUE(file.good()) << path;
+    return image;
+}
+
+cv::Mat readImage(const std::string& path) {
+    cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    EXPECT_FALSE(image.empty()) << "cannot read " << path;
+    return image;
+}
+
+std::vector<std::string> manifestFiles(const nlohmann::json& manifest) {
+    std::vector<std::string> files;
+    for (auto it = manifest.at("files").begin(); it != manifest.at("files").end(); ++it) files.push_back(it.key());
+    return files;
+}
+
+// One full reference run of the test scene, shared by the tests that compare against it.
+const std::string& referenceRun() {
+    static const std::string dir = [] {
+        std::string out = tempDir("dataset-reference");
+        RunResult r = render(kScene + " --out " + out);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return out;
+    }();
+    return dir;
+}
+
+} // namespace
+
+TEST(Dataset, DisparityPfmKittiAndCalibAgreeWithDepthEverywhere) {
+    const std::string& dir = referenceRun();
+    auto calib = readCalib(dir + "/calib.txt");
+    double f = 0, cx = 0, cy = 0;
+    ASSERT_EQ(std::sscanf(calib.at("cam0").c_str(), "[%lf 0 %lf; 0 %*f %lf", &f, &cx, &cy), 3) << calib.at("cam0");
+    const double baselineMm = std::stod(calib.at("baseline")), doffs = std::stod(calib.at("doffs"));
+    EXPECT_EQ(std::stoi(calib.at("width")), 160);
+    EXPECT_EQ(std::stoi(calib.at("height")), 120);
+
+    for (const char* frame : {"000000", "000005"}) {
+        cv::Mat depth = readImage(dir + "/depth/" + frame + ".exr");
+        cv::Mat disparity = readImage(dir + "/disparity/" + frame + ".exr");
+        cv::Mat kitti = readImage(dir + "/disparity/" + frame + ".png");
+        cv::Mat pfm = readPfm(dir + "/disparity/" + frame + ".pfm");
+        ASSERT_EQ(depth.type(), CV_32F);
+        ASSERT_EQ(disparity.type(), CV_32F);
+        ASSERT_EQ(kitti.type(), CV_16U);
+        int valid = 0, sky = 0;
+        for (int y = 0; y < depth.rows; ++y)
+            for (int x = 0; x < depth.cols; ++x) {
+                const float z = depth.at<float>(y, x), d = disparity.at<float>(y, x);
+                if (std::isinf(z)) { // sky: 0 in the EXR and KITTI, +inf in the PFM (Middlebury convention)
+                    ++sky;
+                    ASSERT_EQ(d, 0.0f);
+                    ASSERT_EQ(kitti.at<uint16_t>(y, x), 0);
+                    ASSERT_TRUE(std::isinf(pfm.at<float>(y, x)));
+                    continue;
+                }
+                ++valid;
+                ASSERT_GT(z, 0.0f);
+                // disparity = f * B / Z, B in metres
+                ASSERT_NEAR(d, f * baselineMm * 1e-3 / z, 1e-4 * d) << x << "," << y;
+                // calib.txt reproduces the depth: Z[mm] = baseline * f / (d + doffs)
+                ASSERT_NEAR(baselineMm * f / (d + doffs) * 1e-3, z, 1e-4 * z);
+                ASSERT_EQ(pfm.at<float>(y, x), d);
+                ASSERT_LE(std::abs(kitti.at<uint16_t>(y, x) / 256.0 - d), 0.5 / 256.0 + 1e-6);
+            }
+        EXPECT_GT(valid, 1000);
+        EXPECT_GT(sky, 100);
+    }
+}
+
+TEST(Dataset, SemanticAndInstanceMasksMatchTheDepth) {
+    const std::string& dir = referenceRun();
+    cv::Mat depth = readImage(dir + "/depth/000003.exr");
+    cv::Mat semantic = readImage(dir + "/semantic/000003.png");
+    cv::Mat instance = readImage(dir + "/instance/000003.exr");
+    ASSERT_EQ(semantic.type(), CV_8U);
+    ASSERT_EQ(instance.type(), CV_32F);
+    std::map<int, int> classes;
+    for (int y = 0; y < depth.rows; ++y)
+        for (int x = 0; x < depth.cols; ++x) {
+            int c = semantic.at<uint8_t>(y, x);
+            float id = instance.at<float>(y, x);
+            ++classes[c];
+            ASSERT_EQ(c == sward::gpu::kSemanticSky, std::isinf(depth.at<float>(y, x))) << x << "," << y;
+            const bool plant = (c >= 2 && c <= 5) || c == sward::gpu::kSemanticFelled || c == sward::gpu::kSemanticCut;
+            ASSERT_EQ(plant, id > 0.0f) << "plants and only plants carry plant ids, at " << x << "," << y;
+            ASSERT_EQ(id, std::floor(id));
+        }
+    EXPECT_GT(classes[sward::gpu::kSemanticGround], 0);
+    EXPECT_GT(classes[3], 1000) << "grass";
+}
+
+TEST(Dataset, RoverDrivingStraightLeavesFelledPlantsBehindIt) {
+    const std::string& dir = referenceRun();
+    auto calib = readCalib(dir + "/calib.txt");
+    double f = 0, cx = 0, cy = 0;
+    ASSERT_EQ(std::sscanf(calib.at("cam0").c_str(), "[%lf 0 %lf; 0 %*f %lf", &f, &cx, &cy), 3);
+    std::vector<nlohmann::json> records;
+    std::istringstream lines(readFile(dir + "/frames.jsonl"));
+    for (std::string line; std::getline(lines, line);) records.push_back(nlohmann::json::parse(line));
+    ASSERT_EQ(records.size(), 6u);
+
+    int felledFirst = 0, felledLast = 0;
+    for (int frame : {0, 5}) {
+        char name[16];
+        std::snprintf(name, sizeof name, "%06d", frame);
+        cv::Mat semantic = readImage(dir + "/semantic/" + name + ".png");
+        cv::Mat depth = readImage(dir + "/depth/" + name + ".exr");
+        const nlohmann::json& pose = records[size_t(frame)].at("left_pose");
+        // The rover drives from (50, 46) towards +y at 4 m/s (tests/gpu/data/dataset_scene.json).
+        const double roverY = 46.0 + 4.0 * records[size_t(frame)].at("time").get<double>();
+        int felled = 0;
+        for (int y = 0; y < depth.rows; ++y)
+            for (int x = 0; x < depth.cols; ++x) {
+                if (semantic.at<uint8_t>(y, x) != sward::gpu::kSemanticFelled) continue;
+                ++felled;
+                const double z = depth.at<float>(y, x);
+                const double c[3] = {(x - cx) / f * z, (y - cy) / f * z, z}; // OpenCV pixel centres
+                double world[3];
+                for (int r = 0; r < 3; ++r)
+                    world[r] = pose[r][0].get<double>() * c[0] + pose[r][1].get<double>() * c[1] +
+                               pose[r][2].get<double>() * c[2] + pose[r][3].get<double>();
+                // On the rover's track (wheels 0.3 m either side of x = 50; flattened blades reach ~0.5 m) and
+                // behind (or under) the front axle.
+                EXPECT_NEAR(world[0], 50.0, 1.0) << "felled pixel off the track at " << x << "," << y;
+                EXPECT_LT(world[1], roverY + 0.35 + 0.5) << "felled pixel ahead of the rover at " << x << "," << y;
+            }
+        (frame == 0 ? felledFirst : felledLast) = felled;
+    }
+    EXPECT_GT(felledLast, felledFirst + 20) << "the track grows as the rover drives on";
+}
+
+TEST(Dataset, ShardsTogetherEqualTheFullRunFileByFile) {
+    const std::string& full = referenceRun();
+    std::string sharded = tempDir("dataset-shards");
+    for (const char* shard : {"0/2", "1/2"}) {
+        RunResult r = render(kScene + " --out " + sharded + " --shard " + shard);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+    }
+    nlohmann::json manifest = readJson(full + "/manifest.json");
+    nlohmann::json shard0 = readJson(sharded + "/manifest.shard-0-of-2.json");
+    nlohmann::json shard1 = readJson(sharded + "/manifest.shard-1-of-2.json");
+    EXPECT_EQ(shard0.at("frames"), nlohmann::json::array({0, 3}));
+    EXPECT_EQ(shard1.at("frames"), nlohmann::json::array({3, 6}));
+    std::vector<std::string> files = manifestFiles(manifest);
+    EXPECT_GT(files.size(), 50u);
+    for (const std::string& file : files) {
+        const nlohmann::json& shardFiles = shard0.at("files").contains(file) ? shard0.at("files") : shard1.at("files");
+        ASSERT_TRUE(shardFiles.contains(file)) << file << " is in no shard";
+        EXPECT_EQ(shardFiles.at(file), manifest.at("files").at(file)) << file << " differs";
+        EXPECT_EQ(readFile(full + "/" + file), readFile(sharded + "/" + file)) << file;
+    }
+}
+
+TEST(Dataset, KilledRunResumesToIdenticalFilesAndManifest) {
+    const std::string& full = referenceRun();
+    std::string dir = tempDir("dataset-resume");
+    // Kill the first run hard part-way (after some frames, or before any: both must resume correctly) and leave
+    // a stale temporary behind as a crash mid-write would.
+    RunResult killed = render(kScene + " --out " + dir, "timeout -s KILL 8");
+    std::ofstream(dir + "/left/000004.exr.tmp") << "half-written";
+    RunResult resumed = render(kScene + " --out " + dir);
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/left/000004.exr.tmp"));
+    EXPECT_EQ(readFile(full + "/manifest.json"), readFile(dir + "/manifest.json"))
+        << "killed with exit " << killed.exitCode << ", then: " << resumed.out;
+    // A third run has nothing left to do and changes nothing.
+    RunResult again = render(kScene + " --out " + dir);
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_NE(again.out.find("0 rendered, 6 already complete"), std::string::npos) << again.out;
+    EXPECT_EQ(readFile(full + "/manifest.json"), readFile(dir + "/manifest.json"));
+}
+
+TEST(Dataset, TwoRunsGiveIdenticalManifests) {
+    const std::string& full = referenceRun();
+    std::string dir = tempDir("dataset-again");
+    ASSERT_EQ(render(kScene + " --out " + dir + " --frames 0:3").exitCode, 0);
+    ASSERT_EQ(render(kScene + " --out " + dir + " --frames 3:6").exitCode, 0);
+    ASSERT_EQ(render(kScene + " --out " + dir).exitCode, 0); // all complete: hashes only
+    EXPECT_EQ(readFile(full + "/manifest.json"), readFile(dir + "/manifest.json"));
+    nlohmann::json manifest = readJson(dir + "/manifest.json");
+    for (const char* key : {"scene_sha256", "seed", "sward_revision", "device", "driver", "options"})
+        EXPECT_TRUE(manifest.contains(key)) << key;
+}
+
+TEST(Dataset, NoVegetationHasNoVegetationPixels) {
+    std::string dir = tempDir("dataset-bare");
+    RunResult r = render(kScene + " --out " + dir + " --frames 0:1 --no-vegetation");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    cv::Mat semantic = readImage(dir + "/semantic/000000.png");
+    cv::Mat instance = readImage(dir + "/instance/000000.exr");
+    int ground = 0;
+    for (int y = 0; y < semantic.rows; ++y)
+        for (int x = 0; x < semantic.cols; ++x) {
+            int c = semantic.at<uint8_t>(y, x);
+            ASSERT_TRUE(c == sward::gpu::kSemanticSky || c == sward::gpu::kSemanticGround) << "class " << c;
+            ASSERT_EQ(instance.at<float>(y, x), 0.0f);
+            ground += c == sward::gpu::kSemanticGround;
+        }
+    EXPECT_GT(ground, 1000);
+}
+
+TEST(Dataset, MalformedSceneNamesTheJsonPathAndWritesNothing) {
+    std::string dir = tempDir("dataset-bad");
+    std::string scenePath = dir + "/bad.json";
+    nlohmann::json scene = readJson(kScene);
+    scene["camera"]["baseline"] = -1;
+    std::ofstream(scenePath) << scene.dump();
+    RunResult r = render(scenePath + " --out " + dir + "/out");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("camera.baseline"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+    r = render(kScene + " --out " + dir + "/out --shard 2/2");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("shard"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+}

@@ -1,0 +1,112 @@
+// sward-view through a real window and swapchain: Xvfb (xvfb-run) + lavapipe, validation on. The viewer renders
+// 30 frames while the window is resized and minimised, drives the rover, then writes the last presented
+// swapchain image; the test checks the run was clean and the image shows grass.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+struct RunResult {
+    int exitCode = -1;
+    std::string output; // stdout + stderr
+};
+
+RunResult run(const std::string& command) {
+    RunResult r;
+    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buffer;
+    while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) r.output.append(buffer.data(), n);
+    int status = pclose(pipe);
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+std::string tempPath(const std::string& name) {
+    auto dir = std::filesystem::temp_directory_path() / ("sward-view-test-" + std::to_string(getpid()));
+    std::filesystem::create_directories(dir);
+    return (dir / name).string();
+}
+
+// A virtual X server for one command: -a picks a free display number.
+std::string underXvfb(const std::string& args) {
+    return "xvfb-run -a -s '-screen 0 800x600x24' " SWARD_VIEW_EXE " " + args;
+}
+
+int countLines(const std::string& s, const std::string& needle) {
+    int n = 0;
+    std::istringstream lines(s);
+    for (std::string line; std::getline(lines, line);) n += line.find(needle) != std::string::npos;
+    return n;
+}
+
+} // namespace
+
+TEST(SwardView, RendersGrassThroughTheSwapchainWhileResizedAndMinimised) {
+    std::string png = tempPath("view.png");
+    std::filesystem::remove(png);
+    RunResult r = run(underXvfb(std::string(SWARD_VIEW_TEST_SCENE) +
+                                " --validation --size 320x240 --samples 1 --frames 30 --resize-at 8 256x192"
+                                " --minimize-at 16 --autodrive 2 --overlay active-fields,updated-plants"
+                                " --screenshot " + png));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(countLines(r.output, "sward: validation"), 0) << r.output;
+    EXPECT_EQ(countLines(r.output, "validation on"), 1) << "validation must have been enabled:\n" << r.output;
+    // The resize went through a swapchain recreation and the final frame has the new size.
+    EXPECT_NE(r.output.find("30 frame(s), final size 256x192"), std::string::npos) << r.output;
+
+    cv::Mat image = cv::imread(png, cv::IMREAD_COLOR); // BGR
+    ASSERT_FALSE(image.empty()) << "no screenshot at " << png << "\n" << r.output;
+    EXPECT_EQ(image.cols, 256);
+    EXPECT_EQ(image.rows, 192);
+    // Grass: green clearly above red and blue. The camera looks down into the meadow, so most pixels are plants.
+    int grass = 0;
+    for (int y = 0; y < image.rows; ++y)
+        for (int x = 0; x < image.cols; ++x) {
+            cv::Vec3b p = image.at<cv::Vec3b>(y, x);
+            grass += p[1] > 30 && p[1] > p[2] + 8 && p[1] > p[0] + 8;
+        }
+    double fraction = double(grass) / double(image.total());
+    EXPECT_GT(fraction, 0.25) << "grass pixels: " << fraction;
+    cv::Scalar mean, stddev;
+    cv::meanStdDev(image, mean, stddev);
+    EXPECT_GT(stddev[1], 8.0) << "a flat image is not a rendered meadow";
+}
+
+TEST(SwardView, KeysToggleMsaaWriteScreenshotsAndReloadWithoutValidationMessages) {
+    std::string dir = tempPath("shots");
+    std::filesystem::remove_all(dir);
+    // m: 4x MSAA on (renderer rebuilt, interaction kept), f12: EXR colour + depth + PNG, r: reload the scene,
+    // 2 and 1: overlays off / LOD colours on, f: stop driving, n + space: single-step while paused.
+    RunResult r = run(underXvfb(std::string(SWARD_VIEW_TEST_SCENE) +
+                                " --validation --size 240x180 --samples 1 --frames 16 --autodrive 2"
+                                " --press 3:m,6:f12,8:r,10:2,10:1,11:f,12:space,13:n,14:m --screenshot-dir " + dir));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(countLines(r.output, "sward: validation"), 0) << r.output;
+    EXPECT_NE(r.output.find("reloaded"), std::string::npos) << r.output;
+    for (const char* file : {"/view-test-0000.exr", "/view-test-0000-depth.exr", "/view-test-0000.png"})
+        EXPECT_TRUE(std::filesystem::exists(dir + file)) << file << "\n" << r.output;
+    cv::Mat depth = cv::imread(dir + "/view-test-0000-depth.exr", cv::IMREAD_UNCHANGED);
+    ASSERT_FALSE(depth.empty());
+    EXPECT_EQ(depth.cols, 240);
+    // The camera looks down into the meadow: the centre pixel is ground or grass a few metres away.
+    float centre = depth.at<float>(depth.rows / 2, depth.cols / 2);
+    EXPECT_GT(centre, 0.5f);
+    EXPECT_LT(centre, 100.0f);
+}
+
+TEST(SwardView, MissingSceneIsOneClearError) {
+    RunResult r = run(std::string(SWARD_VIEW_EXE) + " /nonexistent/scene.json --frames 1");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("/nonexistent/scene.json"), std::string::npos) << r.output;
+    EXPECT_EQ(countLines(r.output, "error"), 1) << r.output;
+}
