@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
     std::string resolution, position, lookAt;
     std::optional<uint32_t> samples;
     std::optional<double> fov;
-    app.add_option("scene", options.scenePath, "Scene JSON file (default: built-in meadow)");
+    app.add_option("scene", options.scenePath, "Scene JSON file (default: the scene format's built-in defaults)");
     app.add_option("--out,-o", options.outDir, "Output folder (created if missing)")->capture_default_str();
     app.add_option("--resolution", resolution, "Image size WIDTHxHEIGHT, e.g. 1280x720");
     app.add_option("--samples", samples, "MSAA samples: 1 or 4");
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
     std::optional<uint64_t> seed;
     app.add_option("--seed", seed, "Override the scene's seed (terrain, plants, gusts, sensor noise)");
     app.add_flag("--quiet,-q", options.quiet, "No progress line");
-    app.add_option("--time", options.time, "Simulation time of the frame in seconds (wind)")->capture_default_str();
+    app.add_option("--time", options.time, "Time offset in seconds added to every frame's wind")->capture_default_str();
     app.add_flag("--no-vegetation", options.noVegetation, "Render the same scene without vegetation");
     app.add_flag("--validation", options.validation, "Enable Vulkan validation; any message fails the run");
     try {
