@@ -187,7 +187,7 @@ void runRenderJob(const RenderJobOptions& options) {
     Context ctx(DeviceOptions{.deviceFilter = options.device, .validation = options.validation || DeviceOptions{}.validation});
     {
         SceneRenderer renderer(ctx, scene, terrain, samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
-                               vegetation ? &*vegetation : nullptr, atlas ? &*atlas : nullptr);
+                               vegetation ? &*vegetation : nullptr, atlas ? &*atlas : nullptr, &models);
         // The interaction simulation reads the tile's static records on the CPU; without colliders the upload
         // is all that is needed and the CPU copy goes.
         std::optional<Simulation> simulation;

@@ -1,6 +1,7 @@
 #include "scene_renderer.h"
 
 #include "barriers.h"
+#include "object_renderer.h"
 #include "shared/gpu_layout.h"
 #include "timestamps.h"
 #include "vegetation_renderer.h"
@@ -69,7 +70,8 @@ template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) 
 } // namespace
 
 SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, VkSampleCountFlagBits samples,
-                             const VegetationTile* vegetation, const Atlas* atlas)
+                             const VegetationTile* vegetation, const Atlas* atlas,
+                             const std::vector<ObjectModel>* models)
     : ctx_(ctx), scene_(scene), samples_(samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1) {
     terrainMinHeight_ = terrain.minHeight();
     terrainMaxHeight_ = terrain.maxHeight();
@@ -137,16 +139,17 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield
     terrainDesc.depthBiasSlope = -1.5f;
     terrainShadowPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, layout);
 
-    if (vegetation && atlas)
-        vegetation_ = std::make_unique<VegetationRenderer>(
-            ctx, scene, *vegetation, *atlas,
-            VegetationPassFormats{.mainColor = mainDesc.colors[0].format,
-                                  .mainDepth = mainDesc.depthFormat,
-                                  .mainSamples = mainDesc.samples,
-                                  .truthDepthBits = truthDesc.colors[0].format,
-                                  .truthLabel = truthDesc.colors[1].format,
-                                  .truthDepth = truthDesc.depthFormat,
-                                  .shadowDepth = VK_FORMAT_D32_SFLOAT});
+    const VegetationPassFormats formats{.mainColor = mainDesc.colors[0].format,
+                                        .mainDepth = mainDesc.depthFormat,
+                                        .mainSamples = mainDesc.samples,
+                                        .truthDepthBits = truthDesc.colors[0].format,
+                                        .truthLabel = truthDesc.colors[1].format,
+                                        .truthDepth = truthDesc.depthFormat,
+                                        .shadowDepth = VK_FORMAT_D32_SFLOAT};
+    if (vegetation && atlas) vegetation_ = std::make_unique<VegetationRenderer>(ctx, scene, *vegetation, *atlas, formats);
+    if (!scene.objects.empty())
+        objects_ = models ? std::make_unique<ObjectRenderer>(ctx, scene, terrain, formats, *models)
+                          : std::make_unique<ObjectRenderer>(ctx, scene, terrain, formats);
     skyPipeline_ = createGraphicsPipeline(ctx.device,
                                           {.vertexShader = "sky.vert",
                                            .fragmentShader = "sky.frag",
@@ -162,6 +165,7 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield
 SceneRenderer::~SceneRenderer() {
     ctx_.submitter.waitIdle();
     vegetation_.reset();
+    objects_.reset();
     shadowMap_.reset();
     vkDestroySampler(ctx_.vk(), shadowSampler_, nullptr);
     destroyPipeline(ctx_.device, terrainPipeline_);
@@ -242,6 +246,7 @@ void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint
     if (timers) timers->begin(cmd, "main");
     main.begin(cmd);
     drawTerrain(cmd, terrainPipeline_, {frame, shadow});
+    if (objects_) objects_->recordMain(cmd, frame, shadow, slot);
     if (vegetation_ && baked) vegetation_->drawBaked(cmd, *baked, frame, shadow, slot);
     else if (vegetation_) vegetation_->draw(cmd, PlantPass::Main, frame, shadow, slot);
     // Sky last: the depth test (GREATER_OR_EQUAL against the far-plane clear) shades only uncovered pixels.
@@ -268,6 +273,7 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
     const uint32_t firstSlot = (frameIndex % kFramesInFlight) * kMaxViews;
     for (uint32_t v = 0; v < views.size(); ++v) writeConstants(firstSlot + v, *views[v].camera, reference, timeSeconds);
     DescriptorBinding frame = frameBinding(firstSlot), shadow = shadowBinding();
+    if (objects_) objects_->update(timeSeconds, frameIndex % kFramesInFlight);
 
     if (vegetation_) {
         if (timers) timers->begin(cmd, "expansion");
@@ -281,6 +287,7 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
     shadowMap_->begin(cmd);
     if (scene_.render.shadowMapSize > 0) {
         drawTerrain(cmd, terrainShadowPipeline_, {frame});
+        if (objects_) objects_->recordShadow(cmd, frame, frameIndex % kFramesInFlight);
         if (vegetation_) vegetation_->draw(cmd, PlantPass::Shadow, frame, shadow, frameIndex % kFramesInFlight);
     }
     shadowMap_->end(cmd);
@@ -293,6 +300,7 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
         if (timers) timers->begin(cmd, "truth");
         views[v].truth->begin(cmd);
         drawTerrain(cmd, terrainTruthPipeline_, {frameBinding(slot)});
+        if (objects_) objects_->recordTruth(cmd, frameBinding(slot), frameIndex % kFramesInFlight);
         if (vegetation_) vegetation_->draw(cmd, PlantPass::Truth, frameBinding(slot), shadow, frameIndex % kFramesInFlight);
         views[v].truth->end(cmd);
         if (timers) timers->end(cmd);
@@ -303,6 +311,7 @@ void SceneRenderer::recordMainOnly(VkCommandBuffer cmd, RenderTarget& main, cons
                                    uint32_t frameIndex, GpuTimers* timers, const BakedPlants* baked) {
     const uint32_t slot = frameIndex % kFramesInFlight;
     writeConstants(slot * kMaxViews, camera, camera, timeSeconds);
+    if (objects_) objects_->update(timeSeconds, slot);
     if (vegetation_ && !baked) {
         if (timers) timers->begin(cmd, "expansion");
         vegetation_->expand(cmd, camera, timeSeconds, slot);

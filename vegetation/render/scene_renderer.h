@@ -24,7 +24,9 @@
 namespace sward {
 
 class GpuTimers;
+class ObjectRenderer;
 class VegetationRenderer;
+struct ObjectModel;
 struct BakedPlants;
 struct VegetationTile;
 
@@ -35,8 +37,11 @@ RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height);
 class SceneRenderer {
 public:
     // vegetation / atlas may be null (bare terrain). The tile and atlas are uploaded; the CPU copies may go.
+    // The scene's objects are drawn from `models` (loadObjectModels) or, when null, models loaded here.
+    // `terrain` must outlive the renderer (objects are placed on it every frame).
     SceneRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, VkSampleCountFlagBits samples,
-                  const VegetationTile* vegetation = nullptr, const Atlas* atlas = nullptr);
+                  const VegetationTile* vegetation = nullptr, const Atlas* atlas = nullptr,
+                  const std::vector<ObjectModel>* models = nullptr);
     ~SceneRenderer();
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
@@ -98,6 +103,7 @@ private:
     std::unique_ptr<RenderTarget> shadowMap_;
     VkSampler shadowSampler_ = VK_NULL_HANDLE;
     std::unique_ptr<VegetationRenderer> vegetation_;
+    std::unique_ptr<ObjectRenderer> objects_;
     uint32_t debugFlags_ = 0;
     Overlay overlay_;
 };
