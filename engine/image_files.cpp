@@ -12,6 +12,8 @@
 #include <stb_image_write.h>
 
 #include <algorithm>
+#include "atomic_file.h"
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -20,23 +22,6 @@
 namespace sward {
 
 namespace {
-
-// Runs `write(tmpPath)` then renames the temporary file over `path`; removes it on failure.
-template <typename F> void writeAtomically(const std::string& path, F&& write) {
-    std::string tmp = path + ".tmp";
-    try {
-        write(tmp);
-    } catch (const std::exception& e) {
-        std::remove(tmp.c_str());
-        throw Error("cannot write '" + path + "': " + e.what());
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::remove(tmp.c_str());
-        throw Error("cannot write '" + path + "': " + ec.message());
-    }
-}
 
 Imf::Header exrHeader(uint32_t width, uint32_t height) {
     Imf::Header header{int(width), int(height)};
@@ -49,7 +34,7 @@ Imf::Header exrHeader(uint32_t width, uint32_t height) {
 
 void writeExrRgbaHalf(const std::string& path, uint32_t width, uint32_t height, std::span<const uint16_t> rgbaHalf) {
     require(rgbaHalf.size() == size_t(width) * height * 4, "EXR colour buffer size does not match the image");
-    writeAtomically(path, [&](const std::string& tmp) {
+    writeFileAtomically(path, [&](const std::string& tmp) {
         Imf::Header header = exrHeader(width, height);
         const char* names[4] = {"R", "G", "B", "A"};
         for (const char* name : names) header.channels().insert(name, Imf::Channel(Imf::HALF));
@@ -67,7 +52,7 @@ void writeExrFloatChannels(const std::string& path, uint32_t width, uint32_t hei
                            const std::vector<std::string>& names, const std::vector<std::span<const float>>& planes) {
     require(names.size() == planes.size() && !names.empty(), "EXR channel names and planes do not match");
     for (auto& plane : planes) require(plane.size() == size_t(width) * height, "EXR plane size does not match the image");
-    writeAtomically(path, [&](const std::string& tmp) {
+    writeFileAtomically(path, [&](const std::string& tmp) {
         Imf::Header header = exrHeader(width, height);
         Imf::FrameBuffer frame;
         for (size_t c = 0; c < names.size(); ++c) {
@@ -91,7 +76,7 @@ void writePng8(const std::string& path, uint32_t width, uint32_t height, uint32_
                std::span<const uint8_t> pixels) {
     require(channels >= 1 && channels <= 4 && pixels.size() == size_t(width) * height * channels,
             "PNG buffer size does not match the image");
-    writeAtomically(path, [&](const std::string& tmp) {
+    writeFileAtomically(path, [&](const std::string& tmp) {
         if (!stbi_write_png(tmp.c_str(), int(width), int(height), int(channels), pixels.data(), int(width * channels)))
             throw std::runtime_error("PNG encoder failed");
     });

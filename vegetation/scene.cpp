@@ -224,6 +224,9 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
     // One clock: the interaction ticks with the sequence's frames.
     scene.interaction.recovery.timeStep = float(scene.sequence.timeStep);
     scene.actors = parseActors(root.raw("vehicles"), root.raw("colliders"), root.raw("gusts"), source);
+    // Gusts follow the scene seed (and so --seed) unless the scene pins their own.
+    if (const nlohmann::json* gusts = root.raw("gusts"); !gusts || !gusts->is_object() || !gusts->contains("seed"))
+        scene.actors.gusts.seed = scene.seed;
     // Model paths are relative to the scene file's folder (built-in scenes, "<...>", use them as given).
     scene.objects = parseObjects(root.raw("objects"), source,
                                  source.find('<') == std::string::npos ? std::filesystem::path(source).parent_path().string()
@@ -249,7 +252,10 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
         scene.vegetation.tileSize = scene.terrain.size;
         validateVegetationParams(scene.vegetation, source + " (vegetation.tile_size = terrain.size)");
     }
-    scene.vegetationEnabled = root.number("vegetation_enabled", 1.0, 0.0, 1.0) != 0.0;
+    if (const nlohmann::json* enabled = root.raw("vegetation_enabled"); enabled && enabled->is_boolean())
+        scene.vegetationEnabled = enabled->get<bool>();
+    else
+        scene.vegetationEnabled = root.number("vegetation_enabled", 1.0, 0.0, 1.0) != 0.0;
     scene.grassMapPath = resolve(root.string("grass_map", ""));
     if (scene.vegetation.tileSize > scene.terrain.size + 1e-3f)
         throw Error(source + ": 'vegetation.tile_size' (" + std::to_string(scene.vegetation.tileSize) +

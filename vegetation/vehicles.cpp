@@ -113,6 +113,8 @@ ActorParams parseActors(const nlohmann::json* vehicles, const nlohmann::json* co
             const nlohmann::json& j = (*colliders)[i];
             std::string where = source + ": 'colliders[" + std::to_string(i) + "]'";
             onlyKeys(j, {"shape", "kind", "radius", "length", "half_extents", "force", "cut_height", "path"}, where);
+            for (const char* key : {"shape", "kind"})
+                if (j.contains(key) && !j.at(key).is_string()) throw Error(where + "." + key + " must be a string");
             std::string shape = j.value("shape", "sphere"), kind = j.value("kind", "push");
             if (!j.contains("path")) throw Error(where + " needs a 'path'");
             MovingColliderParams m;

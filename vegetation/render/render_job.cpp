@@ -106,16 +106,23 @@ void runRenderJob(const RenderJobOptions& options) {
         scene.camera.hasPath = false;
         scene.camera.rig.mountObject.clear();
     }
-    if (options.cameraLookAt) {
+    if (options.cameraLookAt) { // a fixed target needs a fixed camera: the scene's position unless --camera
         scene.camera.lookAt = *options.cameraLookAt;
         scene.camera.lookAtUsesGround = false;
+        scene.camera.hasPath = false;
+        scene.camera.rig.mountObject.clear();
     }
     if (options.fovYDegrees) {
         require(*options.fovYDegrees >= 1.0 && *options.fovYDegrees <= 170.0, "--fov must be between 1 and 170 degrees");
         scene.camera.fovYDegrees = *options.fovYDegrees;
     }
     uint32_t firstFrame = 0, endFrame = scene.sequence.frames;
-    if (options.frames) parseFrameRange(*options.frames, firstFrame, endFrame);
+    if (options.frames) {
+        parseFrameRange(*options.frames, firstFrame, endFrame);
+        require(endFrame <= scene.sequence.frames,
+                "--frames " + *options.frames + " goes past the scene's sequence of " +
+                    std::to_string(scene.sequence.frames) + " frame(s) (sequence.frames)");
+    }
     uint32_t shardIndex = 0, shardCount = 1;
     if (options.shard) {
         parseShard(*options.shard, shardIndex, shardCount);
@@ -131,12 +138,30 @@ void runRenderJob(const RenderJobOptions& options) {
     if (withVegetation) {
         vegetation = buildVegetation(scene, terrain);
         atlas = buildAtlas(scene);
+        require(atlas->desc.rows.size() >= scene.vegetation.categoryCount,
+                scene.source + ": the atlas has " + std::to_string(atlas->desc.rows.size()) + " rows but 'vegetation' has " +
+                    std::to_string(scene.vegetation.categoryCount) + " categories (one row per category)");
     }
     const RigParams& rig = scene.camera.rig;
     auto rigAt = [&](uint32_t frame) {
         return sceneRig(scene, terrain, models, width, height, double(frame) * scene.sequence.timeStep);
     };
-    const RigCameras firstRig = rigAt(firstFrame); // also checks the mount before anything is written
+    RigCameras firstRig;
+    try { // also checks the mount before anything is written
+        firstRig = rigAt(firstFrame);
+    } catch (const Error& e) {
+        throw Error(scene.source + ": 'camera.mount': " + e.what());
+    }
+
+    // The sensor model checks its lens (invertible over the image) when built: before anything is written.
+    std::optional<SensorModel> sensor;
+    if (rig.sensor.enabled) {
+        try {
+            sensor.emplace(rig.sensor, Intrinsics::of(firstRig.left));
+        } catch (const Error& e) {
+            throw Error(scene.source + ": 'camera.sensor': " + e.what());
+        }
+    }
 
     DatasetWriter dataset(options.outDir, rig.stereo());
     dataset.prepare();
@@ -197,8 +222,6 @@ void runRenderJob(const RenderJobOptions& options) {
         } else {
             vegetation.reset();
         }
-        std::optional<SensorModel> sensor;
-        if (rig.sensor.enabled) sensor.emplace(rig.sensor, Intrinsics::of(firstRig.left));
 
         OffscreenFrame target(ctx, width, height, samples);
         Progress progress{!options.quiet && isatty(fileno(stderr)), uint32_t(todo.size())};

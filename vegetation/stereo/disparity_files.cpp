@@ -99,36 +99,6 @@ std::string formatMatrix(const std::array<double, 9>& m) {
 
 } // namespace
 
-void writeFileAtomically(const std::string& path, const std::function<void(const std::string&)>& write) {
-    const std::string tmp = path + ".tmp";
-    try {
-        write(tmp);
-    } catch (...) {
-        std::remove(tmp.c_str());
-        throw;
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::remove(tmp.c_str());
-        throw Error("cannot write '" + path + "': " + ec.message());
-    }
-}
-
-void writeBytesAtomically(const std::string& path, const void* data, size_t size) {
-    writeFileAtomically(path, [&](const std::string& tmp) {
-        std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
-        require(bool(file), "cannot write '" + path + "': cannot create '" + tmp + "'");
-        file.write(static_cast<const char*>(data), std::streamsize(size));
-        file.close();
-        require(!file.fail(), "cannot write '" + path + "': write failed (disk full?)");
-    });
-}
-
-void writeTextAtomically(const std::string& path, const std::string& text) {
-    writeBytesAtomically(path, text.data(), text.size());
-}
-
 void writePfm(const std::string& path, uint32_t width, uint32_t height, std::span<const float> disparity) {
     requireSize(path, width, height, disparity.size());
     std::string header = "Pf\n" + std::to_string(width) + " " + std::to_string(height) + "\n-1\n";

@@ -9,6 +9,8 @@
 // naming the file and the problem.
 #pragma once
 
+#include "atomic_file.h" // writeFileAtomically, writeTextAtomically
+
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -70,11 +72,5 @@ void writeMiddleburyCalib(const std::string& path, const StereoCalib& calib);
 // Parses calib.txt: "key=value" lines in any order; unknown keys are ignored (Middlebury files carry dyavg, dymax).
 // cam0, cam1, baseline, width, height and ndisp are required; doffs, isint, vmin and vmax default to 0.
 StereoCalib readMiddleburyCalib(const std::string& path);
-
-// Atomic file writing shared by the stereo tools: `write(tmpPath)` fills "<path>.tmp", which is then renamed over
-// <path>; on any failure the temporary file is removed and sward::Error names <path>.
-void writeFileAtomically(const std::string& path, const std::function<void(const std::string& tmpPath)>& write);
-void writeBytesAtomically(const std::string& path, const void* data, size_t size);
-void writeTextAtomically(const std::string& path, const std::string& text);
 
 } // namespace sward
