@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   # toolchain
-  g++ cmake ninja-build pkg-config git
+  g++ cmake ninja-build pkg-config git python3
   # Vulkan: loader + headers, lavapipe (Mesa's CPU driver), validation layers, shader compiler, vulkaninfo
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools vulkan-tools
   # maths, windowing, assets, image formats
