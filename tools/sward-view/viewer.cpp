@@ -4,6 +4,7 @@
 #include "context.h"
 #include "fly_camera.h"
 #include "image_files.h"
+#include "objects.h"
 #include "overlay.h"
 #include "pipelines.h"
 #include "render_target.h"
@@ -37,14 +38,25 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // GLFW is a process-wide library: initialised once per viewer run, errors turned into one-line messages.
+std::string lastGlfwError;
+bool glfwReady = false;
+
 struct GlfwLibrary {
     GlfwLibrary() {
-        glfwSetErrorCallback([](int code, const char* text) { std::fprintf(stderr, "sward: GLFW error %d: %s\n", code, text); });
-        require(glfwInit() == GLFW_TRUE, "cannot open a window: GLFW failed to initialise (is DISPLAY set? under CI "
-                                         "run it inside xvfb-run)");
+        // Until GLFW is up its errors become part of our one error line; afterwards they are logged.
+        glfwSetErrorCallback([](int code, const char* text) {
+            lastGlfwError = text;
+            if (glfwReady) std::fprintf(stderr, "sward: GLFW error %d: %s\n", code, text);
+        });
+        const bool ok = glfwInit() == GLFW_TRUE; // before the message is built: it quotes GLFW's error
+        require(ok, "cannot open a window: " + lastGlfwError + " (no display? headless, run it inside xvfb-run)");
+        glfwReady = true;
         require(glfwVulkanSupported() == GLFW_TRUE, "GLFW found no Vulkan loader with window-system support");
     }
-    ~GlfwLibrary() { glfwTerminate(); }
+    ~GlfwLibrary() {
+        glfwReady = false;
+        glfwTerminate();
+    }
 };
 
 struct Window {
@@ -105,13 +117,15 @@ struct SceneState {
     Scene scene;
     Heightfield terrain;
     std::optional<VegetationTile> tile;
+    std::vector<ObjectModel> models; // the scene's glTF objects (drawn and colliding)
     std::unique_ptr<SceneRenderer> renderer;
     std::unique_ptr<Simulation> simulation;
     std::unique_ptr<Overlay> overlay;
 };
 
 std::unique_ptr<SceneState> loadSceneState(Context& ctx, const Scene& scene, uint32_t samples) {
-    auto state = std::make_unique<SceneState>(SceneState{scene, buildTerrain(scene), std::nullopt, nullptr, nullptr, nullptr});
+    auto state = std::make_unique<SceneState>(
+        SceneState{scene, buildTerrain(scene), std::nullopt, loadObjectModels(scene.objects, scene.source), nullptr, nullptr, nullptr});
     std::optional<Atlas> atlas;
     if (scene.vegetationEnabled) {
         state->tile = buildVegetation(state->scene, state->terrain);
@@ -119,10 +133,12 @@ std::unique_ptr<SceneState> loadSceneState(Context& ctx, const Scene& scene, uin
     }
     VkSampleCountFlagBits sampleBits = samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
     state->renderer = std::make_unique<SceneRenderer>(ctx, state->scene, state->terrain, sampleBits,
-                                                      state->tile ? &*state->tile : nullptr, atlas ? &*atlas : nullptr);
+                                                      state->tile ? &*state->tile : nullptr, atlas ? &*atlas : nullptr,
+                                                      &state->models);
     if (state->tile && state->renderer->vegetation())
         state->simulation = std::make_unique<Simulation>(ctx, state->scene, state->terrain, *state->tile,
                                                          state->renderer->vegetation()->buffers());
+    if (state->simulation) state->simulation->setObjectModels(&state->models);
     state->overlay = std::make_unique<Overlay>(ctx, sampleBits);
     return state;
 }
@@ -201,7 +217,7 @@ private:
     glm::dvec2 lastCursor_{0.0};
     double scroll_ = 0.0, tickClock_ = 0.0;
     uint64_t frame_ = 0, screenshotCount_ = 0;
-    bool screenshotPending_ = false, screenshotRecorded_ = false, stepPending_ = false;
+    bool screenshotPending_ = false, stepPending_ = false;
     std::filesystem::file_time_type sceneTime_{};
     Clock::time_point lastReloadCheck_{};
     std::vector<std::pair<uint64_t, int>> presses_;
@@ -790,6 +806,7 @@ void Viewer::run() {
 void runViewer(const ViewerOptions& options) {
     // A bad scene file fails fast, before a window or a device exists.
     loadScene(options.scenePath.empty() ? defaultScenePath() : options.scenePath);
+    parsePresses(options.press);
     GlfwLibrary glfw;
     Window window(options.width, options.height, "sward-view");
     Context ctx(deviceOptions(options, window.handle));
