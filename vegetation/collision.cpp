@@ -215,16 +215,20 @@ TileCollisionIndex::TileCollisionIndex(const VegetationTile& tile, const Vegetat
     for (uint32_t category = 0; category < 4; ++category)
         for (uint32_t size = 0; size < 256; ++size)
             heights_[category | size << 2] = params.categories[category].height * float(size) / gpu::kPlantSizeDivisor;
-    size_t total = 0;
+    size_t total = 0, totalCells = 0;
     for (const FieldVegetation& field : tile.fields) {
         require(field.plantCount() <= kMaxFieldPlants,
                 "a field holds " + std::to_string(field.plantCount()) + " plants; the collision pass supports at most " +
                     std::to_string(kMaxFieldPlants) + " per field (use smaller fields)");
         total += field.plantCount();
+        totalCells += field.clusters.size() * kCells + 1;
     }
-    // One block for every stem, 2 MiB aligned so the kernel can back it with transparent huge pages.
+    // One block for every stem and then every cell offset, 2 MiB aligned so the kernel can back it with
+    // transparent huge pages: a tick touches a few lines in each of hundreds of fields, and a TLB miss per field
+    // (4 KiB pages, nested paging in a VM) costs as much as the lines themselves.
     constexpr size_t kHuge = size_t(2) << 20;
-    const size_t bytes = std::max<size_t>((total * sizeof(Stem) + kHuge - 1) / kHuge * kHuge, kHuge);
+    const size_t used = total * sizeof(Stem) + totalCells * sizeof(uint32_t);
+    const size_t bytes = std::max<size_t>((used + kHuge - 1) / kHuge * kHuge, kHuge);
     stems_.reset(static_cast<Stem*>(std::aligned_alloc(kHuge, bytes)));
     require(stems_ != nullptr, "out of memory for the collision index (" + std::to_string(bytes) + " bytes)");
 #ifdef MADV_HUGEPAGE
@@ -235,6 +239,7 @@ TileCollisionIndex::TileCollisionIndex(const VegetationTile& tile, const Vegetat
     bool any = false;
     std::vector<uint32_t> cellOf, fill;
     size_t first = 0;
+    uint32_t* cells = reinterpret_cast<uint32_t*>(stems_.get() + total);
     for (size_t f = 0; f < tile.fields.size(); ++f) {
         const FieldVegetation& field = tile.fields[f];
         Field& out = fields_[f];
@@ -242,13 +247,21 @@ TileCollisionIndex::TileCollisionIndex(const VegetationTile& tile, const Vegetat
         Stem* stems = stems_.get() + first;
         out.stems = stems;
         first += n;
-        out.cellStart.assign(field.clusters.size() * kCells + 1, 0u);
+        const std::span<uint32_t> cellStart(cells, field.clusters.size() * kCells + 1);
+        cells += cellStart.size();
+        std::fill(cellStart.begin(), cellStart.end(), 0u);
+        out.cellStart = cellStart.data();
         cellOf.resize(n);
         for (uint32_t k = 0; k < field.clusters.size(); ++k) {
             const gpu::PlantCluster& cluster = field.clusters[k];
             out.clustersWithPlants += cluster.range.y > 0 ? 1u : 0u;
             glm::vec2 origin = field.origin + tile.clusterSize * glm::vec2(float(k % tile.clustersPerField),
                                                                            float(k / tile.clustersPerField));
+            if (cluster.range.y > 0) {
+                glm::vec2 below = origin - glm::vec2(cluster.boundsMin);
+                glm::vec2 above = glm::vec2(cluster.boundsMax) - (origin + tile.clusterSize);
+                out.overhang = std::max({out.overhang, below.x, below.y, above.x, above.y});
+            }
             for (uint32_t i = cluster.range.x; i < cluster.range.x + cluster.range.y; ++i) {
                 glm::vec3 p = decodePlantPosition(field.staticRecords[i], field.origin, field.positionStep);
                 auto cell = [&](float v, float o) {
@@ -256,12 +269,12 @@ TileCollisionIndex::TileCollisionIndex(const VegetationTile& tile, const Vegetat
                         std::clamp(int32_t(std::floor((v - o) / cellSize_)), 0, int32_t(kCellsPerSide) - 1));
                 };
                 cellOf[i] = k * kCells + cell(p.y, origin.y) * kCellsPerSide + cell(p.x, origin.x);
-                ++out.cellStart[cellOf[i] + 1];
+                ++cellStart[cellOf[i] + 1];
             }
         }
-        for (size_t c = 1; c < out.cellStart.size(); ++c) out.cellStart[c] += out.cellStart[c - 1];
+        for (size_t c = 1; c < cellStart.size(); ++c) cellStart[c] += cellStart[c - 1];
         // Counting sort in record order: within a cell plants stay in ascending record index.
-        fill.assign(out.cellStart.begin(), out.cellStart.end() - 1);
+        fill.assign(cellStart.begin(), cellStart.end() - 1);
         for (uint32_t i = 0; i < n; ++i) {
             const gpu::PlantStatic& record = field.staticRecords[i];
             glm::vec3 p = decodePlantPosition(record, field.origin, field.positionStep);
@@ -491,9 +504,9 @@ void CollisionPass::collideField(uint32_t f, std::span<const Collider> colliders
     const float invCell = 1.0f / index_.cellSize();
     const uint32_t perSide = tile_->clustersPerField;
     const float clusterSize = tile_->clusterSize, invCluster = 1.0f / clusterSize;
-    // Plants sit on their cluster's square up to a position step's rounding; the margin keeps the cluster range
-    // conservative, the exact cluster box test below decides.
-    const float margin = 4.0f * field.positionStep + 1e-3f;
+    // Cluster boxes may reach a little beyond their grid squares (position rounding, plant extents): the margin
+    // keeps the range of clusters visited conservative, the exact cluster box test below decides.
+    const float margin = index.overhang + 1e-3f;
 
     // Phase 1: the runs of stems under each candidate's footprint, candidates in rank (= id) order so each plant's
     // touches are summed in id order. Only clusters under the collider's box are visited.

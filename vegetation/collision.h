@@ -94,8 +94,8 @@ private:
 // Plant positions and heights of a tile decoded once, bucketed per cluster into an 8x8 grid of sub-cells so a
 // collider visits only the plants under its footprint. Built from the tile's static records; immutable.
 // The pass is bound by memory latency (a worst-case tick reads thousands of scattered runs of a 64 MB index), so
-// each plant is one 16-byte Stem (four per cache line) holding everything the tests need, and all stems live in
-// one block backed by huge pages where the system allows (fewer TLB misses).
+// each plant is one 16-byte Stem (four per cache line) holding everything the tests need, and all stems and cell
+// offsets live in one block backed by huge pages where the system allows (fewer TLB misses).
 class TileCollisionIndex {
 public:
     static constexpr uint32_t kCellsPerSide = 8;
@@ -108,9 +108,10 @@ public:
         uint32_t shape() const { return packed >> 22; } // category | size << 2: the index into heights()
     };
     struct Field {
-        const Stem* stems = nullptr;     // by cluster, then cell (row-major, x fastest), then record index
-        std::vector<uint32_t> cellStart; // clusters * 64 + 1 offsets into stems
+        const Stem* stems = nullptr;         // by cluster, then cell (row-major, x fastest), then record index
+        const uint32_t* cellStart = nullptr; // clusters * 64 + 1 offsets into stems
         uint32_t clustersWithPlants = 0;
+        float overhang = 0.0f; // how far any cluster's box reaches beyond its square of the cluster grid, metres
     };
 
     TileCollisionIndex() = default;

@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
     col->add_option("--density", collide.density, "Grass plants per m^2")->capture_default_str();
     col->add_option("--radius", collide.radius, "Collider sphere radius, metres")->capture_default_str();
     col->add_option("--device", collide.device, "Vulkan device name substring");
+    col->add_flag("!--no-gpu", collide.gpu, "CPU collision only: no Vulkan device, no upload or GPU figures");
     col->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
     try {

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <ctime>
 #include <map>
+#include <memory>
 #include <thread>
 
 namespace sward {
@@ -207,10 +208,18 @@ nlohmann::json benchCollide(const CollideBenchOptions& options) {
     require(tile.fields.size() == 400, "sward-bench collide: the synthetic tile must have 400 fields");
     const InteractionParams interaction;
 
-    Context ctx(DeviceOptions{.deviceFilter = options.device, .quiet = true});
-    VegetationBuffers buffers(ctx, tile);
-    InteractionGpu gpu(ctx, buffers);
-    GpuTimers timers(ctx.device, 4);
+    // Without the GPU side the collision pass runs back to back, its working set warm in the caches; with it on
+    // lavapipe, the recovery pass (itself on the CPU) evicts them between ticks.
+    std::unique_ptr<Context> ctx;
+    std::unique_ptr<VegetationBuffers> buffers;
+    std::unique_ptr<InteractionGpu> gpu;
+    std::unique_ptr<GpuTimers> timers;
+    if (options.gpu) {
+        ctx = std::make_unique<Context>(DeviceOptions{.deviceFilter = options.device, .quiet = true});
+        buffers = std::make_unique<VegetationBuffers>(*ctx, tile);
+        gpu = std::make_unique<InteractionGpu>(*ctx, *buffers);
+        timers = std::make_unique<GpuTimers>(ctx->device, 4);
+    }
 
     // Collision on the CPU (wall clock around the whole step), then the GPU update in its own submission, timed
     // with GPU timestamps; the upload is the contact and range writes into host-visible memory.
@@ -221,17 +230,18 @@ nlohmann::json benchCollide(const CollideBenchOptions& options) {
         TickResult r = world.step(colliders);
         t.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         t.cpuTimeMs = double(std::clock() - cpuStart) * 1000.0 / CLOCKS_PER_SEC;
-        const InteractionGpuStats before = gpu.stats();
-        VkCommandBuffer cmd = ctx.submitter.begin();
-        timers.reset(cmd);
-        gpu.record(cmd, r.contacts, r.activeFields, interaction.recovery, uint32_t(r.tick), &timers);
-        ctx.submitter.wait(ctx.submitter.submit(cmd));
-        for (auto& [name, ms] : timers.read()) t.gpuMs += ms;
-        t.uploadBytes = gpu.stats().uploadBytes - before.uploadBytes;
-        t.uploadMs = gpu.stats().uploadMs - before.uploadMs;
-        t.dispatches = gpu.stats().dispatches - before.dispatches;
         t.contacts = r.contacts.size();
         t.activeFields = r.activeFields.size();
+        if (!gpu) return t;
+        const InteractionGpuStats before = gpu->stats();
+        VkCommandBuffer cmd = ctx->submitter.begin();
+        timers->reset(cmd);
+        gpu->record(cmd, r.contacts, r.activeFields, interaction.recovery, uint32_t(r.tick), timers.get());
+        ctx->submitter.wait(ctx->submitter.submit(cmd));
+        for (auto& [name, ms] : timers->read()) t.gpuMs += ms;
+        t.uploadBytes = gpu->stats().uploadBytes - before.uploadBytes;
+        t.uploadMs = gpu->stats().uploadMs - before.uploadMs;
+        t.dispatches = gpu->stats().dispatches - before.dispatches;
         return t;
     };
     auto medianOf = [](const std::vector<CollideTick>& ticks, auto figure) {
@@ -245,7 +255,7 @@ nlohmann::json benchCollide(const CollideBenchOptions& options) {
     for (size_t c = 0; c < options.fields.size(); ++c) {
         const uint32_t fields = options.fields[c];
         InteractionWorld world(tile, params, interaction, threads);
-        gpu.writeDynamics(world.initialDynamics());
+        if (gpu) gpu->writeDynamics(world.initialDynamics());
         std::vector<CollideTick> measured;
         std::vector<Collider> colliders;
         for (uint32_t i = 0; i < options.warmup + options.ticks; ++i) {
@@ -299,7 +309,7 @@ nlohmann::json benchCollide(const CollideBenchOptions& options) {
         {"radius", options.radius},
         {"threads", threads},
         {"ticks", options.ticks},
-        {"device", ctx.device.name()},
+        {"device", ctx ? ctx->device.name() : std::string("none (--no-gpu)")},
     };
 }
 

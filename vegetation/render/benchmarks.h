@@ -47,6 +47,7 @@ struct CollideBenchOptions {
     float density = 16.0f; // grass plants per m^2 (flat 500 x 500 m tile: 400 fields of 25 clusters)
     float radius = 0.5f;   // collider sphere radius, metres
     std::string device;
+    bool gpu = true;       // false: CPU collision only, no Vulkan device (GPU and upload figures are 0)
 };
 
 // The paper's interaction worst case on a synthetic flat tile (no scene file): one pushing sphere per 5 x 5 m
