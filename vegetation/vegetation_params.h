@@ -1,23 +1,24 @@
 // Vegetation configuration: densities, sizes and atlas layout per category, the grass-map channel mapping,
 // the tile/field/cluster structure and the memory budget. parseVegetationParams() reads it from a scene file.
 //
-// JSON keys (all optional; defaults in brackets):
-//   seed                 [1]      unsigned integer; every plant is a pure function of (seed, tile, field, cluster,
-//   sample) tile_size            [500]    metres; a whole number of fields field_size           [25] metres, 1..256; a
-//   whole number of clusters; positions quantise to field_size/65536 cluster_size         [5]      metres, >= 0.5
-//   world_origin         [[0,0]]  metres, world xy of tile (0, 0)'s min corner; tile (i, j) starts at origin + size*(i,
-//   j) density_multiplier   [1]      global factor on every category density, 0..100 up_normal_blend      [0.5]    0 =
-//   plants grow along world +z, 1 = along the surface normal memory_budget_mib    [1024]   limit on predicted plant
-//   record memory per tile (static + dynamic), MiB categories           [ferns, grass, flowers] 1..4 objects, index =
-//   atlas row; keys not given in an entry
-//                                 default to the built-in category with the same index:
-//     name               string   for messages and the channel mapping
-//     density            plants per m^2 at full map intensity, 0..1000  [ferns 1.5, grass 16, flowers 1]
-//     height             base plant height in metres, 0.01..20          [0.6, 0.35, 0.45]
-//     height_variation   relative +- spread of the height, 0..0.95       [0.3, 0.35, 0.4]
-//     variants           atlas columns, 1..64                            [4, 8, 8]
-//   channels             [{"r": 0, "g": 1, "b": 2, "a": null}] grass-map channel -> category index or name; null =
-//   unused
+// JSON keys (all optional; defaults in brackets; docs/scene-format.md has the full table):
+//   seed                [1]      unsigned; every plant is a pure function of (seed, tile, field, cluster, sample)
+//   tile_size           [500]    metres; a whole number of fields
+//   field_size          [25]     metres, 1..256; a whole number of clusters; positions quantise to field_size/65536
+//   cluster_size        [5]      metres, >= 0.5
+//   world_origin        [[0,0]]  metres, world xy of tile (0, 0)'s min corner; tile (i, j) starts at origin + size*(i, j)
+//   density_multiplier  [1]      global factor on every category density, 0..100
+//   up_normal_blend     [0.5]    0 = plants grow along world +z, 1 = along the surface normal
+//   memory_budget_mib   [1024]   limit on predicted plant record memory per tile (static + dynamic), MiB
+//   categories          [ferns, grass, flowers]  1..4 objects, index = atlas row; keys not given in an entry
+//                                default to the built-in category with the same index:
+//     name              string   for messages and the channel mapping
+//     density           plants per m^2 at full map intensity, 0..1000  [ferns 1.5, grass 16, flowers 1]
+//     height            base plant height in metres, 0.01..20          [0.6, 0.35, 0.45]
+//     height_variation  relative +- spread of the height, 0..0.95       [0.3, 0.35, 0.4]
+//     variants          atlas columns, 1..64                            [4, 8, 8]
+//   channels            [{"r": 0, "g": 1, "b": 2, "a": null}]  grass-map channel -> category index or name;
+//                                null = unused
 #pragma once
 
 #include "shared/plant_layout.h"

@@ -151,8 +151,13 @@ ActorParams parseActors(const nlohmann::json* vehicles, const nlohmann::json* co
     if (gusts) {
         std::string where = source + ": 'gusts'";
         onlyKeys(*gusts, {"count", "seed", "height"}, where);
-        actors.gusts.count = uint32_t(number(*gusts, "count", 0.0f, 0.0f, 100000.0f, where));
-        actors.gusts.seed = uint64_t(number(*gusts, "seed", 1.0f, 0.0f, 1e9f, where));
+        // Whole numbers, read exactly (a float would round seeds above 2^24).
+        for (const char* key : {"count", "seed"})
+            if (gusts->contains(key) && !gusts->at(key).is_number_unsigned())
+                throw Error(where + "." + key + " must be a non-negative integer");
+        actors.gusts.count = gusts->value("count", 0u);
+        if (actors.gusts.count > 100000) throw Error(where + ".count must be at most 100000");
+        actors.gusts.seed = gusts->value("seed", uint64_t(1));
         actors.gusts.height = number(*gusts, "height", actors.gusts.height, 0.0f, 1000.0f, where);
     }
     return actors;

@@ -34,7 +34,7 @@ struct MovingColliderParams {
 struct GustParams {
     uint32_t count = 0;           // 0 = no gusts
     uint64_t seed = 1;
-    float height = 0.3f;          // metres above the terrain's lowest point for gust centres (range top)
+    float height = 0.3f;          // metres above the terrain's highest point: top of the gust centres' range
 };
 
 struct ActorParams {
