@@ -3,6 +3,7 @@
 #include "atlas.h"
 #include "context.h"
 #include "dataset_writer.h"
+#include "frame_record.h"
 #include "image_files.h"
 #include "scene.h"
 #include "scene_renderer.h"
@@ -24,37 +25,6 @@
 namespace sward {
 
 namespace {
-
-nlohmann::json matrixJson(const glm::dmat4& m) {
-    nlohmann::json rows = nlohmann::json::array();
-    for (int r = 0; r < 4; ++r) rows.push_back({m[0][r], m[1][r], m[2][r], m[3][r]});
-    return rows;
-}
-
-// Camera-to-world, OpenCV camera axes (x right, y down, z forward).
-nlohmann::json poseJson(const Camera& camera) {
-    glm::dmat4 m(camera.worldFromCamera);
-    m[3] = glm::dvec4(camera.position, 1.0);
-    return matrixJson(m);
-}
-
-nlohmann::json vec3Json(glm::vec3 v) { return {v.x, v.y, v.z}; }
-
-nlohmann::json colliderJson(const Collider& c) {
-    static const char* shapes[] = {"sphere", "capsule", "box"};
-    static const char* kinds[] = {"push", "gust", "downwash", "mower"};
-    nlohmann::json j = {{"id", c.id}, {"shape", shapes[uint32_t(c.shape)]}, {"kind", kinds[uint32_t(c.kind)]},
-                        {"centre", vec3Json(c.centre)}, {"force", c.force}};
-    if (c.shape == ColliderShape::Capsule) j["end"] = vec3Json(c.end);
-    if (c.shape != ColliderShape::Box) j["radius"] = c.radius;
-    else {
-        j["half_extents"] = vec3Json(c.halfExtents);
-        j["rotation"] = {vec3Json(c.rotation[0]), vec3Json(c.rotation[1]), vec3Json(c.rotation[2])};
-    }
-    if (c.kind == ColliderKind::Mower) j["cut_height"] = c.cutHeight;
-    return j;
-}
-
 
 struct Progress {
     using Clock = std::chrono::steady_clock;
@@ -170,38 +140,8 @@ void runRenderJob(const RenderJobOptions& options) {
     // frames.jsonl covers the scene's whole sequence, whatever this run renders: every record is a pure function
     // of the scene and the tick, so shards and resumed runs write the very same file.
     std::vector<nlohmann::json> records;
-    for (uint32_t frame = 0; frame < scene.sequence.frames; ++frame) {
-        const double time = double(frame) * scene.sequence.timeStep;
-        RigCameras cameras = rigAt(frame);
-        nlohmann::json colliders = nlohmann::json::array();
-        if (withVegetation)
-            for (const Collider& c : sceneColliders(scene, models, terrain, frame)) colliders.push_back(colliderJson(c));
-        nlohmann::json objects = nlohmann::json::array();
-        for (size_t k = 0; k < scene.objects.size(); ++k)
-            objects.push_back({{"name", scene.objects[k].name},
-                               {"instance", objectInstanceId(k)},
-                               {"pose", matrixJson(objectPose(scene.objects[k], models[k], terrain, time).worldFromModel)}});
-        const WindParams& w = scene.wind;
-        nlohmann::json record = {
-            {"frame", frame},
-            {"tick", frame},
-            {"time", time},
-            {"wind_time", options.time + time},
-            {"left_pose", poseJson(cameras.left)},
-            // OpenCV convention (pixel centres at whole coordinates), as in calib.txt
-            {"intrinsics", {{"fx", cameras.left.fx}, {"fy", cameras.left.fy}, {"cx", cameras.left.cx - 0.5},
-                            {"cy", cameras.left.cy - 0.5}, {"width", width}, {"height", height}}},
-            {"wind", {{"direction_deg", w.directionDegrees}, {"strength", w.strength}, {"gust_strength", w.gustStrength},
-                      {"gust_frequency", w.gustFrequency}, {"gust_wavelength", w.gustWavelength}, {"flutter", w.flutter}}},
-            {"colliders", colliders},
-            {"objects", objects}};
-        if (rig.stereo()) {
-            record["right_pose"] = poseJson(cameras.right);
-            record["baseline"] = rig.baseline;
-        }
-        if (rig.sensor.enabled) record["sensor"] = sensorToJson(rig.sensor);
-        records.push_back(std::move(record));
-    }
+    for (uint32_t frame = 0; frame < scene.sequence.frames; ++frame)
+        records.push_back(frameRecord(scene, models, terrain, rigAt(frame), frame, options.time, withVegetation));
     dataset.writeFrameLog(records);
 
     std::vector<uint32_t> todo;
