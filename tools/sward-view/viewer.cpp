@@ -9,6 +9,7 @@
 #include "pipelines.h"
 #include "render_target.h"
 #include "scene.h"
+#include "object_renderer.h"
 #include "scene_renderer.h"
 #include "simulation.h"
 #include "swapchain.h"
@@ -118,14 +119,35 @@ struct SceneState {
     Heightfield terrain;
     std::optional<VegetationTile> tile;
     std::vector<ObjectModel> models; // the scene's glTF objects (drawn and colliding)
+    std::optional<size_t> roverObject; // the keyboard rover's glTF model: the object after the scene's own
     std::unique_ptr<SceneRenderer> renderer;
     std::unique_ptr<Simulation> simulation;
     std::unique_ptr<Overlay> overlay;
 };
 
-std::unique_ptr<SceneState> loadSceneState(Context& ctx, const Scene& scene, uint32_t samples) {
-    auto state = std::make_unique<SceneState>(
-        SceneState{scene, buildTerrain(scene), std::nullopt, loadObjectModels(scene.objects, scene.source), nullptr, nullptr, nullptr});
+// The default rover model (sward-rover), drawn where the keyboard rover drives; none if it is not installed.
+std::string roverModelPath() {
+    for (std::string path : {std::string("examples/assets/rover.gltf"), std::string(SWARD_SOURCE_DIR) + "/examples/assets/rover.gltf"})
+        if (std::filesystem::exists(path)) return path;
+    return {};
+}
+
+std::unique_ptr<SceneState> loadSceneState(Context& ctx, const Scene& sceneIn, uint32_t samples) {
+    // The keyboard rover is drawn as one more scene object without colliders (its wheels collide through
+    // Simulation::setExternalColliders); ObjectRenderer::place moves it every frame.
+    Scene scene = sceneIn;
+    std::optional<size_t> roverObject;
+    if (std::string model = roverModelPath(); !model.empty()) {
+        ObjectParams rover;
+        rover.name = "sward-view rover";
+        rover.model = model;
+        rover.path.points = {glm::dvec2(0.0)};
+        roverObject = scene.objects.size();
+        scene.objects.push_back(rover);
+    }
+    auto state = std::make_unique<SceneState>(SceneState{scene, buildTerrain(scene), std::nullopt,
+                                                         loadObjectModels(scene.objects, scene.source), roverObject,
+                                                         nullptr, nullptr, nullptr});
     std::optional<Atlas> atlas;
     if (scene.vegetationEnabled) {
         state->tile = buildVegetation(state->scene, state->terrain);
@@ -139,6 +161,7 @@ std::unique_ptr<SceneState> loadSceneState(Context& ctx, const Scene& scene, uin
         state->simulation = std::make_unique<Simulation>(ctx, state->scene, state->terrain, *state->tile,
                                                          state->renderer->vegetation()->buffers());
     if (state->simulation) state->simulation->setObjectModels(&state->models);
+    if (state->roverObject && state->renderer->objects()) state->renderer->objects()->setVisible(*state->roverObject, false);
     state->overlay = std::make_unique<Overlay>(ctx, sampleBits);
     return state;
 }
@@ -473,15 +496,19 @@ void Viewer::buildOverlay(const Camera& camera) {
         overlay.fields(*state_->tile, state_->terrain, active, eye, 200.0f, 1.1f * canopyHeight());
     }
     if (panel_.clusterBounds && state_->tile) overlay.clusters(*state_->tile, eye, 40.0f);
-    // All colliders with the overlay on; the rover's wheels always (they are how the rover is seen).
+    // All colliders with the overlay on; without a rover model, the rover's wheels always (they are how it is seen).
     const uint32_t roverIds = 1000 * (uint32_t(state_->scene.actors.vehicles.size()) + 1);
-    if (sim && (panel_.colliders || roverActive_)) {
+    const bool wheelsOnly = roverActive_ && !state_->roverObject;
+    if (sim && (panel_.colliders || wheelsOnly)) {
         for (const Collider& c : sim->lastColliders())
             if (panel_.colliders || (c.id >= roverIds && c.id < roverIds + 4))
                 overlay.collider(c, c.kind == ColliderKind::Gust ? glm::vec3(0.5f, 1.5f, 3.0f) : glm::vec3(4.0f, 4.0f, 0.5f));
     }
-    if (roverActive_) {
-        // The rover's body: a box over its wheels, so it can be seen while it drives.
+    if (ObjectRenderer* objects = state_->renderer->objects(); objects && state_->roverObject) {
+        objects->setVisible(*state_->roverObject, roverActive_);
+        if (roverActive_) objects->place(*state_->roverObject, rover_.position, rover_.heading);
+    } else if (roverActive_) {
+        // No rover model installed: a box over its wheels, so it can be seen while it drives.
         glm::dvec2 f = rover_.direction(), l(-f.y, f.x);
         float z = state_->terrain.height(glm::vec2(rover_.position)) + 2.0f * roverParams_.wheelRadius;
         glm::vec3 color(3.0f, 3.0f, 3.0f);

@@ -99,14 +99,30 @@ ObjectRenderer::~ObjectRenderer() {
     destroyBuffer(ctx_, transforms_);
 }
 
+void ObjectRenderer::place(size_t k, glm::dvec2 position, double headingRadians) {
+    require(k < objects_.size(), "ObjectRenderer::place: no object " + std::to_string(k));
+    // A one-point path faces +x; the yaw turns the model to the heading (objects.h).
+    objects_[k].path.points = {position};
+    objects_[k].yawDegrees = headingRadians * 180.0 / 3.14159265358979323846;
+}
+
+void ObjectRenderer::setVisible(size_t k, bool visible) {
+    require(k < objects_.size(), "ObjectRenderer::setVisible: no object " + std::to_string(k));
+    hidden_.resize(objects_.size(), 0);
+    hidden_[k] = visible ? 0 : 1;
+}
+
 void ObjectRenderer::update(double time, uint32_t slot) {
     if (empty()) return;
     require(slot < kSlots, "ObjectRenderer::update: slot out of range");
     std::vector<gpu::ObjectTransform> transforms;
     transforms.reserve(transformCount_);
-    for (size_t k = 0; k < objects_.size(); ++k)
+    for (size_t k = 0; k < objects_.size(); ++k) {
+        const bool hidden = k < hidden_.size() && hidden_[k];
         for (const glm::dmat4& m : objectNodeTransforms(objects_[k], models_[k], terrain_, time))
-            transforms.push_back({glm::mat4(m), glm::mat4(glm::transpose(glm::inverse(m)))});
+            transforms.push_back(hidden ? gpu::ObjectTransform{glm::mat4(0.0f), glm::mat4(0.0f)}
+                                        : gpu::ObjectTransform{glm::mat4(m), glm::mat4(glm::transpose(glm::inverse(m)))});
+    }
     std::memcpy(transforms_.mapped() + slot * transformsStride_, transforms.data(),
                 transforms.size() * sizeof(gpu::ObjectTransform));
 }

@@ -33,6 +33,12 @@ public:
     uint32_t triangleCount() const { return indexCount_ / 3; }
     const std::vector<ObjectModel>& models() const { return models_; }
 
+    // Places object k at world xy `position`, heading `headingRadians` (from +x towards +y), on the terrain,
+    // instead of following its path (e.g. the rover driven from the keyboard in sward-view); hidden objects
+    // collapse to a point and draw nothing. Applies from the next update().
+    void place(size_t k, glm::dvec2 position, double headingRadians);
+    void setVisible(size_t k, bool visible);
+
     // Writes the node transforms at simulation time `time` into slot `slot` (< kSlots). The slot must not be
     // in use by a frame still executing on the GPU (the caller's frames-in-flight rotation guarantees this).
     void update(double time, uint32_t slot = 0);
@@ -53,6 +59,7 @@ private:
     std::vector<ObjectParams> objects_;
     std::vector<ObjectModel> models_;
     std::vector<uint32_t> firstTransform_; // per object: index of its first node's transform
+    std::vector<uint8_t> hidden_;          // per object
     uint32_t transformCount_ = 0, indexCount_ = 0;
     Buffer vertices_, indices_, transforms_;
     uint64_t transformsStride_ = 0;

@@ -78,6 +78,7 @@ public:
     void setMainPassOverlay(Overlay overlay) { overlay_ = std::move(overlay); }
 
     VegetationRenderer* vegetation() { return vegetation_.get(); }
+    ObjectRenderer* objects() { return objects_.get(); } // null when the scene has no objects
     uint32_t samples() const { return samples_; }
     static constexpr uint32_t kFramesInFlight = 3;
 
