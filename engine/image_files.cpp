@@ -6,13 +6,13 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
-#include <Imath/half.h>
 
 // Debian's libstb ships the stb implementations compiled (-lstb): include the header only.
 #include <stb_image_write.h>
 
 #include <algorithm>
 #include "atomic_file.h"
+#include "half_float.h"
 
 #include <cmath>
 #include <cstdio>
@@ -82,18 +82,12 @@ void writePng8(const std::string& path, uint32_t width, uint32_t height, uint32_
     });
 }
 
-float halfToFloat(uint16_t h) {
-    Imath::half value;
-    value.setBits(h);
-    return float(value);
-}
-
 std::vector<uint8_t> tonemapPreview(std::span<const uint16_t> rgbaHalf, uint32_t width, uint32_t height,
                                     float exposure) {
     std::vector<uint8_t> rgb(size_t(width) * height * 3);
     for (size_t p = 0; p < size_t(width) * height; ++p) {
         for (int c = 0; c < 3; ++c) {
-            float x = std::max(halfToFloat(rgbaHalf[p * 4 + c]) * exposure, 0.0f);
+            float x = std::max(halfBitsToFloat(rgbaHalf[p * 4 + c]) * exposure, 0.0f);
             x = std::clamp(x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f); // ACES fit
             x = x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f; // sRGB
             rgb[p * 3 + c] = uint8_t(std::clamp(x * 255.0f + 0.5f, 0.0f, 255.0f));

@@ -33,7 +33,6 @@ void writePng8(const std::string& path, uint32_t width, uint32_t height, uint32_
 std::vector<uint8_t> tonemapPreview(std::span<const uint16_t> rgbaHalf, uint32_t width, uint32_t height,
                                     float exposure = 0.5f);
 
-float halfToFloat(uint16_t h);
 
 // Creates `dir` (and parents) and checks a file can be written there; throws a clear error otherwise.
 void ensureWritableDirectory(const std::string& dir);

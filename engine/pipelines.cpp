@@ -222,4 +222,15 @@ void pushConstants(VkCommandBuffer cmd, const Pipeline& pipeline, const void* da
     vkCmdPushConstants(cmd, pipeline.layout, pipeline.pushConstantStages, 0, size, data);
 }
 
+void drawIndexedMesh(const Device& device, VkCommandBuffer cmd, const Pipeline& pipeline,
+                     std::initializer_list<DescriptorBinding> bindings, VkBuffer vertices, VkBuffer indices,
+                     uint32_t indexCount) {
+    bindPipeline(cmd, pipeline);
+    pushDescriptors(device, cmd, pipeline, bindings);
+    VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
+    vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, indexCount, 1, 0, 0, 0);
+}
+
 } // namespace sward

@@ -93,6 +93,10 @@ void bindPipeline(VkCommandBuffer cmd, const Pipeline& pipeline);
 void pushDescriptors(const Device& device, VkCommandBuffer cmd, const Pipeline& pipeline,
                      std::initializer_list<DescriptorBinding> bindings);
 void pushConstants(VkCommandBuffer cmd, const Pipeline& pipeline, const void* data, uint32_t size);
+// One indexed mesh (vertex buffer at binding 0, uint32 indices) with `pipeline` and its pushed descriptors.
+void drawIndexedMesh(const Device& device, VkCommandBuffer cmd, const Pipeline& pipeline,
+                     std::initializer_list<DescriptorBinding> bindings, VkBuffer vertices, VkBuffer indices,
+                     uint32_t indexCount);
 template <typename T> void pushConstants(VkCommandBuffer cmd, const Pipeline& pipeline, const T& value) {
     pushConstants(cmd, pipeline, &value, sizeof(T));
 }

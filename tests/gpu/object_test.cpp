@@ -1,6 +1,7 @@
 // Scene objects on the GPU (vegetation/render/object_renderer.h): the default rover drawn on its own into the
 // main, truth and shadow passes, checked against its analytic geometry: visible where projected, exact planar
 // depth, the object label, and the shadow of a second object falling on it.
+#include "half_float.h"
 #include "gpu_test.h"
 
 #include "image_files.h"
@@ -57,7 +58,7 @@ struct Images {
     std::vector<uint32_t> depthBits, labels;
     glm::vec3 rgb(glm::ivec2 p) const {
         const size_t i = (size_t(p.y) * kWidth + size_t(p.x)) * 4;
-        return {halfToFloat(color[i]), halfToFloat(color[i + 1]), halfToFloat(color[i + 2])};
+        return {halfBitsToFloat(color[i]), halfBitsToFloat(color[i + 1]), halfBitsToFloat(color[i + 2])};
     }
     float depth(glm::ivec2 p) const {
         float d;

@@ -1,4 +1,5 @@
 // Offscreen rendering: EXR files read back with OpenCV, checked against the analytic terrain.
+#include "half_float.h"
 #include "gpu_test.h"
 
 #include "image_files.h"
@@ -114,10 +115,10 @@ TEST(ExrFiles, ReadBackWithOpenCvToExactlyTheWrittenValues) {
             uint32_t i = y * w + x;
             EXPECT_EQ(d.at<float>(int(y), int(x)), depth[i]);
             cv::Vec4f px = c.at<cv::Vec4f>(int(y), int(x));
-            EXPECT_EQ(px[2], halfToFloat(rgba[i * 4 + 0])); // R (OpenCV orders BGRA)
-            EXPECT_EQ(px[1], halfToFloat(rgba[i * 4 + 1])); // G
-            EXPECT_EQ(px[0], halfToFloat(rgba[i * 4 + 2])); // B
-            EXPECT_EQ(px[3], halfToFloat(rgba[i * 4 + 3])); // A
+            EXPECT_EQ(px[2], halfBitsToFloat(rgba[i * 4 + 0])); // R (OpenCV orders BGRA)
+            EXPECT_EQ(px[1], halfBitsToFloat(rgba[i * 4 + 1])); // G
+            EXPECT_EQ(px[0], halfBitsToFloat(rgba[i * 4 + 2])); // B
+            EXPECT_EQ(px[3], halfBitsToFloat(rgba[i * 4 + 3])); // A
         }
     EXPECT_FALSE(std::filesystem::exists(dir + "/d.exr.tmp"));
 }

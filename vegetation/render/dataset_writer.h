@@ -48,8 +48,6 @@ public:
     // The manifest: `info` plus "files": {relative path: sha256} of `files` (relative paths).
     void writeManifest(const std::string& name, nlohmann::json info, const std::vector<std::string>& files) const;
 
-    const std::string& root() const { return root_; }
-
 private:
     std::vector<std::string> directories() const;
     std::string root_;

@@ -134,12 +134,7 @@ DescriptorBinding ObjectRenderer::transformsBinding(uint32_t slot) const {
 
 void ObjectRenderer::draw(VkCommandBuffer cmd, const Pipeline& pipeline,
                           std::initializer_list<DescriptorBinding> bindings) {
-    bindPipeline(cmd, pipeline);
-    pushDescriptors(ctx_.device, cmd, pipeline, bindings);
-    VkDeviceSize offset = 0;
-    vkCmdBindVertexBuffers(cmd, 0, 1, &vertices_.handle, &offset);
-    vkCmdBindIndexBuffer(cmd, indices_.handle, 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, indexCount_, 1, 0, 0, 0);
+    drawIndexedMesh(ctx_.device, cmd, pipeline, bindings, vertices_.handle, indices_.handle, indexCount_);
 }
 
 void ObjectRenderer::recordMain(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& shadowMap,

@@ -4,7 +4,6 @@
 #include "context.h"
 #include "dataset_writer.h"
 #include "frame_record.h"
-#include "image_files.h"
 #include "scene.h"
 #include "scene_renderer.h"
 #include "sha256.h"
@@ -15,7 +14,6 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 #include <unistd.h>
 
 #ifndef SWARD_REVISION

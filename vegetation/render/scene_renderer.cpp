@@ -224,12 +224,8 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Ca
 
 void SceneRenderer::drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline,
                                 std::initializer_list<DescriptorBinding> bindings) {
-    bindPipeline(cmd, pipeline);
-    pushDescriptors(ctx_.device, cmd, pipeline, bindings);
-    VkDeviceSize offset = 0;
-    vkCmdBindVertexBuffers(cmd, 0, 1, &terrainVertices_.handle, &offset);
-    vkCmdBindIndexBuffer(cmd, terrainIndices_.handle, 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, terrainIndexCount_, 1, 0, 0, 0);
+    drawIndexedMesh(ctx_.device, cmd, pipeline, bindings, terrainVertices_.handle, terrainIndices_.handle,
+                    terrainIndexCount_);
 }
 
 DescriptorBinding SceneRenderer::frameBinding(uint32_t slot) const {

@@ -1,4 +1,5 @@
-// IEEE 754 binary16 ("half") <-> float conversion on raw bit patterns, for the Vulkan-free core.
+// IEEE 754 binary16 ("half") <-> float conversion on raw bit patterns, shared by the engine (previews) and the
+// Vulkan-free core.
 //
 // The renderer reads colour back as half bit patterns (what EXR stores); the sensor model converts them to
 // float, works in float and converts back. Conversions here are exact (half -> float) and round to nearest,
