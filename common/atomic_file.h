@@ -3,7 +3,7 @@
 // any file that exists as complete).
 #pragma once
 
-#include "error.h"
+#include "common/error.h"
 
 #include <cstdio>
 #include <filesystem>

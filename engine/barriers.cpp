@@ -1,4 +1,4 @@
-#include "barriers.h"
+#include "engine/barriers.h"
 
 namespace sward {
 

@@ -1,6 +1,6 @@
-#include "commands.h"
+#include "engine/commands.h"
 
-#include "device.h"
+#include "engine/device.h"
 
 #include <algorithm>
 

@@ -5,7 +5,7 @@
 // per-frame deletion queue of vulkan-guide / Granite, without per-frame fences to juggle.
 #pragma once
 
-#include "vk_common.h"
+#include "engine/vk_common.h"
 
 #include <cstdint>
 #include <deque>

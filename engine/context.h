@@ -2,9 +2,9 @@
 // Everything in the engine that creates GPU objects takes a Context&.
 #pragma once
 
-#include "commands.h"
-#include "device.h"
-#include "memory.h"
+#include "engine/commands.h"
+#include "engine/device.h"
+#include "engine/memory.h"
 
 namespace sward {
 

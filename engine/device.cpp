@@ -1,4 +1,4 @@
-#include "device.h"
+#include "engine/device.h"
 
 #include <algorithm>
 #include <cctype>

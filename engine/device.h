@@ -5,7 +5,7 @@
 // VK_KHR_push_descriptor, which lavapipe and every current desktop driver provide.
 #pragma once
 
-#include "vk_common.h"
+#include "engine/vk_common.h"
 
 #include <atomic>
 #include <cstdint>

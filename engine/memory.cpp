@@ -1,6 +1,6 @@
-#include "memory.h"
+#include "engine/memory.h"
 
-#include "device.h"
+#include "engine/device.h"
 
 #include <bit>
 

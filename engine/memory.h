@@ -5,7 +5,7 @@
 // 64 MiB blocks. Callers say what the memory is for (MemoryIntent), not which property flags it needs.
 #pragma once
 
-#include "vk_common.h"
+#include "engine/vk_common.h"
 
 #include <cstdint>
 #include <map>

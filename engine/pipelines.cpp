@@ -1,6 +1,6 @@
-#include "pipelines.h"
+#include "engine/pipelines.h"
 
-#include "device.h"
+#include "engine/device.h"
 
 #include <cstdlib>
 #include <filesystem>

@@ -6,7 +6,7 @@
 // be bound with a never-written binding (which crashes lavapipe).
 #pragma once
 
-#include "vk_common.h"
+#include "engine/vk_common.h"
 
 #include <cstdint>
 #include <initializer_list>

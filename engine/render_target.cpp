@@ -1,7 +1,7 @@
-#include "render_target.h"
+#include "engine/render_target.h"
 
-#include "barriers.h"
-#include "context.h"
+#include "engine/barriers.h"
+#include "engine/context.h"
 
 namespace sward {
 

@@ -6,7 +6,7 @@
 // bits, ids) in integer attachments for exactly that reason.
 #pragma once
 
-#include "resources.h"
+#include "engine/resources.h"
 
 #include <vector>
 

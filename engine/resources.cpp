@@ -1,7 +1,7 @@
-#include "resources.h"
+#include "engine/resources.h"
 
-#include "barriers.h"
-#include "context.h"
+#include "engine/barriers.h"
+#include "engine/context.h"
 
 #include <cstring>
 

@@ -4,7 +4,7 @@
 // (caller guarantees the GPU is done), retire() defers the free until the work submitted so far completes.
 #pragma once
 
-#include "memory.h"
+#include "engine/memory.h"
 
 #include <cstdint>
 #include <span>

@@ -1,6 +1,6 @@
-#include "swapchain.h"
+#include "engine/swapchain.h"
 
-#include "context.h"
+#include "engine/context.h"
 
 #include <algorithm>
 

@@ -9,7 +9,7 @@
 // known to be free (a per-frame semaphore could still be waited on by a pending present).
 #pragma once
 
-#include "vk_common.h"
+#include "engine/vk_common.h"
 
 #include <cstdint>
 #include <vector>

@@ -1,6 +1,6 @@
-#include "timestamps.h"
+#include "engine/timestamps.h"
 
-#include "device.h"
+#include "engine/device.h"
 
 namespace sward {
 

@@ -2,7 +2,7 @@
 // submission has completed. Used by benchmarks and the viewer; costs two timestamps per pass.
 #pragma once
 
-#include "vk_common.h"
+#include "engine/vk_common.h"
 
 #include <string>
 #include <utility>

@@ -1,4 +1,4 @@
-#include "vk_common.h"
+#include "engine/vk_common.h"
 
 #include <cstdio>
 #include <string>

@@ -5,7 +5,7 @@
 // expected ways (swapchain out of date) check their result explicitly at the call site.
 #pragma once
 
-#include "error.h"
+#include "common/error.h"
 
 #include <vulkan/vulkan.h>
 

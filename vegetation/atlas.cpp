@@ -1,10 +1,10 @@
-#include "atlas.h"
+#include "vegetation/atlas.h"
 
-#include "error.h"
-#include "hash.h"
-#include "image_io.h"
-#include "noise.h"
-#include "vegetation_params.h"
+#include "common/error.h"
+#include "common/hash.h"
+#include "io/image_io.h"
+#include "common/noise.h"
+#include "vegetation/vegetation_params.h"
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>

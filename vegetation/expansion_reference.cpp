@@ -1,9 +1,10 @@
-#include "expansion_reference.h"
+#include "vegetation/expansion_reference.h"
 
-#include "records.h"
+#include "vegetation/records.h"
 
 #include <glm/gtc/packing.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace sward {
@@ -53,28 +54,29 @@ glm::vec2 windTip(const WindParams& wind, glm::vec3 position, float random, floa
 
 } // namespace
 
-ReferenceExpansion referenceExpand(const VegetationTile& tile, const Scene& scene, const Camera& camera, double time) {
+ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationParams& vegetation, const LodParams& lod,
+                                   const WindParams& wind, const Camera& camera, double time) {
     ReferenceExpansion out;
     const auto planes = camera.frustumPlanes();
     const glm::vec3 eye(camera.position);
     for (const FieldVegetation& field : tile.fields) {
         for (const gpu::PlantCluster& box : field.clusters) {
-            if (box.range.y == 0 || !clusterVisible(planes, scene.lod, eye, glm::vec3(box.boundsMin), glm::vec3(box.boundsMax)))
+            if (box.range.y == 0 || !clusterVisible(planes, lod, eye, glm::vec3(box.boundsMin), glm::vec3(box.boundsMax)))
                 continue;
             ++out.visibleClusters;
             out.plantsConsidered += box.range.y;
             for (uint32_t i = box.range.x; i < box.range.x + box.range.y; ++i) {
                 const gpu::PlantStatic& plant = field.staticRecords[i];
                 glm::vec3 position = decodePlantPosition(plant, field.origin, field.positionStep);
-                LodChoice choice = chooseLod(scene.lod, glm::distance(position, eye));
+                LodChoice choice = chooseLod(lod, glm::distance(position, eye));
                 if (choice.lodA == kNoLod) continue;
                 PlantInstance decoded = decodePlantStatic(plant);
                 PlantMotion motion = decodePlantDynamic(field.dynamicRecords[i]);
                 float random = float(decoded.random) / 255.0f;
                 float cut = motion.state == gpu::kPlantStateCut ? motion.cutFraction : 1.0f;
-                float height = scene.vegetation.categories[decoded.category].height *
+                float height = vegetation.categories[decoded.category].height *
                                (float(decoded.size) / gpu::kPlantSizeDivisor) * cut;
-                glm::vec2 tip = motion.bend + windTip(scene.wind, position, random, float(time));
+                glm::vec2 tip = motion.bend + windTip(wind, position, random, float(time));
                 float len = glm::length(tip);
                 if (len > 0.95f) tip *= 0.95f / len;
                 uint32_t cutByte = (field.dynamicRecords[i].state >> 24) & 0xffu;

@@ -4,9 +4,9 @@
 // and transcendental precision may differ on a GPU), which the tests allow for.
 #pragma once
 
-#include "camera.h"
-#include "scene.h"
-#include "vegetation_tile.h"
+#include "vegetation/vegetation_params.h"
+#include "vegetation/vegetation_tile.h"
+#include "world/camera.h"
 
 #include "shared/gpu_layout.h"
 
@@ -23,7 +23,8 @@ struct ReferenceExpansion {
 
 // Expands every plant of `tile` for `camera` at simulation time `time`, with the scene's LOD, wind and
 // category heights. The atlas column counts bound the variant as in the shader.
-ReferenceExpansion referenceExpand(const VegetationTile& tile, const Scene& scene, const Camera& camera, double time);
+ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationParams& vegetation, const LodParams& lod,
+                                   const WindParams& wind, const Camera& camera, double time);
 
 // The 6 * quads(lod) vertex positions of one expanded plant (plant_vertex.glsl), for an atlas cell with
 // base (baseU, baseV) and width / height `aspect`.

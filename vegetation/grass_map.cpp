@@ -1,8 +1,8 @@
-#include "grass_map.h"
+#include "vegetation/grass_map.h"
 
-#include "error.h"
-#include "image_io.h"
-#include "noise.h"
+#include "common/error.h"
+#include "io/image_io.h"
+#include "common/noise.h"
 
 #include <algorithm>
 #include <cmath>

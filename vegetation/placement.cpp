@@ -1,8 +1,8 @@
-#include "placement.h"
+#include "vegetation/placement.h"
 
-#include "error.h"
-#include "hash.h"
-#include "records.h"
+#include "common/error.h"
+#include "common/hash.h"
+#include "vegetation/records.h"
 
 #include <algorithm>
 #include <array>

@@ -10,10 +10,10 @@
 // transcendentals, and the library is built with -ffp-contract=off: results match on every x86-64 machine.
 #pragma once
 
-#include "grass_map.h"
-#include "ground.h"
-#include "vegetation_params.h"
-#include "vegetation_tile.h"
+#include "vegetation/grass_map.h"
+#include "world/ground.h"
+#include "vegetation/vegetation_params.h"
+#include "vegetation/vegetation_tile.h"
 
 #include <cstdint>
 

@@ -1,10 +1,11 @@
-#include "vegetation_params.h"
+#include "vegetation/vegetation_params.h"
 
-#include "error.h"
+#include "common/error.h"
 
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <numbers>
 #include <set>
 
 namespace sward {
@@ -196,6 +197,11 @@ VegetationParams parseVegetationParams(const Json& json, const std::string& sour
     }
     validateVegetationParams(p, source);
     return p;
+}
+
+glm::vec2 WindParams::direction() const {
+    double a = directionDegrees * std::numbers::pi / 180.0;
+    return glm::vec2(float(std::sin(a)), float(std::cos(a)));
 }
 
 } // namespace sward

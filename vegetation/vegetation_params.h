@@ -33,6 +33,25 @@
 
 namespace sward {
 
+// Level-of-detail distances (paper Figure 3), metres from the camera to the plant base.
+struct LodParams {
+    float nearToMid = 12.0f; // closer: 4 quads
+    float midToFar = 40.0f;  // closer: 2 crossed quads; farther: 1 billboard
+    float farLimit = 150.0f; // plants beyond are not drawn (the terrain colour stands in)
+    float band = 4.0f;       // width of the dithered cross-fade around each distance
+};
+
+// Procedural wind (a pure function of simulation time; see shaders/shared/vegetation.glsl).
+struct WindParams {
+    double directionDegrees = 60.0; // direction the wind blows towards, clockwise from north (+y)
+    float strength = 0.12f;         // steady lean: tip offset in plant heights
+    float gustStrength = 0.18f;     // extra tip offset at gust peaks
+    float gustFrequency = 0.25f;    // gust waves per second
+    float gustWavelength = 30.0f;   // metres between gust fronts
+    float flutter = 0.03f;          // fast cross-wind flutter, plant heights
+    glm::vec2 direction() const;    // unit xy
+};
+
 struct VegetationCategory {
     std::string name;
     float density = 16.0f;         // plants per m^2 where the category's map channel is 1

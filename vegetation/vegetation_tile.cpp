@@ -1,4 +1,4 @@
-#include "vegetation_tile.h"
+#include "vegetation/vegetation_tile.h"
 
 namespace sward {
 

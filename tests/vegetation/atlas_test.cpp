@@ -1,4 +1,4 @@
-#include "atlas.h"
+#include "vegetation/atlas.h"
 
 #include "test_files.h"
 

@@ -1,5 +1,5 @@
-#include "grass_map.h"
-#include "image_io.h"
+#include "vegetation/grass_map.h"
+#include "io/image_io.h"
 
 #include "test_files.h"
 

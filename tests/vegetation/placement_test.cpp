@@ -1,8 +1,8 @@
 // Acceptance tests of issue 4: reproducible, density-faithful placement on the ground, in compact records.
-#include "gltf_mesh.h"
-#include "image_io.h"
-#include "placement.h"
-#include "records.h"
+#include "world/gltf_mesh.h"
+#include "io/image_io.h"
+#include "vegetation/placement.h"
+#include "vegetation/records.h"
 
 #include "test_files.h"
 

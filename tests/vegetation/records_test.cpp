@@ -1,4 +1,4 @@
-#include "records.h"
+#include "vegetation/records.h"
 
 #include <gtest/gtest.h>
 

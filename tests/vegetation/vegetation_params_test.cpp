@@ -1,4 +1,4 @@
-#include "vegetation_params.h"
+#include "vegetation/vegetation_params.h"
 
 #include "test_files.h"
 

@@ -1,7 +1,7 @@
 // sward-atlas: writes the procedural vegetation texture atlas (atlas.png + atlas.json). Parses the command line
 // and calls generateAtlas()/saveAtlas(); nothing else.
-#include "atlas.h"
-#include "error.h"
+#include "vegetation/atlas.h"
+#include "common/error.h"
 
 #include <CLI/CLI.hpp>
 

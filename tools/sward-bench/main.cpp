@@ -1,7 +1,7 @@
 // sward-bench: prints benchmark figures (and writes them as JSON with --json). Thin: parsing and printing only.
-#include "benchmarks.h"
-#include "error.h"
-#include "scene.h"
+#include "render/benchmarks.h"
+#include "common/error.h"
+#include "scene/scene.h"
 
 #include <CLI/CLI.hpp>
 

@@ -1,6 +1,6 @@
 // sward-eval: stereo evaluation of a sward dataset. Parses the command line and runs the evaluation; nothing else.
-#include "error.h"
-#include "evaluation.h"
+#include "common/error.h"
+#include "eval/evaluation.h"
 
 #include <CLI/CLI.hpp>
 

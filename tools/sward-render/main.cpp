@@ -1,6 +1,6 @@
 // sward-render: offline renderer. Parses the command line and runs the render job; nothing else.
-#include "error.h"
-#include "render_job.h"
+#include "common/error.h"
+#include "render/render_job.h"
 
 #include <CLI/CLI.hpp>
 

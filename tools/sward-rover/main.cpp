@@ -1,8 +1,8 @@
 // sward-rover: writes the default rover model (glTF 2.0, buffer embedded). Parses the command line and calls
 // saveRoverGltf(); nothing else. The shipped examples/assets/rover.gltf is this tool's output with defaults:
 //   sward-rover --out examples/assets/rover.gltf
-#include "error.h"
-#include "rover_model.h"
+#include "common/error.h"
+#include "scene/rover_model.h"
 
 #include <CLI/CLI.hpp>
 

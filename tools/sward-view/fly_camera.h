@@ -2,7 +2,7 @@
 // yaw is the heading in the ground plane measured from +x towards +y, pitch is up from the horizon.
 #pragma once
 
-#include "camera.h"
+#include "world/camera.h"
 
 #include <glm/glm.hpp>
 

@@ -1,6 +1,6 @@
 // sward-view: interactive viewer of a sward scene (see viewer.h and README "Viewer").
-#include "error.h"
-#include "scene.h"
+#include "common/error.h"
+#include "scene/scene.h"
 #include "viewer.h"
 
 #include <CLI/CLI.hpp>

@@ -1,7 +1,7 @@
 #include "overlay.h"
 
-#include "heightfield.h"
-#include "vegetation_tile.h"
+#include "world/heightfield.h"
+#include "vegetation/vegetation_tile.h"
 
 #include <cmath>
 #include <cstring>

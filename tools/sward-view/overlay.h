@@ -4,10 +4,10 @@
 // per frame in flight), so nothing waits.
 #pragma once
 
-#include "colliders.h"
-#include "context.h"
-#include "pipelines.h"
-#include "resources.h"
+#include "interaction/colliders.h"
+#include "engine/context.h"
+#include "engine/pipelines.h"
+#include "engine/resources.h"
 #include "shared/gpu_layout.h"
 
 #include <glm/glm.hpp>

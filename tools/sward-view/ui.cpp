@@ -1,6 +1,6 @@
 #include "ui.h"
 
-#include "swapchain.h"
+#include "engine/swapchain.h"
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>

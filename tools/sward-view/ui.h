@@ -5,8 +5,8 @@
 // COLOR_ATTACHMENT_OPTIMAL; the viewer then transitions it for presentation. Framebuffers follow the swapchain.
 #pragma once
 
-#include "context.h"
-#include "scene.h"
+#include "engine/context.h"
+#include "scene/scene.h"
 
 #include <string>
 #include <utility>

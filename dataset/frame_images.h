@@ -1,0 +1,17 @@
+// Host copy of one rendered frame: what the renderer reads back and the dataset writer stores.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace sward {
+
+struct FrameImages {
+    uint32_t width = 0, height = 0;
+    std::vector<uint16_t> rgbaHalf; // width*height*4 half floats, top row first
+    std::vector<float> depth;       // planar metres, +inf where nothing was hit
+    std::vector<uint32_t> labels;   // (semantic class << 24) | instance id, see gpu::kSemantic*
+    std::vector<uint16_t> rightRgbaHalf; // stereo only: the right view's colour
+};
+
+} // namespace sward

@@ -1,0 +1,76 @@
+#include "dataset/frame_record.h"
+
+#include "scene/scene.h"
+
+namespace sward {
+
+namespace {
+
+nlohmann::json vec3Json(glm::vec3 v) { return {v.x, v.y, v.z}; }
+
+} // namespace
+
+nlohmann::json matrixJson(const glm::dmat4& m) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (int r = 0; r < 4; ++r) rows.push_back({m[0][r], m[1][r], m[2][r], m[3][r]});
+    return rows;
+}
+
+nlohmann::json cameraPoseJson(const Camera& camera) {
+    glm::dmat4 m(camera.worldFromCamera);
+    m[3] = glm::dvec4(camera.position, 1.0);
+    return matrixJson(m);
+}
+
+nlohmann::json colliderJson(const Collider& c) {
+    static const char* shapes[] = {"sphere", "capsule", "box"};
+    static const char* kinds[] = {"push", "gust", "downwash", "mower"};
+    nlohmann::json j = {{"id", c.id}, {"shape", shapes[uint32_t(c.shape)]}, {"kind", kinds[uint32_t(c.kind)]},
+                        {"centre", vec3Json(c.centre)}, {"force", c.force}};
+    if (c.shape == ColliderShape::Capsule) j["end"] = vec3Json(c.end);
+    if (c.shape != ColliderShape::Box) {
+        j["radius"] = c.radius;
+    } else {
+        j["half_extents"] = vec3Json(c.halfExtents);
+        j["rotation"] = {vec3Json(c.rotation[0]), vec3Json(c.rotation[1]), vec3Json(c.rotation[2])};
+    }
+    if (c.kind == ColliderKind::Mower) j["cut_height"] = c.cutHeight;
+    return j;
+}
+
+nlohmann::json frameRecord(const Scene& scene, const std::vector<ObjectModel>& models, const Heightfield& terrain,
+                           const RigCameras& rig, uint32_t frame, double windTimeOffset, bool withColliders) {
+    const double time = double(frame) * scene.sequence.timeStep;
+    nlohmann::json colliders = nlohmann::json::array();
+    if (withColliders)
+        for (const Collider& c : sceneColliders(scene, models, terrain, frame)) colliders.push_back(colliderJson(c));
+    nlohmann::json objects = nlohmann::json::array();
+    for (size_t k = 0; k < scene.objects.size() && k < models.size(); ++k)
+        objects.push_back({{"name", scene.objects[k].name},
+                           {"instance", objectInstanceId(k)},
+                           {"pose", matrixJson(objectPose(scene.objects[k], models[k], terrain, time).worldFromModel)}});
+    const WindParams& w = scene.wind;
+    const Camera& left = rig.left;
+    nlohmann::json record = {
+        {"frame", frame},
+        {"tick", frame},
+        {"time", time},
+        {"wind_time", windTimeOffset + time},
+        {"left_pose", cameraPoseJson(left)},
+        // OpenCV convention (pixel centres at whole coordinates), as in calib.txt
+        {"intrinsics", {{"fx", left.fx}, {"fy", left.fy}, {"cx", left.cx - 0.5}, {"cy", left.cy - 0.5},
+                        {"width", left.width}, {"height", left.height}}},
+        {"wind", {{"direction_deg", w.directionDegrees}, {"strength", w.strength}, {"gust_strength", w.gustStrength},
+                  {"gust_frequency", w.gustFrequency}, {"gust_wavelength", w.gustWavelength}, {"flutter", w.flutter}}},
+        {"colliders", colliders},
+        {"objects", objects}};
+    const RigParams& params = scene.camera.rig;
+    if (params.stereo()) {
+        record["right_pose"] = cameraPoseJson(rig.right);
+        record["baseline"] = params.baseline;
+    }
+    if (params.sensor.enabled) record["sensor"] = sensorToJson(params.sensor);
+    return record;
+}
+
+} // namespace sward

@@ -1,0 +1,31 @@
+// frames.jsonl records: everything about one frame of a dataset that is not an image (docs/dataset-format.md).
+// Every value is a pure function of the scene and the tick, so any process (a shard, a resumed run) writes
+// the same record for the same frame.
+#pragma once
+
+#include "scene/camera_rig.h"
+#include "interaction/colliders.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace sward {
+
+class Heightfield;
+struct Scene;
+
+// Row-major 4x4.
+nlohmann::json matrixJson(const glm::dmat4& m);
+// Camera-to-world pose in OpenCV camera axes (x right, y down, z forward), row-major 4x4.
+nlohmann::json cameraPoseJson(const Camera& camera);
+nlohmann::json colliderJson(const Collider& collider);
+
+// The record of `frame` (tick `frame`, time frame * sequence.time_step): rig poses and intrinsics (OpenCV pixel
+// centres), wind (its clock offset by `windTimeOffset`), the colliders acting during the tick (when
+// `withColliders`: none act on bare ground), object poses and the sensor parameters.
+nlohmann::json frameRecord(const Scene& scene, const std::vector<ObjectModel>& models, const Heightfield& terrain,
+                           const RigCameras& rig, uint32_t frame, double windTimeOffset, bool withColliders);
+
+} // namespace sward

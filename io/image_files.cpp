@@ -1,0 +1,112 @@
+#include "io/image_files.h"
+
+#include "common/error.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+
+// Debian's libstb ships the stb implementations compiled (-lstb): include the header only.
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include "common/atomic_file.h"
+#include "common/half_float.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace sward {
+
+namespace {
+
+Imf::Header exrHeader(uint32_t width, uint32_t height) {
+    Imf::Header header{int(width), int(height)};
+    // ZIP: lossless and deterministic, so identical pixels give identical files.
+    header.compression() = Imf::ZIP_COMPRESSION;
+    return header;
+}
+
+} // namespace
+
+void writeExrRgbaHalf(const std::string& path, uint32_t width, uint32_t height, std::span<const uint16_t> rgbaHalf) {
+    require(rgbaHalf.size() == size_t(width) * height * 4, "EXR colour buffer size does not match the image");
+    writeFileAtomically(path, [&](const std::string& tmp) {
+        Imf::Header header = exrHeader(width, height);
+        const char* names[4] = {"R", "G", "B", "A"};
+        for (const char* name : names) header.channels().insert(name, Imf::Channel(Imf::HALF));
+        Imf::FrameBuffer frame;
+        char* base = reinterpret_cast<char*>(const_cast<uint16_t*>(rgbaHalf.data()));
+        for (int c = 0; c < 4; ++c)
+            frame.insert(names[c], Imf::Slice(Imf::HALF, base + c * 2, 8, size_t(width) * 8));
+        Imf::OutputFile file(tmp.c_str(), header, 1);
+        file.setFrameBuffer(frame);
+        file.writePixels(int(height));
+    });
+}
+
+void writeExrFloatChannels(const std::string& path, uint32_t width, uint32_t height,
+                           const std::vector<std::string>& names, const std::vector<std::span<const float>>& planes) {
+    require(names.size() == planes.size() && !names.empty(), "EXR channel names and planes do not match");
+    for (auto& plane : planes) require(plane.size() == size_t(width) * height, "EXR plane size does not match the image");
+    writeFileAtomically(path, [&](const std::string& tmp) {
+        Imf::Header header = exrHeader(width, height);
+        Imf::FrameBuffer frame;
+        for (size_t c = 0; c < names.size(); ++c) {
+            header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+            char* base = reinterpret_cast<char*>(const_cast<float*>(planes[c].data()));
+            frame.insert(names[c], Imf::Slice(Imf::FLOAT, base, 4, size_t(width) * 4));
+        }
+        Imf::OutputFile file(tmp.c_str(), header, 1);
+        file.setFrameBuffer(frame);
+        file.writePixels(int(height));
+    });
+}
+
+void writeExrDepth(const std::string& path, uint32_t width, uint32_t height, std::span<const float> depth,
+                   bool withZCopy) {
+    if (withZCopy) writeExrFloatChannels(path, width, height, {"Y", "Z"}, {depth, depth});
+    else writeExrFloatChannels(path, width, height, {"Y"}, {depth});
+}
+
+void writePng8(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
+               std::span<const uint8_t> pixels) {
+    require(channels >= 1 && channels <= 4 && pixels.size() == size_t(width) * height * channels,
+            "PNG buffer size does not match the image");
+    writeFileAtomically(path, [&](const std::string& tmp) {
+        if (!stbi_write_png(tmp.c_str(), int(width), int(height), int(channels), pixels.data(), int(width * channels)))
+            throw std::runtime_error("PNG encoder failed");
+    });
+}
+
+std::vector<uint8_t> tonemapPreview(std::span<const uint16_t> rgbaHalf, uint32_t width, uint32_t height,
+                                    float exposure) {
+    std::vector<uint8_t> rgb(size_t(width) * height * 3);
+    for (size_t p = 0; p < size_t(width) * height; ++p) {
+        for (int c = 0; c < 3; ++c) {
+            float x = std::max(halfBitsToFloat(rgbaHalf[p * 4 + c]) * exposure, 0.0f);
+            x = std::clamp(x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f); // ACES fit
+            x = x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f; // sRGB
+            rgb[p * 3 + c] = uint8_t(std::clamp(x * 255.0f + 0.5f, 0.0f, 255.0f));
+        }
+    }
+    return rgb;
+}
+
+void ensureWritableDirectory(const std::string& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir))
+        throw Error("cannot create output folder '" + dir + "': " + (ec ? ec.message() : "not a directory"));
+    std::string probe = dir + "/.sward-write-test";
+    std::ofstream file(probe);
+    bool ok = file.good() && (file << "ok").good();
+    file.close();
+    std::remove(probe.c_str());
+    if (!ok) throw Error("cannot write to output folder '" + dir + "': permission denied or read-only");
+}
+
+} // namespace sward

@@ -1,0 +1,131 @@
+#include "io/sha256.h"
+
+#include "common/error.h"
+
+#include <algorithm>
+#include <bit>
+#include <cassert>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <vector>
+
+namespace sward {
+
+namespace {
+
+constexpr std::array<uint32_t, 64> kRound = {
+    0x428a2f98, 0x71374491, 0xb5c0fbcf, 0xe9b5dba5, 0x3956c25b, 0x59f111f1, 0x923f82a4, 0xab1c5ed5,
+    0xd807aa98, 0x12835b01, 0x243185be, 0x550c7dc3, 0x72be5d74, 0x80deb1fe, 0x9bdc06a7, 0xc19bf174,
+    0xe49b69c1, 0xefbe4786, 0x0fc19dc6, 0x240ca1cc, 0x2de92c6f, 0x4a7484aa, 0x5cb0a9dc, 0x76f988da,
+    0x983e5152, 0xa831c66d, 0xb00327c8, 0xbf597fc7, 0xc6e00bf3, 0xd5a79147, 0x06ca6351, 0x14292967,
+    0x27b70a85, 0x2e1b2138, 0x4d2c6dfc, 0x53380d13, 0x650a7354, 0x766a0abb, 0x81c2c92e, 0x92722c85,
+    0xa2bfe8a1, 0xa81a664b, 0xc24b8b70, 0xc76c51a3, 0xd192e819, 0xd6990624, 0xf40e3585, 0x106aa070,
+    0x19a4c116, 0x1e376c08, 0x2748774c, 0x34b0bcb5, 0x391c0cb3, 0x4ed8aa4a, 0x5b9cca4f, 0x682e6ff3,
+    0x748f82ee, 0x78a5636f, 0x84c87814, 0x8cc70208, 0x90befffa, 0xa4506ceb, 0xbef9a3f7, 0xc67178f2};
+
+uint32_t loadBigEndian(const uint8_t* p) {
+    return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | uint32_t(p[3]);
+}
+
+} // namespace
+
+Sha256::Sha256()
+    : state_{0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a, 0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19} {}
+
+void Sha256::compress(const uint8_t* block) {
+    uint32_t w[64];
+    for (int t = 0; t < 16; ++t) w[t] = loadBigEndian(block + 4 * t);
+    for (int t = 16; t < 64; ++t) {
+        uint32_t s0 = std::rotr(w[t - 15], 7) ^ std::rotr(w[t - 15], 18) ^ (w[t - 15] >> 3);
+        uint32_t s1 = std::rotr(w[t - 2], 17) ^ std::rotr(w[t - 2], 19) ^ (w[t - 2] >> 10);
+        w[t] = w[t - 16] + s0 + w[t - 7] + s1;
+    }
+    uint32_t a = state_[0], b = state_[1], c = state_[2], d = state_[3];
+    uint32_t e = state_[4], f = state_[5], g = state_[6], h = state_[7];
+    for (int t = 0; t < 64; ++t) {
+        uint32_t s1 = std::rotr(e, 6) ^ std::rotr(e, 11) ^ std::rotr(e, 25);
+        uint32_t choose = (e & f) ^ (~e & g);
+        uint32_t t1 = h + s1 + choose + kRound[size_t(t)] + w[t];
+        uint32_t s0 = std::rotr(a, 2) ^ std::rotr(a, 13) ^ std::rotr(a, 22);
+        uint32_t majority = (a & b) ^ (a & c) ^ (b & c);
+        uint32_t t2 = s0 + majority;
+        h = g;
+        g = f;
+        f = e;
+        e = d + t1;
+        d = c;
+        c = b;
+        b = a;
+        a = t1 + t2;
+    }
+    state_[0] += a, state_[1] += b, state_[2] += c, state_[3] += d;
+    state_[4] += e, state_[5] += f, state_[6] += g, state_[7] += h;
+}
+
+void Sha256::update(std::span<const uint8_t> bytes) {
+    assert(!finished_);
+    totalBytes_ += bytes.size();
+    const uint8_t* p = bytes.data();
+    size_t n = bytes.size();
+    if (buffered_ > 0) {
+        size_t take = std::min(n, buffer_.size() - buffered_);
+        std::memcpy(buffer_.data() + buffered_, p, take);
+        buffered_ += take, p += take, n -= take;
+        if (buffered_ < buffer_.size()) return;
+        compress(buffer_.data());
+        buffered_ = 0;
+    }
+    for (; n >= 64; p += 64, n -= 64) compress(p);
+    if (n > 0) std::memcpy(buffer_.data(), p, n);
+    buffered_ = n;
+}
+
+std::array<uint8_t, 32> Sha256::finish() {
+    assert(!finished_);
+    // Padding: 0x80, zeros up to 56 mod 64, then the message length in bits as a big-endian 64-bit number.
+    uint64_t bits = totalBytes_ * 8;
+    uint8_t pad[72] = {0x80};
+    size_t padLength = (buffered_ < 56 ? 56 : 120) - buffered_;
+    for (int i = 0; i < 8; ++i) pad[padLength + size_t(i)] = uint8_t(bits >> (56 - 8 * i));
+    update({pad, padLength + 8});
+    assert(buffered_ == 0);
+    finished_ = true;
+    std::array<uint8_t, 32> digest;
+    for (size_t i = 0; i < 8; ++i)
+        for (size_t k = 0; k < 4; ++k) digest[i * 4 + k] = uint8_t(state_[i] >> (24 - 8 * k));
+    return digest;
+}
+
+std::string toHex(std::span<const uint8_t> bytes) {
+    static const char* digits = "0123456789abcdef";
+    std::string hex;
+    hex.reserve(bytes.size() * 2);
+    for (uint8_t b : bytes) hex.append({digits[b >> 4], digits[b & 15]});
+    return hex;
+}
+
+std::string sha256Hex(std::span<const uint8_t> bytes) {
+    Sha256 hasher;
+    hasher.update(bytes);
+    return toHex(hasher.finish());
+}
+
+std::string sha256Hex(std::string_view text) {
+    return sha256Hex(std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+}
+
+std::string sha256File(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) throw Error("cannot open '" + path + "' to hash it: " + std::strerror(errno));
+    Sha256 hasher;
+    std::vector<char> block(1 << 20);
+    while (file) {
+        file.read(block.data(), std::streamsize(block.size()));
+        hasher.update({reinterpret_cast<const uint8_t*>(block.data()), size_t(file.gcount())});
+    }
+    if (file.bad()) throw Error("cannot read '" + path + "' to hash it: I/O error");
+    return toHex(hasher.finish());
+}
+
+} // namespace sward

@@ -1,0 +1,332 @@
+#include "render/benchmarks.h"
+
+#include "engine/context.h"
+#include "engine/render_target.h"
+#include "scene/scene.h"
+#include "render/scene_renderer.h"
+#include "engine/timestamps.h"
+#include "render/vegetation_renderer.h"
+#include "world/ground.h"
+#include "vegetation/placement.h"
+#include "render/vegetation_buffers.h"
+#include "interaction/interaction.h"
+#include "render/interaction_gpu.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <map>
+#include <memory>
+#include <thread>
+
+namespace sward {
+
+namespace {
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    return values.empty() ? 0.0 : values[values.size() / 2];
+}
+
+} // namespace
+
+nlohmann::json benchGenerate(const GenerateBenchOptions& options) {
+    require(options.density > 0.0f && options.density <= 1000.0f, "--density must be in (0, 1000] plants per m^2");
+    require(options.repeats >= 1, "--repeats must be at least 1");
+    uint32_t threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+
+    // A flat-out uniform grass tile: every plant costs the same, so plants/s is comparable between runs.
+    VegetationParams params;
+    params.tileSize = options.tileSize;
+    params.categories[1].density = options.density;
+    params.memoryBudgetBytes = uint64_t(8) << 30;
+    validateVegetationParams(params, "sward-bench generate");
+    GrassMap map(1, 1, 3, {0.0f, 1.0f, 0.0f}, "uniform grass");
+    Ground ground(makeProceduralTerrain({.size = options.tileSize, .spacing = 2.0f, .seed = 1}));
+
+    std::vector<double> runs;
+    VegetationTile tile;
+    for (uint32_t i = 0; i < options.repeats; ++i) {
+        auto start = std::chrono::steady_clock::now();
+        tile = generateTile(ground, map, params, TileCoord{0, 0}, threads);
+        runs.push_back(secondsSince(start));
+    }
+    std::vector<double> sorted = runs;
+    std::sort(sorted.begin(), sorted.end());
+    double seconds = sorted[sorted.size() / 2];
+    VegetationStats stats = countVegetation(tile);
+
+    nlohmann::json result = {
+        {"plants", stats.plants},
+        {"seconds", seconds},
+        {"runs_seconds", runs},
+        {"plants_per_second", double(stats.plants) / seconds},
+        {"static_bytes_per_plant", double(stats.staticBytes) / double(stats.plants)},
+        {"dynamic_bytes_per_plant", double(stats.dynamicBytes) / double(stats.plants)},
+        {"cluster_bytes_per_plant", double(stats.clusterBytes) / double(stats.plants)},
+        {"threads", threads},
+        {"density", options.density},
+        {"tile_size", options.tileSize},
+    };
+    if (options.upload) {
+        Context ctx(DeviceOptions{.deviceFilter = options.device, .quiet = true});
+        VegetationBuffers buffers(ctx, tile);
+        result["upload_seconds"] = buffers.uploadSeconds;
+        result["device"] = ctx.device.name();
+        result["total_seconds"] = seconds + buffers.uploadSeconds;
+    }
+    return result;
+}
+
+nlohmann::json benchFrame(const FrameBenchOptions& options) {
+    require(options.frames >= 1, "--frames must be at least 1");
+    require(options.samples == 1 || options.samples == 4, "--samples must be 1 or 4");
+    Scene scene = loadScene(options.scenePath.empty() ? std::string(SWARD_SOURCE_DIR "/examples/meadow.json")
+                                                      : options.scenePath);
+    Heightfield terrain = buildTerrain(scene);
+    VegetationTile tile = buildVegetation(scene, terrain);
+    Atlas atlas = buildAtlas(scene);
+    Camera camera = sceneCamera(scene, terrain, options.width, options.height);
+
+    Context ctx(DeviceOptions{.deviceFilter = options.device, .quiet = true});
+    SceneRenderer renderer(ctx, scene, terrain, options.samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
+                           &tile, &atlas);
+    const uint64_t plantsTotal = countVegetation(tile).plants;
+    tile = {};
+    RenderTarget main(ctx, mainPassTargetDesc(options.width, options.height, options.samples));
+    RenderTarget truth(ctx, truthPassTargetDesc(options.width, options.height));
+    GpuTimers timers(ctx.device, 8);
+    auto timed = [&](const std::function<void(VkCommandBuffer)>& record) {
+        VkCommandBuffer cmd = ctx.submitter.begin();
+        timers.reset(cmd);
+        record(cmd);
+        ctx.submitter.wait(ctx.submitter.submit(cmd));
+        return timers.read();
+    };
+
+    // Full frames: every pass, timed. The first frame warms up caches and pipelines and is not counted.
+    std::map<std::string, std::vector<double>> passes;
+    for (uint32_t i = 0; i <= options.frames; ++i) {
+        auto times = timed([&](VkCommandBuffer cmd) { renderer.record(cmd, main, &truth, camera, 0.0, i, &timers); });
+        if (i > 0)
+            for (auto& [name, ms] : times) passes[name].push_back(ms);
+    }
+    VegetationRenderer& vegetation = *renderer.vegetation();
+    BakedPlants baked = vegetation.bake(0);
+
+    // Expansion overhead: expansion + main pass against the same main pass drawing the same quads from the
+    // baked static buffer; interleaved so both see the same machine state.
+    std::vector<double> dynamicMs, staticMs;
+    for (uint32_t i = 0; i <= options.frames; ++i) {
+        auto dyn = timed([&](VkCommandBuffer cmd) { renderer.recordMainOnly(cmd, main, camera, 0.0, i, &timers, nullptr); });
+        auto fix = timed([&](VkCommandBuffer cmd) { renderer.recordMainOnly(cmd, main, camera, 0.0, i, &timers, &baked); });
+        if (i == 0) continue;
+        double d = 0.0, f = 0.0;
+        for (auto& [name, ms] : dyn) d += ms;
+        for (auto& [name, ms] : fix) f += ms;
+        dynamicMs.push_back(d);
+        staticMs.push_back(f);
+    }
+    gpu::ExpansionStats stats = baked.stats;
+    vegetation.destroyBaked(baked);
+
+    nlohmann::json passMs = nlohmann::json::object();
+    for (auto& [name, values] : passes) passMs[name] = median(values);
+    double expansionMs = median(passes["expansion"]);
+    double frameMs = median(dynamicMs), staticFrameMs = median(staticMs);
+    return {
+        {"pass_ms", passMs},
+        {"plants_drawn_per_lod", {stats.instances.x, stats.instances.y, stats.instances.z}},
+        {"plants_considered", stats.info.z},
+        {"plants_total", plantsTotal},
+        {"clusters_visible", stats.info.x},
+        {"clusters_total", vegetation.buffers().clusterCount},
+        {"expansion_plants_per_second", expansionMs > 0.0 ? double(stats.info.z) / (expansionMs * 1e-3) : 0.0},
+        {"frame_ms", frameMs},
+        {"static_frame_ms", staticFrameMs},
+        {"expansion_overhead_ratio", staticFrameMs > 0.0 ? frameMs / staticFrameMs : 0.0},
+        {"device", ctx.device.name()},
+        {"width", options.width},
+        {"height", options.height},
+        {"samples", options.samples},
+        {"frames", options.frames},
+    };
+}
+
+namespace {
+
+// One measured tick of benchCollide.
+struct CollideTick {
+    double cpuMs = 0.0, cpuTimeMs = 0.0, uploadMs = 0.0, gpuMs = 0.0;
+    uint64_t uploadBytes = 0, dispatches = 0;
+    size_t contacts = 0, activeFields = 0;
+    double total() const { return cpuMs + uploadMs + gpuMs; }
+};
+
+// One pushing sphere per cluster of the first `fields` fields, each circling 0.5 m around its cluster's centre at
+// its own phase, so the set of touched plants changes every tick. Ids in cluster order.
+std::vector<Collider> circlingSpheres(const VegetationTile& tile, uint32_t fields, float radius, uint64_t tick) {
+    std::vector<Collider> colliders;
+    const uint32_t perSide = tile.clustersPerField;
+    for (uint32_t f = 0; f < fields; ++f)
+        for (uint32_t k = 0; k < perSide * perSide; ++k) {
+            const uint32_t id = f * perSide * perSide + k;
+            const float angle = 0.05f * float(tick) + 0.7f * float(id);
+            glm::vec2 centre = tile.fields[f].origin +
+                               tile.clusterSize * (glm::vec2(float(k % perSide), float(k / perSide)) + 0.5f) +
+                               0.5f * glm::vec2(std::cos(angle), std::sin(angle));
+            // Low, like a wheel or a foot: the lower part of the sphere sinks into the ground.
+            colliders.push_back(makeSphere(id, {centre, 0.6f * radius}, radius, 0.4f));
+        }
+    return colliders;
+}
+
+} // namespace
+
+nlohmann::json benchCollide(const CollideBenchOptions& options) {
+    require(!options.fields.empty(), "--fields needs at least one value");
+    for (uint32_t n : options.fields) require(n >= 1 && n <= 400, "--fields must be in [1, 400] (a 500 x 500 m tile)");
+    require(options.ticks >= 1, "--ticks must be at least 1");
+    require(options.density > 0.0f && options.density <= 1000.0f, "--density must be in (0, 1000] plants per m^2");
+    require(options.radius > 0.0f && options.radius <= 2.0f, "--radius must be in (0, 2] metres");
+    const uint32_t threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+
+    // A synthetic flat tile, independent of example files: 500 x 500 m, 20 x 20 fields of 5 x 5 clusters.
+    VegetationParams params;
+    params.tileSize = 500.0f;
+    params.categories[1].density = options.density;
+    params.memoryBudgetBytes = uint64_t(8) << 30;
+    validateVegetationParams(params, "sward-bench collide");
+    const uint32_t columns = uint32_t(params.tileSize / 2.0f) + 1;
+    Ground ground(Heightfield(columns, columns, 2.0f, glm::vec2(0.0f), std::vector<float>(size_t(columns) * columns, 0.0f)));
+    GrassMap map(1, 1, 3, {0.0f, 1.0f, 0.0f}, "uniform grass");
+    const VegetationTile tile = generateTile(ground, map, params, TileCoord{0, 0}, threads);
+    require(tile.fields.size() == 400, "sward-bench collide: the synthetic tile must have 400 fields");
+    const InteractionParams interaction;
+
+    // Without the GPU side the collision pass runs back to back, its working set warm in the caches; with it on
+    // lavapipe, the recovery pass (itself on the CPU) evicts them between ticks.
+    std::unique_ptr<Context> ctx;
+    std::unique_ptr<VegetationBuffers> buffers;
+    std::unique_ptr<InteractionGpu> gpu;
+    std::unique_ptr<GpuTimers> timers;
+    if (options.gpu) {
+        ctx = std::make_unique<Context>(DeviceOptions{.deviceFilter = options.device, .quiet = true});
+        buffers = std::make_unique<VegetationBuffers>(*ctx, tile);
+        gpu = std::make_unique<InteractionGpu>(*ctx, *buffers);
+        timers = std::make_unique<GpuTimers>(ctx->device, 4);
+    }
+
+    // Collision on the CPU (wall clock around the whole step), then the GPU update in its own submission, timed
+    // with GPU timestamps; the upload is the contact and range writes into host-visible memory.
+    auto runTick = [&](InteractionWorld& world, std::span<const Collider> colliders) {
+        CollideTick t;
+        const auto start = std::chrono::steady_clock::now();
+        const std::clock_t cpuStart = std::clock();
+        TickResult r = world.step(colliders);
+        t.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        t.cpuTimeMs = double(std::clock() - cpuStart) * 1000.0 / CLOCKS_PER_SEC;
+        t.contacts = r.contacts.size();
+        t.activeFields = r.activeFields.size();
+        if (!gpu) return t;
+        const InteractionGpuStats before = gpu->stats();
+        VkCommandBuffer cmd = ctx->submitter.begin();
+        timers->reset(cmd);
+        gpu->record(cmd, r.contacts, r.activeFields, interaction.recovery, uint32_t(r.tick), timers.get());
+        ctx->submitter.wait(ctx->submitter.submit(cmd));
+        for (auto& [name, ms] : timers->read()) t.gpuMs += ms;
+        t.uploadBytes = gpu->stats().uploadBytes - before.uploadBytes;
+        t.uploadMs = gpu->stats().uploadMs - before.uploadMs;
+        t.dispatches = gpu->stats().dispatches - before.dispatches;
+        return t;
+    };
+    auto medianOf = [](const std::vector<CollideTick>& ticks, auto figure) {
+        std::vector<double> values;
+        for (const CollideTick& t : ticks) values.push_back(double(figure(t)));
+        return median(values);
+    };
+
+    nlohmann::json results = nlohmann::json::array();
+    uint64_t zeroActiveDispatches = 0, zeroActiveTicks = 0;
+    for (size_t c = 0; c < options.fields.size(); ++c) {
+        const uint32_t fields = options.fields[c];
+        InteractionWorld world(tile, params, interaction, threads);
+        if (gpu) gpu->writeDynamics(world.initialDynamics());
+        std::vector<CollideTick> measured;
+        std::vector<Collider> colliders;
+        for (uint32_t i = 0; i < options.warmup + options.ticks; ++i) {
+            colliders = circlingSpheres(tile, fields, options.radius, world.tick());
+            CollideTick t = runTick(world, colliders);
+            if (i >= options.warmup) measured.push_back(t);
+        }
+        results.push_back({
+            {"fields", fields},
+            {"colliders", colliders.size()},
+            {"contacts", uint64_t(medianOf(measured, [](const CollideTick& t) { return t.contacts; }))},
+            {"active_fields", uint64_t(medianOf(measured, [](const CollideTick& t) { return t.activeFields; }))},
+            {"cpu_collision_ms", medianOf(measured, [](const CollideTick& t) { return t.cpuMs; })},
+            {"cpu_collision_cpu_time_ms", medianOf(measured, [](const CollideTick& t) { return t.cpuTimeMs; })},
+            {"upload_bytes", uint64_t(medianOf(measured, [](const CollideTick& t) { return t.uploadBytes; }))},
+            {"upload_ms", medianOf(measured, [](const CollideTick& t) { return t.uploadMs; })},
+            {"gpu_recovery_ms", medianOf(measured, [](const CollideTick& t) { return t.gpuMs; })},
+            {"gpu_recovery_ms_per_field",
+             medianOf(measured, [](const CollideTick& t) { return t.activeFields ? t.gpuMs / double(t.activeFields) : 0.0; })},
+            {"total_ms", medianOf(measured, [](const CollideTick& t) { return t.total(); })},
+        });
+        if (c != 0) continue;
+        // The colliders leave: the touched fields recover, turn inactive, and from then on no tick may record any
+        // GPU work.
+        for (uint32_t i = 0; i <= interaction.recovery.restTicks && !world.activeFields().empty(); ++i) runTick(world, {});
+        require(world.activeFields().empty(), "sward-bench collide: fields did not turn inactive after recovery");
+        for (uint32_t i = 0; i < options.ticks; ++i, ++zeroActiveTicks) zeroActiveDispatches += runTick(world, {}).dispatches;
+    }
+
+    // 10,000 colliders hovering 50 m above the grass (drones, birds, a whole fleet parked high): they must cost
+    // next to nothing, and no field may become active.
+    std::vector<Collider> idle;
+    for (uint32_t i = 0; i < 10000; ++i)
+        idle.push_back(makeSphere(i, {5.0f * float(i % 100) + 2.5f, 5.0f * float(i / 100) + 2.5f, 50.0f}, 0.5f, 1.0f));
+    InteractionWorld world(tile, params, interaction, threads);
+    std::vector<CollideTick> idleTicks;
+    for (uint32_t i = 0; i < options.warmup + options.ticks; ++i) {
+        CollideTick t = runTick(world, idle);
+        require(t.activeFields == 0 && t.dispatches == 0, "sward-bench collide: colliders above the grass touched it");
+        if (i >= options.warmup) idleTicks.push_back(t);
+    }
+
+    return {
+        {"results", results},
+        {"idle_colliders", idle.size()},
+        {"idle_colliders_ms", medianOf(idleTicks, [](const CollideTick& t) { return t.total(); })},
+        {"zero_active_recovery_dispatches", zeroActiveDispatches},
+        {"zero_active_ticks", zeroActiveTicks},
+        {"plants", countVegetation(tile).plants},
+        {"density", options.density},
+        {"radius", options.radius},
+        {"threads", threads},
+        {"ticks", options.ticks},
+        {"device", ctx ? ctx->device.name() : std::string("none (--no-gpu)")},
+    };
+}
+
+std::string collideTable(const nlohmann::json& result) {
+    std::string out = "fields  colliders  contacts  cpu_collision_ms  (cpu time)  upload_bytes  upload_ms  "
+                      "gpu_recovery_ms  gpu_ms_per_field  total_ms\n";
+    char line[256];
+    for (const nlohmann::json& r : result.at("results")) {
+        std::snprintf(line, sizeof(line), "%6u  %9u  %8.0f  %16.3f  %10.3f  %12.0f  %9.3f  %15.3f  %16.4f  %8.3f\n",
+                      r.at("fields").get<uint32_t>(), r.at("colliders").get<uint32_t>(), double(r.at("contacts").get<uint64_t>()),
+                      r.at("cpu_collision_ms").get<double>(), r.at("cpu_collision_cpu_time_ms").get<double>(),
+                      double(r.at("upload_bytes").get<uint64_t>()),
+                      r.at("upload_ms").get<double>(), r.at("gpu_recovery_ms").get<double>(),
+                      r.at("gpu_recovery_ms_per_field").get<double>(), r.at("total_ms").get<double>());
+        out += line;
+    }
+    return out;
+}
+
+} // namespace sward

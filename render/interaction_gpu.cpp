@@ -1,0 +1,126 @@
+#include "render/interaction_gpu.h"
+
+#include "engine/barriers.h"
+#include "engine/timestamps.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+namespace sward {
+
+InteractionGpu::InteractionGpu(Context& ctx, VegetationBuffers& buffers) : ctx_(ctx), buffers_(buffers) {
+    // The field table (first plant, count) is needed on the CPU to build the active ranges.
+    std::vector<uint8_t> bytes = readBuffer(ctx, buffers.fields, 0, uint64_t(buffers.fieldCount) * sizeof(gpu::PlantField));
+    std::vector<gpu::PlantField> fields(buffers.fieldCount);
+    std::memcpy(fields.data(), bytes.data(), bytes.size());
+    for (const gpu::PlantField& f : fields) {
+        fieldFirstPlant_.push_back(f.range.x);
+        fieldPlantCount_.push_back(f.range.y);
+    }
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    PipelineLayoutDesc layout{.bindings = {layoutBinding(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
+                                           layoutBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
+                                           layoutBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)},
+                              .pushConstantSize = sizeof(gpu::RecoveryConstants),
+                              .pushConstantStages = cs};
+    contactPipeline_ = createComputePipeline(ctx.device, "plant_recovery.comp", layout, {/* CONTACT_PASS= */ 1});
+    recoveryPipeline_ = createComputePipeline(ctx.device, "plant_recovery.comp", layout, {/* CONTACT_PASS= */ 0});
+    for (Slot& slot : slots_) reserve(slot, 4096, 4096);
+}
+
+InteractionGpu::~InteractionGpu() {
+    ctx_.submitter.waitIdle();
+    destroyPipeline(ctx_.device, contactPipeline_);
+    destroyPipeline(ctx_.device, recoveryPipeline_);
+    for (Slot& slot : slots_) {
+        destroyBuffer(ctx_, slot.contacts);
+        destroyBuffer(ctx_, slot.ranges);
+    }
+}
+
+void InteractionGpu::reserve(Slot& slot, uint64_t contactBytes, uint64_t rangeBytes) {
+    auto grow = [&](Buffer& buffer, uint64_t bytes) {
+        if (buffer && buffer.size >= bytes) return;
+        retireBuffer(ctx_, buffer); // the GPU may still read the old one
+        buffer = createBuffer(ctx_, std::max<uint64_t>(bytes * 2, 4096), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              MemoryIntent::Upload);
+    };
+    grow(slot.contacts, contactBytes);
+    grow(slot.ranges, rangeBytes);
+}
+
+void InteractionGpu::record(VkCommandBuffer cmd, std::span<const gpu::PlantContact> contacts,
+                            std::span<const uint32_t> activeFields, const RecoveryParams& params, uint32_t slotIndex,
+                            GpuTimers* timers) {
+    if (contacts.empty() && activeFields.empty()) return; // idle grass costs nothing
+    const auto uploadStart = std::chrono::steady_clock::now();
+    Slot& slot = slots_[slotIndex % kSlots];
+    uint64_t contactBytes = contacts.size_bytes(), rangeBytes = activeFields.size() * sizeof(glm::uvec2);
+    reserve(slot, contactBytes, rangeBytes);
+    std::memcpy(slot.contacts.mapped(), contacts.data(), contactBytes);
+    auto* ranges = reinterpret_cast<glm::uvec2*>(slot.ranges.mapped());
+    uint32_t maxPlants = 0;
+    for (size_t i = 0; i < activeFields.size(); ++i) {
+        uint32_t f = activeFields[i];
+        require(f < fieldFirstPlant_.size(), "active field index out of range");
+        ranges[i] = {fieldFirstPlant_[f], fieldPlantCount_[f]};
+        maxPlants = std::max(maxPlants, fieldPlantCount_[f]);
+    }
+    stats_.uploadBytes += contactBytes + rangeBytes;
+    stats_.uploadMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - uploadStart).count();
+
+    gpu::RecoveryConstants constants{
+        .spring = glm::vec4(params.timeStep, params.stiffness, params.damping, params.restBend),
+        .fell = glm::vec4(params.fellBend, 0.0f, 0.0f, 0.0f),
+        .range = glm::uvec4(0, 0, uint32_t(contacts.size()), 0),
+    };
+    auto bind = [&](const Pipeline& pipeline) {
+        bindPipeline(cmd, pipeline);
+        pushDescriptors(ctx_.device, cmd, pipeline,
+                        {storageBuffer(0, buffers_.dynamics.handle), storageBuffer(1, slot.contacts.handle),
+                         storageBuffer(2, slot.ranges.handle)});
+        pushConstants(cmd, pipeline, constants);
+    };
+    if (timers) timers->begin(cmd, "recovery");
+    // Earlier readers and writers of the dynamic records (last frame's expansion, last tick's recovery).
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                  VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    if (!contacts.empty()) {
+        bind(contactPipeline_);
+        vkCmdDispatch(cmd, uint32_t((contacts.size() + 63) / 64), 1, 1);
+        ++stats_.dispatches;
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    }
+    if (!activeFields.empty() && maxPlants > 0) {
+        bind(recoveryPipeline_);
+        vkCmdDispatch(cmd, (maxPlants + 63) / 64, uint32_t(activeFields.size()), 1);
+        ++stats_.dispatches;
+        stats_.fieldsDispatched += activeFields.size();
+    }
+    // The expansion (compute) and readbacks (copy) read the updated records.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    if (timers) timers->end(cmd);
+}
+
+std::vector<gpu::PlantDynamic> InteractionGpu::readDynamics() {
+    std::vector<gpu::PlantDynamic> out(buffers_.plantCount);
+    std::vector<uint8_t> bytes = readBuffer(ctx_, buffers_.dynamics, 0, out.size() * sizeof(gpu::PlantDynamic));
+    std::memcpy(out.data(), bytes.data(), bytes.size());
+    return out;
+}
+
+void InteractionGpu::writeDynamics(std::span<const gpu::PlantDynamic> dynamics) {
+    require(dynamics.size() == buffers_.plantCount, "restored dynamic state has " + std::to_string(dynamics.size()) +
+                                                        " plants, the tile has " + std::to_string(buffers_.plantCount));
+    uploadToBuffer(ctx_, buffers_.dynamics, 0,
+                   {reinterpret_cast<const uint8_t*>(dynamics.data()), dynamics.size_bytes()});
+}
+
+} // namespace sward

@@ -1,0 +1,153 @@
+#include "render/object_renderer.h"
+
+#include "shared/object_layout.h"
+
+#include <cstring>
+
+namespace sward {
+
+namespace {
+
+template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) {
+    return {reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(T)};
+}
+
+} // namespace
+
+ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain,
+                               const VegetationPassFormats& formats)
+    : ObjectRenderer(ctx, scene, terrain, formats, loadObjectModels(scene.objects, scene.source)) {}
+
+ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain,
+                               const VegetationPassFormats& formats, std::vector<ObjectModel> models)
+    : ctx_(ctx), terrain_(terrain), objects_(scene.objects), models_(std::move(models)) {
+    require(models_.size() == objects_.size(), "ObjectRenderer: one model per scene object is required");
+    std::vector<gpu::ObjectVertex> vertices;
+    std::vector<uint32_t> indices;
+    for (size_t k = 0; k < objects_.size(); ++k) {
+        firstTransform_.push_back(transformCount_);
+        for (const ModelNode& node : models_[k].nodes) {
+            for (const ModelPrimitive& prim : node.primitives) {
+                const uint32_t base = uint32_t(vertices.size());
+                for (size_t v = 0; v < prim.positions.size(); ++v)
+                    vertices.push_back({glm::vec4(prim.positions[v], 1.0f), glm::vec4(prim.normals[v], 0.0f),
+                                        prim.baseColor, glm::uvec4(transformCount_, objectLabel(k), 0u, 0u)});
+                for (uint32_t index : prim.indices) indices.push_back(base + index);
+            }
+            ++transformCount_;
+        }
+    }
+    indexCount_ = uint32_t(indices.size());
+    if (empty()) return;
+
+    vertices_ = createBufferWithData(ctx, bytesOf(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    indices_ = createBufferWithData(ctx, bytesOf(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    const uint64_t align = ctx.device.properties().limits.minStorageBufferOffsetAlignment;
+    transformsStride_ = (uint64_t(transformCount_) * sizeof(gpu::ObjectTransform) + align - 1) / align * align;
+    transforms_ =
+        createBuffer(ctx, transformsStride_ * kSlots, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryIntent::Upload);
+
+    const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    PipelineLayoutDesc layout{
+        .bindings = {layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, stages),
+                     layoutBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT)}};
+    PipelineLayoutDesc shadedLayout = layout; // + the sun shadow map
+    shadedLayout.bindings.push_back(
+        layoutBinding(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
+    GraphicsPipelineDesc desc{
+        .vertexShader = "object.vert",
+        .fragmentShader = "object.frag",
+        .vertexBindings = {{0, sizeof(gpu::ObjectVertex), VK_VERTEX_INPUT_RATE_VERTEX}},
+        .vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::ObjectVertex, position)},
+                             {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::ObjectVertex, normal)},
+                             {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::ObjectVertex, baseColor)},
+                             {3, 0, VK_FORMAT_R32G32B32A32_UINT, offsetof(gpu::ObjectVertex, info)}},
+        .cullMode = VK_CULL_MODE_BACK_BIT, // models are closed; the loader keeps fronts outside (mirrored nodes too)
+        .colorFormats = {formats.mainColor},
+        .depthFormat = formats.mainDepth,
+        .samples = formats.mainSamples,
+        .specialization = {/* PASS= */ 0},
+    };
+    mainPipeline_ = createGraphicsPipeline(ctx.device, desc, shadedLayout);
+    // Same vertices and rasterisation, ground-truth outputs (depth bits, label), one sample per pixel.
+    desc.fragmentShader = "object_truth.frag";
+    desc.colorFormats = {formats.truthDepthBits, formats.truthLabel};
+    desc.depthFormat = formats.truthDepth;
+    desc.samples = VK_SAMPLE_COUNT_1_BIT;
+    desc.specialization = {/* PASS= */ 1};
+    truthPipeline_ = createGraphicsPipeline(ctx.device, desc, layout);
+    // Depth only from the sun, both faces and the terrain's bias: thin parts (mast, wheels) still cast shadows.
+    desc.fragmentShader = "";
+    desc.colorFormats = {};
+    desc.depthFormat = formats.shadowDepth;
+    desc.cullMode = VK_CULL_MODE_NONE;
+    desc.specialization = {/* PASS= */ 2};
+    desc.depthBias = -1.0f;
+    desc.depthBiasSlope = -1.5f;
+    shadowPipeline_ = createGraphicsPipeline(ctx.device, desc, layout);
+    for (uint32_t slot = 0; slot < kSlots; ++slot) update(0.0, slot); // never draw uninitialised transforms
+}
+
+ObjectRenderer::~ObjectRenderer() {
+    if (empty()) return;
+    ctx_.submitter.waitIdle();
+    destroyPipeline(ctx_.device, mainPipeline_);
+    destroyPipeline(ctx_.device, truthPipeline_);
+    destroyPipeline(ctx_.device, shadowPipeline_);
+    destroyBuffer(ctx_, vertices_);
+    destroyBuffer(ctx_, indices_);
+    destroyBuffer(ctx_, transforms_);
+}
+
+void ObjectRenderer::place(size_t k, glm::dvec2 position, double headingRadians) {
+    require(k < objects_.size(), "ObjectRenderer::place: no object " + std::to_string(k));
+    // A one-point path faces +x; the yaw turns the model to the heading (objects.h).
+    objects_[k].path.points = {position};
+    objects_[k].yawDegrees = headingRadians * 180.0 / 3.14159265358979323846;
+}
+
+void ObjectRenderer::setVisible(size_t k, bool visible) {
+    require(k < objects_.size(), "ObjectRenderer::setVisible: no object " + std::to_string(k));
+    hidden_.resize(objects_.size(), 0);
+    hidden_[k] = visible ? 0 : 1;
+}
+
+void ObjectRenderer::update(double time, uint32_t slot) {
+    if (empty()) return;
+    require(slot < kSlots, "ObjectRenderer::update: slot out of range");
+    std::vector<gpu::ObjectTransform> transforms;
+    transforms.reserve(transformCount_);
+    for (size_t k = 0; k < objects_.size(); ++k) {
+        const bool hidden = k < hidden_.size() && hidden_[k];
+        for (const glm::dmat4& m : objectNodeTransforms(objects_[k], models_[k], terrain_, time))
+            transforms.push_back(hidden ? gpu::ObjectTransform{glm::mat4(0.0f), glm::mat4(0.0f)}
+                                        : gpu::ObjectTransform{glm::mat4(m), glm::mat4(glm::transpose(glm::inverse(m)))});
+    }
+    std::memcpy(transforms_.mapped() + slot * transformsStride_, transforms.data(),
+                transforms.size() * sizeof(gpu::ObjectTransform));
+}
+
+DescriptorBinding ObjectRenderer::transformsBinding(uint32_t slot) const {
+    return storageBuffer(1, transforms_.handle, slot * transformsStride_,
+                         uint64_t(transformCount_) * sizeof(gpu::ObjectTransform));
+}
+
+void ObjectRenderer::draw(VkCommandBuffer cmd, const Pipeline& pipeline,
+                          std::initializer_list<DescriptorBinding> bindings) {
+    drawIndexedMesh(ctx_.device, cmd, pipeline, bindings, vertices_.handle, indices_.handle, indexCount_);
+}
+
+void ObjectRenderer::recordMain(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& shadowMap,
+                                uint32_t slot) {
+    if (!empty()) draw(cmd, mainPipeline_, {frame, transformsBinding(slot), shadowMap});
+}
+
+void ObjectRenderer::recordShadow(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot) {
+    if (!empty()) draw(cmd, shadowPipeline_, {frame, transformsBinding(slot)});
+}
+
+void ObjectRenderer::recordTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot) {
+    if (!empty()) draw(cmd, truthPipeline_, {frame, transformsBinding(slot)});
+}
+
+} // namespace sward

@@ -1,0 +1,69 @@
+// ObjectRenderer: draws the scene's glTF objects (vegetation/objects.h) in the main colour, sun shadow and
+// ground-truth passes.
+//
+// All objects share one vertex and one index buffer (node-frame vertices tagged with their node's transform
+// index and their object's truth label), so each pass is one indexed draw. update() writes every node's world
+// transform for a simulation time into one of kSlots host-visible slots (frames in flight); the record*()
+// calls draw into a rendering pass the caller has begun, with the same descriptor conventions as the terrain
+// (push descriptors: binding 0 frame constants, binding 5 sun shadow map; binding 1 is the transforms).
+#pragma once
+
+#include "engine/context.h"
+#include "world/heightfield.h"
+#include "scene/objects.h"
+#include "engine/pipelines.h"
+#include "scene/scene.h"
+#include "render/vegetation_renderer.h" // VegetationPassFormats: the same pass formats
+
+namespace sward {
+
+class ObjectRenderer {
+public:
+    // Loads the scene's models (errors name the JSON path) and uploads them. `terrain` must outlive the
+    // renderer (update() places the objects on it). With no objects the renderer records nothing.
+    ObjectRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, const VegetationPassFormats& formats);
+    // Same, with models already loaded by loadObjectModels(scene.objects, ...) (e.g. shared with the collision pass).
+    ObjectRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, const VegetationPassFormats& formats,
+                   std::vector<ObjectModel> models);
+    ~ObjectRenderer();
+    ObjectRenderer(const ObjectRenderer&) = delete;
+    ObjectRenderer& operator=(const ObjectRenderer&) = delete;
+
+    bool empty() const { return indexCount_ == 0; }
+    uint32_t triangleCount() const { return indexCount_ / 3; }
+    const std::vector<ObjectModel>& models() const { return models_; }
+
+    // Places object k at world xy `position`, heading `headingRadians` (from +x towards +y), on the terrain,
+    // instead of following its path (e.g. the rover driven from the keyboard in sward-view); hidden objects
+    // collapse to a point and draw nothing. Applies from the next update().
+    void place(size_t k, glm::dvec2 position, double headingRadians);
+    void setVisible(size_t k, bool visible);
+
+    // Writes the node transforms at simulation time `time` into slot `slot` (< kSlots). The slot must not be
+    // in use by a frame still executing on the GPU (the caller's frames-in-flight rotation guarantees this).
+    void update(double time, uint32_t slot = 0);
+    // Draw calls into the current pass; `slot` as given to update(). `frame` is the frame-constants binding 0.
+    void recordMain(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& shadowMap,
+                    uint32_t slot = 0);
+    void recordShadow(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot = 0);
+    void recordTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot = 0);
+
+    static constexpr uint32_t kSlots = 3;
+
+private:
+    void draw(VkCommandBuffer cmd, const Pipeline& pipeline, std::initializer_list<DescriptorBinding> bindings);
+    DescriptorBinding transformsBinding(uint32_t slot) const;
+
+    Context& ctx_;
+    const Heightfield& terrain_;
+    std::vector<ObjectParams> objects_;
+    std::vector<ObjectModel> models_;
+    std::vector<uint32_t> firstTransform_; // per object: index of its first node's transform
+    std::vector<uint8_t> hidden_;          // per object
+    uint32_t transformCount_ = 0, indexCount_ = 0;
+    Buffer vertices_, indices_, transforms_;
+    uint64_t transformsStride_ = 0;
+    Pipeline mainPipeline_, shadowPipeline_, truthPipeline_;
+};
+
+} // namespace sward

@@ -1,0 +1,371 @@
+#include "render/scene_renderer.h"
+
+#include "engine/barriers.h"
+#include "render/object_renderer.h"
+#include "shared/gpu_layout.h"
+#include "engine/timestamps.h"
+#include "render/vegetation_renderer.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cstring>
+
+namespace sward {
+
+RenderTargetDesc mainPassTargetDesc(uint32_t width, uint32_t height, uint32_t samples) {
+    VkClearColorValue black{.float32 = {0.0f, 0.0f, 0.0f, 1.0f}};
+    return RenderTargetDesc{
+        .width = width,
+        .height = height,
+        .samples = samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
+        .colors = {{VK_FORMAT_R16G16B16A16_SFLOAT, black}},
+        .depthFormat = VK_FORMAT_D32_SFLOAT,
+        .depthClear = 0.0f,
+    };
+}
+
+RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height) {
+    VkClearColorValue infinity{.uint32 = {gpu::kDepthInfinityBits, 0, 0, 0}};
+    VkClearColorValue sky{.uint32 = {gpu::kSemanticSky << gpu::kInstanceBits, 0, 0, 0}};
+    return RenderTargetDesc{
+        .width = width,
+        .height = height,
+        .samples = VK_SAMPLE_COUNT_1_BIT,
+        .colors = {{VK_FORMAT_R32_UINT, infinity}, {VK_FORMAT_R32_UINT, sky}}, // depth bits, label
+        .depthFormat = VK_FORMAT_D32_SFLOAT,
+        .depthClear = 0.0f,
+    };
+}
+
+namespace {
+
+std::vector<gpu::TerrainVertex> terrainVertices(const Heightfield& terrain) {
+    std::vector<gpu::TerrainVertex> vertices;
+    vertices.reserve(size_t(terrain.columns()) * terrain.rows());
+    for (uint32_t j = 0; j < terrain.rows(); ++j)
+        for (uint32_t i = 0; i < terrain.columns(); ++i) {
+            glm::vec2 xy = terrain.origin() + glm::vec2(float(i), float(j)) * terrain.spacing();
+            vertices.push_back({glm::vec4(xy, terrain.sample(i, j), 1.0f), glm::vec4(terrain.vertexNormal(i, j), 0.0f)});
+        }
+    return vertices;
+}
+
+// Two counter-clockwise (seen from above) triangles per cell, split along the (i,j)-(i+1,j+1) diagonal
+// exactly as Heightfield::height() interpolates.
+std::vector<uint32_t> terrainIndices(const Heightfield& terrain) {
+    std::vector<uint32_t> indices;
+    indices.reserve(size_t(terrain.columns() - 1) * (terrain.rows() - 1) * 6);
+    for (uint32_t j = 0; j + 1 < terrain.rows(); ++j)
+        for (uint32_t i = 0; i + 1 < terrain.columns(); ++i) {
+            uint32_t p00 = j * terrain.columns() + i, p10 = p00 + 1, p01 = p00 + terrain.columns(), p11 = p01 + 1;
+            indices.insert(indices.end(), {p00, p10, p11, p00, p11, p01});
+        }
+    return indices;
+}
+
+template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) {
+    return {reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(T)};
+}
+
+} // namespace
+
+SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, VkSampleCountFlagBits samples,
+                             const VegetationTile* vegetation, const Atlas* atlas,
+                             const std::vector<ObjectModel>* models)
+    : ctx_(ctx), scene_(scene), samples_(samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1) {
+    terrainMinHeight_ = terrain.minHeight();
+    terrainMaxHeight_ = terrain.maxHeight();
+    auto vertices = terrainVertices(terrain);
+    auto indices = terrainIndices(terrain);
+    terrainVertices_ = createBufferWithData(ctx, bytesOf(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    terrainIndices_ = createBufferWithData(ctx, bytesOf(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    terrainIndexCount_ = uint32_t(indices.size());
+
+    uint64_t align = ctx.device.properties().limits.minUniformBufferOffsetAlignment;
+    constantsStride_ = (sizeof(gpu::FrameConstants) + align - 1) / align * align;
+    constants_ = createBuffer(ctx, constantsStride_ * kFramesInFlight * kMaxViews, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                              MemoryIntent::Upload);
+
+    RenderTargetDesc mainDesc = mainPassTargetDesc(1, 1, samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1);
+    RenderTargetDesc truthDesc = truthPassTargetDesc(1, 1);
+    const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    PipelineLayoutDesc layout{.bindings = {layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, stages)}};
+    PipelineLayoutDesc shadedLayout = layout; // + the sun shadow map
+    shadedLayout.bindings.push_back(
+        layoutBinding(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
+
+    // Sun shadow map: always present (1x1 and disabled when shadow_map_size is 0) so bindings stay valid.
+    uint32_t shadowSize = std::max(scene.render.shadowMapSize, 1u);
+    shadowMap_ = std::make_unique<RenderTarget>(ctx, RenderTargetDesc{.width = shadowSize,
+                                                                      .height = shadowSize,
+                                                                      .depthFormat = VK_FORMAT_D32_SFLOAT,
+                                                                      .depthClear = 0.0f,
+                                                                      .sampleDepth = true});
+    VkSamplerCreateInfo shadowSampler{
+        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+        .magFilter = VK_FILTER_LINEAR,
+        .minFilter = VK_FILTER_LINEAR,
+        .mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST,
+        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .compareEnable = VK_TRUE,
+        .compareOp = VK_COMPARE_OP_GREATER_OR_EQUAL, // reversed Z: lit when not behind the stored occluder
+    };
+    VK_CHECK(vkCreateSampler(ctx.vk(), &shadowSampler, nullptr, &shadowSampler_));
+    GraphicsPipelineDesc terrainDesc{
+        .vertexShader = "terrain.vert",
+        .fragmentShader = "terrain.frag",
+        .vertexBindings = {{0, sizeof(gpu::TerrainVertex), VK_VERTEX_INPUT_RATE_VERTEX}},
+        .vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, positionHeight)},
+                             {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, normal)}},
+        .cullMode = VK_CULL_MODE_BACK_BIT,
+        .colorFormats = {mainDesc.colors[0].format},
+        .depthFormat = mainDesc.depthFormat,
+        .samples = mainDesc.samples,
+    };
+    terrainPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, shadedLayout);
+    // Same vertices and rasterisation, ground-truth outputs, one sample per pixel.
+    terrainDesc.fragmentShader = "truth.frag";
+    terrainDesc.colorFormats = {truthDesc.colors[0].format, truthDesc.colors[1].format};
+    terrainDesc.samples = truthDesc.samples;
+    terrainDesc.specialization = {/* PASS= */ 1};
+    terrainTruthPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, layout);
+    terrainDesc.fragmentShader = "";
+    terrainDesc.colorFormats = {};
+    terrainDesc.cullMode = VK_CULL_MODE_NONE; // hills facing away from the sun still cast shadows
+    terrainDesc.specialization = {/* PASS= */ 2};
+    terrainDesc.depthBias = -1.0f; // reversed Z: push casters away from the sun
+    terrainDesc.depthBiasSlope = -1.5f;
+    terrainShadowPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, layout);
+
+    const VegetationPassFormats formats{.mainColor = mainDesc.colors[0].format,
+                                        .mainDepth = mainDesc.depthFormat,
+                                        .mainSamples = mainDesc.samples,
+                                        .truthDepthBits = truthDesc.colors[0].format,
+                                        .truthLabel = truthDesc.colors[1].format,
+                                        .truthDepth = truthDesc.depthFormat,
+                                        .shadowDepth = VK_FORMAT_D32_SFLOAT};
+    if (vegetation && atlas) vegetation_ = std::make_unique<VegetationRenderer>(ctx, scene, *vegetation, *atlas, formats);
+    if (!scene.objects.empty())
+        objects_ = models ? std::make_unique<ObjectRenderer>(ctx, scene, terrain, formats, *models)
+                          : std::make_unique<ObjectRenderer>(ctx, scene, terrain, formats);
+    skyPipeline_ = createGraphicsPipeline(ctx.device,
+                                          {.vertexShader = "sky.vert",
+                                           .fragmentShader = "sky.frag",
+                                           .cullMode = VK_CULL_MODE_NONE,
+                                           .colorFormats = {mainDesc.colors[0].format},
+                                           .depthFormat = mainDesc.depthFormat,
+                                           .depthWrite = false,
+                                           .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL,
+                                           .samples = mainDesc.samples},
+                                          layout);
+}
+
+SceneRenderer::~SceneRenderer() {
+    ctx_.submitter.waitIdle();
+    vegetation_.reset();
+    objects_.reset();
+    shadowMap_.reset();
+    vkDestroySampler(ctx_.vk(), shadowSampler_, nullptr);
+    destroyPipeline(ctx_.device, terrainPipeline_);
+    destroyPipeline(ctx_.device, terrainTruthPipeline_);
+    destroyPipeline(ctx_.device, terrainShadowPipeline_);
+    destroyPipeline(ctx_.device, skyPipeline_);
+    destroyBuffer(ctx_, terrainVertices_);
+    destroyBuffer(ctx_, terrainIndices_);
+    destroyBuffer(ctx_, constants_);
+}
+
+void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Camera& shadowCamera, double timeSeconds) {
+    gpu::FrameConstants c{};
+    glm::dmat4 viewProj = camera.viewProjection();
+    c.viewProj = glm::mat4(viewProj);
+    c.view = glm::mat4(camera.view());
+    c.invViewProj = glm::mat4(glm::inverse(viewProj));
+    c.cameraPosition = glm::vec4(glm::vec3(camera.position), 1.0f);
+    c.sunDirection = glm::vec4(scene_.sun.direction(), 0.0f);
+    c.sunRadiance = glm::vec4(scene_.sun.radiance, 0.0f);
+    c.skyZenith = glm::vec4(scene_.sky.zenith, 0.0f);
+    c.skyHorizon = glm::vec4(scene_.sky.horizon, 0.0f);
+    c.groundAmbient = glm::vec4(scene_.sky.groundAmbient, 0.0f);
+    c.viewport = glm::vec4(float(camera.width), float(camera.height), 1.0f / float(camera.width), 1.0f / float(camera.height));
+    c.timeParams = glm::vec4(float(timeSeconds), 0.0f, 0.0f, 0.0f);
+
+    // Sun shadow map: an orthographic box around the first shadowDistance metres in front of the camera,
+    // snapped to whole texels in light space so it does not shimmer as the camera moves.
+    const float size = float(std::max(scene_.render.shadowMapSize, 1u));
+    const double radius = 0.5 * scene_.render.shadowDistance * 1.15;
+    glm::dvec3 forward = shadowCamera.worldFromCamera[2];
+    glm::dvec3 center = shadowCamera.position + forward * (0.5 * scene_.render.shadowDistance);
+    glm::dvec3 toSun = glm::dvec3(scene_.sun.direction());
+    glm::dvec3 up = std::abs(toSun.z) > 0.99 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+    glm::dmat4 lightView = glm::lookAt(glm::dvec3(0.0), -toSun, up); // rotation only
+    glm::dvec4 centerLight = lightView * glm::dvec4(center, 1.0);
+    double texel = 2.0 * radius / size;
+    centerLight.x = std::floor(centerLight.x / texel) * texel;
+    centerLight.y = std::floor(centerLight.y / texel) * texel;
+    // Depth range: from above the highest terrain (plus plants) to below the lowest, along the light ray.
+    double reach = radius + double(terrainMaxHeight_ - terrainMinHeight_) + 50.0;
+    glm::dmat4 ortho(0.0);
+    ortho[0][0] = 1.0 / radius;
+    ortho[1][1] = 1.0 / radius;
+    ortho[2][2] = 1.0 / (2.0 * reach); // view z in [-(c+reach), -(c-reach)] -> depth 1 .. 0 (reversed)
+    ortho[3][0] = -centerLight.x / radius;
+    ortho[3][1] = -centerLight.y / radius;
+    ortho[3][2] = 0.5 - centerLight.z / (2.0 * reach);
+    ortho[3][3] = 1.0;
+    c.shadowViewProj = glm::mat4(ortho * lightView);
+    const bool shadows = scene_.render.shadowMapSize > 0;
+    c.shadowParams = glm::vec4(shadows ? 1.0f : 0.0f, float(0.05 / (2.0 * reach)), 1.0f / size, 0.0f);
+    c.debug = glm::uvec4(debugFlags_, 0u, 0u, 0u);
+    std::memcpy(constants_.mapped() + slot * constantsStride_, &c, sizeof c);
+}
+
+void SceneRenderer::drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline,
+                                std::initializer_list<DescriptorBinding> bindings) {
+    drawIndexedMesh(ctx_.device, cmd, pipeline, bindings, terrainVertices_.handle, terrainIndices_.handle,
+                    terrainIndexCount_);
+}
+
+DescriptorBinding SceneRenderer::frameBinding(uint32_t slot) const {
+    return uniformBuffer(0, constants_.handle, slot * constantsStride_, sizeof(gpu::FrameConstants));
+}
+
+DescriptorBinding SceneRenderer::shadowBinding() const {
+    return sampledImage(5, shadowMap_->depth().view, shadowSampler_, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
+}
+
+void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint32_t frameSlot, uint32_t slot,
+                                   GpuTimers* timers, const BakedPlants* baked) {
+    DescriptorBinding frame = frameBinding(frameSlot), shadow = shadowBinding();
+    if (timers) timers->begin(cmd, "main");
+    main.begin(cmd);
+    drawTerrain(cmd, terrainPipeline_, {frame, shadow});
+    if (objects_) objects_->recordMain(cmd, frame, shadow, slot);
+    if (vegetation_ && baked) vegetation_->drawBaked(cmd, *baked, frame, shadow, slot);
+    else if (vegetation_) vegetation_->draw(cmd, PlantPass::Main, frame, shadow, slot);
+    // Sky last: the depth test (GREATER_OR_EQUAL against the far-plane clear) shades only uncovered pixels.
+    bindPipeline(cmd, skyPipeline_);
+    pushDescriptors(ctx_.device, cmd, skyPipeline_, {frame});
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    if (overlay_) overlay_(cmd, frame);
+    if (timers) timers->end(cmd);
+    if (timers) timers->begin(cmd, "resolve");
+    main.end(cmd);
+    if (timers) timers->end(cmd);
+}
+
+void SceneRenderer::record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget* truth, const Camera& camera,
+                           double timeSeconds, uint32_t frameIndex, GpuTimers* timers) {
+    View view{&camera, &main, truth};
+    recordViews(cmd, {&view, 1}, timeSeconds, frameIndex, timers);
+}
+
+void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views, double timeSeconds,
+                                uint32_t frameIndex, GpuTimers* timers) {
+    require(!views.empty() && views.size() <= kMaxViews, "a frame has one or two views");
+    const Camera& reference = *views[0].camera;
+    const uint32_t firstSlot = (frameIndex % kFramesInFlight) * kMaxViews;
+    for (uint32_t v = 0; v < views.size(); ++v) writeConstants(firstSlot + v, *views[v].camera, reference, timeSeconds);
+    DescriptorBinding frame = frameBinding(firstSlot), shadow = shadowBinding();
+    if (objects_) objects_->update(timeSeconds, frameIndex % kFramesInFlight);
+
+    if (vegetation_) {
+        if (timers) timers->begin(cmd, "expansion");
+        std::array<glm::vec4, 5> planes =
+            views.size() == 2 ? stereoFrustumPlanes(reference, *views[1].camera) : reference.frustumPlanes();
+        vegetation_->expand(cmd, reference, timeSeconds, frameIndex % kFramesInFlight, &planes);
+        if (timers) timers->end(cmd);
+    }
+
+    if (timers) timers->begin(cmd, "shadow");
+    shadowMap_->begin(cmd);
+    if (scene_.render.shadowMapSize > 0) {
+        drawTerrain(cmd, terrainShadowPipeline_, {frame});
+        if (objects_) objects_->recordShadow(cmd, frame, frameIndex % kFramesInFlight);
+        if (vegetation_) vegetation_->draw(cmd, PlantPass::Shadow, frame, shadow, frameIndex % kFramesInFlight);
+    }
+    shadowMap_->end(cmd);
+    if (timers) timers->end(cmd);
+
+    for (uint32_t v = 0; v < views.size(); ++v) {
+        const uint32_t slot = firstSlot + v;
+        recordMainPass(cmd, *views[v].main, slot, frameIndex % kFramesInFlight, timers, nullptr);
+        if (!views[v].truth) continue;
+        if (timers) timers->begin(cmd, "truth");
+        views[v].truth->begin(cmd);
+        drawTerrain(cmd, terrainTruthPipeline_, {frameBinding(slot)});
+        if (objects_) objects_->recordTruth(cmd, frameBinding(slot), frameIndex % kFramesInFlight);
+        if (vegetation_) vegetation_->draw(cmd, PlantPass::Truth, frameBinding(slot), shadow, frameIndex % kFramesInFlight);
+        views[v].truth->end(cmd);
+        if (timers) timers->end(cmd);
+    }
+}
+
+void SceneRenderer::recordMainOnly(VkCommandBuffer cmd, RenderTarget& main, const Camera& camera, double timeSeconds,
+                                   uint32_t frameIndex, GpuTimers* timers, const BakedPlants* baked) {
+    const uint32_t slot = frameIndex % kFramesInFlight;
+    writeConstants(slot * kMaxViews, camera, camera, timeSeconds);
+    if (objects_) objects_->update(timeSeconds, slot);
+    if (vegetation_ && !baked) {
+        if (timers) timers->begin(cmd, "expansion");
+        vegetation_->expand(cmd, camera, timeSeconds, slot);
+        if (timers) timers->end(cmd);
+    }
+    recordMainPass(cmd, main, slot * kMaxViews, slot, timers, baked);
+}
+
+OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples)
+    : ctx_(ctx), main_(ctx, mainPassTargetDesc(width, height, samples)), truth_(ctx, truthPassTargetDesc(width, height)) {
+    uint64_t pixels = uint64_t(width) * height;
+    color_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    depth_ = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    labels_ = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+}
+
+OffscreenFrame::~OffscreenFrame() {
+    for (Buffer* b : {&color_, &depth_, &labels_, &rightColor_}) retireBuffer(ctx_, *b);
+}
+
+FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
+                                   const std::function<void(VkCommandBuffer)>& prologue, const Camera* right) {
+    const RenderTargetDesc& desc = main_.desc();
+    require(camera.width == desc.width && camera.height == desc.height, "camera and frame sizes differ");
+    require(!right || (right->width == desc.width && right->height == desc.height), "left and right sizes differ");
+    require(renderer.samples() == uint32_t(desc.samples), "renderer and frame sample counts differ");
+    const uint64_t pixels = uint64_t(desc.width) * desc.height;
+    if (right && !rightMain_) {
+        rightMain_ = std::make_unique<RenderTarget>(ctx_, desc);
+        rightColor_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    }
+    ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
+        if (prologue) prologue(cmd);
+        SceneRenderer::View views[2] = {{&camera, &main_, &truth_}, {right, rightMain_.get(), nullptr}};
+        renderer.recordViews(cmd, {views, right ? 2u : 1u}, timeSeconds, frameIndex);
+        main_.recordReadback(cmd, 0, color_);
+        truth_.recordReadback(cmd, 0, depth_);
+        truth_.recordReadback(cmd, 1, labels_);
+        if (right) rightMain_->recordReadback(cmd, 0, rightColor_);
+        transferToHostBarrier(cmd);
+    });
+    FrameImages images{.width = desc.width, .height = desc.height};
+    images.rgbaHalf.resize(pixels * 4);
+    images.depth.resize(pixels);
+    images.labels.resize(pixels);
+    std::memcpy(images.rgbaHalf.data(), color_.mapped(), pixels * 8);
+    std::memcpy(images.depth.data(), depth_.mapped(), pixels * 4); // float bit patterns written by the shader
+    std::memcpy(images.labels.data(), labels_.mapped(), pixels * 4);
+    if (right) {
+        images.rightRgbaHalf.resize(pixels * 4);
+        std::memcpy(images.rightRgbaHalf.data(), rightColor_.mapped(), pixels * 8);
+    }
+    return images;
+}
+
+FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, double timeSeconds) {
+    OffscreenFrame frame(ctx, camera.width, camera.height, renderer.samples());
+    return frame.render(renderer, camera, timeSeconds, 0);
+}
+
+} // namespace sward

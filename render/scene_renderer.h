@@ -1,0 +1,136 @@
+// SceneRenderer: draws a scene (terrain, vegetation, sky) into render targets.
+//
+// Passes per frame (see docs/architecture.md):
+//   expansion   compute: cull clusters, choose LODs, write plant instances + indirect draws
+//   shadow      D32 sun shadow map (terrain + alpha-tested plants), orthographic, fitted in front of the camera
+//   main        RGBA16F linear HDR radiance, 1x or 4x MSAA (alpha-to-coverage), resolved by averaging
+//   truth       R32_UINT bit pattern of the planar depth in metres (+inf for sky), always 1x: the same
+//               geometry rasterised once at each pixel centre, so ground truth is exact and never a blend of
+//               two surfaces ("flying pixels"), whatever the colour pass's sample count.
+#pragma once
+
+#include "vegetation/atlas.h"
+#include "world/camera.h"
+#include "dataset/frame_images.h"
+#include "engine/context.h"
+#include "world/heightfield.h"
+#include "engine/pipelines.h"
+#include "engine/render_target.h"
+#include "scene/scene.h"
+
+#include <functional>
+#include <span>
+#include <memory>
+
+namespace sward {
+
+class GpuTimers;
+class ObjectRenderer;
+class VegetationRenderer;
+struct ObjectModel;
+struct BakedPlants;
+struct VegetationTile;
+
+// Formats and clear values of the passes, in attachment order.
+RenderTargetDesc mainPassTargetDesc(uint32_t width, uint32_t height, uint32_t samples);
+RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height);
+
+class SceneRenderer {
+public:
+    // vegetation / atlas may be null (bare terrain). The tile and atlas are uploaded; the CPU copies may go.
+    // The scene's objects are drawn from `models` (loadObjectModels) or, when null, models loaded here.
+    // `terrain` must outlive the renderer (objects are placed on it every frame).
+    SceneRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, VkSampleCountFlagBits samples,
+                  const VegetationTile* vegetation = nullptr, const Atlas* atlas = nullptr,
+                  const std::vector<ObjectModel>* models = nullptr);
+    ~SceneRenderer();
+    SceneRenderer(const SceneRenderer&) = delete;
+    SceneRenderer& operator=(const SceneRenderer&) = delete;
+
+    // One view of a frame: its camera, colour target and (optional) ground-truth target.
+    struct View {
+        const Camera* camera;
+        RenderTarget* main;
+        RenderTarget* truth = nullptr;
+    };
+    static constexpr uint32_t kMaxViews = 2;
+
+    // Records the whole frame into `cmd`. `frameIndex` selects the constants slot, so up to kFramesInFlight
+    // frames may be in flight. `truth` may be null (viewer). Timers (optional) get one entry per pass.
+    void record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget* truth, const Camera& camera,
+                double timeSeconds, uint32_t frameIndex, GpuTimers* timers = nullptr);
+    // One instant seen by a rectified stereo rig (views[1] = views[0] moved along its own +x axis) or a single
+    // view. The vegetation is expanded once — LODs, cross-fades and billboard orientation from views[0]'s
+    // position, culling against the union of the frusta — and the sun shadow map is rendered once, so both
+    // eyes see exactly the same geometry and shadows (a stereo matcher must not be shown two scenes).
+    void recordViews(VkCommandBuffer cmd, std::span<const View> views, double timeSeconds, uint32_t frameIndex,
+                     GpuTimers* timers = nullptr);
+
+    // Benchmark variant: expansion (unless `baked` is given) and the main pass only, no shadow or truth pass.
+    // With `baked`, the plants are drawn from those static vertices instead of this frame's expansion.
+    // Requires one full record() before (the shadow map must hold a frame).
+    void recordMainOnly(VkCommandBuffer cmd, RenderTarget& main, const Camera& camera, double timeSeconds,
+                        uint32_t frameIndex, GpuTimers* timers, const BakedPlants* baked);
+
+    // Viewer hooks (sward-view): gpu::kDebug* flags for FrameConstants::debug.x, and an overlay recorded into
+    // every main colour pass after the scene (before the resolve), given that pass's frame-constants binding.
+    void setDebugFlags(uint32_t flags) { debugFlags_ = flags; }
+    using Overlay = std::function<void(VkCommandBuffer, const DescriptorBinding& frame)>;
+    void setMainPassOverlay(Overlay overlay) { overlay_ = std::move(overlay); }
+
+    VegetationRenderer* vegetation() { return vegetation_.get(); }
+    ObjectRenderer* objects() { return objects_.get(); } // null when the scene has no objects
+    uint32_t samples() const { return samples_; }
+    static constexpr uint32_t kFramesInFlight = 3;
+
+private:
+    // Frame constants of `camera`, with the shadow map fitted in front of `shadowCamera`.
+    void writeConstants(uint32_t slot, const Camera& camera, const Camera& shadowCamera, double timeSeconds);
+    void drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline, std::initializer_list<DescriptorBinding> bindings);
+    // `frameSlot`: frame-constants slot (frame x view); `slot`: vegetation constants slot (frame).
+    void recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint32_t frameSlot, uint32_t slot, GpuTimers* timers,
+                        const BakedPlants* baked);
+    DescriptorBinding frameBinding(uint32_t slot) const;
+    DescriptorBinding shadowBinding() const;
+
+    Context& ctx_;
+    Scene scene_;
+    uint32_t samples_ = 1;
+    Buffer terrainVertices_, terrainIndices_;
+    uint32_t terrainIndexCount_ = 0;
+    float terrainMinHeight_ = 0.0f, terrainMaxHeight_ = 0.0f;
+    Buffer constants_; // kFramesInFlight * kMaxViews slots of FrameConstants, host-visible
+    uint64_t constantsStride_ = 0;
+    Pipeline terrainPipeline_, terrainTruthPipeline_, terrainShadowPipeline_, skyPipeline_;
+    std::unique_ptr<RenderTarget> shadowMap_;
+    VkSampler shadowSampler_ = VK_NULL_HANDLE;
+    std::unique_ptr<VegetationRenderer> vegetation_;
+    std::unique_ptr<ObjectRenderer> objects_;
+    uint32_t debugFlags_ = 0;
+    Overlay overlay_;
+};
+
+// Targets and readback buffers for rendering frames of one size to host images, reused across a sequence.
+class OffscreenFrame {
+public:
+    OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples);
+    ~OffscreenFrame();
+    OffscreenFrame(const OffscreenFrame&) = delete;
+    OffscreenFrame& operator=(const OffscreenFrame&) = delete;
+
+    // Records `prologue` (e.g. the interaction tick), the frame and the readbacks in one submission and waits.
+    // With `right`, also renders the right view of a stereo rig (see SceneRenderer::recordViews).
+    FrameImages render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
+                       const std::function<void(VkCommandBuffer)>& prologue = {}, const Camera* right = nullptr);
+
+private:
+    Context& ctx_;
+    RenderTarget main_, truth_;
+    std::unique_ptr<RenderTarget> rightMain_; // created on the first stereo frame
+    Buffer color_, depth_, labels_, rightColor_;
+};
+
+// Renders one frame into fresh targets (the renderer's sample count) and reads colour and depth back (waits).
+FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, double timeSeconds = 0.0);
+
+} // namespace sward

@@ -1,0 +1,335 @@
+#include "render/vegetation_renderer.h"
+
+#include "engine/barriers.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace sward {
+
+namespace {
+
+constexpr VkShaderStageFlags kDrawStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+
+} // namespace
+
+VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const VegetationTile& tile, const Atlas& atlas,
+                                       const VegetationPassFormats& formats)
+    : ctx_(ctx), scene_(scene), buffers_(ctx, tile), formats_(formats) {
+    require(atlas.desc.rows.size() >= scene.vegetation.categoryCount,
+            "the atlas has " + std::to_string(atlas.desc.rows.size()) + " rows but the scene has " +
+                std::to_string(scene.vegetation.categoryCount) + " vegetation categories");
+    // Each plant yields at most two instances (inside a cross-fade band); cap the memory at 4 M instances.
+    capacity_ = uint32_t(std::clamp<uint64_t>(uint64_t(buffers_.plantCount) * 2, 1024, 4u << 20));
+
+    uint64_t align = ctx.device.properties().limits.minUniformBufferOffsetAlignment;
+    constantsStride_ = (sizeof(gpu::VegetationConstants) + align - 1) / align * align;
+    constants_ = createBuffer(ctx, constantsStride_ * kSlots, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryIntent::Upload);
+    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    clusterCounts_ = createBuffer(ctx, uint64_t(std::max(buffers_.clusterCount, 1u)) * 16, storage,
+                                  MemoryIntent::DeviceLocal);
+    instances_ = createBuffer(ctx, uint64_t(capacity_) * sizeof(gpu::ExpandedPlant), storage, MemoryIntent::DeviceLocal);
+    instancePlants_ = createBuffer(ctx, uint64_t(capacity_) * sizeof(uint32_t), storage, MemoryIntent::DeviceLocal);
+    draws_ = createBuffer(ctx, gpu::kLodCount * sizeof(VkDrawIndirectCommand),
+                          storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryIntent::DeviceLocal);
+    stats_ = createBuffer(ctx, sizeof(gpu::ExpansionStats), storage, MemoryIntent::DeviceLocal);
+    uploadAtlas(atlas);
+
+    auto ssbo = [](uint32_t b, VkShaderStageFlags stages) {
+        return layoutBinding(b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages);
+    };
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    PipelineLayoutDesc expandLayout{.bindings = {ssbo(0, cs), layoutBinding(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs),
+                                                 ssbo(2, cs), ssbo(3, cs), ssbo(4, cs), ssbo(5, cs), ssbo(6, cs),
+                                                 ssbo(7, cs)}};
+    countPipeline_ = createComputePipeline(ctx.device, "vegetation_expand.comp", expandLayout, {/* WRITE_PASS= */ 0});
+    writePipeline_ = createComputePipeline(ctx.device, "vegetation_expand.comp", expandLayout, {/* WRITE_PASS= */ 1});
+    scanPipeline_ = createComputePipeline(ctx.device, "vegetation_scan.comp",
+                                          {.bindings = {ssbo(0, cs), ssbo(1, cs), ssbo(2, cs)},
+                                           .pushConstantSize = 8,
+                                           .pushConstantStages = cs});
+
+    std::vector<VkDescriptorSetLayoutBinding> drawBindings = {
+        layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages),
+        layoutBinding(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages), ssbo(2, kDrawStages), ssbo(3, kDrawStages),
+        layoutBinding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT),
+        ssbo(6, VK_SHADER_STAGE_VERTEX_BIT)};
+    PipelineLayoutDesc shadowLayout{.bindings = drawBindings, .pushConstantSize = 4, .pushConstantStages = kDrawStages};
+    PipelineLayoutDesc mainLayout = shadowLayout;
+    mainLayout.bindings.push_back(layoutBinding(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
+
+    const bool msaa = formats.mainSamples != VK_SAMPLE_COUNT_1_BIT;
+    GraphicsPipelineDesc plants{
+        .vertexShader = "plant.vert",
+        .fragmentShader = "plant.frag",
+        .cullMode = VK_CULL_MODE_NONE, // quads are seen from both sides
+        .colorFormats = {formats.mainColor},
+        .depthFormat = formats.mainDepth,
+        .samples = formats.mainSamples,
+        .alphaToCoverage = msaa,
+        .specialization = {/* PASS= */ 0, /* ALPHA_TO_COVERAGE= */ msaa ? 1u : 0u},
+    };
+    mainPipeline_ = createGraphicsPipeline(ctx.device, plants, mainLayout);
+    plants.fragmentShader = "plant_truth.frag";
+    plants.colorFormats = {formats.truthDepthBits, formats.truthLabel};
+    plants.depthFormat = formats.truthDepth;
+    plants.samples = VK_SAMPLE_COUNT_1_BIT;
+    plants.alphaToCoverage = false;
+    plants.specialization = {/* PASS= */ 1, /* ALPHA_TO_COVERAGE= */ 0};
+    truthPipeline_ = createGraphicsPipeline(ctx.device, plants, shadowLayout);
+    plants.fragmentShader = "plant_shadow.frag";
+    plants.colorFormats = {};
+    plants.depthFormat = formats.shadowDepth;
+    plants.specialization = {/* PASS= */ 2, /* ALPHA_TO_COVERAGE= */ 0};
+    plants.depthBias = -1.0f; // reversed Z: push casters away from the sun
+    plants.depthBiasSlope = -1.5f;
+    shadowPipeline_ = createGraphicsPipeline(ctx.device, plants, shadowLayout);
+}
+
+VegetationRenderer::~VegetationRenderer() {
+    ctx_.submitter.waitIdle();
+    for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &truthPipeline_,
+                        &shadowPipeline_, &bakePipeline_, &staticPipeline_})
+        destroyPipeline(ctx_.device, *p);
+    for (Buffer* b : {&constants_, &clusterCounts_, &instances_, &instancePlants_, &draws_, &stats_, &atlasCells_}) destroyBuffer(ctx_, *b);
+    destroyImage(ctx_, atlasImage_);
+    vkDestroySampler(ctx_.vk(), atlasSampler_, nullptr);
+}
+
+void VegetationRenderer::uploadAtlas(const Atlas& atlas) {
+    require(!atlas.mips.empty(), "the atlas has no image");
+    const AtlasDesc& desc = atlas.desc;
+    uint32_t maxColumns = desc.maxColumns();
+    atlasMaxColumns_ = maxColumns;
+    for (uint32_t r = 0; r < std::min<size_t>(desc.rows.size(), 4); ++r) atlasColumns_[int(r)] = uint32_t(desc.rows[r].cells.size());
+    std::vector<gpu::AtlasCellGpu> cells(desc.rows.size() * maxColumns);
+    for (uint32_t r = 0; r < desc.rows.size(); ++r)
+        for (uint32_t c = 0; c < desc.rows[r].cells.size(); ++c) {
+            auto uv = desc.cellUvRect(r, c);
+            const AtlasCell& cell = desc.rows[r].cells[c];
+            cells[r * maxColumns + c] = {glm::vec4(uv[0], uv[1], uv[2], uv[3]),
+                                         glm::vec4(cell.baseU, cell.baseV, cell.aspect, 0.0f)};
+        }
+    atlasCells_ = createBufferWithData(
+        ctx_, {reinterpret_cast<const uint8_t*>(cells.data()), cells.size() * sizeof(gpu::AtlasCellGpu)},
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+
+    uint32_t levels = uint32_t(atlas.mips.size());
+    atlasImage_ = createImage(ctx_, {.format = VK_FORMAT_R8G8B8A8_SRGB,
+                                     .width = atlas.mips[0].width,
+                                     .height = atlas.mips[0].height,
+                                     .mipLevels = levels,
+                                     .usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+    uint64_t total = 0;
+    for (const AtlasMip& mip : atlas.mips) total += mip.rgba.size();
+    Buffer staging = createBuffer(ctx_, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload);
+    std::vector<VkBufferImageCopy> regions;
+    uint64_t offset = 0;
+    for (uint32_t level = 0; level < levels; ++level) {
+        const AtlasMip& mip = atlas.mips[level];
+        std::memcpy(staging.mapped() + offset, mip.rgba.data(), mip.rgba.size());
+        regions.push_back({.bufferOffset = offset,
+                           .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1},
+                           .imageExtent = {mip.width, mip.height, 1}});
+        offset += mip.rgba.size();
+    }
+    ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
+        imageBarrier(cmd, atlasImage_.handle, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                     VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        vkCmdCopyBufferToImage(cmd, staging.handle, atlasImage_.handle, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               uint32_t(regions.size()), regions.data());
+        imageBarrier(cmd, atlasImage_.handle, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    });
+    destroyBuffer(ctx_, staging);
+
+    VkSamplerCreateInfo sampler{
+        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+        .magFilter = VK_FILTER_LINEAR,
+        .minFilter = VK_FILTER_LINEAR,
+        .mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR,
+        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .maxLod = float(levels),
+    };
+    VK_CHECK(vkCreateSampler(ctx_.vk(), &sampler, nullptr, &atlasSampler_));
+}
+
+DescriptorBinding VegetationRenderer::constantsBinding(uint32_t slot) const {
+    return uniformBuffer(1, constants_.handle, (slot % kSlots) * constantsStride_, sizeof(gpu::VegetationConstants));
+}
+
+void VegetationRenderer::expand(VkCommandBuffer cmd, const Camera& camera, double timeSeconds, uint32_t slot,
+                                const std::array<glm::vec4, 5>* cullPlanes) {
+    gpu::VegetationConstants c{};
+    auto planes = cullPlanes ? *cullPlanes : camera.frustumPlanes();
+    for (int i = 0; i < 5; ++i) c.frustumPlanes[i] = planes[i];
+    c.cameraPosition = glm::vec4(glm::vec3(camera.position), 1.0f);
+    c.lodDistances = glm::vec4(scene_.lod.nearToMid, scene_.lod.midToFar, scene_.lod.farLimit, scene_.lod.band);
+    glm::vec2 dir = scene_.wind.direction();
+    c.wind = glm::vec4(dir, scene_.wind.strength, scene_.wind.gustFrequency);
+    c.windGusts = glm::vec4(scene_.wind.gustStrength, scene_.wind.gustWavelength, float(timeSeconds), scene_.wind.flutter);
+    for (uint32_t i = 0; i < gpu::kMaxPlantCategories; ++i) {
+        c.categoryHeight[int(i)] = scene_.vegetation.categories[i].height;
+    }
+    c.atlasColumns = atlasColumns_;
+    c.counts = glm::uvec4(buffers_.clusterCount, buffers_.clustersPerField, capacity_, atlasMaxColumns_);
+    std::memcpy(constants_.mapped() + (slot % kSlots) * constantsStride_, &c, sizeof c);
+
+    // The previous frame's draws read instances and draw commands; this frame overwrites them (WAR).
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_NONE,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE);
+    auto bindExpand = [&](const Pipeline& pipeline) {
+        bindPipeline(cmd, pipeline);
+        pushDescriptors(ctx_.device, cmd, pipeline,
+                        {storageBuffer(0, buffers_.statics.handle), constantsBinding(slot),
+                         storageBuffer(2, buffers_.dynamics.handle), storageBuffer(3, buffers_.clusters.handle),
+                         storageBuffer(4, buffers_.fields.handle), storageBuffer(5, clusterCounts_.handle),
+                         storageBuffer(6, instances_.handle), storageBuffer(7, instancePlants_.handle)});
+    };
+    // One invocation per cluster, 64 per workgroup.
+    const uint32_t groups = (buffers_.clusterCount + gpu::kExpandGroupSize - 1) / gpu::kExpandGroupSize;
+    const uint32_t groupsX = std::min(groups, 65535u);
+    const uint32_t groupsY = (groups + groupsX - 1) / groupsX;
+    const auto computeToCompute = [&] {
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    };
+
+    bindExpand(countPipeline_);
+    vkCmdDispatch(cmd, groupsX, groupsY, 1);
+    computeToCompute();
+
+    bindPipeline(cmd, scanPipeline_);
+    pushDescriptors(ctx_.device, cmd, scanPipeline_,
+                    {storageBuffer(0, clusterCounts_.handle), storageBuffer(1, draws_.handle),
+                     storageBuffer(2, stats_.handle)});
+    uint32_t push[2] = {buffers_.clusterCount, capacity_};
+    pushConstants(cmd, scanPipeline_, push, sizeof push);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    computeToCompute();
+
+    bindExpand(writePipeline_);
+    vkCmdDispatch(cmd, groupsX, groupsY, 1);
+    computeToDrawBarrier(cmd);
+}
+
+void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame,
+                              const DescriptorBinding& shadowMap, uint32_t slot) {
+    const Pipeline& pipeline = pass == PlantPass::Main ? mainPipeline_ : pass == PlantPass::Truth ? truthPipeline_ : shadowPipeline_;
+    bindPipeline(cmd, pipeline);
+    DescriptorBinding atlas = sampledImage(4, atlasImage_.view, atlasSampler_);
+    DescriptorBinding plants = storageBuffer(6, instancePlants_.handle);
+    if (pass == PlantPass::Main)
+        pushDescriptors(ctx_.device, cmd, pipeline,
+                        {frame, constantsBinding(slot), storageBuffer(2, instances_.handle),
+                         storageBuffer(3, atlasCells_.handle), atlas, shadowMap, plants});
+    else
+        pushDescriptors(ctx_.device, cmd, pipeline,
+                        {frame, constantsBinding(slot), storageBuffer(2, instances_.handle),
+                         storageBuffer(3, atlasCells_.handle), atlas, plants});
+    for (uint32_t lod = 0; lod < gpu::kLodCount; ++lod) {
+        pushConstants(cmd, pipeline, lod);
+        vkCmdDrawIndirect(cmd, draws_.handle, lod * sizeof(VkDrawIndirectCommand), 1, sizeof(VkDrawIndirectCommand));
+    }
+}
+
+gpu::ExpansionStats VegetationRenderer::readStats() {
+    std::vector<uint8_t> bytes = readBuffer(ctx_, stats_, 0, sizeof(gpu::ExpansionStats));
+    gpu::ExpansionStats stats;
+    std::memcpy(&stats, bytes.data(), sizeof stats);
+    return stats;
+}
+
+} // namespace sward
+
+namespace sward {
+
+BakedPlants VegetationRenderer::bake(uint32_t slot) {
+    const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
+    if (!bakePipeline_.handle)
+        bakePipeline_ = createComputePipeline(
+            ctx_.device, "plant_bake.comp",
+            {.bindings = {layoutBinding(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs),
+                          layoutBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
+                          layoutBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
+                          layoutBinding(4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)},
+             .pushConstantSize = 16,
+             .pushConstantStages = cs});
+    BakedPlants baked{.stats = readStats()};
+    const uint32_t verticesPerPlant[gpu::kLodCount] = {24, 12, 6};
+    uint32_t kept = std::min(baked.stats.instances.w, capacity_);
+    for (uint32_t lod = 0, first = 0; lod < gpu::kLodCount; ++lod) {
+        uint32_t count = std::min(baked.stats.instances[int(lod)], kept - std::min(kept, first));
+        baked.vertexCount += count * verticesPerPlant[lod];
+        first += baked.stats.instances[int(lod)];
+    }
+    baked.vertices = createBuffer(ctx_, std::max<uint64_t>(uint64_t(baked.vertexCount) * sizeof(gpu::BakedVertex), 16),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                  MemoryIntent::DeviceLocal);
+    ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
+        bindPipeline(cmd, bakePipeline_);
+        pushDescriptors(ctx_.device, cmd, bakePipeline_,
+                        {constantsBinding(slot), storageBuffer(2, instances_.handle),
+                         storageBuffer(3, atlasCells_.handle), storageBuffer(4, baked.vertices.handle)});
+        for (uint32_t lod = 0, firstInstance = 0, firstVertex = 0; lod < gpu::kLodCount; ++lod) {
+            uint32_t count = std::min(baked.stats.instances[int(lod)], kept - std::min(kept, firstInstance));
+            uint32_t push[4] = {lod, firstInstance, firstVertex, count * verticesPerPlant[lod]};
+            if (push[3] > 0) {
+                pushConstants(cmd, bakePipeline_, push, sizeof push);
+                uint32_t groups = (push[3] + 63) / 64;
+                uint32_t x = std::min(groups, 65535u);
+                vkCmdDispatch(cmd, x, (groups + x - 1) / x, 1);
+            }
+            firstInstance += baked.stats.instances[int(lod)];
+            firstVertex += push[3];
+        }
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    });
+    return baked;
+}
+
+void VegetationRenderer::drawBaked(VkCommandBuffer cmd, const BakedPlants& baked, const DescriptorBinding& frame,
+                                   const DescriptorBinding& shadowMap, uint32_t slot) {
+    if (!staticPipeline_.handle) {
+        std::vector<VkDescriptorSetLayoutBinding> bindings = {
+            layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages),
+            layoutBinding(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages),
+            layoutBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kDrawStages),
+            layoutBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kDrawStages),
+            layoutBinding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT),
+            layoutBinding(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT)};
+        const bool msaa = formats_.mainSamples != VK_SAMPLE_COUNT_1_BIT;
+        staticPipeline_ = createGraphicsPipeline(
+            ctx_.device,
+            {.vertexShader = "plant_static.vert",
+             .fragmentShader = "plant.frag",
+             .cullMode = VK_CULL_MODE_NONE,
+             .colorFormats = {formats_.mainColor},
+             .depthFormat = formats_.mainDepth,
+             .samples = formats_.mainSamples,
+             .alphaToCoverage = msaa,
+             .specialization = {/* PASS= */ 0, /* ALPHA_TO_COVERAGE= */ msaa ? 1u : 0u}},
+            {.bindings = bindings});
+    }
+    bindPipeline(cmd, staticPipeline_);
+    pushDescriptors(ctx_.device, cmd, staticPipeline_,
+                    {frame, constantsBinding(slot), storageBuffer(2, baked.vertices.handle),
+                     storageBuffer(3, atlasCells_.handle), sampledImage(4, atlasImage_.view, atlasSampler_), shadowMap});
+    if (baked.vertexCount) vkCmdDraw(cmd, baked.vertexCount, 1, 0, 0);
+}
+
+void VegetationRenderer::destroyBaked(BakedPlants& baked) {
+    retireBuffer(ctx_, baked.vertices);
+    baked.vertexCount = 0;
+}
+
+} // namespace sward

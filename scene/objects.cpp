@@ -1,0 +1,300 @@
+#include "scene/objects.h"
+
+#include "common/error.h"
+#include "world/heightfield.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+
+namespace sward {
+
+namespace {
+
+// Typed, range-checked reads from one JSON object whose path (e.g. "objects[0].colliders[1]") names it in errors.
+struct Fields {
+    const nlohmann::json& json;
+    const std::string& source;
+    std::string path;
+
+    [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+        throw Error(source + ": '" + path + (key.empty() ? "" : "." + key) + "' " + problem);
+    }
+    void onlyKeys(std::initializer_list<const char*> keys) const {
+        if (!json.is_object()) fail("", "must be an object");
+        for (auto it = json.begin(); it != json.end(); ++it) {
+            bool known = false;
+            for (const char* k : keys) known = known || it.key() == k;
+            if (!known) throw Error(source + ": unknown key '" + path + "." + it.key() + "'");
+        }
+    }
+    const nlohmann::json* find(const char* key) const {
+        auto it = json.find(key);
+        return it == json.end() ? nullptr : &*it;
+    }
+    static std::string fmt(double v) {
+        char buffer[32];
+        std::snprintf(buffer, sizeof buffer, "%g", v);
+        return buffer;
+    }
+    double number(const char* key, double value, double lo, double hi) const {
+        if (const nlohmann::json* v = find(key)) {
+            if (!v->is_number()) fail(key, "must be a number");
+            value = v->get<double>();
+            if (!std::isfinite(value) || value < lo || value > hi)
+                fail(key, "must be between " + fmt(lo) + " and " + fmt(hi) + " (got " + fmt(value) + ")");
+        }
+        return value;
+    }
+    glm::vec3 vec3(const char* key, glm::vec3 value, double lo, double hi) const {
+        if (const nlohmann::json* v = find(key)) {
+            if (!v->is_array() || v->size() != 3) fail(key, "must be an array of 3 numbers");
+            for (size_t i = 0; i < 3; ++i) {
+                const nlohmann::json& e = (*v)[i];
+                if (!e.is_number() || !std::isfinite(e.get<double>()) || e.get<double>() < lo || e.get<double>() > hi)
+                    fail(key, "must hold numbers between " + fmt(lo) + " and " + fmt(hi));
+                value[int(i)] = e.get<float>();
+            }
+        }
+        return value;
+    }
+    std::string string(const char* key, std::string value) const {
+        if (const nlohmann::json* v = find(key)) {
+            if (!v->is_string() || v->get<std::string>().empty()) fail(key, "must be a non-empty string");
+            value = v->get<std::string>();
+        }
+        return value;
+    }
+    // One of `names` (index returned), or `value` when the key is absent.
+    int choice(const char* key, int value, std::initializer_list<const char*> names) const {
+        if (const nlohmann::json* v = find(key)) {
+            std::string list;
+            int index = 0, found = -1;
+            for (const char* n : names) {
+                if (v->is_string() && v->get<std::string>() == n) found = index;
+                list += (index ? (index + 1 == int(names.size()) ? " or " : ", ") : "") + std::string(n);
+                ++index;
+            }
+            if (found < 0) fail(key, "must be " + list);
+            value = found;
+        }
+        return value;
+    }
+};
+
+ObjectColliderParams parseCollider(const Fields& f) {
+    f.onlyKeys({"node", "shape", "kind", "radius", "length", "axis", "half_extents", "offset", "force", "cut_height"});
+    ObjectColliderParams c;
+    if (!f.find("node")) f.fail("node", "is required (the name of a node of the model)");
+    c.node = f.string("node", "");
+    c.shape = ColliderShape(f.choice("shape", 0, {"sphere", "capsule", "box"}));
+    c.kind = ColliderKind(f.choice("kind", 0, {"push", "gust", "downwash", "mower"}));
+    c.radius = float(f.number("radius", c.radius, 0.001, 100.0));
+    c.length = float(f.number("length", c.kind == ColliderKind::Downwash ? 2.0 : 0.0, 0.0, 1000.0));
+    if (c.kind == ColliderKind::Downwash && c.length <= 0.0f) f.fail("length", "must be above 0 for a downwash");
+    c.axis = f.choice("axis", 0, {"x", "y", "z"});
+    c.halfExtents = f.vec3("half_extents", c.halfExtents, 0.001, 100.0);
+    c.offset = f.vec3("offset", c.offset, -1000.0, 1000.0);
+    c.force = float(f.number("force", c.force, 0.0, 1e6));
+    c.cutHeight = float(f.number("cut_height", c.cutHeight, 0.0, 10.0));
+    return c;
+}
+
+// The object's footprint in its travel frame: signed extents along forward (front, rear) and left (left, right).
+struct Footprint {
+    double front, rear, left, right;
+};
+
+Footprint footprint(const ObjectParams& object, const ObjectModel& model) {
+    const double yaw = object.yawDegrees * std::numbers::pi / 180.0, c = std::cos(yaw), s = std::sin(yaw);
+    Footprint f{-1e300, 1e300, -1e300, 1e300};
+    for (int corner = 0; corner < 4; ++corner) {
+        glm::dvec2 p(corner & 1 ? model.boundsMax.x : model.boundsMin.x,
+                     corner & 2 ? model.boundsMax.y : model.boundsMin.y);
+        glm::dvec2 turned(c * p.x - s * p.y, s * p.x + c * p.y);
+        double forward = -turned.y * object.scale, left = turned.x * object.scale; // model front is -y, left +x
+        f.front = std::max(f.front, forward);
+        f.rear = std::min(f.rear, forward);
+        f.left = std::max(f.left, left);
+        f.right = std::min(f.right, left);
+    }
+    return f;
+}
+
+const ObjectModel& modelOf(const std::vector<ObjectModel>& models, size_t k) {
+    require(k < models.size(), "object " + std::to_string(k) + " has no loaded model");
+    return models[k];
+}
+
+} // namespace
+
+std::vector<ObjectParams> parseObjects(const nlohmann::json* objects, const std::string& source,
+                                       const std::string& sceneDir) {
+    std::vector<ObjectParams> result;
+    if (!objects) return result;
+    if (!objects->is_array()) throw Error(source + ": 'objects' must be an array");
+    if (objects->size() > kMaxObjects)
+        throw Error(source + ": 'objects' has " + std::to_string(objects->size()) + " entries, at most " +
+                    std::to_string(kMaxObjects) + " are supported");
+    for (size_t k = 0; k < objects->size(); ++k) {
+        Fields f{(*objects)[k], source, "objects[" + std::to_string(k) + "]"};
+        f.onlyKeys({"name", "model", "scale", "yaw_deg", "align_to_terrain", "path", "colliders"});
+        ObjectParams o;
+        o.name = f.string("name", "object" + std::to_string(k));
+        for (size_t j = 0; j < result.size(); ++j) // camera rigs mount on objects by name
+            if (result[j].name == o.name)
+                f.fail("name", "'" + o.name + "' is already the name of objects[" + std::to_string(j) + "]");
+        if (!f.find("model")) f.fail("model", "is required (a .gltf or .glb file)");
+        o.model = f.string("model", "");
+        if (!sceneDir.empty() && std::filesystem::path(o.model).is_relative())
+            o.model = (std::filesystem::path(sceneDir) / o.model).lexically_normal().string();
+        o.scale = f.number("scale", o.scale, 0.001, 1000.0);
+        o.yawDegrees = f.number("yaw_deg", o.yawDegrees, -360.0, 360.0);
+        if (const nlohmann::json* align = f.find("align_to_terrain")) {
+            if (!align->is_boolean()) f.fail("align_to_terrain", "must be true or false");
+            o.alignToTerrain = align->get<bool>();
+        }
+        if (!f.find("path")) f.fail("path", "is required ({\"points\": [[x, y], ...], \"speed\": ...})");
+        o.path = parsePath(*f.find("path"), source + ": '" + f.path + ".path'");
+        if (const nlohmann::json* colliders = f.find("colliders")) {
+            if (!colliders->is_array()) f.fail("colliders", "must be an array");
+            if (colliders->size() > kMaxCollidersPerObject)
+                f.fail("colliders", "has more than " + std::to_string(kMaxCollidersPerObject) + " entries");
+            for (size_t c = 0; c < colliders->size(); ++c)
+                o.colliders.push_back(
+                    parseCollider({(*colliders)[c], source, f.path + ".colliders[" + std::to_string(c) + "]"}));
+        }
+        result.push_back(std::move(o));
+    }
+    return result;
+}
+
+std::vector<ObjectModel> loadObjectModels(const std::vector<ObjectParams>& objects, const std::string& source) {
+    std::vector<ObjectModel> models;
+    for (size_t k = 0; k < objects.size(); ++k) {
+        const std::string where = source + ": 'objects[" + std::to_string(k) + "]";
+        try {
+            models.push_back(loadGltfModel(objects[k].model));
+        } catch (const Error& e) {
+            throw Error(where + ".model': " + e.what());
+        }
+        const ObjectModel& model = models.back();
+        for (size_t c = 0; c < objects[k].colliders.size(); ++c) {
+            const std::string& node = objects[k].colliders[c].node;
+            if (model.findNode(node) >= 0) continue;
+            std::string names;
+            for (const ModelNode& n : model.nodes)
+                if (!n.name.empty()) names += (names.empty() ? "" : ", ") + n.name;
+            throw Error(where + ".colliders[" + std::to_string(c) + "].node': model '" + objects[k].model +
+                        "' has no node named '" + node + "' (its nodes: " + (names.empty() ? "none named" : names) +
+                        ")");
+        }
+    }
+    return models;
+}
+
+ObjectPose objectPose(const ObjectParams& object, const ObjectModel& model, const Heightfield& terrain, double time) {
+    const PathPose travel = pathPose(object.path, terrain, time);
+    ObjectPose pose;
+    pose.distance = travel.distance;
+    pose.position = travel.position;
+    glm::dvec3 forward(travel.heading, 0.0), left(-travel.heading.y, travel.heading.x, 0.0), up(0.0, 0.0, 1.0);
+    if (object.alignToTerrain) {
+        // Fit a plane to the terrain under the footprint's corners: its slopes along forward and left tilt the
+        // object, its height at the origin carries it (four wheels on a bump straddle it, as real ones do).
+        const Footprint f = footprint(object, model);
+        const glm::dvec2 origin(travel.position);
+        auto h = [&](double along, double across) {
+            glm::dvec2 xy = origin + glm::dvec2(forward) * along + glm::dvec2(left) * across;
+            return double(terrain.height(glm::vec2(xy)));
+        };
+        const double fl = h(f.front, f.left), fr = h(f.front, f.right), rl = h(f.rear, f.left), rr = h(f.rear, f.right);
+        const double length = f.front - f.rear, width = f.left - f.right;
+        const double slopeForward = length > 1e-9 ? ((fl + fr) - (rl + rr)) / (2.0 * length) : 0.0;
+        const double slopeLeft = width > 1e-9 ? ((fl + rl) - (fr + rr)) / (2.0 * width) : 0.0;
+        const double mean = 0.25 * (fl + fr + rl + rr);
+        const double atOrigin = mean - slopeForward * 0.5 * (f.front + f.rear) - slopeLeft * 0.5 * (f.left + f.right);
+        pose.position.z = atOrigin + object.path.heightAboveGround;
+        forward = glm::normalize(forward + glm::dvec3(0.0, 0.0, slopeForward));
+        const glm::dvec3 tiltedLeft = glm::normalize(left + glm::dvec3(0.0, 0.0, slopeLeft));
+        up = glm::normalize(glm::cross(forward, tiltedLeft));
+        left = glm::cross(up, forward);
+    }
+    pose.forward = forward;
+    pose.left = left;
+    pose.up = up;
+    // Model axes: x -> left, y -> back (the glTF front, +Z, became -y), z -> up; then the yaw and the scale.
+    glm::dmat4 frame(glm::dvec4(left, 0.0), glm::dvec4(-forward, 0.0), glm::dvec4(up, 0.0),
+                     glm::dvec4(pose.position, 1.0));
+    const double yaw = object.yawDegrees * std::numbers::pi / 180.0, c = std::cos(yaw), s = std::sin(yaw);
+    glm::dmat4 turn(glm::dvec4(c, s, 0, 0), glm::dvec4(-s, c, 0, 0), glm::dvec4(0, 0, 1, 0), glm::dvec4(0, 0, 0, 1));
+    glm::dmat4 scale(object.scale);
+    scale[3][3] = 1.0;
+    pose.worldFromModel = frame * turn * scale;
+    return pose;
+}
+
+glm::dmat4 objectNodeToWorld(const ObjectParams& object, const ObjectModel& model, const std::string& node,
+                             const Heightfield& terrain, double time) {
+    const int index = model.findNode(node);
+    require(index >= 0, "object '" + object.name + "': model '" + model.path + "' has no node named '" + node + "'");
+    return objectPose(object, model, terrain, time).worldFromModel * model.nodes[size_t(index)].modelFromNode;
+}
+
+std::vector<glm::dmat4> objectNodeTransforms(const ObjectParams& object, const ObjectModel& model,
+                                             const Heightfield& terrain, double time) {
+    const glm::dmat4 world = objectPose(object, model, terrain, time).worldFromModel;
+    std::vector<glm::dmat4> transforms;
+    transforms.reserve(model.nodes.size());
+    for (const ModelNode& node : model.nodes) transforms.push_back(world * node.modelFromNode);
+    return transforms;
+}
+
+std::vector<Collider> objectColliders(const std::vector<ObjectParams>& objects, const std::vector<ObjectModel>& models,
+                                      const Heightfield& terrain, double time) {
+    std::vector<Collider> colliders;
+    for (size_t k = 0; k < objects.size(); ++k) {
+        const ObjectParams& object = objects[k];
+        if (object.colliders.empty()) continue;
+        const ObjectModel& model = modelOf(models, k);
+        const glm::dmat4 world = objectPose(object, model, terrain, time).worldFromModel;
+        const float scale = float(object.scale);
+        for (size_t i = 0; i < object.colliders.size(); ++i) {
+            const ObjectColliderParams& p = object.colliders[i];
+            const int node = model.findNode(p.node);
+            require(node >= 0,
+                    "object '" + object.name + "': model '" + model.path + "' has no node named '" + p.node + "'");
+            const glm::dmat4 toWorld = world * model.nodes[size_t(node)].modelFromNode;
+            auto at = [&](glm::dvec3 local) { return glm::vec3(glm::dvec3(toWorld * glm::dvec4(local, 1.0))); };
+            const uint32_t id = uint32_t(200000 + 100 * k + i);
+            const glm::dvec3 centre(p.offset);
+            Collider c;
+            if (p.kind == ColliderKind::Downwash) {
+                c = makeDownwash(id, at(centre), p.radius * scale, p.length * scale, p.force);
+            } else {
+                if (p.shape == ColliderShape::Sphere) {
+                    c = makeSphere(id, at(centre), p.radius * scale, p.force, p.kind);
+                } else if (p.shape == ColliderShape::Capsule) {
+                    // Sizes ignore node scales (only the object's scale applies): the axis direction is unit.
+                    glm::vec3 half = glm::vec3(glm::normalize(glm::dvec3(toWorld[p.axis]))) * (0.5f * p.length * scale);
+                    glm::vec3 middle = at(centre);
+                    c = makeCapsule(id, middle - half, middle + half, p.radius * scale, p.force, p.kind);
+                } else {
+                    // The node's axes in world space, scale and any shear removed (Gram-Schmidt).
+                    glm::dvec3 x = glm::normalize(glm::dvec3(toWorld[0]));
+                    glm::dvec3 y = glm::normalize(glm::dvec3(toWorld[1]) - x * glm::dot(x, glm::dvec3(toWorld[1])));
+                    // A box is symmetric, so a mirrored node's box is the same box in a right-handed frame.
+                    glm::dvec3 z = glm::cross(x, y);
+                    c = makeBox(id, at(centre), p.halfExtents * scale, glm::mat3(glm::dmat3(x, y, z)), p.force, p.kind);
+                }
+                if (p.kind == ColliderKind::Mower) c = makeMower(c, p.cutHeight);
+            }
+            colliders.push_back(c);
+        }
+    }
+    return colliders;
+}
+
+} // namespace sward

@@ -1,0 +1,116 @@
+// Scene description: what sward-render and sward-view load from a JSON scene file.
+//
+// Every field is optional and has a documented default (docs/scene-format.md); unknown keys are errors, so
+// a typo never silently falls back to a default. All values are validated (type, finiteness, range) and
+// errors name the file and the JSON path, e.g. "examples/meadow.json: terrain.amplitude must be ...".
+#pragma once
+
+#include "vegetation/atlas.h"
+#include "world/camera.h"
+#include "scene/camera_rig.h"
+#include "vegetation/grass_map.h"
+#include "world/heightfield.h"
+#include "interaction/collision.h"
+#include "world/path.h"
+#include "scene/objects.h"
+#include "scene/vehicles.h"
+#include "vegetation/vegetation_params.h"
+#include "vegetation/vegetation_tile.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace sward {
+
+struct SunParams {
+    double azimuthDegrees = 135.0;        // clockwise from north (+y) towards east (+x)
+    double elevationDegrees = 40.0;       // above the horizon
+    glm::vec3 radiance{3.2f, 3.0f, 2.7f}; // linear RGB, arbitrary HDR units
+    glm::vec3 direction() const;          // unit vector towards the sun
+};
+
+struct SkyParams {
+    glm::vec3 zenith{0.25f, 0.45f, 0.95f};
+    glm::vec3 horizon{0.75f, 0.85f, 1.0f};
+    glm::vec3 groundAmbient{0.12f, 0.11f, 0.08f};
+};
+
+struct CameraParams {
+    glm::dvec3 position{250.0, 180.0, 0.0};
+    // When set, position.z is replaced by terrain height at position.xy plus this value.
+    double heightAboveGround = 1.6;
+    bool useHeightAboveGround = true;
+    glm::dvec3 lookAt{250.0, 260.0, 0.0};
+    double lookAtHeightAboveGround = 0.0;
+    bool lookAtUsesGround = true;
+    double fovYDegrees = 60.0;
+    // Optional moving camera: along `path`, looking `lookAhead` metres further along it at the ground plus
+    // lookAtHeightAboveGround. Replaces position / look_at when present.
+    bool hasPath = false;
+    PathParams path;
+    double lookAhead = 10.0;
+    RigParams rig; // stereo baseline, intrinsics, mount, sensor (camera_rig.h)
+};
+
+// A fixed-step sequence (issue 7 renders datasets from it).
+struct SequenceParams {
+    uint32_t frames = 1;           // frames 0 .. frames-1, frame i at time i * timeStep
+    double timeStep = 1.0 / 30.0;  // seconds per frame and per simulation tick
+};
+
+struct RenderParams {
+    uint32_t width = 1280, height = 720;
+    uint32_t samples = 4; // 1 or 4
+    uint32_t shadowMapSize = 2048; // texels per edge; 0 disables sun shadows
+    float shadowDistance = 60.0f;  // metres in front of the camera covered by the shadow map
+};
+
+struct Scene {
+    std::string source = "<built-in>"; // file the scene came from, for messages
+    std::string name = "default";
+    uint64_t seed = 1;
+    ProceduralTerrainParams terrain;
+    SunParams sun;
+    SkyParams sky;
+    CameraParams camera;
+    RenderParams render;
+    SequenceParams sequence;
+    LodParams lod;
+    WindParams wind;
+    VegetationParams vegetation;   // "vegetation" object, see vegetation_params.h
+    InteractionParams interaction; // "interaction" object, see collision.h (recovery time step = sequence's)
+    ActorParams actors;            // "vehicles", "colliders", "gusts"
+    std::vector<ObjectParams> objects; // "objects": glTF models on paths (vegetation/objects.h), object k = index k
+    bool vegetationEnabled = true; // false: bare ground (paired studies, --no-vegetation)
+    std::string grassMapPath;      // "grass_map", resolved against the scene's folder; empty = procedural meadow
+    std::string atlasPngPath, atlasJsonPath; // "atlas": {"png", "json"}; empty = the built-in procedural atlas
+};
+
+// Parses and validates a scene; `source` names it in error messages.
+Scene parseScene(const nlohmann::json& json, const std::string& source);
+// Reads and parses a scene file; throws sward::Error naming the file for missing files and bad JSON.
+Scene loadScene(const std::string& path);
+// The scene's atlas with its coverage-preserving mip chain: the files it names, or the built-in procedural one.
+Atlas buildAtlas(const Scene& scene);
+// Builds the scene's terrain.
+Heightfield buildTerrain(const Scene& scene);
+// The scene's grass map: the file it names, or the procedural meadow (seeded by the scene seed).
+GrassMap buildGrassMap(const Scene& scene);
+// Places the scene's vegetation on its terrain (threads: 0 = all cores). Checks the memory budget first.
+VegetationTile buildVegetation(const Scene& scene, const Heightfield& terrain, uint32_t threads = 0);
+// The scene camera at the given resolution and simulation time, resolved against the terrain.
+Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t width, uint32_t height, double time = 0.0);
+
+// Every collider acting on the vegetation during tick `tick` (at time tick * sequence.time_step): the scene's
+// vehicles, free colliders and gusts (actorColliders) followed by the objects' node colliders (objectColliders).
+std::vector<Collider> sceneColliders(const Scene& scene, const std::vector<ObjectModel>& models,
+                                     const Heightfield& terrain, uint64_t tick);
+// True when anything in the scene can touch the vegetation (the interaction simulation must run).
+bool sceneHasColliders(const Scene& scene);
+
+// Parses "WxH" (e.g. "1280x720"); throws a clear error for anything else or sizes outside 1..16384.
+void parseResolution(const std::string& text, uint32_t& width, uint32_t& height);
+
+} // namespace sward

@@ -1,0 +1,241 @@
+#include "scene/sensor_model.h"
+
+#include "world/camera.h"
+#include "common/error.h"
+#include "common/half_float.h"
+#include "common/hash.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <set>
+
+namespace sward {
+
+namespace {
+
+// Distinguishes sensor noise from every other hashed quantity that might share (seed, frame, ...) keys.
+constexpr uint64_t kSensorNoiseDomain = 0x53454e534f524e31ull; // "SENSORN1"
+
+// Standard normal for one pixel channel: Box-Muller on two uniforms derived from one counter-based hash.
+// u1 is in (0, 1] so the logarithm is finite.
+double gaussian(uint64_t seed, uint32_t frame, uint32_t camera, uint64_t pixel, uint32_t channel) {
+    uint64_t h = hashKey({kSensorNoiseDomain, seed, frame, camera, pixel, channel});
+    double u1 = 1.0 - unitDouble(h);
+    double u2 = unitDouble(mix64(h ^ 0x2545f4914f6cdd1dull));
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+}
+
+// Jacobian of distortNormalized at (x, y), row-major.
+void distortJacobian(const SensorParams& p, double x, double y, double j[4]) {
+    double r2 = x * x + y * y;
+    double radial = 1.0 + r2 * (p.k1 + r2 * (p.k2 + r2 * p.k3));
+    double dRadial = p.k1 + r2 * (2.0 * p.k2 + 3.0 * r2 * p.k3); // d radial / d r2
+    j[0] = radial + 2.0 * x * x * dRadial + 2.0 * p.p1 * y + 6.0 * p.p2 * x;
+    j[1] = 2.0 * x * y * dRadial + 2.0 * p.p1 * x + 2.0 * p.p2 * y;
+    j[2] = 2.0 * x * y * dRadial + 2.0 * p.p1 * x + 2.0 * p.p2 * y;
+    j[3] = radial + 2.0 * y * y * dRadial + 6.0 * p.p1 * y + 2.0 * p.p2 * x;
+}
+
+class SensorReader {
+public:
+    SensorReader(const nlohmann::json& json, std::string path, std::string source)
+        : json_(json), path_(std::move(path)), source_(std::move(source)) {
+        if (!json_.is_object()) fail(path_ + ": must be an object");
+        static const std::set<std::string> known = {
+            "enabled", "exposure", "exposure_ev", "vignetting",         "k1",         "k2",
+            "k3",      "p1",       "p2",          "electrons_per_unit", "read_noise", "full_well"};
+        for (auto it = json_.begin(); it != json_.end(); ++it)
+            if (!known.count(it.key())) fail(path_ + ": unknown key '" + it.key() + "'");
+    }
+    bool has(const char* key) const { return json_.contains(key); }
+    double number(const char* key, double value, double lo, double hi, const char* range) const {
+        if (!json_.contains(key)) return value;
+        const nlohmann::json& v = json_.at(key);
+        if (!v.is_number() || !std::isfinite(v.get<double>())) fail(name(key) + ": must be a finite number");
+        value = v.get<double>();
+        if (value < lo || value > hi) fail(name(key) + ": must be " + range + " (got " + v.dump() + ")");
+        return value;
+    }
+    bool boolean(const char* key, bool value) const {
+        if (!json_.contains(key)) return value;
+        if (!json_.at(key).is_boolean()) fail(name(key) + ": must be true or false");
+        return json_.at(key).get<bool>();
+    }
+    std::string name(const char* key) const { return path_ + "." + key; }
+    [[noreturn]] void fail(const std::string& message) const {
+        throw Error(source_.empty() ? message : source_ + ": " + message);
+    }
+
+private:
+    const nlohmann::json& json_;
+    std::string path_, source_;
+};
+
+} // namespace
+
+Intrinsics Intrinsics::of(const Camera& camera) {
+    return {camera.fx, camera.fy, camera.cx, camera.cy, camera.width, camera.height};
+}
+
+void distortNormalized(const SensorParams& p, double x, double y, double& xd, double& yd) {
+    double r2 = x * x + y * y;
+    double radial = 1.0 + r2 * (p.k1 + r2 * (p.k2 + r2 * p.k3));
+    xd = x * radial + 2.0 * p.p1 * x * y + p.p2 * (r2 + 2.0 * x * x);
+    yd = y * radial + p.p1 * (r2 + 2.0 * y * y) + 2.0 * p.p2 * x * y;
+}
+
+void undistortNormalized(const SensorParams& p, double xd, double yd, double& x, double& y) {
+    // Newton from the distorted point converges in a few steps for any lens that is invertible over the
+    // image; the iteration count is bounded, so the result is deterministic.
+    x = xd;
+    y = yd;
+    for (int i = 0; i < 20; ++i) {
+        double fx, fy, j[4];
+        distortNormalized(p, x, y, fx, fy);
+        fx -= xd;
+        fy -= yd;
+        distortJacobian(p, x, y, j);
+        double det = j[0] * j[3] - j[1] * j[2];
+        if (!(std::abs(det) > 1e-12)) break;
+        double dx = (j[3] * fx - j[1] * fy) / det;
+        double dy = (j[0] * fy - j[2] * fx) / det;
+        x -= dx;
+        y -= dy;
+        if (std::abs(dx) + std::abs(dy) < 1e-15) break;
+    }
+}
+
+SensorModel::SensorModel(const SensorParams& params, const Intrinsics& in) : params_(params), intrinsics_(in) {
+    if (!params_.enabled) return;
+    require(in.width > 0 && in.height > 0 && in.fx > 0.0 && in.fy > 0.0, "sensor model: invalid camera intrinsics");
+    size_t pixels = size_t(in.width) * in.height;
+    gain_.resize(pixels);
+    if (params_.hasDistortion()) sourceUv_.resize(pixels * 2);
+    for (uint32_t j = 0; j < in.height; ++j) {
+        for (uint32_t i = 0; i < in.width; ++i) {
+            size_t p = size_t(j) * in.width + i;
+            double xd = (i + 0.5 - in.cx) / in.fx, yd = (j + 0.5 - in.cy) / in.fy;
+            double x = xd, y = yd;
+            if (params_.hasDistortion()) {
+                undistortNormalized(params_, xd, yd, x, y);
+                // A lens model that folds over inside the image (strong k with large r) has no unique ideal
+                // point for this pixel; refuse it rather than render a plausible-looking wrong image.
+                double cx, cy, jac[4];
+                distortNormalized(params_, x, y, cx, cy);
+                distortJacobian(params_, x, y, jac);
+                if (!(std::abs(cx - xd) + std::abs(cy - yd) < 1e-9) || !(jac[0] * jac[3] - jac[1] * jac[2] > 0.0))
+                    throw Error("sensor model: the lens distortion (k1, k2, k3, p1, p2) is not invertible at pixel (" +
+                                std::to_string(i) + ", " + std::to_string(j) + "); reduce the coefficients");
+                // Sample position in array index space (pixel centres at integer + 0.5 in camera.h's convention).
+                sourceUv_[p * 2 + 0] = float(in.fx * x + in.cx - 0.5);
+                sourceUv_[p * 2 + 1] = float(in.fy * y + in.cy - 0.5);
+            }
+            // Natural vignetting from the chief ray's angle to the axis: cos^2 = 1 / (1 + x^2 + y^2).
+            double cos2 = 1.0 / (1.0 + x * x + y * y);
+            gain_[p] = float(params_.exposure * (1.0 - params_.vignetting + params_.vignetting * cos2 * cos2));
+        }
+    }
+}
+
+void SensorModel::apply(uint64_t seed, uint32_t frame, uint32_t camera, std::span<float> rgba) const {
+    if (!params_.enabled) return;
+    const uint32_t w = intrinsics_.width, h = intrinsics_.height;
+    require(rgba.size() == size_t(w) * h * 4, "sensor model: image size does not match the camera");
+
+    if (!sourceUv_.empty()) {
+        std::vector<float> ideal(rgba.begin(), rgba.end());
+        auto texel = [&](int32_t i, int32_t j, int c) {
+            i = std::clamp<int32_t>(i, 0, int32_t(w) - 1);
+            j = std::clamp<int32_t>(j, 0, int32_t(h) - 1);
+            return ideal[(size_t(j) * w + uint32_t(i)) * 4 + c];
+        };
+        for (size_t p = 0; p < size_t(w) * h; ++p) {
+            float sx = sourceUv_[p * 2], sy = sourceUv_[p * 2 + 1];
+            float fx = std::floor(sx), fy = std::floor(sy);
+            float tx = sx - fx, ty = sy - fy;
+            // Zero weights skip their texel, so an infinite neighbour cannot turn an exact sample into NaN.
+            auto lerp = [](float a, float b, float t) { return t == 0.0f ? a : a * (1.0f - t) + b * t; };
+            int32_t i0 = int32_t(std::clamp(fx, -2.0f, float(w))), j0 = int32_t(std::clamp(fy, -2.0f, float(h)));
+            for (int c = 0; c < 4; ++c) {
+                float top = lerp(texel(i0, j0, c), texel(i0 + 1, j0, c), tx);
+                float bottom = lerp(texel(i0, j0 + 1, c), texel(i0 + 1, j0 + 1, c), tx);
+                rgba[p * 4 + c] = lerp(top, bottom, ty);
+            }
+        }
+    }
+
+    const double epu = params_.electronsPerUnit, read2 = params_.readNoise * params_.readNoise;
+    for (size_t p = 0; p < size_t(w) * h; ++p) {
+        for (uint32_t c = 0; c < 3; ++c) {
+            float& value = rgba[p * 4 + c];
+            value *= gain_[p];
+            if (epu > 0.0 && std::isfinite(value)) {
+                double electrons = double(value) * epu;
+                electrons += std::sqrt(std::max(electrons, 0.0) + read2) * gaussian(seed, frame, camera, p, c);
+                if (params_.fullWell > 0.0) electrons = std::min(electrons, params_.fullWell);
+                value = float(electrons / epu);
+            }
+        }
+    }
+}
+
+void SensorModel::applyHalf(uint64_t seed, uint32_t frame, uint32_t camera, std::span<uint16_t> rgbaHalf) const {
+    if (!params_.enabled) return;
+    std::vector<float> rgba(rgbaHalf.size());
+    std::transform(rgbaHalf.begin(), rgbaHalf.end(), rgba.begin(), halfBitsToFloat);
+    apply(seed, frame, camera, rgba);
+    std::transform(rgba.begin(), rgba.end(), rgbaHalf.begin(), floatToHalfBits);
+}
+
+void applySensor(const SensorParams& params, const Intrinsics& intrinsics, uint64_t seed, uint32_t frame,
+                 uint32_t camera, std::span<float> rgba) {
+    SensorModel(params, intrinsics).apply(seed, frame, camera, rgba);
+}
+
+void applySensorHalf(const SensorParams& params, const Intrinsics& intrinsics, uint64_t seed, uint32_t frame,
+                     uint32_t camera, std::span<uint16_t> rgbaHalf) {
+    SensorModel(params, intrinsics).applyHalf(seed, frame, camera, rgbaHalf);
+}
+
+SensorParams parseSensor(const nlohmann::json& json, const std::string& jsonPath, const std::string& source) {
+    SensorParams p;
+    if (json.is_null()) return p;
+    SensorReader r(json, jsonPath, source);
+    constexpr double kBig = 1e6;
+    p.enabled = r.boolean("enabled", true);
+    if (r.has("exposure") && r.has("exposure_ev"))
+        r.fail(jsonPath + ": give either 'exposure' or 'exposure_ev', not both");
+    p.exposure = r.number("exposure", 1.0, 1e-9, 1e9, "positive");
+    if (r.has("exposure_ev")) p.exposure = std::exp2(r.number("exposure_ev", 0.0, -30.0, 30.0, "between -30 and 30"));
+    p.vignetting = r.number("vignetting", 0.0, 0.0, 1.0, "between 0 and 1");
+    p.k1 = r.number("k1", 0.0, -kBig, kBig, "between -1e6 and 1e6");
+    p.k2 = r.number("k2", 0.0, -kBig, kBig, "between -1e6 and 1e6");
+    p.k3 = r.number("k3", 0.0, -kBig, kBig, "between -1e6 and 1e6");
+    p.p1 = r.number("p1", 0.0, -kBig, kBig, "between -1e6 and 1e6");
+    p.p2 = r.number("p2", 0.0, -kBig, kBig, "between -1e6 and 1e6");
+    p.electronsPerUnit = r.number("electrons_per_unit", 0.0, 0.0, 1e12, "between 0 and 1e12");
+    p.readNoise = r.number("read_noise", 0.0, 0.0, 1e9, "between 0 and 1e9");
+    p.fullWell = r.number("full_well", 0.0, 0.0, 1e15, "between 0 and 1e15");
+    if ((p.readNoise > 0.0 || p.fullWell > 0.0) && p.electronsPerUnit <= 0.0)
+        r.fail(r.name("electrons_per_unit") + ": must be positive when 'read_noise' or 'full_well' is set");
+    return p;
+}
+
+nlohmann::json sensorToJson(const SensorParams& p) {
+    return {{"enabled", p.enabled},
+            {"exposure", p.exposure},
+            {"vignetting", p.vignetting},
+            {"k1", p.k1},
+            {"k2", p.k2},
+            {"k3", p.k3},
+            {"p1", p.p1},
+            {"p2", p.p2},
+            {"electrons_per_unit", p.electronsPerUnit},
+            {"read_noise", p.readNoise},
+            {"full_well", p.fullWell}};
+}
+
+} // namespace sward

@@ -1,0 +1,236 @@
+// The CPU collision pass: contacts, felling, cutting, threads. CPU only.
+#include "test_files.h"
+#include "interaction_world.h"
+
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+using namespace sward;
+using namespace sward::test;
+
+TEST(Collision, CombinesTouchesFellOverCutOverPushAndClampsThePush) {
+    RecoveryParams r;
+    PlantTouch push{{0.8f, 0.0f}, gpu::kContactPush, gpu::kPlantUncut};
+    PlantTouch push2{{0.0f, 0.8f}, gpu::kContactPush, gpu::kPlantUncut};
+    PlantTouch cut{{0.1f, 0.0f}, gpu::kContactCut, 40};
+    PlantTouch cut2{{0.1f, 0.0f}, gpu::kContactCut, 30};
+    PlantTouch fell{{0.0f, -0.9f}, gpu::kContactFell, gpu::kPlantUncut};
+
+    std::vector<PlantTouch> two{push, push2};
+    gpu::PlantContact c = combineTouches(two, r);
+    EXPECT_EQ(c.flags, gpu::kContactPush);
+    EXPECT_NEAR(glm::length(pushOf(c)), 0.95f, 1e-4f);
+    EXPECT_NEAR(pushOf(c).x, pushOf(c).y, 1e-4f);
+
+    std::vector<PlantTouch> cuts{push, cut, cut2};
+    c = combineTouches(cuts, r);
+    EXPECT_EQ(c.flags & 15u, gpu::kContactCut);
+    EXPECT_EQ((c.flags >> 8) & 255u, 30u);
+    EXPECT_NEAR(pushOf(c).x, 0.95f, 1e-4f); // 0.8 + 0.1 + 0.1, clamped
+
+    std::vector<PlantTouch> all{cut, fell, push};
+    c = combineTouches(all, r);
+    EXPECT_EQ(c.flags & 15u, gpu::kContactFell);
+    EXPECT_NEAR(glm::length(pushOf(c)), r.fellBend, 1e-4f);
+}
+
+TEST(Collision, SphereBendsOnlyTheTouchedPlantsAwayFromItsCentreAndTheyRecoverExactly) {
+    const VegetationTile& tile = smallTile();
+    const auto plants = plantInfos(tile, tileParams(50));
+    Sim sim = makeSim(tile);
+    const auto rest = sim.dynamics;
+    size_t contacts = 0, nonZero = 0;
+    for (uint32_t t = 0; t < 80; ++t) {
+        Collider s = sphereAt(t);
+        TickResult r = sim.step(std::span(&s, 1));
+        std::vector<uint8_t> touched(plants.size(), 0);
+        for (size_t i = 0; i < r.contacts.size(); ++i) {
+            const gpu::PlantContact& c = r.contacts[i];
+            if (i > 0) {
+                ASSERT_LT(r.contacts[i - 1].plant, c.plant);
+            }
+            ASSERT_EQ(c.flags, gpu::kContactPush);
+            const PlantInfo& p = plants[c.plant];
+            ASSERT_EQ(c.field, p.field);
+            touched[c.plant] = 1;
+            EXPECT_LE(glm::length(p.base - s.centre), s.radius + p.height);
+            glm::vec2 away = glm::vec2(p.base) - glm::vec2(s.centre);
+            float d = glm::dot(pushOf(c), away);
+            EXPECT_GE(d, 0.0f);
+            nonZero += c.push != 0 && d > 0.0f;
+        }
+        contacts += r.contacts.size();
+        // Every plant whose base is inside the sphere is touched.
+        for (size_t i = 0; i < plants.size(); ++i)
+            if (glm::length(plants[i].base - s.centre) < s.radius - 1e-3f) {
+                EXPECT_TRUE(touched[i]) << i;
+            }
+    }
+    EXPECT_GT(contacts, 1000u);
+    EXPECT_GT(nonZero, contacts * 9 / 10);
+    size_t bent = 0;
+    for (const auto& d : sim.dynamics) bent += d.bend != 0;
+    EXPECT_GT(bent, 100u);
+
+    // The sphere has gone: within restTicks every plant is back at exact rest and every field inactive.
+    for (uint32_t t = 0; t < sim.world.params().recovery.restTicks; ++t) sim.step({});
+    EXPECT_TRUE(sameBytes(sim.dynamics, rest));
+    EXPECT_TRUE(sim.world.activeFields().empty());
+}
+
+TEST(Collision, HeavyWheelLeavesFelledPlantsThatStayDownFor1000Ticks) {
+    const VegetationTile& tile = smallTile();
+    Sim sim = makeSim(tile);
+    // A 0.3 m wide wheel of radius 0.4 m rolling along +x, far heavier than the grass's fell threshold.
+    for (uint32_t t = 0; t < 160; ++t) {
+        float x = 5.0f + 0.25f * float(t);
+        Collider wheel = makeCapsule(1, {x, 30.0f, 0.4f}, {x, 30.3f, 0.4f}, 0.4f, 3.0f);
+        TickResult r = sim.step(std::span(&wheel, 1));
+        for (const auto& c : r.contacts) ASSERT_EQ(c.flags, gpu::kContactFell);
+    }
+    const auto afterPass = sim.dynamics;
+    size_t felled = 0;
+    for (const auto& d : afterPass) {
+        PlantMotion m = decodePlantDynamic(d);
+        if (m.state != gpu::kPlantStateFelled) continue;
+        ++felled;
+        EXPECT_NEAR(glm::length(m.bend), sim.world.params().recovery.fellBend, 1e-3f);
+    }
+    EXPECT_GT(felled, 500u);
+    for (uint32_t t = 0; t < 1000; ++t) sim.step({});
+    EXPECT_TRUE(sameBytes(sim.dynamics, afterPass)); // tracks persist: felled plants never move again
+    EXPECT_TRUE(sim.world.activeFields().empty());
+}
+
+TEST(Collision, MowerLeavesShorterCutPlants) {
+    const VegetationTile& tile = smallTile();
+    Sim sim = makeSim(tile);
+    for (uint32_t t = 0; t < 100; ++t) {
+        Collider blade = makeMower(
+            makeBox(2, {30.0f, 5.0f + 0.2f * float(t), 0.1f}, {0.6f, 0.3f, 0.06f}, glm::mat3(1.0f), 0.3f), 0.1f);
+        sim.step(std::span(&blade, 1));
+    }
+    for (uint32_t t = 0; t < sim.world.params().recovery.restTicks; ++t) sim.step({});
+    size_t cut = 0;
+    for (const auto& d : sim.dynamics) {
+        PlantMotion m = decodePlantDynamic(d);
+        if (m.state == gpu::kPlantStateCut) {
+            ++cut;
+            EXPECT_LT(d.state >> 24, 255u);
+            EXPECT_LT(m.cutFraction, 1.0f);
+            EXPECT_EQ(d.bend, 0u); // sprung back, but stays short
+        } else {
+            EXPECT_EQ(d.state >> 24, 255u);
+        }
+    }
+    EXPECT_GT(cut, 300u); // 1.2 m x 20 m swath at 16 plants/m^2: about 380
+}
+
+TEST(Collision, TenThousandCollidersAboveTheGrassCostNothing) {
+    const VegetationTile& tile = smallTile();
+    InteractionWorld world(tile, tileParams(50), {}, 2);
+    std::vector<Collider> colliders;
+    for (uint32_t i = 0; i < 10000; ++i)
+        colliders.push_back(makeSphere(i, {float(i % 100) * 0.5f, float(i / 100) * 0.5f, 20.0f}, 0.5f, 1.0f));
+    double best = 1e9;
+    for (int t = 0; t < 20; ++t) {
+        TickResult r = world.step(colliders);
+        EXPECT_TRUE(r.contacts.empty());
+        EXPECT_TRUE(r.activeFields.empty());
+        EXPECT_EQ(r.stats.collidersKept, 0u);
+        EXPECT_EQ(r.stats.colliders, 10000u);
+        best = std::min(best, r.stats.cpuMs);
+    }
+    std::printf("[ perf ] 10,000 idle colliders: %.3f ms per tick (best of 20)\n", best);
+}
+
+TEST(Collision, IdenticalContactsWithOneAndFourThreads) {
+    const VegetationTile& tile = smallTile();
+    InteractionWorld one(tile, tileParams(50), {}, 1), four(tile, tileParams(50), {}, 4);
+    size_t total = 0;
+    for (uint32_t t = 0; t < 30; ++t) {
+        std::vector<Collider> colliders = makeGusts(9, 30, {{0, 0, 0.0f}, {50, 50, 0.5f}}, t);
+        colliders.push_back(makeCapsule(3, {2.0f + t, 20, 0.4f}, {2.0f + t, 20.3f, 0.4f}, 0.4f, 3.0f));
+        colliders.push_back(makeMower(makeSphere(4, {40, 2.0f + t, 0.2f}, 0.5f, 0.2f), 0.05f));
+        colliders.push_back(makeSphere(3, {2.0f + t, 20.5f, 0.2f}, 0.6f, 0.3f)); // same id: input order decides
+        TickResult a = one.step(colliders), b = four.step(colliders);
+        ASSERT_TRUE(sameBytes(a.contacts, b.contacts));
+        EXPECT_EQ(a.touchedFields, b.touchedFields);
+        EXPECT_EQ(a.touchedClusters, b.touchedClusters);
+        EXPECT_EQ(a.activeFields, b.activeFields);
+        EXPECT_EQ(a.stats.plantsTested, b.stats.plantsTested);
+        total += a.contacts.size();
+    }
+    EXPECT_GT(total, 10000u);
+}
+
+TEST(Collision, BitwiseIdenticalWithOneTwoAndThreeThreads) {
+    const VegetationTile& tile = smallTile();
+    Sim one = makeSim(tile, {}, 1), two = makeSim(tile, {}, 2), three = makeSim(tile, {}, 3);
+    Sim switching = makeSim(tile, {}, 1);
+    size_t total = 0;
+    for (uint32_t t = 0; t < 40; ++t) {
+        std::vector<Collider> colliders = makeGusts(4, 25, {{0, 0, 0.0f}, {50, 50, 0.5f}}, t);
+        for (uint32_t k = 0; k < 20; ++k) // one sphere per 5 x 5 m cluster of a row, as in the benchmark
+            colliders.push_back(makeSphere(100 + k, {2.5f + 2.5f * float(k) + 0.3f * float(t % 7), 7.5f, 0.3f}, 0.5f,
+                                           0.4f));
+        colliders.push_back(makeCapsule(3, {2.0f + t, 33, 0.4f}, {2.0f + t, 33.3f, 0.4f}, 0.4f, 3.0f));
+        colliders.push_back(makeMower(makeBox(5, {44, 2.0f + t, 0.1f}, {0.6f, 0.3f, 0.06f}, glm::mat3(1.0f), 0.3f), 0.1f));
+        switching.world.setThreads(1 + t % 3);
+        TickResult a = one.step(colliders), b = two.step(colliders), c = three.step(colliders),
+                   d = switching.step(colliders);
+        for (const TickResult* r : {&b, &c, &d}) {
+            ASSERT_TRUE(sameBytes(a.contacts, r->contacts)) << "tick " << t;
+            EXPECT_EQ(a.touchedFields, r->touchedFields);
+            EXPECT_EQ(a.touchedClusters, r->touchedClusters);
+            EXPECT_EQ(a.activeFields, r->activeFields);
+            EXPECT_EQ(a.stats.plantsTested, r->stats.plantsTested);
+            EXPECT_EQ(a.stats.clustersTested, r->stats.clustersTested);
+            EXPECT_EQ(a.stats.fieldsTested, r->stats.fieldsTested);
+        }
+        total += a.contacts.size();
+    }
+    EXPECT_GT(total, 5000u);
+    EXPECT_TRUE(sameBytes(one.dynamics, two.dynamics));
+    EXPECT_TRUE(sameBytes(one.dynamics, three.dynamics));
+    EXPECT_TRUE(sameBytes(one.dynamics, switching.dynamics));
+}
+
+TEST(CollisionPerf, FourHundredFieldsWithTwentyFiveCollidersEach) {
+    const VegetationTile tile = makeTile(500.0f);
+    ASSERT_EQ(tile.fields.size(), 400u);
+    InteractionWorld world(tile, tileParams(500.0f), {}, 1);
+    std::vector<Collider> colliders;
+    for (uint32_t y = 0; y < 100; ++y)
+        for (uint32_t x = 0; x < 100; ++x)
+            colliders.push_back(makeSphere(y * 100 + x, {5.0f * x + 2.5f, 5.0f * y + 2.5f, 0.3f}, 0.5f, 0.4f));
+    for (uint32_t threads : {1u, 2u}) {
+        world.setThreads(threads);
+        std::vector<double> ms;
+        TickResult r;
+        for (int t = 0; t < 15; ++t) {
+            r = world.step(colliders);
+            ms.push_back(r.stats.cpuMs);
+        }
+        std::sort(ms.begin(), ms.end());
+        // FNV-1a of the contact bytes: the same figure for every thread count and every optimisation of the pass.
+        uint64_t hash = 14695981039346656037ull;
+        for (const gpu::PlantContact& c : r.contacts)
+            for (size_t b = 0; b < sizeof(c); ++b) hash = (hash ^ reinterpret_cast<const uint8_t*>(&c)[b]) * 1099511628211ull;
+        std::printf("[ perf ] contacts hash %016llx\n", (unsigned long long)hash);
+        EXPECT_EQ(r.touchedFields.size(), 400u);
+        EXPECT_EQ(r.touchedClusters.size(), 10000u);
+        std::printf("[ perf ] 400 fields x 25 colliders, %u thread(s): median %.3f ms, best %.3f ms; %zu contacts "
+                    "(%llu bytes), %u clusters tested, %llu plants tested of %u; BVH build %.3f ms\n",
+                    threads, ms[ms.size() / 2], ms[0], r.contacts.size(), (unsigned long long)r.stats.contactBytes,
+                    r.stats.clustersTested, (unsigned long long)r.stats.plantsTested, world.plantCount(),
+                    r.stats.buildMs);
+    }
+}

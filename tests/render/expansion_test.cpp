@@ -1,0 +1,177 @@
+// GPU expansion against the CPU reference, LOD distribution, wind off, empty and full grass maps.
+#include "gpu_test.h"
+
+#include "vegetation/expansion_reference.h"
+#include "io/image_files.h"
+#include "scene/scene.h"
+#include "render/scene_renderer.h"
+#include "render/vegetation_renderer.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace sward;
+using sward::test::GpuTest;
+using sward::test::tempDir;
+
+namespace {
+
+constexpr uint32_t kWidth = 200, kHeight = 150;
+
+nlohmann::json smallFieldJson() {
+    return nlohmann::json::parse(R"({
+        "seed": 9,
+        "terrain": {"size": 50, "spacing": 1, "amplitude": 2, "feature_size": 30},
+        "camera": {"position": [10, 8, 0], "height_above_ground": 1.4,
+                   "look_at": [30, 30, 0], "look_at_height_above_ground": 0, "fov_y_deg": 70},
+        "render": {"shadow_map_size": 256, "shadow_distance": 20},
+        "lod": {"near": 5, "mid": 12, "far": 30, "band": 2}
+    })");
+}
+
+template <typename T> std::vector<T> readAll(Context& ctx, const Buffer& buffer, uint32_t count) {
+    std::vector<uint8_t> bytes = readBuffer(ctx, buffer, 0, uint64_t(count) * sizeof(T));
+    std::vector<T> out(count);
+    std::memcpy(out.data(), bytes.data(), bytes.size());
+    return out;
+}
+
+struct SceneSetup {
+    Scene scene;
+    Heightfield terrain;
+    VegetationTile tile;
+    Atlas atlas;
+    explicit SceneSetup(const nlohmann::json& json)
+        : scene(parseScene(json, "expansion test")), terrain(buildTerrain(scene)), tile(buildVegetation(scene, terrain, 2)),
+          atlas(buildAtlas(scene)) {}
+    Camera camera(uint32_t w = kWidth, uint32_t h = kHeight) const { return sceneCamera(scene, terrain, w, h); }
+};
+
+// Fraction of terrain pixels that vegetation covers (truth depth in front of the bare terrain).
+double coverage(const FrameImages& bare, const FrameImages& grass) {
+    size_t ground = 0, covered = 0;
+    for (size_t i = 0; i < bare.depth.size(); ++i) {
+        if (!std::isfinite(bare.depth[i])) continue;
+        ++ground;
+        covered += grass.depth[i] < bare.depth[i] - 0.01f;
+    }
+    return ground ? double(covered) / double(ground) : 0.0;
+}
+
+} // namespace
+
+TEST_F(GpuTest, ExpansionMatchesTheCpuReference) {
+    SceneSetup s(smallFieldJson());
+    Camera camera = s.camera();
+    const double time = 0.7;
+    ReferenceExpansion reference = referenceExpand(s.tile, s.scene.vegetation, s.scene.lod, s.scene.wind, camera, time);
+    SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_1_BIT, &s.tile, &s.atlas);
+    renderFrame(*ctx, renderer, camera, time);
+    VegetationRenderer& vegetation = *renderer.vegetation();
+    gpu::ExpansionStats stats = vegetation.readStats();
+
+    ASSERT_GT(reference.lods[0].size(), 0u);
+    ASSERT_GT(reference.lods[1].size(), 0u);
+    ASSERT_GT(reference.lods[2].size(), 0u);
+    EXPECT_EQ(stats.info.x, reference.visibleClusters);
+    EXPECT_EQ(stats.info.z, reference.plantsConsidered);
+    for (uint32_t lod = 0; lod < 3; ++lod) EXPECT_EQ(stats.instances[int(lod)], reference.lods[lod].size()) << "LOD " << lod;
+
+    auto gpuPlants = readAll<gpu::ExpandedPlant>(*ctx, vegetation.instances(), stats.instances.w);
+    BakedPlants baked = vegetation.bake(0);
+    auto vertices = readAll<gpu::BakedVertex>(*ctx, baked.vertices, baked.vertexCount);
+    vegetation.destroyBaked(baked);
+
+    const uint32_t perPlant[3] = {24, 12, 6};
+    size_t index = 0, vertex = 0, checked = 0;
+    for (uint32_t lod = 0; lod < 3; ++lod) {
+        for (const gpu::ExpandedPlant& expected : reference.lods[lod]) {
+            const gpu::ExpandedPlant& actual = gpuPlants[index++];
+            ASSERT_LT(glm::distance(glm::vec3(actual.positionHeight), glm::vec3(expected.positionHeight)), 1e-4f);
+            ASSERT_NEAR(actual.positionHeight.w, expected.positionHeight.w, 1e-5f);
+            ASSERT_EQ(actual.up, expected.up);
+            ASSERT_EQ(actual.attributes, expected.attributes);
+            ASSERT_EQ(actual.fade & 0xffff0000u, expected.fade & 0xffff0000u);
+            ASSERT_NEAR(double(actual.fade & 0xffffu), double(expected.fade & 0xffffu), 2.0);
+            // Vertices from the GPU's own instance (so only the vertex math is compared here).
+            uint32_t category = actual.attributes & 3u;
+            uint32_t variant = ((actual.attributes >> 2) & 63u) % uint32_t(s.atlas.desc.rows[category].cells.size());
+            const AtlasCell& cell = s.atlas.desc.rows[category].cells[variant];
+            auto corners = referencePlantVertices(actual, lod, glm::vec3(camera.position),
+                                                  glm::vec3(cell.baseU, cell.baseV, cell.aspect));
+            ASSERT_EQ(corners.size(), perPlant[lod]);
+            for (const glm::vec3& p : corners) {
+                ASSERT_LT(glm::distance(glm::vec3(vertices[vertex].positionFraction), p), 1e-4f) << "vertex " << vertex;
+                ++vertex;
+            }
+            ++checked;
+        }
+    }
+    EXPECT_EQ(vertex, vertices.size());
+    EXPECT_GT(checked, 100u);
+}
+
+TEST_F(GpuTest, LodShiftsFromNearToFarAsTheCameraRecedes) {
+    SceneSetup s(smallFieldJson());
+    SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_1_BIT, &s.tile, &s.atlas);
+    glm::dvec3 target(25.0, 25.0, s.terrain.height({25.0f, 25.0f}));
+    double previousNearShare = 2.0, previousFarShare = -1.0;
+    for (double back : {2.0, 8.0, 18.0}) {
+        glm::dvec3 eye = target + glm::dvec3(-back, -back, 2.0 + back * 0.5);
+        Camera camera = Camera::lookAt(eye, target, {0, 0, 1}, 60.0, 64, 48);
+        renderFrame(*ctx, renderer, camera);
+        gpu::ExpansionStats stats = renderer.vegetation()->readStats();
+        ASSERT_GT(stats.instances.w, 0u);
+        double nearShare = double(stats.instances.x) / stats.instances.w;
+        double farShare = double(stats.instances.z) / stats.instances.w;
+        EXPECT_LT(nearShare, previousNearShare) << "camera " << back << " m back";
+        EXPECT_GT(farShare, previousFarShare) << "camera " << back << " m back";
+        previousNearShare = nearShare;
+        previousFarShare = farShare;
+    }
+}
+
+TEST_F(GpuTest, WithoutWindTheImageIsStaticOverTime) {
+    nlohmann::json json = smallFieldJson();
+    json["wind"] = {{"strength", 0}, {"gust_strength", 0}, {"flutter", 0}};
+    SceneSetup s(json);
+    SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_4_BIT, &s.tile, &s.atlas);
+    FrameImages a = renderFrame(*ctx, renderer, s.camera(), 0.0);
+    FrameImages b = renderFrame(*ctx, renderer, s.camera(), 3.3);
+    EXPECT_EQ(a.rgbaHalf, b.rgbaHalf);
+    EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * 4));
+}
+
+TEST_F(GpuTest, EmptyGrassMapDrawsNoGrassAndFullMapCoversTheGroundFromAbove) {
+    std::string dir = tempDir("grassmaps");
+    std::vector<uint8_t> empty(8 * 8 * 3, 0), full(8 * 8 * 3, 0);
+    for (size_t i = 1; i < full.size(); i += 3) full[i] = 255; // G = grass at full density
+    writePng8(dir + "/empty.png", 8, 8, 3, empty);
+    writePng8(dir + "/full.png", 8, 8, 3, full);
+
+    // Top-down view from 6 m over the middle of the field.
+    nlohmann::json json = smallFieldJson();
+    json["camera"] = {{"position", {25, 25, 0}}, {"height_above_ground", 4}, {"look_at", {25, 25.01, 0}},
+                      {"look_at_height_above_ground", 0}, {"fov_y_deg", 50}};
+    auto render = [&](const std::string& map, bool vegetation, float grassDensity) {
+        nlohmann::json j = json;
+        j["grass_map"] = map;
+        j["vegetation"] = {{"categories", {nlohmann::json::object(), {{"density", grassDensity}}}}};
+        SceneSetup s(j);
+        SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_1_BIT, vegetation ? &s.tile : nullptr,
+                               vegetation ? &s.atlas : nullptr);
+        return renderFrame(*ctx, renderer, s.camera());
+    };
+    FrameImages bare = render(dir + "/empty.png", false, 16.0f);
+    FrameImages none = render(dir + "/empty.png", true, 16.0f);
+    EXPECT_EQ(coverage(bare, none), 0.0) << "an empty map must not draw a single plant pixel";
+    EXPECT_EQ(0, std::memcmp(bare.depth.data(), none.depth.data(), bare.depth.size() * 4));
+    // Thresholds, seen from 4 m straight above (near LOD): plant geometry (not the turf-coloured terrain)
+    // covers >= 30% of the ground at the default 16 grass clumps per m^2 and >= 70% at 48 per m^2.
+    double defaultDensity = coverage(bare, render(dir + "/full.png", true, 16.0f));
+    double dense = coverage(bare, render(dir + "/full.png", true, 48.0f));
+    EXPECT_GE(defaultDensity, 0.30);
+    EXPECT_GE(dense, 0.70);
+    EXPECT_GT(dense, defaultDensity);
+    std::printf("top-down grass coverage: %.3f at 16/m^2, %.3f at 48/m^2\n", defaultDensity, dense);
+}

@@ -1,0 +1,136 @@
+// Vegetation expansion and rendering on the GPU: LOD choice, culling, wind, determinism, ground truth.
+#include "gpu_test.h"
+
+#include "vegetation/records.h"
+#include "scene/scene.h"
+#include "render/scene_renderer.h"
+#include "render/vegetation_renderer.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace sward;
+using sward::test::GpuTest;
+
+namespace {
+
+constexpr uint32_t kWidth = 240, kHeight = 160;
+
+Scene smallMeadow() {
+    return parseScene(nlohmann::json::parse(R"({
+        "seed": 5,
+        "terrain": {"size": 100, "spacing": 2, "amplitude": 4, "feature_size": 60},
+        "camera": {"position": [20, 20, 0], "height_above_ground": 1.5,
+                   "look_at": [50, 45, 0], "look_at_height_above_ground": 0, "fov_y_deg": 60},
+        "render": {"shadow_map_size": 512, "shadow_distance": 30},
+        "lod": {"near": 6, "mid": 15, "far": 45, "band": 2},
+        "vegetation": {"tile_size": 100}
+    })"),
+                      "small meadow");
+}
+
+class VegetationTest : public GpuTest {
+protected:
+    void SetUp() override {
+        GpuTest::SetUp();
+        tile = buildVegetation(scene, terrain, 2);
+        atlas = buildAtlas(scene);
+    }
+    std::unique_ptr<SceneRenderer> renderer(bool withVegetation, uint32_t samples = 4) {
+        return std::make_unique<SceneRenderer>(*ctx, scene, terrain,
+                                               samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
+                                               withVegetation ? &tile : nullptr, withVegetation ? &atlas : nullptr);
+    }
+    std::vector<gpu::ExpandedPlant> readInstances(VegetationRenderer& vegetation, uint32_t count) {
+        std::vector<uint8_t> bytes = readBuffer(*ctx, vegetation.instances(), 0, uint64_t(count) * sizeof(gpu::ExpandedPlant));
+        std::vector<gpu::ExpandedPlant> instances(count);
+        std::memcpy(instances.data(), bytes.data(), bytes.size());
+        return instances;
+    }
+
+    Scene scene = smallMeadow();
+    Heightfield terrain = buildTerrain(scene);
+    Camera camera = sceneCamera(scene, terrain, kWidth, kHeight);
+    VegetationTile tile;
+    Atlas atlas;
+};
+
+} // namespace
+
+TEST_F(VegetationTest, PlantsStandInFrontOfTheTerrainInColourAndTruth) {
+    FrameImages bare = renderFrame(*ctx, *renderer(false), camera);
+    FrameImages grass = renderFrame(*ctx, *renderer(true), camera);
+    size_t occluded = 0, ground = 0;
+    for (size_t i = 0; i < bare.depth.size(); ++i) {
+        if (!std::isfinite(bare.depth[i])) continue;
+        ++ground;
+        ASSERT_TRUE(std::isfinite(grass.depth[i])) << "a plant pixel in front of terrain cannot be sky";
+        EXPECT_LE(grass.depth[i], bare.depth[i] + 1e-4f) << "vegetation never lies behind the ground it stands on";
+        if (grass.depth[i] < bare.depth[i] - 0.01f) ++occluded;
+    }
+    ASSERT_GT(ground, bare.depth.size() / 3);
+    EXPECT_GT(occluded, ground / 3) << "plants should cover much of the ground near the camera";
+    EXPECT_NE(bare.rgbaHalf, grass.rgbaHalf);
+}
+
+TEST_F(VegetationTest, SameTimeIsBitwiseIdenticalAndWindMovesPlants) {
+    auto r = renderer(true);
+    FrameImages a = renderFrame(*ctx, *r, camera, 1.0);
+    FrameImages b = renderFrame(*ctx, *r, camera, 1.0);
+    FrameImages c = renderFrame(*ctx, *r, camera, 2.5);
+    EXPECT_EQ(a.rgbaHalf, b.rgbaHalf);
+    EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * 4));
+    EXPECT_NE(a.rgbaHalf, c.rgbaHalf) << "wind is a function of simulation time";
+    EXPECT_NE(0, std::memcmp(a.depth.data(), c.depth.data(), a.depth.size() * 4)) << "truth follows the wind";
+}
+
+TEST_F(VegetationTest, LodFollowsDistanceWithComplementaryCrossFadeCopies) {
+    auto r = renderer(true);
+    renderFrame(*ctx, *r, camera);
+    VegetationRenderer& vegetation = *r->vegetation();
+    gpu::ExpansionStats stats = vegetation.readStats();
+    ASSERT_GT(stats.instances.x, 0u);
+    ASSERT_GT(stats.instances.y, 0u);
+    ASSERT_GT(stats.instances.z, 0u);
+    EXPECT_EQ(stats.info.y, 0u) << "no instance may be dropped for lack of capacity here";
+    std::vector<gpu::ExpandedPlant> instances = readInstances(vegetation, stats.instances.w);
+
+    const float half = 0.5f * scene.lod.band;
+    const float edges[4] = {0.0f, scene.lod.nearToMid, scene.lod.midToFar, scene.lod.farLimit};
+    uint32_t begin = 0, upperCopies = 0, banded = 0;
+    for (uint32_t lod = 0; lod < 3; ++lod) {
+        uint32_t end = begin + stats.instances[int(lod)];
+        for (uint32_t i = begin; i < end; ++i) {
+            const gpu::ExpandedPlant& p = instances[i];
+            float d = float(glm::distance(glm::dvec3(glm::vec3(p.positionHeight)), camera.position));
+            ASSERT_GE(d, edges[lod] - half - 1e-3f) << "LOD " << lod;
+            ASSERT_LT(d, edges[lod + 1] + half + 1e-3f) << "LOD " << lod;
+            float t = float(p.fade & 0xffffu) / 65535.0f;
+            bool upper = (p.fade & 0x10000u) != 0;
+            bool inBand = std::abs(d - edges[lod + (upper ? 0 : 1)]) < half;
+            if (t > 0.0f || upper) {
+                ++banded;
+                EXPECT_TRUE(inBand) << "only plants in a band fade";
+            }
+            upperCopies += upper;
+        }
+        begin = end;
+    }
+    EXPECT_GT(banded, 0u);
+    EXPECT_GT(upperCopies, 0u) << "plants in the near/mid and mid/far bands are drawn in both LODs";
+}
+
+TEST_F(VegetationTest, ClusterCullingSkipsWhatTheCameraCannotSee) {
+    auto r = renderer(true);
+    renderFrame(*ctx, *r, camera);
+    gpu::ExpansionStats ground = r->vegetation()->readStats();
+    EXPECT_GT(ground.info.x, 0u);
+    EXPECT_LT(ground.info.x, r->vegetation()->buffers().clusterCount / 2) << "most clusters are outside the view";
+
+    Camera sky = Camera::lookAt(camera.position, camera.position + glm::dvec3(0.0, 0.1, 10.0), {0, 0, 1}, 40.0,
+                                kWidth, kHeight);
+    renderFrame(*ctx, *r, sky);
+    gpu::ExpansionStats up = r->vegetation()->readStats();
+    EXPECT_EQ(up.info.x, 0u) << "looking at the sky, no cluster is visible";
+    EXPECT_EQ(up.instances.w, 0u);
+}

@@ -1,0 +1,91 @@
+#include "world/camera.h"
+#include "common/error.h"
+#include "engine/memory.h"
+#include "scene/scene.h"
+
+#include <gtest/gtest.h>
+
+using namespace sward;
+
+namespace {
+std::string errorOf(const char* json) {
+    try {
+        parseScene(nlohmann::json::parse(json), "s.json");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+} // namespace
+
+TEST(Scene, DefaultsAreValid) {
+    Scene scene = parseScene(nlohmann::json::object(), "empty");
+    EXPECT_EQ(scene.render.samples, 4u);
+    EXPECT_GT(scene.terrain.size, 0.0f);
+}
+
+TEST(Scene, RejectsBadValuesNamingFileAndKey) {
+    EXPECT_NE(errorOf(R"({"terrain": {"amplitude": -1}})").find("s.json: 'terrain.amplitude'"), std::string::npos);
+    EXPECT_NE(errorOf(R"({"terrain": {"spacing": "2"}})").find("'terrain.spacing' must be a number"), std::string::npos);
+    EXPECT_NE(errorOf(R"({"terain": {}})").find("unknown key 'terain'"), std::string::npos);
+    EXPECT_NE(errorOf(R"({"render": {"samples": 2}})").find("render.samples"), std::string::npos);
+    EXPECT_NE(errorOf(R"({"camera": {"position": [1, 2]}})").find("camera.position"), std::string::npos);
+    EXPECT_NE(errorOf(R"([1, 2])").find("JSON object"), std::string::npos);
+}
+
+TEST(Scene, MissingFileNamesIt) {
+    try {
+        loadScene("/nonexistent/scene.json");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.json"), std::string::npos);
+    }
+}
+
+TEST(Scene, ParsesResolution) {
+    uint32_t w = 0, h = 0;
+    parseResolution("640x480", w, h);
+    EXPECT_EQ(w, 640u);
+    EXPECT_EQ(h, 480u);
+    for (const char* bad : {"", "640", "640x", "x480", "0x1", "640x480x2", "-1x5", "17000x10", "64 0x480"})
+        EXPECT_THROW(parseResolution(bad, w, h), Error) << bad;
+}
+
+TEST(Scene, GustsFollowTheSceneSeedUnlessPinned) {
+    Scene scene = parseScene(nlohmann::json::parse(R"({"seed": 123456789, "gusts": {"count": 3}})"), "s.json");
+    EXPECT_EQ(scene.actors.gusts.seed, 123456789u) << "exact, not rounded through a float";
+    EXPECT_EQ(scene.actors.gusts.count, 3u);
+    scene = parseScene(nlohmann::json::parse(R"({"seed": 5, "gusts": {"count": 3, "seed": 9}})"), "s.json");
+    EXPECT_EQ(scene.actors.gusts.seed, 9u);
+    EXPECT_THROW(parseScene(nlohmann::json::parse(R"({"gusts": {"count": 2.5}})"), "s.json"), Error);
+}
+
+TEST(Scene, VegetationEnabledTakesBooleansAndColliderShapesMustBeStrings) {
+    EXPECT_FALSE(parseScene(nlohmann::json::parse(R"({"vegetation_enabled": false})"), "s.json").vegetationEnabled);
+    EXPECT_TRUE(parseScene(nlohmann::json::parse(R"({"vegetation_enabled": 1})"), "s.json").vegetationEnabled);
+    try {
+        parseScene(nlohmann::json::parse(R"({"colliders": [{"shape": 3, "path": {"points": [[0, 0]]}}]})"), "s.json");
+        FAIL() << "a numeric shape must be rejected";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("colliders[0]"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("shape"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Scene, StereoRigKeysAreReadAndChecked) {
+    Scene scene = parseScene(nlohmann::json::parse(
+        R"({"camera": {"baseline": 0.3, "min_depth": 2, "focal_length_px": 500, "principal_point": [300, 200]}})"), "s.json");
+    EXPECT_DOUBLE_EQ(scene.camera.rig.baseline, 0.3);
+    EXPECT_DOUBLE_EQ(scene.camera.rig.minDepth, 2.0);
+    Heightfield terrain = buildTerrain(scene);
+    RigCameras rig = sceneRig(scene, terrain, {}, 640, 480, 0.0);
+    EXPECT_DOUBLE_EQ(rig.left.fx, 500.0);
+    EXPECT_DOUBLE_EQ(rig.left.cx, 300.0);
+    EXPECT_NEAR(glm::length(rig.right.position - rig.left.position), 0.3, 1e-9);
+    // The right camera sits along the left camera's +x axis: a point projects d = f B / Z further left.
+    glm::dvec3 point = rig.left.position + rig.left.worldFromCamera * glm::dvec3(0.2, 0.1, 7.0);
+    glm::dvec3 l = rig.left.project(point), r = rig.right.project(point);
+    EXPECT_NEAR(l.x - r.x, 500.0 * 0.3 / 7.0, 1e-9);
+    EXPECT_NEAR(l.y, r.y, 1e-9);
+    EXPECT_THROW(parseScene(nlohmann::json::parse(R"({"camera": {"mount": {"object": "x"}}})"), "s.json"), Error);
+}

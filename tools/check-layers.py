@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""Checks sward's layer rules (docs/architecture.md) over the source tree; exits 1 naming every violation.
+
+- A file in a layer folder includes project headers only from its own folder or from the layers it may use.
+- Vulkan headers (<vulkan/...>, <volk.h>) appear only in engine/, render/ and tools/.
+- No C++ source or header is longer than 600 lines.
+
+usage: tools/check-layers.py [SOURCE_ROOT]
+"""
+import pathlib
+import re
+import sys
+
+# Each layer and the project folders its files may include (besides its own). "shared" is shaders/shared/, the
+# numbers and GPU structs the CPU and GPU share.
+ALLOWED = {
+    "common": set(),
+    "io": {"common"},
+    "world": {"common", "io"},
+    "vegetation": {"common", "io", "world", "shared"},
+    "interaction": {"common", "io", "world", "vegetation", "shared"},
+    "scene": {"common", "io", "world", "vegetation", "interaction", "shared"},
+    "dataset": {"common", "io", "world", "vegetation", "interaction", "scene", "shared"},
+    "eval": {"common", "io", "dataset", "shared"},
+    "engine": {"common", "shared"},
+    "render": {"common", "io", "world", "vegetation", "interaction", "scene", "dataset", "engine", "shared"},
+}
+VULKAN_FREE = {"common", "io", "world", "vegetation", "interaction", "scene", "dataset", "eval"}
+MAX_LINES = 600
+
+INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
+VULKAN_HEADER = re.compile(r"^(vulkan/|volk\.h|vk_mem_alloc\.h|imgui_impl_vulkan\.h)")
+
+
+def check(root: pathlib.Path) -> list[str]:
+    problems = []
+    sources = [p for p in root.rglob("*") if p.suffix in {".h", ".hpp", ".cpp"} and not _ignored(root, p)]
+    for path in sorted(sources):
+        rel = path.relative_to(root)
+        text = path.read_text(encoding="utf-8", errors="replace")
+        lines = text.count("\n")
+        if lines > MAX_LINES:
+            problems.append(f"{rel}: {lines} lines (at most {MAX_LINES})")
+        layer = rel.parts[0]
+        if layer not in ALLOWED or len(rel.parts) != 2:
+            continue
+        for kind, name in INCLUDE.findall(text):
+            if kind == "<" and layer in VULKAN_FREE and VULKAN_HEADER.match(name):
+                problems.append(f"{rel}: includes <{name}>, but {layer}/ is Vulkan-free")
+            if kind != '"' or "/" not in name:
+                continue
+            target = name.split("/")[0]
+            if target != layer and target in ALLOWED.keys() | {"shared"} and target not in ALLOWED[layer]:
+                problems.append(f'{rel}: includes "{name}", but {layer}/ may not use {target}/')
+    return problems
+
+
+def _ignored(root: pathlib.Path, path: pathlib.Path) -> bool:
+    top = path.relative_to(root).parts[0]
+    return top.startswith(".") or top.startswith("build") or top in {"out"}
+
+
+def main() -> int:
+    root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent)
+    problems = check(root)
+    for p in problems:
+        print(p, file=sys.stderr)
+    if problems:
+        print(f"check-layers: {len(problems)} problem(s)", file=sys.stderr)
+        return 1
+    print("check-layers: layers, Vulkan-free folders and file lengths are as documented")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,141 @@
+#include "world/heightfield.h"
+
+#include "common/error.h"
+#include "common/hash.h"
+#include "io/image_io.h"
+#include "common/noise.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sward {
+
+Heightfield::Heightfield(uint32_t columns, uint32_t rows, float spacing, glm::vec2 origin, std::vector<float> heights)
+    : columns_(columns), rows_(rows), spacing_(spacing), origin_(origin), heights_(std::move(heights)) {
+    require(columns >= 2 && rows >= 2, "heightfield needs at least 2x2 samples");
+    require(spacing > 0.0f && std::isfinite(spacing), "heightfield spacing must be positive");
+    require(heights_.size() == size_t(columns) * rows, "heightfield sample count does not match its size");
+    for (float h : heights_) require(std::isfinite(h), "heightfield contains a non-finite height");
+    auto [lo, hi] = std::minmax_element(heights_.begin(), heights_.end());
+    minHeight_ = *lo;
+    maxHeight_ = *hi;
+}
+
+double Heightfield::heightDouble(double x, double y) const {
+    double u = std::clamp((x - origin_.x) / spacing_, 0.0, double(columns_ - 1));
+    double v = std::clamp((y - origin_.y) / spacing_, 0.0, double(rows_ - 1));
+    uint32_t i = std::min(uint32_t(u), columns_ - 2);
+    uint32_t j = std::min(uint32_t(v), rows_ - 2);
+    double fx = u - i, fy = v - j;
+    double h00 = sample(i, j), h10 = sample(i + 1, j), h01 = sample(i, j + 1), h11 = sample(i + 1, j + 1);
+    // The two triangles of the cell, split along the (i,j)-(i+1,j+1) diagonal as in the rendered mesh.
+    if (fx >= fy) return h00 + fx * (h10 - h00) + fy * (h11 - h10);
+    return h00 + fy * (h01 - h00) + fx * (h11 - h01);
+}
+
+float Heightfield::height(glm::vec2 xy) const {
+    return float(heightDouble(xy.x, xy.y));
+}
+
+glm::vec3 Heightfield::normal(glm::vec2 xy) const {
+    float u = std::clamp((xy.x - origin_.x) / spacing_, 0.0f, float(columns_ - 1));
+    float v = std::clamp((xy.y - origin_.y) / spacing_, 0.0f, float(rows_ - 1));
+    uint32_t i = std::min(uint32_t(u), columns_ - 2);
+    uint32_t j = std::min(uint32_t(v), rows_ - 2);
+    float h00 = sample(i, j), h10 = sample(i + 1, j), h01 = sample(i, j + 1), h11 = sample(i + 1, j + 1);
+    float dx, dy;
+    if (u - float(i) >= v - float(j)) {
+        dx = h10 - h00;
+        dy = h11 - h10;
+    } else {
+        dx = h11 - h01;
+        dy = h01 - h00;
+    }
+    return glm::normalize(glm::vec3(-dx, -dy, spacing_));
+}
+
+glm::vec3 Heightfield::vertexNormal(uint32_t i, uint32_t j) const {
+    uint32_t i0 = i > 0 ? i - 1 : i, i1 = std::min(i + 1, columns_ - 1);
+    uint32_t j0 = j > 0 ? j - 1 : j, j1 = std::min(j + 1, rows_ - 1);
+    float dx = (sample(i1, j) - sample(i0, j)) / (float(i1 - i0) * spacing_);
+    float dy = (sample(i, j1) - sample(i, j0)) / (float(j1 - j0) * spacing_);
+    return glm::normalize(glm::vec3(-dx, -dy, 1.0f));
+}
+
+std::optional<double> Heightfield::raycast(glm::dvec3 origin, glm::dvec3 direction, double maxDistance) const {
+    glm::dvec2 lo(origin_), hi = lo + glm::dvec2(extent());
+    auto above = [&](double t) {
+        glm::dvec3 p = origin + t * direction;
+        if (p.x < lo.x || p.y < lo.y || p.x > hi.x || p.y > hi.y) return 1.0; // no terrain outside the grid
+        return p.z - heightDouble(p.x, p.y);
+    };
+    // March in steps well below a cell so no hill is stepped over, then bisect the sign change. The surface
+    // is piecewise linear, so bisection converges to the exact intersection.
+    const double step = spacing_ * 0.25;
+    double t0 = 0.0, f0 = above(0.0);
+    if (f0 <= 0.0) return 0.0;
+    for (double t1 = step; t0 < maxDistance; t1 += step) {
+        t1 = std::min(t1, maxDistance);
+        double f1 = above(t1);
+        if (f1 <= 0.0) {
+            for (int k = 0; k < 64; ++k) {
+                double tm = 0.5 * (t0 + t1);
+                (above(tm) > 0.0 ? t0 : t1) = tm;
+            }
+            return 0.5 * (t0 + t1);
+        }
+        if (direction.z >= 0.0 && origin.z + t1 * direction.z > maxHeight_) break; // climbing above all terrain
+        t0 = t1;
+    }
+    return std::nullopt;
+}
+
+Heightfield makeProceduralTerrain(const ProceduralTerrainParams& p) {
+    require(p.size > 0.0f && p.spacing > 0.0f && p.size / p.spacing <= 8192.0f,
+            "terrain size / spacing must be positive and give at most 8192 cells per side");
+    require(p.featureSize > 0.0f && std::isfinite(p.amplitude), "terrain feature size must be positive");
+    uint32_t cells = uint32_t(std::lround(p.size / p.spacing));
+    uint32_t n = cells + 1;
+    std::vector<float> heights(size_t(n) * n);
+    for (uint32_t j = 0; j < n; ++j) {
+        for (uint32_t i = 0; i < n; ++i) {
+            double x = double(i) * p.spacing, y = double(j) * p.spacing;
+            double sum = 0.0, weight = 1.0, frequency = 1.0 / p.featureSize, norm = 0.0;
+            for (uint32_t o = 0; o < p.octaves; ++o) {
+                sum += weight * valueNoise(p.seed, o, x * frequency, y * frequency);
+                norm += weight;
+                weight *= 0.45;
+                frequency *= 2.0;
+            }
+            heights[size_t(j) * n + i] = float(0.5 * p.amplitude * sum / norm);
+        }
+    }
+    return Heightfield(n, n, p.spacing, glm::vec2(0.0f), std::move(heights));
+}
+
+Heightfield loadHeightfield(const std::string& path, float verticalScale, float spacing, glm::vec2 origin,
+                            float heightOffset) {
+    require(spacing > 0.0f && std::isfinite(spacing), "heightfield '" + path + "': spacing must be positive");
+    require(std::isfinite(verticalScale) && std::isfinite(heightOffset),
+            "heightfield '" + path + "': vertical scale and offset must be finite");
+    ImageData image = loadImage(path);
+    require(image.bitDepth != 8,
+            "heightfield '" + path + "' is an 8-bit PNG; use a 16-bit PNG or a float EXR (8 bits give terraces)");
+    require(image.channels == 1, "heightfield '" + path + "' has " + std::to_string(image.channels) +
+                                     " channels; it must have exactly one (grey PNG, or a single/Y EXR channel)");
+    require(image.width >= 2 && image.height >= 2, "heightfield '" + path + "' must be at least 2x2 pixels");
+    std::vector<float> heights(size_t(image.width) * image.height);
+    for (uint32_t row = 0; row < image.height; ++row) {
+        const uint32_t j = image.height - 1 - row; // top image row = north = largest y
+        for (uint32_t i = 0; i < image.width; ++i) {
+            float value = image.at(i, row, 0);
+            if (!std::isfinite(value)) // not require(): its message would be built for every pixel
+                throw Error("heightfield '" + path + "' has a non-finite sample at pixel (" + std::to_string(i) + ", " +
+                            std::to_string(row) + ")");
+            heights[size_t(j) * image.width + i] = value * verticalScale + heightOffset;
+        }
+    }
+    return Heightfield(image.width, image.height, spacing, origin, std::move(heights));
+}
+
+} // namespace sward
