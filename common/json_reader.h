@@ -1,0 +1,79 @@
+// The one JSON reader of sward's input files (scenes, vegetation parameters, objects, atlases, ...).
+//
+// A JsonReader reads typed, range-checked values from one JSON object and rejects keys nobody asked for, so a
+// typo never silently falls back to a default. Every error is one sward::Error in one wording:
+//   "<source>: '<path>.<key>' must be between 0 and 1 (got 3)"
+// where <source> names the file and <path> is the JSON path of the object ("objects[2].path").
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace sward {
+
+class JsonReader {
+public:
+    // `json` must be an object (else the error names `path`, or the whole file when `path` is empty).
+    // The reader keeps a reference: `json` must outlive it.
+    JsonReader(const nlohmann::json& json, std::string source, std::string path = "");
+
+    // Each getter returns `value` when the key is absent and checks type and range when it is present.
+    double number(const char* key, double value, double lo, double hi);
+    float numberF(const char* key, float value, float lo, float hi) { return float(number(key, value, lo, hi)); }
+    // Exact integers (never rounded through a double).
+    uint64_t integer(const char* key, uint64_t value, uint64_t lo, uint64_t hi);
+    std::string string(const char* key, std::string value);
+    bool boolean(const char* key, bool value);
+    template <int N> glm::vec<N, double> vector(const char* key, glm::vec<N, double> value, double lo, double hi);
+
+    bool has(const char* key) const { return json_.contains(key); }
+    // The object under `key` (an empty object when absent); its errors name "<path>.<key>".
+    JsonReader child(const char* key);
+    // The elements of the array under `key` (none when absent), each an object read by its own reader whose
+    // errors name "<path>.<key>[i]". Throws when the value is not an array or an element is not an object.
+    std::vector<JsonReader> objects(const char* key);
+    // The raw value under `key` (marked as read), or nullptr when absent: for values with a shape of their own.
+    const nlohmann::json* raw(const char* key);
+    // Call after reading: any key not read is a typo or an unsupported option.
+    void finish() const;
+
+    // "'<path>.<key>'", as the messages write it.
+    std::string name(const std::string& key) const;
+    const std::string& source() const { return source_; }
+    const std::string& path() const { return path_; }
+    // Throws sward::Error("<source>: <message>").
+    [[noreturn]] void fail(const std::string& message) const;
+
+private:
+    const nlohmann::json* find(const char* key);
+    std::string childPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+    const nlohmann::json& json_;
+    std::string source_, path_;
+    std::set<std::string> seen_;
+};
+
+// "%g" of a number, as the range messages print bounds.
+std::string formatNumber(double value);
+
+template <int N>
+glm::vec<N, double> JsonReader::vector(const char* key, glm::vec<N, double> value, double lo, double hi) {
+    if (const nlohmann::json* v = find(key)) {
+        if (!v->is_array() || v->size() != N) fail(name(key) + " must be an array of " + std::to_string(N) + " numbers");
+        for (int i = 0; i < N; ++i) {
+            const nlohmann::json& e = (*v)[size_t(i)];
+            if (!e.is_number() || !(e.get<double>() >= lo && e.get<double>() <= hi))
+                fail(name(key) + " must hold numbers between " + formatNumber(lo) + " and " + formatNumber(hi));
+            value[i] = e.get<double>();
+        }
+    }
+    return value;
+}
+
+} // namespace sward
