@@ -3,7 +3,7 @@
 
 - A file in a layer folder includes project headers only from its own folder or from the layers it may use.
 - Vulkan headers (<vulkan/...>, <volk.h>) appear only in engine/, render/ and tools/.
-- No C++ source or header is longer than 600 lines.
+- No C++ source or header is longer than 600 lines, and no function body longer than about 100 lines.
 
 usage: tools/check-layers.py [SOURCE_ROOT]
 """
@@ -27,6 +27,7 @@ ALLOWED = {
 }
 VULKAN_FREE = {"common", "io", "world", "vegetation", "interaction", "scene", "dataset", "eval"}
 MAX_LINES = 600
+MAX_FUNCTION_LINES = 110  # "about 100": a function that needs more is split into named steps
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
 VULKAN_HEADER = re.compile(r"^(vulkan/|volk\.h|vk_mem_alloc\.h|imgui_impl_vulkan\.h)")
@@ -41,6 +42,8 @@ def check(root: pathlib.Path) -> list[str]:
         lines = text.count("\n")
         if lines > MAX_LINES:
             problems.append(f"{rel}: {lines} lines (at most {MAX_LINES})")
+        problems += [f"{rel}:{line}: function of {n} lines (at most {MAX_FUNCTION_LINES}): {head}"
+                     for line, n, head in long_functions(text)]
         layer = rel.parts[0]
         if layer not in ALLOWED or len(rel.parts) != 2:
             continue
@@ -53,6 +56,30 @@ def check(root: pathlib.Path) -> list[str]:
             if target != layer and target in ALLOWED.keys() | {"shared"} and target not in ALLOWED[layer]:
                 problems.append(f'{rel}: includes "{name}", but {layer}/ may not use {target}/')
     return problems
+
+
+TYPE_OR_NAMESPACE = re.compile(r"^(namespace|struct|class|enum|union|extern|template\s*<[^>]*>\s*(struct|class))\b")
+
+
+def long_functions(text: str):
+    """Function bodies at namespace scope: from a line ending in '{' at brace depth 0 to the line that closes
+    it. Namespaces do not count as depth; types are skipped (their out-of-line members are counted)."""
+    out, depth, start, head = [], 0, None, ""
+    for number, line in enumerate(text.split("\n"), 1):
+        code = line.split("//")[0].rstrip()
+        stripped = code.strip()
+        if depth == 0 and (stripped.startswith("namespace") or stripped.startswith("extern \"C\"")) and stripped.endswith("{"):
+            continue
+        if depth == 0 and stripped.startswith("}") and start is None:
+            continue  # the end of a namespace
+        if start is None and depth == 0 and stripped.endswith("{") and not TYPE_OR_NAMESPACE.match(stripped):
+            start, head = number, stripped[:70]
+        depth += code.count("{") - code.count("}")
+        if start is not None and depth <= 0:
+            if number - start + 1 > MAX_FUNCTION_LINES:
+                out.append((start, number - start + 1, head))
+            start, depth = None, 0
+    return out
 
 
 def _ignored(root: pathlib.Path, path: pathlib.Path) -> bool:
