@@ -2,15 +2,15 @@
 
 #include "engine/context.h"
 #include "engine/render_target.h"
-#include "scene/scene.h"
-#include "render/scene_renderer.h"
 #include "engine/timestamps.h"
-#include "render/vegetation_renderer.h"
-#include "world/ground.h"
-#include "vegetation/placement.h"
-#include "render/vegetation_buffers.h"
 #include "interaction/interaction.h"
 #include "render/interaction_gpu.h"
+#include "render/scene_gpu.h"
+#include "render/vegetation_buffers.h"
+#include "render/vegetation_renderer.h"
+#include "scene/scene_resources.h"
+#include "vegetation/placement.h"
+#include "world/ground.h"
 
 #include <algorithm>
 #include <chrono>
@@ -31,21 +31,33 @@ double median(std::vector<double> values) {
     std::sort(values.begin(), values.end());
     return values.empty() ? 0.0 : values[values.size() / 2];
 }
+uint32_t threadsOrAll(uint32_t threads) {
+    return threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+}
+
+// Uniform grass (every plant costs the same, so figures compare between runs) over a `tileSize` tile, independent
+// of example files.
+VegetationParams uniformGrassParams(float tileSize, float density, const char* what) {
+    VegetationParams params;
+    params.tileSize = tileSize;
+    params.categories[1].density = density;
+    params.memoryBudgetBytes = uint64_t(8) << 30;
+    validateVegetationParams(params, what);
+    return params;
+}
+const GrassMap& uniformGrassMap() {
+    static const GrassMap map(1, 1, 3, {0.0f, 1.0f, 0.0f}, "uniform grass");
+    return map;
+}
 
 } // namespace
 
 nlohmann::json benchGenerate(const GenerateBenchOptions& options) {
     require(options.density > 0.0f && options.density <= 1000.0f, "--density must be in (0, 1000] plants per m^2");
     require(options.repeats >= 1, "--repeats must be at least 1");
-    uint32_t threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-
-    // A flat-out uniform grass tile: every plant costs the same, so plants/s is comparable between runs.
-    VegetationParams params;
-    params.tileSize = options.tileSize;
-    params.categories[1].density = options.density;
-    params.memoryBudgetBytes = uint64_t(8) << 30;
-    validateVegetationParams(params, "sward-bench generate");
-    GrassMap map(1, 1, 3, {0.0f, 1.0f, 0.0f}, "uniform grass");
+    const uint32_t threads = threadsOrAll(options.threads);
+    const VegetationParams params = uniformGrassParams(options.tileSize, options.density, "sward-bench generate");
+    const GrassMap& map = uniformGrassMap();
     Ground ground(makeProceduralTerrain({.size = options.tileSize, .spacing = 2.0f, .seed = 1}));
 
     std::vector<double> runs;
@@ -85,18 +97,15 @@ nlohmann::json benchGenerate(const GenerateBenchOptions& options) {
 nlohmann::json benchFrame(const FrameBenchOptions& options) {
     require(options.frames >= 1, "--frames must be at least 1");
     require(options.samples == 1 || options.samples == 4, "--samples must be 1 or 4");
-    Scene scene = loadScene(options.scenePath.empty() ? std::string(SWARD_SOURCE_DIR "/examples/meadow.json")
-                                                      : options.scenePath);
-    Heightfield terrain = buildTerrain(scene);
-    VegetationTile tile = buildVegetation(scene, terrain);
-    Atlas atlas = buildAtlas(scene);
-    Camera camera = sceneCamera(scene, terrain, options.width, options.height);
+    SceneResources resources = buildSceneResources(
+        loadScene(options.scenePath.empty() ? std::string(SWARD_SOURCE_DIR "/examples/meadow.json") : options.scenePath));
+    require(resources.withVegetation(), "sward-bench frame: the scene has no vegetation");
+    const uint64_t plantsTotal = countVegetation(*resources.tile).plants;
+    Camera camera = sceneCamera(resources.scene, resources.terrain, options.width, options.height);
 
     Context ctx(DeviceOptions{.deviceFilter = options.device, .quiet = true});
-    SceneRenderer renderer(ctx, scene, terrain, options.samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
-                           &tile, &atlas);
-    const uint64_t plantsTotal = countVegetation(tile).plants;
-    tile = {};
+    SceneGpu scene = createSceneGpu(ctx, resources, options.samples, SimulationMode::None);
+    SceneRenderer& renderer = *scene.renderer;
     RenderTarget main(ctx, mainPassTargetDesc(options.width, options.height, options.samples));
     RenderTarget truth(ctx, truthPassTargetDesc(options.width, options.height));
     GpuTimers timers(ctx.device, 8);
@@ -185,45 +194,32 @@ std::vector<Collider> circlingSpheres(const VegetationTile& tile, uint32_t field
     return colliders;
 }
 
-} // namespace
 
-nlohmann::json benchCollide(const CollideBenchOptions& options) {
-    require(!options.fields.empty(), "--fields needs at least one value");
-    for (uint32_t n : options.fields) require(n >= 1 && n <= 400, "--fields must be in [1, 400] (a 500 x 500 m tile)");
-    require(options.ticks >= 1, "--ticks must be at least 1");
-    require(options.density > 0.0f && options.density <= 1000.0f, "--density must be in (0, 1000] plants per m^2");
-    require(options.radius > 0.0f && options.radius <= 2.0f, "--radius must be in (0, 2] metres");
-    const uint32_t threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-
-    // A synthetic flat tile, independent of example files: 500 x 500 m, 20 x 20 fields of 5 x 5 clusters.
-    VegetationParams params;
-    params.tileSize = 500.0f;
-    params.categories[1].density = options.density;
-    params.memoryBudgetBytes = uint64_t(8) << 30;
-    validateVegetationParams(params, "sward-bench collide");
-    const uint32_t columns = uint32_t(params.tileSize / 2.0f) + 1;
-    Ground ground(Heightfield(columns, columns, 2.0f, glm::vec2(0.0f), std::vector<float>(size_t(columns) * columns, 0.0f)));
-    GrassMap map(1, 1, 3, {0.0f, 1.0f, 0.0f}, "uniform grass");
-    const VegetationTile tile = generateTile(ground, map, params, TileCoord{0, 0}, threads);
-    require(tile.fields.size() == 400, "sward-bench collide: the synthetic tile must have 400 fields");
-    const InteractionParams interaction;
-
-    // Without the GPU side the collision pass runs back to back, its working set warm in the caches; with it on
-    // lavapipe, the recovery pass (itself on the CPU) evicts them between ticks.
-    std::unique_ptr<Context> ctx;
-    std::unique_ptr<VegetationBuffers> buffers;
-    std::unique_ptr<InteractionGpu> gpu;
-    std::unique_ptr<GpuTimers> timers;
-    if (options.gpu) {
+// The collision benchmark's fixture: a synthetic flat 500 x 500 m tile (20 x 20 fields of 5 x 5 clusters) and,
+// with --gpu, the GPU side of the interaction. Without the GPU side the collision pass runs back to back, its
+// working set warm in the caches; with it on lavapipe, the recovery pass (itself on the CPU) evicts them.
+class CollideBench {
+public:
+    explicit CollideBench(const CollideBenchOptions& options)
+        : threads(threadsOrAll(options.threads)),
+          params(uniformGrassParams(500.0f, options.density, "sward-bench collide")), tile(flatTile(params, threads)) {
+        require(tile.fields.size() == 400, "sward-bench collide: the synthetic tile must have 400 fields");
+        if (!options.gpu) return;
         ctx = std::make_unique<Context>(DeviceOptions{.deviceFilter = options.device, .quiet = true});
         buffers = std::make_unique<VegetationBuffers>(*ctx, tile);
         gpu = std::make_unique<InteractionGpu>(*ctx, *buffers);
         timers = std::make_unique<GpuTimers>(ctx->device, 4);
     }
 
-    // Collision on the CPU (wall clock around the whole step), then the GPU update in its own submission, timed
-    // with GPU timestamps; the upload is the contact and range writes into host-visible memory.
-    auto runTick = [&](InteractionWorld& world, std::span<const Collider> colliders) {
+    InteractionWorld newWorld() {
+        InteractionWorld world(tile, params, interaction, threads);
+        if (gpu) gpu->writeDynamics(world.initialDynamics());
+        return world;
+    }
+
+    // Collision on the CPU (wall clock and CPU time around the whole step), then the GPU update in its own
+    // submission, timed with GPU timestamps; the upload is the contact and range writes into host-visible memory.
+    CollideTick runTick(InteractionWorld& world, std::span<const Collider> colliders) {
         CollideTick t;
         const auto start = std::chrono::steady_clock::now();
         const std::clock_t cpuStart = std::clock();
@@ -243,73 +239,114 @@ nlohmann::json benchCollide(const CollideBenchOptions& options) {
         t.uploadMs = gpu->stats().uploadMs - before.uploadMs;
         t.dispatches = gpu->stats().dispatches - before.dispatches;
         return t;
-    };
-    auto medianOf = [](const std::vector<CollideTick>& ticks, auto figure) {
-        std::vector<double> values;
-        for (const CollideTick& t : ticks) values.push_back(double(figure(t)));
-        return median(values);
-    };
-
-    nlohmann::json results = nlohmann::json::array();
-    uint64_t zeroActiveDispatches = 0, zeroActiveTicks = 0;
-    for (size_t c = 0; c < options.fields.size(); ++c) {
-        const uint32_t fields = options.fields[c];
-        InteractionWorld world(tile, params, interaction, threads);
-        if (gpu) gpu->writeDynamics(world.initialDynamics());
-        std::vector<CollideTick> measured;
-        std::vector<Collider> colliders;
-        for (uint32_t i = 0; i < options.warmup + options.ticks; ++i) {
-            colliders = circlingSpheres(tile, fields, options.radius, world.tick());
-            CollideTick t = runTick(world, colliders);
-            if (i >= options.warmup) measured.push_back(t);
-        }
-        results.push_back({
-            {"fields", fields},
-            {"colliders", colliders.size()},
-            {"contacts", uint64_t(medianOf(measured, [](const CollideTick& t) { return t.contacts; }))},
-            {"active_fields", uint64_t(medianOf(measured, [](const CollideTick& t) { return t.activeFields; }))},
-            {"cpu_collision_ms", medianOf(measured, [](const CollideTick& t) { return t.cpuMs; })},
-            {"cpu_collision_cpu_time_ms", medianOf(measured, [](const CollideTick& t) { return t.cpuTimeMs; })},
-            {"upload_bytes", uint64_t(medianOf(measured, [](const CollideTick& t) { return t.uploadBytes; }))},
-            {"upload_ms", medianOf(measured, [](const CollideTick& t) { return t.uploadMs; })},
-            {"gpu_recovery_ms", medianOf(measured, [](const CollideTick& t) { return t.gpuMs; })},
-            {"gpu_recovery_ms_per_field",
-             medianOf(measured, [](const CollideTick& t) { return t.activeFields ? t.gpuMs / double(t.activeFields) : 0.0; })},
-            {"total_ms", medianOf(measured, [](const CollideTick& t) { return t.total(); })},
-        });
-        if (c != 0) continue;
-        // The colliders leave: the touched fields recover, turn inactive, and from then on no tick may record any
-        // GPU work.
-        for (uint32_t i = 0; i <= interaction.recovery.restTicks && !world.activeFields().empty(); ++i) runTick(world, {});
-        require(world.activeFields().empty(), "sward-bench collide: fields did not turn inactive after recovery");
-        for (uint32_t i = 0; i < options.ticks; ++i, ++zeroActiveTicks) zeroActiveDispatches += runTick(world, {}).dispatches;
     }
 
-    // 10,000 colliders hovering 50 m above the grass (drones, birds, a whole fleet parked high): they must cost
-    // next to nothing, and no field may become active.
-    std::vector<Collider> idle;
+    const uint32_t threads;
+    const VegetationParams params;
+    const VegetationTile tile;
+    const InteractionParams interaction;
+    std::unique_ptr<Context> ctx;
+    std::unique_ptr<VegetationBuffers> buffers;
+    std::unique_ptr<InteractionGpu> gpu;
+    std::unique_ptr<GpuTimers> timers;
+
+private:
+    static VegetationTile flatTile(const VegetationParams& params, uint32_t threads) {
+        const uint32_t columns = uint32_t(params.tileSize / 2.0f) + 1;
+        Ground ground(Heightfield(columns, columns, 2.0f, glm::vec2(0.0f),
+                                  std::vector<float>(size_t(columns) * columns, 0.0f)));
+        return generateTile(ground, uniformGrassMap(), params, TileCoord{0, 0}, threads);
+    }
+};
+
+template <class Figure> double medianOf(const std::vector<CollideTick>& ticks, Figure figure) {
+    std::vector<double> values;
+    for (const CollideTick& t : ticks) values.push_back(double(figure(t)));
+    return median(values);
+}
+
+// `warmup` + `ticks` ticks with spheres circling in the first `fields` fields; medians of the measured ticks.
+nlohmann::json measureFields(CollideBench& bench, InteractionWorld& world, uint32_t fields, const CollideBenchOptions& options) {
+    std::vector<CollideTick> measured;
+    std::vector<Collider> colliders;
+    for (uint32_t i = 0; i < options.warmup + options.ticks; ++i) {
+        colliders = circlingSpheres(bench.tile, fields, options.radius, world.tick());
+        CollideTick t = bench.runTick(world, colliders);
+        if (i >= options.warmup) measured.push_back(t);
+    }
+    return {
+        {"fields", fields},
+        {"colliders", colliders.size()},
+        {"contacts", uint64_t(medianOf(measured, [](const CollideTick& t) { return t.contacts; }))},
+        {"active_fields", uint64_t(medianOf(measured, [](const CollideTick& t) { return t.activeFields; }))},
+        {"cpu_collision_ms", medianOf(measured, [](const CollideTick& t) { return t.cpuMs; })},
+        {"cpu_collision_cpu_time_ms", medianOf(measured, [](const CollideTick& t) { return t.cpuTimeMs; })},
+        {"upload_bytes", uint64_t(medianOf(measured, [](const CollideTick& t) { return t.uploadBytes; }))},
+        {"upload_ms", medianOf(measured, [](const CollideTick& t) { return t.uploadMs; })},
+        {"gpu_recovery_ms", medianOf(measured, [](const CollideTick& t) { return t.gpuMs; })},
+        {"gpu_recovery_ms_per_field",
+         medianOf(measured, [](const CollideTick& t) { return t.activeFields ? t.gpuMs / double(t.activeFields) : 0.0; })},
+        {"total_ms", medianOf(measured, [](const CollideTick& t) { return t.total(); })},
+    };
+}
+
+// The colliders leave: the touched fields recover and turn inactive, and from then on no tick may record any GPU
+// work. Returns the dispatches counted over `ticks` idle ticks (must be 0).
+uint64_t dispatchesOnceRecovered(CollideBench& bench, InteractionWorld& world, uint32_t ticks) {
+    for (uint32_t i = 0; i <= bench.interaction.recovery.restTicks && !world.activeFields().empty(); ++i)
+        bench.runTick(world, {});
+    require(world.activeFields().empty(), "sward-bench collide: fields did not turn inactive after recovery");
+    uint64_t dispatches = 0;
+    for (uint32_t i = 0; i < ticks; ++i) dispatches += bench.runTick(world, {}).dispatches;
+    return dispatches;
+}
+
+// 10,000 colliders hovering 50 m above the grass (drones, birds, a whole fleet parked high): they must cost next
+// to nothing, and no field may become active. Returns the median tick time.
+double idleCollidersMs(CollideBench& bench, const CollideBenchOptions& options, std::vector<Collider>& idle) {
     for (uint32_t i = 0; i < 10000; ++i)
         idle.push_back(makeSphere(i, {5.0f * float(i % 100) + 2.5f, 5.0f * float(i / 100) + 2.5f, 50.0f}, 0.5f, 1.0f));
-    InteractionWorld world(tile, params, interaction, threads);
+    InteractionWorld world = bench.newWorld();
     std::vector<CollideTick> idleTicks;
     for (uint32_t i = 0; i < options.warmup + options.ticks; ++i) {
-        CollideTick t = runTick(world, idle);
+        CollideTick t = bench.runTick(world, idle);
         require(t.activeFields == 0 && t.dispatches == 0, "sward-bench collide: colliders above the grass touched it");
         if (i >= options.warmup) idleTicks.push_back(t);
     }
+    return medianOf(idleTicks, [](const CollideTick& t) { return t.total(); });
+}
 
+} // namespace
+
+nlohmann::json benchCollide(const CollideBenchOptions& options) {
+    require(!options.fields.empty(), "--fields needs at least one value");
+    for (uint32_t n : options.fields) require(n >= 1 && n <= 400, "--fields must be in [1, 400] (a 500 x 500 m tile)");
+    require(options.ticks >= 1, "--ticks must be at least 1");
+    require(options.density > 0.0f && options.density <= 1000.0f, "--density must be in (0, 1000] plants per m^2");
+    require(options.radius > 0.0f && options.radius <= 2.0f, "--radius must be in (0, 2] metres");
+    CollideBench bench(options);
+
+    nlohmann::json results = nlohmann::json::array();
+    uint64_t zeroActiveDispatches = 0;
+    for (size_t c = 0; c < options.fields.size(); ++c) {
+        InteractionWorld world = bench.newWorld();
+        results.push_back(measureFields(bench, world, options.fields[c], options));
+        if (c == 0) zeroActiveDispatches = dispatchesOnceRecovered(bench, world, options.ticks);
+    }
+    std::vector<Collider> idle;
+    const double idleMs = idleCollidersMs(bench, options, idle);
     return {
         {"results", results},
         {"idle_colliders", idle.size()},
-        {"idle_colliders_ms", medianOf(idleTicks, [](const CollideTick& t) { return t.total(); })},
+        {"idle_colliders_ms", idleMs},
         {"zero_active_recovery_dispatches", zeroActiveDispatches},
-        {"zero_active_ticks", zeroActiveTicks},
-        {"plants", countVegetation(tile).plants},
+        {"zero_active_ticks", options.ticks},
+        {"plants", countVegetation(bench.tile).plants},
         {"density", options.density},
         {"radius", options.radius},
-        {"threads", threads},
+        {"threads", bench.threads},
         {"ticks", options.ticks},
-        {"device", ctx ? ctx->device.name() : std::string("none (--no-gpu)")},
+        {"device", bench.ctx ? bench.ctx->device.name() : std::string("none (--no-gpu)")},
     };
 }
 

@@ -259,16 +259,19 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
     return scene;
 }
 
-Scene loadScene(const std::string& path) {
-    std::ifstream file(path);
-    if (!file) throw Error("cannot open scene file '" + path + "'");
-    nlohmann::json json;
-    try {
-        json = nlohmann::json::parse(file);
-    } catch (const nlohmann::json::parse_error& e) {
-        throw Error("scene file '" + path + "' is not valid JSON: " + e.what());
+Scene loadScene(const std::string& path, std::optional<uint64_t> seed) {
+    nlohmann::json json = nlohmann::json::object();
+    if (!path.empty()) {
+        std::ifstream file(path);
+        if (!file) throw Error("cannot open scene file '" + path + "'");
+        try {
+            json = nlohmann::json::parse(file);
+        } catch (const nlohmann::json::parse_error& e) {
+            throw Error("scene file '" + path + "' is not valid JSON: " + e.what());
+        }
     }
-    return parseScene(json, path);
+    if (seed && json.is_object()) json["seed"] = *seed; // before parsing: every seed derived from it follows
+    return parseScene(json, path.empty() ? "<built-in>" : path);
 }
 
 Heightfield buildTerrain(const Scene& scene) {

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace sward {
@@ -90,8 +91,10 @@ struct Scene {
 
 // Parses and validates a scene; `source` names it in error messages.
 Scene parseScene(const nlohmann::json& json, const std::string& source);
-// Reads and parses a scene file; throws sward::Error naming the file for missing files and bad JSON.
-Scene loadScene(const std::string& path);
+// Reads and parses a scene file ("" = the built-in default scene); throws sward::Error naming the file for missing
+// files and bad JSON. `seed`, when set, replaces the scene's seed before parsing, so every seed derived from it
+// (terrain, plants, gusts, sensor noise) follows.
+Scene loadScene(const std::string& path, std::optional<uint64_t> seed = {});
 // The scene's atlas with its coverage-preserving mip chain: the files it names, or the built-in procedural one.
 Atlas buildAtlas(const Scene& scene);
 // Builds the scene's terrain.

@@ -1,0 +1,27 @@
+#include "render/scene_gpu.h"
+
+#include "common/error.h"
+#include "render/vegetation_renderer.h"
+
+namespace sward {
+
+SceneGpu createSceneGpu(Context& ctx, SceneResources& resources, uint32_t samples, SimulationMode mode) {
+    require(samples == 1 || samples == 4, "MSAA samples must be 1 or 4 (got " + std::to_string(samples) + ")");
+    SceneGpu gpu;
+    VegetationTile* tile = resources.tile ? &*resources.tile : nullptr;
+    gpu.renderer = std::make_unique<SceneRenderer>(ctx, resources.scene, resources.terrain,
+                                                   samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT, tile,
+                                                   resources.atlas ? &*resources.atlas : nullptr, &resources.models);
+    const bool simulate = mode == SimulationMode::Always ||
+                          (mode == SimulationMode::WhenSceneHasColliders && sceneHasColliders(resources.scene));
+    if (tile && gpu.renderer->vegetation() && simulate) {
+        gpu.simulation = std::make_unique<Simulation>(ctx, resources.scene, resources.terrain, *tile,
+                                                      gpu.renderer->vegetation()->buffers());
+        gpu.simulation->setObjectModels(&resources.models);
+    } else {
+        resources.tile.reset(); // uploaded; only the collision pass reads the CPU copy
+    }
+    return gpu;
+}
+
+} // namespace sward

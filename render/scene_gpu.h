@@ -1,0 +1,30 @@
+// SceneGpu: the GPU side of a SceneResources — its renderer and, when plants can be touched, the interaction
+// simulation. The one place that turns CPU resources into GPU objects, for sward-render, sward-view and sward-bench.
+#pragma once
+
+#include "render/scene_renderer.h"
+#include "render/simulation.h"
+#include "scene/scene_resources.h"
+
+#include <memory>
+
+namespace sward {
+
+enum class SimulationMode {
+    None,                  // drawing only (benchmarks)
+    WhenSceneHasColliders, // datasets: plants move only if the scene has actors or object colliders
+    Always,                // the viewer: the user's rover may touch plants at any time
+};
+
+// Members in construction order: the simulation (which uses the renderer's buffers) is destroyed first.
+struct SceneGpu {
+    std::unique_ptr<SceneRenderer> renderer;
+    std::unique_ptr<Simulation> simulation; // null without vegetation or without a simulation
+};
+
+// Uploads `resources` (terrain, objects, vegetation, atlas) with `samples` (1 or 4) MSAA. `resources` must outlive
+// the result (the simulation reads the tile, scene, terrain and models). Without a simulation the CPU copy of the
+// tile is no longer needed and is released.
+SceneGpu createSceneGpu(Context& ctx, SceneResources& resources, uint32_t samples, SimulationMode mode);
+
+} // namespace sward

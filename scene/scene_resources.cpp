@@ -1,0 +1,21 @@
+#include "scene/scene_resources.h"
+
+#include "common/error.h"
+
+namespace sward {
+
+SceneResources buildSceneResources(Scene scene, bool withVegetation, uint32_t threads) {
+    SceneResources r{.scene = std::move(scene)};
+    r.terrain = buildTerrain(r.scene);
+    r.models = loadObjectModels(r.scene.objects, r.scene.source);
+    if (!withVegetation || !r.scene.vegetationEnabled) return r;
+    r.tile = buildVegetation(r.scene, r.terrain, threads);
+    r.atlas = buildAtlas(r.scene);
+    require(r.atlas->desc.rows.size() >= r.scene.vegetation.categoryCount,
+            r.scene.source + ": the atlas has " + std::to_string(r.atlas->desc.rows.size()) +
+                " rows but 'vegetation' has " + std::to_string(r.scene.vegetation.categoryCount) +
+                " categories (one row per category)");
+    return r;
+}
+
+} // namespace sward

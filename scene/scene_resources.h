@@ -1,0 +1,31 @@
+// SceneResources: everything a scene names, built on the CPU — the one assembly that sward-render, sward-view and
+// sward-bench share. Building it checks every input (terrain, object models, vegetation budget, atlas), so bad
+// input fails here, before a Vulkan object exists or a file is written.
+#pragma once
+
+#include "scene/objects.h"
+#include "scene/scene.h"
+#include "vegetation/atlas.h"
+#include "vegetation/vegetation_tile.h"
+#include "world/heightfield.h"
+
+#include <optional>
+#include <vector>
+
+namespace sward {
+
+struct SceneResources {
+    Scene scene;
+    Heightfield terrain;
+    std::vector<ObjectModel> models;   // object k of scene.objects
+    std::optional<VegetationTile> tile; // present when the vegetation is drawn
+    std::optional<Atlas> atlas;         // present with the tile
+
+    bool withVegetation() const { return tile.has_value(); }
+};
+
+// Builds the scene's terrain, object models and, when `withVegetation` and the scene enables it, its vegetation
+// tile (threads: 0 = all cores) and atlas. Checks that the atlas has a row per vegetation category.
+SceneResources buildSceneResources(Scene scene, bool withVegetation = true, uint32_t threads = 0);
+
+} // namespace sward
