@@ -19,9 +19,6 @@
 
 namespace sward {
 
-// "000042"
-std::string frameName(uint32_t frame);
-
 // Frames [first, end) split into `count` contiguous blocks; block `index` is [first', end'). Blocks may be
 // empty when there are more shards than frames.
 void shardRange(uint32_t first, uint32_t end, uint32_t index, uint32_t count, uint32_t& shardFirst, uint32_t& shardEnd);
