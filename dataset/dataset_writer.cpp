@@ -65,6 +65,12 @@ std::vector<std::string> DatasetWriter::frameFiles(uint32_t frame) const {
     return files;
 }
 
+std::vector<std::string> DatasetWriter::datasetFiles() const {
+    std::vector<std::string> files = {kFrameLogFile};
+    if (stereo_) files.push_back(kCalibFile);
+    return files;
+}
+
 bool DatasetWriter::frameComplete(uint32_t frame) const {
     for (const std::string& file : frameFiles(frame))
         if (!fs::is_regular_file(root_ + "/" + file)) return false;

@@ -2,7 +2,7 @@
 //
 // Per frame NNNNNN: left/ right/ (HDR colour EXR), depth/ (planar metres, +inf sky), disparity/ (EXR, PFM, KITTI
 // PNG), semantic/ (uint8 class PNG), instance/ (float EXR ids), preview/ preview_right/ (tonemapped PNG).
-// Per dataset: calib.txt, frames.jsonl, manifest.json (or manifest.shard-I-of-N.json).
+// Per dataset: calib.txt, frames.jsonl, manifest.json (or manifest.shard-I-of-N.json). Names: dataset/naming.h.
 // Every file is written atomically, so a file that exists is complete; a frame whose files all exist is
 // skipped by a re-run (resume), and an interrupted run leaves only "*.tmp" files, removed on the next run.
 #pragma once
@@ -34,6 +34,8 @@ public:
     // Paths of a frame's files relative to the root, in a fixed order.
     std::vector<std::string> frameFiles(uint32_t frame) const;
     bool frameComplete(uint32_t frame) const;
+    // Paths of the per-dataset files (frames.jsonl, and calib.txt for stereo) relative to the root.
+    std::vector<std::string> datasetFiles() const;
 
     // Writes every file of one rendered frame. `rig` gives the reference camera and the baseline; `labels`
     // hold (class << 24) | instance per pixel (gpu::kSemantic*).

@@ -46,6 +46,10 @@ std::string frameFile(const char* folder, uint32_t frame, const char* extension)
     return std::string(folder) + "/" + frameName(frame) + extension;
 }
 
+std::string shardManifestName(uint32_t index, uint32_t count) {
+    return "manifest.shard-" + std::to_string(index) + "-of-" + std::to_string(count) + ".json";
+}
+
 std::span<const SemanticClass> semanticClasses() { return kClasses; }
 
 const SemanticClass* findSemanticClass(uint32_t id) {

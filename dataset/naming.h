@@ -23,6 +23,9 @@ inline constexpr const char* kPreviewRightFolder = "preview_right"; // tonemappe
 // Files of a dataset as a whole.
 inline constexpr const char* kCalibFile = "calib.txt";
 inline constexpr const char* kFrameLogFile = "frames.jsonl";
+inline constexpr const char* kManifestFile = "manifest.json";
+// "manifest.shard-I-of-N.json": the manifest a `--shard I/N` run writes instead of kManifestFile.
+std::string shardManifestName(uint32_t index, uint32_t count);
 
 // "000042": the zero-padded frame number that names every per-frame file.
 std::string frameName(uint32_t frame);

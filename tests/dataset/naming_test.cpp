@@ -28,6 +28,11 @@ TEST(DatasetNaming, FrameFilesAreFolderSlashNameExtension) {
     EXPECT_EQ(frameFile(kPreviewRightFolder, 1, ".png"), "preview_right/000001.png");
 }
 
+TEST(DatasetNaming, ShardManifestsNameTheirShard) {
+    EXPECT_EQ(shardManifestName(0, 4), "manifest.shard-0-of-4.json");
+    EXPECT_STREQ(kManifestFile, "manifest.json");
+}
+
 TEST(DatasetNaming, ClassTableFollowsTheGpuNumbers) {
     EXPECT_STREQ(findSemanticClass(gpu::kSemanticSky)->name, "sky");
     EXPECT_STREQ(findSemanticClass(gpu::kSemanticGround)->name, "ground");
