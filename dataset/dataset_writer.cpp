@@ -6,6 +6,7 @@
 #include "io/disparity_files.h"
 #include "io/image_files.h"
 #include "io/sha256.h"
+#include "scene/camera_rig.h"
 #include "shared/gpu_layout.h"
 
 #include <algorithm>
@@ -17,7 +18,8 @@ namespace sward {
 
 namespace fs = std::filesystem;
 
-void shardRange(uint32_t first, uint32_t end, uint32_t index, uint32_t count, uint32_t& shardFirst, uint32_t& shardEnd) {
+void shardRange(uint32_t first, uint32_t end, uint32_t index, uint32_t count, uint32_t& shardFirst,
+                uint32_t& shardEnd) {
     const uint64_t n = end - first;
     shardFirst = first + uint32_t(n * index / count);
     shardEnd = first + uint32_t(n * (index + 1) / count);
@@ -58,10 +60,10 @@ std::vector<std::string> DatasetWriter::frameFiles(uint32_t frame) const {
                                       frameFile(kInstanceFolder, frame, ".exr"),
                                       frameFile(kPreviewFolder, frame, ".png")};
     if (stereo_)
-        files.insert(files.end(), {frameFile(kRightFolder, frame, ".exr"), frameFile(kDisparityFolder, frame, ".exr"),
-                                   frameFile(kDisparityFolder, frame, ".pfm"),
-                                   frameFile(kDisparityFolder, frame, ".png"),
-                                   frameFile(kPreviewRightFolder, frame, ".png")});
+        files.insert(files.end(),
+                     {frameFile(kRightFolder, frame, ".exr"), frameFile(kDisparityFolder, frame, ".exr"),
+                      frameFile(kDisparityFolder, frame, ".pfm"), frameFile(kDisparityFolder, frame, ".png"),
+                      frameFile(kPreviewRightFolder, frame, ".png")});
     return files;
 }
 
@@ -128,7 +130,8 @@ void DatasetWriter::writeFrameLog(const std::vector<nlohmann::json>& records) co
     writeTextAtomically(root_ + "/" + kFrameLogFile, text);
 }
 
-void DatasetWriter::writeManifest(const std::string& name, nlohmann::json info, const std::vector<std::string>& files) const {
+void DatasetWriter::writeManifest(const std::string& name, nlohmann::json info,
+                                  const std::vector<std::string>& files) const {
     nlohmann::json hashes = nlohmann::json::object();
     for (const std::string& file : files) hashes[file] = sha256File(root_ + "/" + file);
     info["files"] = std::move(hashes);

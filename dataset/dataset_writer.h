@@ -7,7 +7,6 @@
 // skipped by a re-run (resume), and an interrupted run leaves only "*.tmp" files, removed on the next run.
 #pragma once
 
-#include "scene/camera_rig.h"
 #include "dataset/frame_images.h"
 #include "world/camera.h"
 
@@ -37,8 +36,8 @@ public:
     // Paths of the per-dataset files (frames.jsonl, and calib.txt for stereo) relative to the root.
     std::vector<std::string> datasetFiles() const;
 
-    // Writes every file of one rendered frame. `rig` gives the reference camera and the baseline; `labels`
-    // hold (class << 24) | instance per pixel (gpu::kSemantic*).
+    // Writes every file of one rendered frame. `left` is the reference camera and `baseline` the rig's (metres),
+    // for the disparity; `images.labels` hold (class << 24) | instance per pixel (gpu::kSemantic*).
     void writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline) const;
 
     // calib.txt (Middlebury 2014): the rig's intrinsics, baseline in millimetres, ndisp covering minDepth.

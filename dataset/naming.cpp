@@ -50,7 +50,9 @@ std::string shardManifestName(uint32_t index, uint32_t count) {
     return "manifest.shard-" + std::to_string(index) + "-of-" + std::to_string(count) + ".json";
 }
 
-std::span<const SemanticClass> semanticClasses() { return kClasses; }
+std::span<const SemanticClass> semanticClasses() {
+    return kClasses;
+}
 
 const SemanticClass* findSemanticClass(uint32_t id) {
     for (const SemanticClass& c : kClasses)

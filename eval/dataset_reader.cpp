@@ -79,9 +79,9 @@ std::vector<float> readEstimate(const std::string& disparitiesDir, uint32_t fram
     require(isFile(path), "no estimate for frame " + name + ": neither '" + disparitiesDir + "/" + name +
                               ".pfm' nor '" + path + "' exists");
     DisparityMap map = readDisparity(path);
-    require(map.width == width && map.height == height,
-            path + " is " + std::to_string(map.width) + "x" + std::to_string(map.height) + ", the ground truth " +
-                std::to_string(width) + "x" + std::to_string(height));
+    require(map.width == width && map.height == height, path + " is " + std::to_string(map.width) + "x" +
+                                                            std::to_string(map.height) + ", the ground truth " +
+                                                            std::to_string(width) + "x" + std::to_string(height));
     return std::move(map.values);
 }
 

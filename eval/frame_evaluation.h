@@ -21,8 +21,8 @@ struct DatasetSetup {
     std::string dir, disparitiesDir, pictureDir;
     const EvaluationOptions* options = nullptr;
     StereoCalib calib;
-    std::optional<ResolvedSgbm> sgbm; // empty: estimates are read from disparitiesDir
-    bool semantic = false;            // the dataset has semantic/ images
+    std::optional<ResolvedSgbm> sgbm;  // empty: estimates are read from disparitiesDir
+    bool semantic = false;             // the dataset has semantic/ images
     double colourLo = 0, colourHi = 1; // disparity colour scale of the pictures
 };
 

@@ -265,7 +265,8 @@ void writeReport(const EvaluationReport& report) {
     if (report.against) curves.push_back({againstLabel, cv::Scalar(30, 30, 220), &report.against->total});
     plotHistograms(report.outDir + "/error_histogram.png", "Signed disparity error, all pixels", curves);
     if (!report.main.classes.empty()) {
-        const cv::Scalar colours[kClassGroups.size()] = {{40, 160, 40}, {40, 110, 170}, {180, 60, 180}, {120, 120, 120}};
+        const cv::Scalar colours[kClassGroups.size()] = {
+            {40, 160, 40}, {40, 110, 170}, {180, 60, 180}, {120, 120, 120}};
         std::vector<Curve> classCurves;
         for (size_t c = 0; c < report.main.classes.size(); ++c)
             if (report.main.classes[c].accumulator.estimatedPixels() > 0)

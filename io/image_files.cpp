@@ -63,7 +63,8 @@ void writeExrRgbaHalf(const std::string& path, uint32_t width, uint32_t height, 
 void writeExrFloatChannels(const std::string& path, uint32_t width, uint32_t height,
                            const std::vector<std::string>& names, const std::vector<std::span<const float>>& planes) {
     require(names.size() == planes.size() && !names.empty(), "EXR channel names and planes do not match");
-    for (auto& plane : planes) require(plane.size() == size_t(width) * height, "EXR plane size does not match the image");
+    for (auto& plane : planes)
+        require(plane.size() == size_t(width) * height, "EXR plane size does not match the image");
     std::vector<ExrChannel> channels;
     for (size_t c = 0; c < names.size(); ++c)
         channels.push_back({names[c].c_str(), Imf::FLOAT, planes[c].data(), sizeof(float)});
