@@ -1,9 +1,12 @@
 #include "dataset/dataset_writer.h"
 
-#include "io/disparity_files.h"
+#include "common/atomic_file.h"
 #include "common/error.h"
+#include "dataset/naming.h"
+#include "io/disparity_files.h"
 #include "io/image_files.h"
 #include "io/sha256.h"
+#include "scene/camera_rig.h"
 #include "shared/gpu_layout.h"
 
 #include <algorithm>
@@ -15,13 +18,8 @@ namespace sward {
 
 namespace fs = std::filesystem;
 
-std::string frameName(uint32_t frame) {
-    char name[16];
-    std::snprintf(name, sizeof name, "%06u", frame);
-    return name;
-}
-
-void shardRange(uint32_t first, uint32_t end, uint32_t index, uint32_t count, uint32_t& shardFirst, uint32_t& shardEnd) {
+void shardRange(uint32_t first, uint32_t end, uint32_t index, uint32_t count, uint32_t& shardFirst,
+                uint32_t& shardEnd) {
     const uint64_t n = end - first;
     shardFirst = first + uint32_t(n * index / count);
     shardEnd = first + uint32_t(n * (index + 1) / count);
@@ -40,8 +38,8 @@ void parseShard(const std::string& text, uint32_t& index, uint32_t& count) {
 DatasetWriter::DatasetWriter(std::string root, bool stereo) : root_(std::move(root)), stereo_(stereo) {}
 
 std::vector<std::string> DatasetWriter::directories() const {
-    std::vector<std::string> dirs = {"left", "depth", "semantic", "instance", "preview"};
-    if (stereo_) dirs.insert(dirs.end(), {"right", "disparity", "preview_right"});
+    std::vector<std::string> dirs = {kLeftFolder, kDepthFolder, kSemanticFolder, kInstanceFolder, kPreviewFolder};
+    if (stereo_) dirs.insert(dirs.end(), {kRightFolder, kDisparityFolder, kPreviewRightFolder});
     return dirs;
 }
 
@@ -57,12 +55,21 @@ void DatasetWriter::prepare() const {
 }
 
 std::vector<std::string> DatasetWriter::frameFiles(uint32_t frame) const {
-    const std::string n = frameName(frame);
-    std::vector<std::string> files = {"left/" + n + ".exr", "depth/" + n + ".exr", "semantic/" + n + ".png",
-                                      "instance/" + n + ".exr", "preview/" + n + ".png"};
+    std::vector<std::string> files = {frameFile(kLeftFolder, frame, ".exr"), frameFile(kDepthFolder, frame, ".exr"),
+                                      frameFile(kSemanticFolder, frame, ".png"),
+                                      frameFile(kInstanceFolder, frame, ".exr"),
+                                      frameFile(kPreviewFolder, frame, ".png")};
     if (stereo_)
-        files.insert(files.end(), {"right/" + n + ".exr", "disparity/" + n + ".exr", "disparity/" + n + ".pfm",
-                                   "disparity/" + n + ".png", "preview_right/" + n + ".png"});
+        files.insert(files.end(),
+                     {frameFile(kRightFolder, frame, ".exr"), frameFile(kDisparityFolder, frame, ".exr"),
+                      frameFile(kDisparityFolder, frame, ".pfm"), frameFile(kDisparityFolder, frame, ".png"),
+                      frameFile(kPreviewRightFolder, frame, ".png")});
+    return files;
+}
+
+std::vector<std::string> DatasetWriter::datasetFiles() const {
+    std::vector<std::string> files = {kFrameLogFile};
+    if (stereo_) files.push_back(kCalibFile);
     return files;
 }
 
@@ -75,7 +82,9 @@ bool DatasetWriter::frameComplete(uint32_t frame) const {
 void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline) const {
     const uint32_t w = images.width, h = images.height;
     const size_t pixels = size_t(w) * h;
-    const std::string n = frameName(frame), at = root_ + "/";
+    auto path = [&](const char* folder, const char* extension) {
+        return root_ + "/" + frameFile(folder, frame, extension);
+    };
 
     std::vector<uint8_t> semantic(pixels);
     std::vector<float> instance(pixels);
@@ -83,20 +92,20 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
         semantic[i] = uint8_t(images.labels[i] >> gpu::kInstanceBits);
         instance[i] = float(images.labels[i] & ((1u << gpu::kInstanceBits) - 1u)); // exact: ids < 2^24
     }
-    writeExrRgbaHalf(at + "left/" + n + ".exr", w, h, images.rgbaHalf);
-    writeExrDepth(at + "depth/" + n + ".exr", w, h, images.depth);
-    writePng8(at + "semantic/" + n + ".png", w, h, 1, semantic);
-    writeExrFloatChannels(at + "instance/" + n + ".exr", w, h, {"Y"}, {instance});
-    writePng8(at + "preview/" + n + ".png", w, h, 3, tonemapPreview(images.rgbaHalf, w, h));
+    writeExrRgbaHalf(path(kLeftFolder, ".exr"), w, h, images.rgbaHalf);
+    writeExrDepth(path(kDepthFolder, ".exr"), w, h, images.depth);
+    writePng8(path(kSemanticFolder, ".png"), w, h, 1, semantic);
+    writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y"}, {instance});
+    writePng8(path(kPreviewFolder, ".png"), w, h, 3, tonemapPreview(images.rgbaHalf, w, h));
     if (!stereo_) return;
 
     std::vector<float> disparity(pixels);
     for (size_t i = 0; i < pixels; ++i) disparity[i] = disparityOf(left.fx, baseline, images.depth[i]);
-    writeExrRgbaHalf(at + "right/" + n + ".exr", w, h, images.rightRgbaHalf);
-    writeExrFloatChannels(at + "disparity/" + n + ".exr", w, h, {"Y"}, {disparity});
-    writePfm(at + "disparity/" + n + ".pfm", w, h, disparity);
-    writeKittiPng(at + "disparity/" + n + ".png", w, h, disparity);
-    writePng8(at + "preview_right/" + n + ".png", w, h, 3, tonemapPreview(images.rightRgbaHalf, w, h));
+    writeExrRgbaHalf(path(kRightFolder, ".exr"), w, h, images.rightRgbaHalf);
+    writeExrFloatChannels(path(kDisparityFolder, ".exr"), w, h, {"Y"}, {disparity});
+    writePfm(path(kDisparityFolder, ".pfm"), w, h, disparity);
+    writeKittiPng(path(kDisparityFolder, ".png"), w, h, disparity);
+    writePng8(path(kPreviewRightFolder, ".png"), w, h, 3, tonemapPreview(images.rightRgbaHalf, w, h));
 }
 
 void DatasetWriter::writeCalib(const Camera& left, double baseline, double minDepth) const {
@@ -112,16 +121,17 @@ void DatasetWriter::writeCalib(const Camera& left, double baseline, double minDe
     calib.ndisp = std::max(16u, uint32_t(std::ceil(maxDisparity / 16.0)) * 16u);
     calib.vmin = 0.0;
     calib.vmax = maxDisparity;
-    writeMiddleburyCalib(root_ + "/calib.txt", calib);
+    writeMiddleburyCalib(root_ + "/" + kCalibFile, calib);
 }
 
 void DatasetWriter::writeFrameLog(const std::vector<nlohmann::json>& records) const {
     std::string text;
     for (const nlohmann::json& record : records) text += record.dump() + "\n";
-    writeTextAtomically(root_ + "/frames.jsonl", text);
+    writeTextAtomically(root_ + "/" + kFrameLogFile, text);
 }
 
-void DatasetWriter::writeManifest(const std::string& name, nlohmann::json info, const std::vector<std::string>& files) const {
+void DatasetWriter::writeManifest(const std::string& name, nlohmann::json info,
+                                  const std::vector<std::string>& files) const {
     nlohmann::json hashes = nlohmann::json::object();
     for (const std::string& file : files) hashes[file] = sha256File(root_ + "/" + file);
     info["files"] = std::move(hashes);

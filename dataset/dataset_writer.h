@@ -2,12 +2,11 @@
 //
 // Per frame NNNNNN: left/ right/ (HDR colour EXR), depth/ (planar metres, +inf sky), disparity/ (EXR, PFM, KITTI
 // PNG), semantic/ (uint8 class PNG), instance/ (float EXR ids), preview/ preview_right/ (tonemapped PNG).
-// Per dataset: calib.txt, frames.jsonl, manifest.json (or manifest.shard-I-of-N.json).
+// Per dataset: calib.txt, frames.jsonl, manifest.json (or manifest.shard-I-of-N.json). Names: dataset/naming.h.
 // Every file is written atomically, so a file that exists is complete; a frame whose files all exist is
 // skipped by a re-run (resume), and an interrupted run leaves only "*.tmp" files, removed on the next run.
 #pragma once
 
-#include "scene/camera_rig.h"
 #include "dataset/frame_images.h"
 #include "world/camera.h"
 
@@ -18,9 +17,6 @@
 #include <vector>
 
 namespace sward {
-
-// "000042"
-std::string frameName(uint32_t frame);
 
 // Frames [first, end) split into `count` contiguous blocks; block `index` is [first', end'). Blocks may be
 // empty when there are more shards than frames.
@@ -37,9 +33,11 @@ public:
     // Paths of a frame's files relative to the root, in a fixed order.
     std::vector<std::string> frameFiles(uint32_t frame) const;
     bool frameComplete(uint32_t frame) const;
+    // Paths of the per-dataset files (frames.jsonl, and calib.txt for stereo) relative to the root.
+    std::vector<std::string> datasetFiles() const;
 
-    // Writes every file of one rendered frame. `rig` gives the reference camera and the baseline; `labels`
-    // hold (class << 24) | instance per pixel (gpu::kSemantic*).
+    // Writes every file of one rendered frame. `left` is the reference camera and `baseline` the rig's (metres),
+    // for the disparity; `images.labels` hold (class << 24) | instance per pixel (gpu::kSemantic*).
     void writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline) const;
 
     // calib.txt (Middlebury 2014): the rig's intrinsics, baseline in millimetres, ndisp covering minDepth.

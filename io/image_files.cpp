@@ -10,10 +10,10 @@
 // Debian's libstb ships the stb implementations compiled (-lstb): include the header only.
 #include <stb_image_write.h>
 
-#include <algorithm>
 #include "common/atomic_file.h"
 #include "common/half_float.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -23,42 +23,26 @@ namespace sward {
 
 namespace {
 
-Imf::Header exrHeader(uint32_t width, uint32_t height) {
-    Imf::Header header{int(width), int(height)};
-    // ZIP: lossless and deterministic, so identical pixels give identical files.
-    header.compression() = Imf::ZIP_COMPRESSION;
-    return header;
-}
+// One channel of an EXR file: pixel (x, y) of the channel is at base + x * xStride + y * width * xStride.
+struct ExrChannel {
+    const char* name;
+    Imf::PixelType type;
+    const void* base;
+    size_t xStride; // bytes
+};
 
-} // namespace
-
-void writeExrRgbaHalf(const std::string& path, uint32_t width, uint32_t height, std::span<const uint16_t> rgbaHalf) {
-    require(rgbaHalf.size() == size_t(width) * height * 4, "EXR colour buffer size does not match the image");
+// The one place sward writes an OpenEXR file: single-part scanline, ZIP (lossless and deterministic, so identical
+// pixels give identical files), one thread, written atomically.
+void writeExrChannels(const std::string& path, uint32_t width, uint32_t height, std::span<const ExrChannel> channels) {
     writeFileAtomically(path, [&](const std::string& tmp) {
-        Imf::Header header = exrHeader(width, height);
-        const char* names[4] = {"R", "G", "B", "A"};
-        for (const char* name : names) header.channels().insert(name, Imf::Channel(Imf::HALF));
+        Imf::Header header{int(width), int(height)};
+        header.compression() = Imf::ZIP_COMPRESSION;
         Imf::FrameBuffer frame;
-        char* base = reinterpret_cast<char*>(const_cast<uint16_t*>(rgbaHalf.data()));
-        for (int c = 0; c < 4; ++c)
-            frame.insert(names[c], Imf::Slice(Imf::HALF, base + c * 2, 8, size_t(width) * 8));
-        Imf::OutputFile file(tmp.c_str(), header, 1);
-        file.setFrameBuffer(frame);
-        file.writePixels(int(height));
-    });
-}
-
-void writeExrFloatChannels(const std::string& path, uint32_t width, uint32_t height,
-                           const std::vector<std::string>& names, const std::vector<std::span<const float>>& planes) {
-    require(names.size() == planes.size() && !names.empty(), "EXR channel names and planes do not match");
-    for (auto& plane : planes) require(plane.size() == size_t(width) * height, "EXR plane size does not match the image");
-    writeFileAtomically(path, [&](const std::string& tmp) {
-        Imf::Header header = exrHeader(width, height);
-        Imf::FrameBuffer frame;
-        for (size_t c = 0; c < names.size(); ++c) {
-            header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
-            char* base = reinterpret_cast<char*>(const_cast<float*>(planes[c].data()));
-            frame.insert(names[c], Imf::Slice(Imf::FLOAT, base, 4, size_t(width) * 4));
+        for (const ExrChannel& c : channels) {
+            header.channels().insert(c.name, Imf::Channel(c.type));
+            // OpenEXR only reads the pixels when writing; its Slice takes a mutable pointer all the same.
+            char* base = const_cast<char*>(static_cast<const char*>(c.base));
+            frame.insert(c.name, Imf::Slice(c.type, base, c.xStride, c.xStride * width));
         }
         Imf::OutputFile file(tmp.c_str(), header, 1);
         file.setFrameBuffer(frame);
@@ -66,10 +50,42 @@ void writeExrFloatChannels(const std::string& path, uint32_t width, uint32_t hei
     });
 }
 
+} // namespace
+
+void writeExrRgbaHalf(const std::string& path, uint32_t width, uint32_t height, std::span<const uint16_t> rgbaHalf) {
+    require(rgbaHalf.size() == size_t(width) * height * 4, "EXR colour buffer size does not match the image");
+    const uint16_t* p = rgbaHalf.data();
+    const ExrChannel channels[] = {
+        {"R", Imf::HALF, p + 0, 8}, {"G", Imf::HALF, p + 1, 8}, {"B", Imf::HALF, p + 2, 8}, {"A", Imf::HALF, p + 3, 8}};
+    writeExrChannels(path, width, height, channels);
+}
+
+void writeExrFloatChannels(const std::string& path, uint32_t width, uint32_t height,
+                           const std::vector<std::string>& names, const std::vector<std::span<const float>>& planes) {
+    require(names.size() == planes.size() && !names.empty(), "EXR channel names and planes do not match");
+    for (auto& plane : planes)
+        require(plane.size() == size_t(width) * height, "EXR plane size does not match the image");
+    std::vector<ExrChannel> channels;
+    for (size_t c = 0; c < names.size(); ++c)
+        channels.push_back({names[c].c_str(), Imf::FLOAT, planes[c].data(), sizeof(float)});
+    writeExrChannels(path, width, height, channels);
+}
+
 void writeExrDepth(const std::string& path, uint32_t width, uint32_t height, std::span<const float> depth,
                    bool withZCopy) {
     if (withZCopy) writeExrFloatChannels(path, width, height, {"Y", "Z"}, {depth, depth});
     else writeExrFloatChannels(path, width, height, {"Y"}, {depth});
+}
+
+void writeExr(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
+              const std::vector<float>& samples) {
+    require(channels == 1 || channels == 3 || channels == 4, "writeExr: channels must be 1, 3 or 4");
+    require(samples.size() == size_t(width) * height * channels, "writeExr: sample count does not match the size");
+    static const char* kRgba[] = {"R", "G", "B", "A"};
+    std::vector<ExrChannel> list;
+    for (uint32_t c = 0; c < channels; ++c)
+        list.push_back({channels == 1 ? "Y" : kRgba[c], Imf::FLOAT, samples.data() + c, sizeof(float) * channels});
+    writeExrChannels(path, width, height, list);
 }
 
 void writePng8(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,

@@ -1,4 +1,5 @@
-// Image files: OpenEXR (HDR colour, float depth) and PNG (previews, 8/16-bit masks).
+// Writing image files: OpenEXR (HDR colour, float depth and ids) and PNG (previews, 8-bit masks). Reading is
+// io/image_io.h.
 //
 // Every writer is atomic: it writes "<path>.tmp" and renames it over <path>, so an interrupted or failed
 // run never leaves a half-written file behind. Errors throw sward::Error naming the file.
@@ -25,6 +26,11 @@ void writeExrDepth(const std::string& path, uint32_t width, uint32_t height, std
 void writeExrFloatChannels(const std::string& path, uint32_t width, uint32_t height,
                            const std::vector<std::string>& names, const std::vector<std::span<const float>>& planes);
 
+// Float samples (interleaved, `channels` per pixel, top row first) as float32 EXR channels: 1 channel is
+// written as "Y", 3 or 4 as R, G, B[, A]. The inverse of loadImage (image_io.h) for EXR files.
+void writeExr(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
+              const std::vector<float>& samples);
+
 // 8-bit PNG with 1, 3 or 4 channels.
 void writePng8(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
                std::span<const uint8_t> pixels);
@@ -32,7 +38,6 @@ void writePng8(const std::string& path, uint32_t width, uint32_t height, uint32_
 // Linear HDR half RGBA -> 8-bit sRGB RGB preview with an exposure and Narkowicz's ACES filmic curve fit.
 std::vector<uint8_t> tonemapPreview(std::span<const uint16_t> rgbaHalf, uint32_t width, uint32_t height,
                                     float exposure = 0.5f);
-
 
 // Creates `dir` (and parents) and checks a file can be written there; throws a clear error otherwise.
 void ensureWritableDirectory(const std::string& dir);

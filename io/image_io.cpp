@@ -6,7 +6,6 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
-#include <ImfOutputFile.h>
 #include <stb_image.h>
 
 #include <algorithm>
@@ -146,28 +145,6 @@ ImageData loadImage(const std::string& path) {
     if (ext == "png") return loadPng(path);
     if (ext == "exr") return loadExr(path);
     throw Error("image '" + path + "' has unsupported format '." + ext + "' (use .png or .exr)");
-}
-
-void writeExr(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
-              const std::vector<float>& samples) {
-    require(channels == 1 || channels == 3 || channels == 4, "writeExr: channels must be 1, 3 or 4");
-    require(samples.size() == size_t(width) * height * channels, "writeExr: sample count does not match the size");
-    static const char* kRgba[] = {"R", "G", "B", "A"};
-    try {
-        Imf::Header header{int(width), int(height)};
-        for (uint32_t c = 0; c < channels; ++c)
-            header.channels().insert(channels == 1 ? "Y" : kRgba[c], Imf::Channel(Imf::FLOAT));
-        Imf::OutputFile file(path.c_str(), header);
-        Imf::FrameBuffer frame;
-        const size_t xStride = sizeof(float) * channels;
-        for (uint32_t c = 0; c < channels; ++c)
-            frame.insert(channels == 1 ? "Y" : kRgba[c],
-                         Imf::Slice(Imf::FLOAT, (char*)(samples.data() + c), xStride, xStride * width));
-        file.setFrameBuffer(frame);
-        file.writePixels(int(height));
-    } catch (const std::exception& e) {
-        throw Error("cannot write OpenEXR image '" + path + "': " + e.what());
-    }
 }
 
 } // namespace sward

@@ -1,5 +1,10 @@
-// Image files for grass maps and heightfields: 8/16-bit PNG and float OpenEXR, decoded to float samples.
+// Reading image files (grass maps, heightfields, ground truth): 8/16-bit PNG and float OpenEXR, decoded to float
+// samples. Writing is io/image_files.h.
 #pragma once
+
+// Transitional: writeExr moved to image_files.h (one EXR write path); tests that call it still include this
+// header only. Remove once they include io/image_files.h.
+#include "io/image_files.h"
 
 #include <cstdint>
 #include <string>
@@ -25,9 +30,5 @@ inline constexpr uint32_t kMaxImageEdge = 32768;
 // float; channels R,G,B[,A], or a single channel such as Y or Z). Throws sward::Error naming the file and the
 // problem for a missing file, an unknown extension, a bit depth below 8, or a corrupt file.
 ImageData loadImage(const std::string& path);
-
-// Writes float samples to an uncompressed-precision (FLOAT, ZIP) OpenEXR file. channels: 1 (written as Y), 3 or 4.
-void writeExr(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
-              const std::vector<float>& samples);
 
 } // namespace sward

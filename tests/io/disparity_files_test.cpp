@@ -1,21 +1,32 @@
 // PFM, KITTI PNG and Middlebury calib.txt: round trips, the exact byte layout, quantisation and clear errors.
 #include "io/disparity_files.h"
-#include "stereo_test_files.h"
+#include "test_files.h"
 
 #include "common/error.h"
+#include "common/hash.h"
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include <bit>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 
 using namespace sward;
-using sward::test::readFile;
-using sward::test::tempDir;
-
 namespace {
+
+// io tests use the io layer's helpers only (stereo_test_files.h builds on dataset/).
+std::string tempDir() {
+    return sward::test::tempDir().string();
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
 
 std::vector<float> sampleDisparity(uint32_t w, uint32_t h) {
     std::vector<float> d(size_t(w) * h);

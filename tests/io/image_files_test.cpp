@@ -1,6 +1,7 @@
 // Image files: EXR written by sward read back with OpenCV.
 #include "common/half_float.h"
 #include "io/image_files.h"
+#include "io/image_io.h"
 
 #include "test_files.h"
 
@@ -39,4 +40,19 @@ TEST(ExrFiles, ReadBackWithOpenCvToExactlyTheWrittenValues) {
             EXPECT_EQ(px[3], halfBitsToFloat(rgba[i * 4 + 3])); // A
         }
     EXPECT_FALSE(std::filesystem::exists(dir + "/d.exr.tmp"));
+}
+
+TEST(ExrFiles, FloatSamplesReadBackThroughLoadImageExactly) {
+    const std::string dir = sward::test::tempDir().string();
+    for (uint32_t channels : {1u, 3u, 4u}) {
+        const uint32_t w = 3, h = 2;
+        std::vector<float> samples(w * h * channels);
+        for (size_t i = 0; i < samples.size(); ++i) samples[i] = float(i) * 0.75f - 2.0f;
+        const std::string path = dir + "/f" + std::to_string(channels) + ".exr";
+        writeExr(path, w, h, channels, samples);
+        const ImageData image = loadImage(path);
+        EXPECT_EQ(image.channels, channels);
+        EXPECT_EQ(image.samples, samples) << channels << " channel(s)";
+        EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+    }
 }

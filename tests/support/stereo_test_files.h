@@ -2,14 +2,14 @@
 // sward-render's output (docs/dataset contract), whose true disparity is known exactly.
 #pragma once
 
-#include "io/disparity_files.h"
 #include "common/hash.h"
+#include "dataset/naming.h"
+#include "io/disparity_files.h"
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -46,7 +46,7 @@ struct SyntheticDataset {
 // Semantic classes: left half ground (1), right half grass (3); sky rows 0.
 inline void writeSyntheticDataset(const std::string& dir, const SyntheticDataset& s) {
     namespace fs = std::filesystem;
-    for (const char* sub : {"disparity", "preview", "preview_right", "semantic"})
+    for (const char* sub : {kDisparityFolder, kPreviewFolder, kPreviewRightFolder, kSemanticFolder})
         fs::create_directories(dir + "/" + sub);
     StereoCalib calib;
     const double f = 100.0;
@@ -58,7 +58,7 @@ inline void writeSyntheticDataset(const std::string& dir, const SyntheticDataset
     calib.ndisp = 32;
     calib.vmin = 0;
     calib.vmax = 16;
-    writeMiddleburyCalib(dir + "/calib.txt", calib);
+    writeMiddleburyCalib(dir + "/" + kCalibFile, calib);
     for (uint32_t frame = 0; frame < s.frames; ++frame) {
         // 2x2-pixel texture cells: texture with some spatial correlation matches more robustly than per-pixel noise.
         auto texel = [&](int x, int y, int c) {
@@ -75,15 +75,17 @@ inline void writeSyntheticDataset(const std::string& dir, const SyntheticDataset
                 }
                 const bool sky = y < int(s.skyRows);
                 truth[size_t(y) * s.width + x] = sky ? 0.0f : float(s.disparity);
+                // gpu::kSemanticSky, kSemanticGround, kSemanticVegetation + 1 (dataset/naming.h's table)
                 semantic.at<uint8_t>(y, x) = sky ? 0 : (x < int(s.width / 2) ? 1 : 3);
             }
-        char name[16];
-        std::snprintf(name, sizeof(name), "%06u", frame);
-        writePfm(dir + "/disparity/" + name + ".pfm", s.width, s.height, truth);
-        writeKittiPng(dir + "/disparity/" + name + ".png", s.width, s.height, truth);
-        cv::imwrite(dir + "/preview/" + name + ".png", left);
-        cv::imwrite(dir + "/preview_right/" + name + ".png", right);
-        cv::imwrite(dir + "/semantic/" + name + ".png", semantic);
+        auto path = [&](const char* folder, const char* extension) {
+            return dir + "/" + frameFile(folder, frame, extension);
+        };
+        writePfm(path(kDisparityFolder, ".pfm"), s.width, s.height, truth);
+        writeKittiPng(path(kDisparityFolder, ".png"), s.width, s.height, truth);
+        cv::imwrite(path(kPreviewFolder, ".png"), left);
+        cv::imwrite(path(kPreviewRightFolder, ".png"), right);
+        cv::imwrite(path(kSemanticFolder, ".png"), semantic);
     }
 }
 

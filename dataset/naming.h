@@ -1,0 +1,49 @@
+// Dataset naming: the one table of a dataset's folder and file names and of its semantic classes, used by the
+// writer (sward-render) and by the evaluation (sward-eval), so both always agree (docs/dataset-format.md).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace sward {
+
+// Folders of a dataset, one per kind of per-frame file.
+inline constexpr const char* kLeftFolder = "left";                  // left colour, half RGBA EXR
+inline constexpr const char* kRightFolder = "right";                // right colour (stereo)
+inline constexpr const char* kDepthFolder = "depth";                // planar depth EXR
+inline constexpr const char* kDisparityFolder = "disparity";        // disparity EXR, PFM, KITTI PNG (stereo)
+inline constexpr const char* kSemanticFolder = "semantic";          // uint8 class PNG
+inline constexpr const char* kInstanceFolder = "instance";          // float instance id EXR
+inline constexpr const char* kPreviewFolder = "preview";            // tonemapped left PNG
+inline constexpr const char* kPreviewRightFolder = "preview_right"; // tonemapped right PNG (stereo)
+
+// Files of a dataset as a whole.
+inline constexpr const char* kCalibFile = "calib.txt";
+inline constexpr const char* kFrameLogFile = "frames.jsonl";
+inline constexpr const char* kManifestFile = "manifest.json";
+// "manifest.shard-I-of-N.json": the manifest a `--shard I/N` run writes instead of kManifestFile.
+std::string shardManifestName(uint32_t index, uint32_t count);
+
+// "000042": the zero-padded frame number that names every per-frame file.
+std::string frameName(uint32_t frame);
+// The frame a file stem names: exactly six digits ("000042" -> 42); nullopt for anything else.
+std::optional<uint32_t> frameNumber(std::string_view stem);
+// "<folder>/<frameName(frame)><extension>", relative to the dataset root; `extension` includes the dot.
+std::string frameFile(const char* folder, uint32_t frame, const char* extension);
+
+// One semantic class of semantic/NNNNNN.png, as gpu::kSemantic* numbers it.
+struct SemanticClass {
+    uint32_t id;       // the pixel value (gpu::kSemantic*)
+    const char* name;  // "sky", "ground", "vegetation category 0", ..., "object", "felled", "cut"
+    const char* group; // the broad class: "sky", "ground", "vegetation" (2..5, felled, cut) or "object"
+};
+
+// Every class a dataset can hold, by increasing id.
+std::span<const SemanticClass> semanticClasses();
+// The class with pixel value `id`, or nullptr for a value no class uses.
+const SemanticClass* findSemanticClass(uint32_t id);
+
+} // namespace sward

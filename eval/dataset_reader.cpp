@@ -1,0 +1,88 @@
+#include "eval/dataset_reader.h"
+
+#include "common/error.h"
+#include "dataset/naming.h"
+#include "io/image_io.h"
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <algorithm>
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace sward {
+
+namespace {
+
+bool isFile(const std::string& path) {
+    std::error_code ec;
+    return fs::is_regular_file(path, ec);
+}
+
+} // namespace
+
+std::vector<uint32_t> listDatasetFrames(const std::string& dir) {
+    const std::string folder = dir + "/" + kDisparityFolder;
+    std::error_code ec;
+    require(fs::is_directory(folder, ec), dir + " has no ground-truth folder '" + folder + "'");
+    std::vector<uint32_t> frames;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) {
+        const std::optional<uint32_t> frame = frameNumber(entry.path().stem().string());
+        const std::string ext = entry.path().extension().string();
+        if (frame && (ext == ".pfm" || ext == ".exr" || ext == ".png")) frames.push_back(*frame);
+    }
+    require(!ec, "cannot list '" + folder + "': " + ec.message());
+    std::sort(frames.begin(), frames.end());
+    frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+    return frames;
+}
+
+DisparityMap readGroundTruth(const std::string& dir, uint32_t frame) {
+    const std::string base = dir + "/" + frameFile(kDisparityFolder, frame, "");
+    if (isFile(base + ".pfm")) return readPfm(base + ".pfm");
+    if (isFile(base + ".exr")) {
+        ImageData image = loadImage(base + ".exr");
+        require(image.channels == 1, base + ".exr: expected a one-channel (Y) disparity image");
+        DisparityMap map{image.width, image.height, std::move(image.samples)};
+        for (float& v : map.values)
+            if (!isValidDisparity(v)) v = 0.0f;
+        return map;
+    }
+    if (isFile(base + ".png")) return readKittiPng(base + ".png");
+    throw Error("missing ground truth for frame " + frameName(frame) + ": no " + base + ".pfm, .exr or .png");
+}
+
+cv::Mat readPreview(const std::string& dir, const char* folder, uint32_t frame, bool gray) {
+    const std::string path = dir + "/" + frameFile(folder, frame, ".png");
+    require(isFile(path), "missing image '" + path + "'");
+    cv::Mat image = cv::imread(path, gray ? cv::IMREAD_GRAYSCALE : cv::IMREAD_COLOR);
+    require(!image.empty() && image.depth() == CV_8U, "cannot decode image '" + path + "' as 8-bit PNG");
+    return image;
+}
+
+cv::Mat readSemantic(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height) {
+    const std::string path = dir + "/" + frameFile(kSemanticFolder, frame, ".png");
+    require(isFile(path), "missing semantic image '" + path + "'");
+    cv::Mat semantic = cv::imread(path, cv::IMREAD_UNCHANGED);
+    require(!semantic.empty() && semantic.type() == CV_8UC1 && semantic.cols == int(width) &&
+                semantic.rows == int(height),
+            path + ": expected an 8-bit one-channel class image of " + std::to_string(width) + "x" +
+                std::to_string(height));
+    return semantic;
+}
+
+std::vector<float> readEstimate(const std::string& disparitiesDir, uint32_t frame, uint32_t width, uint32_t height) {
+    const std::string name = frameName(frame);
+    std::string path = disparitiesDir + "/" + name + ".pfm";
+    if (!isFile(path)) path = disparitiesDir + "/" + name + ".png";
+    require(isFile(path), "no estimate for frame " + name + ": neither '" + disparitiesDir + "/" + name +
+                              ".pfm' nor '" + path + "' exists");
+    DisparityMap map = readDisparity(path);
+    require(map.width == width && map.height == height, path + " is " + std::to_string(map.width) + "x" +
+                                                            std::to_string(map.height) + ", the ground truth " +
+                                                            std::to_string(width) + "x" + std::to_string(height));
+    return std::move(map.values);
+}
+
+} // namespace sward

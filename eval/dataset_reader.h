@@ -1,0 +1,31 @@
+// Reading what the evaluation needs from a sward dataset (names: dataset/naming.h): the frame list, ground-truth
+// disparity, the preview views SGBM matches, the class images, and another matcher's estimates. Every function
+// throws sward::Error naming the file and the problem.
+#pragma once
+
+#include "io/disparity_files.h"
+
+#include <opencv2/core.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sward {
+
+// Frame numbers of a dataset: every 6-digit NNNNNN.{pfm,exr,png} in <dir>/disparity, sorted.
+std::vector<uint32_t> listDatasetFrames(const std::string& dir);
+
+// Ground-truth disparity of one frame: disparity/NNNNNN.pfm, else .exr, else the KITTI .png (lossy).
+DisparityMap readGroundTruth(const std::string& dir, uint32_t frame);
+
+// The 8-bit preview of one view (`folder`: kPreviewFolder or kPreviewRightFolder), grey or BGR.
+cv::Mat readPreview(const std::string& dir, const char* folder, uint32_t frame, bool gray);
+
+// semantic/NNNNNN.png, which must be a one-channel 8-bit image of width x height.
+cv::Mat readSemantic(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height);
+
+// Another matcher's estimate <disparitiesDir>/NNNNNN.pfm, else the KITTI .png, of width x height.
+std::vector<float> readEstimate(const std::string& disparitiesDir, uint32_t frame, uint32_t width, uint32_t height);
+
+} // namespace sward
