@@ -2,7 +2,7 @@
 
 #include "engine/barriers.h"
 #include "engine/timestamps.h"
-#include "shared/bindings.h"
+#include "shared/config.h"
 
 #include <algorithm>
 #include <chrono>
@@ -20,11 +20,12 @@ InteractionGpu::InteractionGpu(Context& ctx, VegetationBuffers& buffers) : ctx_(
         fieldPlantCount_.push_back(f.range.y);
     }
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    PipelineLayoutDesc layout{.bindings = {layoutBinding(gpu::kRecoveryBindingDynamics, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
-                                           layoutBinding(gpu::kRecoveryBindingContacts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
-                                           layoutBinding(gpu::kRecoveryBindingActiveFields, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)},
-                              .pushConstantSize = sizeof(gpu::RecoveryConstants),
-                              .pushConstantStages = cs};
+    PipelineLayoutDesc layout{
+        .bindings = {layoutBinding(gpu::kRecoveryBindingDynamics, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
+                     layoutBinding(gpu::kRecoveryBindingContacts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
+                     layoutBinding(gpu::kRecoveryBindingActiveFields, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)},
+        .pushConstantSize = sizeof(gpu::RecoveryConstants),
+        .pushConstantStages = cs};
     contactPipeline_ = createComputePipeline(ctx.device, "plant_recovery.comp", layout, {/* CONTACT_PASS= */ 1});
     recoveryPipeline_ = createComputePipeline(ctx.device, "plant_recovery.comp", layout, {/* CONTACT_PASS= */ 0});
     for (Slot& slot : slots_) reserve(slot, 4096, 4096);

@@ -1,6 +1,6 @@
 #include "render/object_renderer.h"
 
-#include "shared/bindings.h"
+#include "shared/config.h"
 #include "shared/object_layout.h"
 
 #include <cstring>
@@ -45,8 +45,8 @@ ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Heightfie
     indices_ = createBufferWithData(ctx, bytesOf(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
     const uint64_t align = ctx.device.properties().limits.minStorageBufferOffsetAlignment;
     transformsStride_ = (uint64_t(transformCount_) * sizeof(gpu::ObjectTransform) + align - 1) / align * align;
-    transforms_ =
-        createBuffer(ctx, transformsStride_ * gpu::kFrameDataSlots, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryIntent::Upload);
+    transforms_ = createBuffer(ctx, transformsStride_ * gpu::kFrameDataSlots, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               MemoryIntent::Upload);
 
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     PipelineLayoutDesc layout{
@@ -87,7 +87,8 @@ ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Heightfie
     desc.depthBias = -1.0f;
     desc.depthBiasSlope = -1.5f;
     shadowPipeline_ = createGraphicsPipeline(ctx.device, desc, layout);
-    for (uint32_t slot = 0; slot < gpu::kFrameDataSlots; ++slot) update(0.0, slot); // never draw uninitialised transforms
+    for (uint32_t slot = 0; slot < gpu::kFrameDataSlots; ++slot)
+        update(0.0, slot); // never draw uninitialised transforms
 }
 
 ObjectRenderer::~ObjectRenderer() {

@@ -1,11 +1,11 @@
 #include "render/scene_renderer.h"
 
 #include "engine/barriers.h"
-#include "render/object_renderer.h"
-#include "shared/bindings.h"
-#include "shared/gpu_layout.h"
 #include "engine/timestamps.h"
+#include "render/object_renderer.h"
 #include "render/vegetation_renderer.h"
+#include "shared/config.h"
+#include "shared/gpu_layout.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -84,13 +84,14 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield
 
     uint64_t align = ctx.device.properties().limits.minUniformBufferOffsetAlignment;
     constantsStride_ = (sizeof(gpu::FrameConstants) + align - 1) / align * align;
-    constants_ = createBuffer(ctx, constantsStride_ * gpu::kFrameDataSlots * kMaxViews, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                              MemoryIntent::Upload);
+    constants_ = createBuffer(ctx, constantsStride_ * gpu::kFrameDataSlots * kMaxViews,
+                              VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryIntent::Upload);
 
     RenderTargetDesc mainDesc = mainPassTargetDesc(1, 1, samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1);
     RenderTargetDesc truthDesc = truthPassTargetDesc(1, 1);
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    PipelineLayoutDesc layout{.bindings = {layoutBinding(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, stages)}};
+    PipelineLayoutDesc layout{
+        .bindings = {layoutBinding(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, stages)}};
     PipelineLayoutDesc shadedLayout = layout; // + the sun shadow map
     shadedLayout.bindings.push_back(
         layoutBinding(gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
@@ -234,7 +235,8 @@ DescriptorBinding SceneRenderer::frameBinding(uint32_t slot) const {
 }
 
 DescriptorBinding SceneRenderer::shadowBinding() const {
-    return sampledImage(gpu::kBindingShadowMap, shadowMap_->depth().view, shadowSampler_, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
+    return sampledImage(gpu::kBindingShadowMap, shadowMap_->depth().view, shadowSampler_,
+                        VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
 }
 
 void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint32_t frameSlot, uint32_t slot,
@@ -268,7 +270,7 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
     require(!views.empty() && views.size() <= kMaxViews, "a frame has one or two views");
     const Camera& reference = *views[0].camera;
     const uint32_t dataSlot = frameIndex % gpu::kFrameDataSlots; // objects' and vegetation's per-frame data
-    const uint32_t firstSlot = dataSlot * kMaxViews;                // frame constants: one per view
+    const uint32_t firstSlot = dataSlot * kMaxViews;             // frame constants: one per view
     for (uint32_t v = 0; v < views.size(); ++v) writeConstants(firstSlot + v, *views[v].camera, reference, timeSeconds);
     DescriptorBinding frame = frameBinding(firstSlot), shadow = shadowBinding();
     if (objects_) objects_->update(timeSeconds, dataSlot);

@@ -22,7 +22,8 @@ std::vector<VkDescriptorSetLayoutBinding> plantDrawBindings() {
 }
 
 VkDescriptorSetLayoutBinding shadowMapLayoutBinding() {
-    return layoutBinding(gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT);
+    return layoutBinding(gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                         VK_SHADER_STAGE_FRAGMENT_BIT);
 }
 
 } // namespace
@@ -38,7 +39,8 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
 
     uint64_t align = ctx.device.properties().limits.minUniformBufferOffsetAlignment;
     constantsStride_ = (sizeof(gpu::VegetationConstants) + align - 1) / align * align;
-    constants_ = createBuffer(ctx, constantsStride_ * gpu::kFrameDataSlots, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryIntent::Upload);
+    constants_ = createBuffer(ctx, constantsStride_ * gpu::kFrameDataSlots, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                              MemoryIntent::Upload);
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     clusterCounts_ = createBuffer(ctx, uint64_t(std::max(buffers_.clusterCount, 1u)) * 16, storage,
@@ -62,12 +64,12 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
                      ssbo(gpu::kExpandBindingInstances, cs), ssbo(gpu::kExpandBindingInstancePlants, cs)}};
     countPipeline_ = createComputePipeline(ctx.device, "vegetation_expand.comp", expandLayout, {/* WRITE_PASS= */ 0});
     writePipeline_ = createComputePipeline(ctx.device, "vegetation_expand.comp", expandLayout, {/* WRITE_PASS= */ 1});
-    scanPipeline_ = createComputePipeline(ctx.device, "vegetation_scan.comp",
-                                          {.bindings = {ssbo(gpu::kScanBindingClusterCounts, cs),
-                                                        ssbo(gpu::kScanBindingDraws, cs),
-                                                        ssbo(gpu::kScanBindingStats, cs)},
-                                           .pushConstantSize = sizeof(gpu::ScanConstants),
-                                           .pushConstantStages = cs});
+    scanPipeline_ =
+        createComputePipeline(ctx.device, "vegetation_scan.comp",
+                              {.bindings = {ssbo(gpu::kScanBindingClusterCounts, cs), ssbo(gpu::kScanBindingDraws, cs),
+                                            ssbo(gpu::kScanBindingStats, cs)},
+                               .pushConstantSize = sizeof(gpu::ScanConstants),
+                               .pushConstantStages = cs});
 
     std::vector<VkDescriptorSetLayoutBinding> drawBindings = plantDrawBindings();
     drawBindings.push_back(ssbo(gpu::kBindingInstancePlants, VK_SHADER_STAGE_VERTEX_BIT));
@@ -242,8 +244,9 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
     DescriptorBinding instances = storageBuffer(gpu::kBindingPlantInstances, instances_.handle);
     DescriptorBinding plants = storageBuffer(gpu::kBindingInstancePlants, instancePlants_.handle);
     if (pass == PlantPass::Main)
-        pushDescriptors(ctx_.device, cmd, pipeline,
-                        {frame, constantsBinding(slot), instances, atlasCellsBinding(), atlasBinding(), shadowMap, plants});
+        pushDescriptors(
+            ctx_.device, cmd, pipeline,
+            {frame, constantsBinding(slot), instances, atlasCellsBinding(), atlasBinding(), shadowMap, plants});
     else
         pushDescriptors(ctx_.device, cmd, pipeline,
                         {frame, constantsBinding(slot), instances, atlasCellsBinding(), atlasBinding(), plants});

@@ -15,7 +15,7 @@
 #include "scene/scene.h"
 #include "render/vegetation_buffers.h"
 
-#include "shared/bindings.h"
+#include "shared/config.h"
 #include "shared/gpu_layout.h"
 
 namespace sward {

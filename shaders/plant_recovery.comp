@@ -5,7 +5,7 @@
 //   CONTACT_PASS = 1  one invocation per contact: apply it to its plant's dynamic record
 //   CONTACT_PASS = 0  one invocation per plant of each active field (workgroup row y = active field):
 //                     one step of the damped spring, written back to the dynamic buffer
-#include "shared/bindings.h"
+#include "shared/config.h"
 #include "shared/gpu_layout.h"
 #include "shared/plant_layout.h"
 #include "shared/recovery.glsl"

@@ -3,7 +3,7 @@
 // engine/image_files.cpp tonemapPreview (exposure, then Narkowicz's ACES fit), so the window shows what the
 // PNG previews show. SRGB_TARGET: the swapchain format encodes sRGB itself; else it is encoded here.
 #extension GL_GOOGLE_include_directive : require
-#include "shared/bindings.h"
+#include "shared/config.h"
 
 layout(constant_id = 0) const bool SRGB_TARGET = true;
 

@@ -2,7 +2,6 @@
 #extension GL_GOOGLE_include_directive : require
 // Engine self-test: out[i] = in[i] * SCALE + offset. Exercises storage buffers through push descriptors,
 // push constants and a specialization constant.
-#include "shared/bindings.h"
 #include "shared/config.h"
 
 layout(constant_id = 0) const uint SCALE = 1;

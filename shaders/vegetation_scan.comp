@@ -3,7 +3,7 @@
 // Exclusive prefix sum of the per-cluster LOD counts, in cluster order, by a single workgroup; turns counts
 // into instance offsets (in place) and writes the three indirect draw commands. Instances are laid out as
 // [all near | all mid | all far], each LOD in cluster order.
-#include "shared/bindings.h"
+#include "shared/config.h"
 #include "shared/gpu_layout.h"
 
 layout(local_size_x = kScanGroupSize) in;

@@ -1,8 +1,8 @@
 // Numbers the CPU and the GPU share that are not struct layouts (niagara's config.h): workgroup sizes, frames
-// in flight and render pass variants. One definition, two languages: in C++ the constants live in namespace
-// sward::gpu; GLSL sees plain consts (valid in layout qualifiers: `layout(local_size_x = kComputeGroupSize)`).
-// Struct layouts are in gpu_layout.h (which includes this header), descriptor binding slots in bindings.h.
-// No glm here: the engine includes it for the frame counts.
+// in flight, render pass variants and descriptor binding slots. One definition, two languages: in C++ the
+// constants live in namespace sward::gpu; GLSL sees plain consts, valid in layout qualifiers
+// (`layout(local_size_x = kComputeGroupSize)`, `layout(binding = kBindingFrame)`).
+// Struct layouts are in gpu_layout.h (which includes this header). No glm here: the engine includes it too.
 #ifndef SWARD_CONFIG_H
 #define SWARD_CONFIG_H
 
@@ -37,6 +37,47 @@ SWARD_CONST(uint, kFrameDataSlots, kFramesInFlight + 1u);
 SWARD_CONST(uint, kPassMain, 0u);   // colour, lit and shadowed
 SWARD_CONST(uint, kPassTruth, 1u);  // ground truth: depth bits and labels, one sample per pixel
 SWARD_CONST(uint, kPassShadow, 2u); // sun shadow map: depth only, seen from the sun
+
+// Descriptor binding slots of set 0 (push descriptors): the GLSL declarations and the C++ pipeline layouts and
+// descriptor writes. A slot means something only within its pipeline layout: one group per layout.
+
+// Scene draws (terrain, sky, objects, plants) and the plant bake.
+SWARD_CONST(uint, kBindingFrame, 0u);            // FrameConstants (frame.glsl)
+SWARD_CONST(uint, kBindingVegetation, 1u);       // VegetationConstants (vegetation.glsl; the expansion's too)
+SWARD_CONST(uint, kBindingObjectTransforms, 1u); // ObjectTransform[] (object.vert; objects have no vegetation)
+SWARD_CONST(uint, kBindingPlantInstances, 2u);   // ExpandedPlant[] (plant.vert, plant_bake.comp input), or the
+                                                 // BakedVertex[] that replace them (plant_static.vert)
+SWARD_CONST(uint, kBindingAtlasCells, 3u);       // AtlasCellGpu[] (plant_vertex.glsl)
+SWARD_CONST(uint, kBindingAtlas, 4u);            // atlas texture (plant_fragment.glsl)
+SWARD_CONST(uint, kBindingShadowMap, 5u);        // sun shadow map (shadow.glsl), main pass only
+SWARD_CONST(uint, kBindingInstancePlants, 6u);   // plant index per instance (plant.vert, ground-truth ids)
+SWARD_CONST(uint, kBindingBakedVertices, 4u);    // BakedVertex[] written by plant_bake.comp (it has no atlas)
+
+// Vegetation expansion (vegetation_expand.comp), besides its constants at kBindingVegetation.
+SWARD_CONST(uint, kExpandBindingStatics, 0u);
+SWARD_CONST(uint, kExpandBindingDynamics, 2u);
+SWARD_CONST(uint, kExpandBindingClusters, 3u);
+SWARD_CONST(uint, kExpandBindingFields, 4u);
+SWARD_CONST(uint, kExpandBindingClusterCounts, 5u);
+SWARD_CONST(uint, kExpandBindingInstances, 6u);
+SWARD_CONST(uint, kExpandBindingInstancePlants, 7u);
+
+// Expansion prefix sum (vegetation_scan.comp).
+SWARD_CONST(uint, kScanBindingClusterCounts, 0u);
+SWARD_CONST(uint, kScanBindingDraws, 1u);
+SWARD_CONST(uint, kScanBindingStats, 2u);
+
+// Interaction recovery (plant_recovery.comp).
+SWARD_CONST(uint, kRecoveryBindingDynamics, 0u);
+SWARD_CONST(uint, kRecoveryBindingContacts, 1u);
+SWARD_CONST(uint, kRecoveryBindingActiveFields, 2u);
+
+// sward-view present pass (present.frag): the resolved HDR image.
+SWARD_CONST(uint, kPresentBindingImage, 0u);
+
+// Engine self-test (test_roundtrip.comp).
+SWARD_CONST(uint, kTestBindingInput, 0u);
+SWARD_CONST(uint, kTestBindingOutput, 1u);
 
 #ifdef __cplusplus
 } // namespace sward::gpu

@@ -2,7 +2,7 @@
 #ifndef SWARD_FRAME_GLSL
 #define SWARD_FRAME_GLSL
 
-#include "bindings.h"
+#include "config.h"
 #include "gpu_layout.h"
 
 layout(set = 0, binding = kBindingFrame, std140) uniform FrameBlock {

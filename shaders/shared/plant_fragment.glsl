@@ -2,7 +2,7 @@
 #ifndef SWARD_PLANT_FRAGMENT_GLSL
 #define SWARD_PLANT_FRAGMENT_GLSL
 
-#include "bindings.h"
+#include "config.h"
 
 layout(set = 0, binding = kBindingAtlas) uniform sampler2D atlas;
 

@@ -2,7 +2,7 @@
 #ifndef SWARD_SHADOW_GLSL
 #define SWARD_SHADOW_GLSL
 
-#include "bindings.h"
+#include "config.h"
 
 layout(set = 0, binding = kBindingShadowMap) uniform sampler2DShadow shadowMap;
 

@@ -4,7 +4,7 @@
 #ifndef SWARD_VEGETATION_GLSL
 #define SWARD_VEGETATION_GLSL
 
-#include "bindings.h"
+#include "config.h"
 #include "gpu_layout.h"
 #include "plant_layout.h"
 #include "plant_decode.glsl"

@@ -4,7 +4,6 @@
 #include "engine/pipelines.h"
 #include "engine/resources.h"
 #include "engine/timestamps.h"
-#include "shared/bindings.h"
 #include "shared/config.h"
 
 #include <cstring>
@@ -21,20 +20,23 @@ TEST_F(GpuTest, ComputeRoundTripThroughPushDescriptorsAndSpecialization) {
                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     Buffer dst = createBuffer(*ctx, count * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                               MemoryIntent::DeviceLocal);
-    Pipeline pipeline = createComputePipeline(
-        ctx->device, "test_roundtrip.comp",
-        {.bindings = {layoutBinding(gpu::kTestBindingInput, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT),
-                      layoutBinding(gpu::kTestBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT)},
-         .pushConstantSize = 8,
-         .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT},
-        {/* SCALE= */ 3});
+    Pipeline pipeline =
+        createComputePipeline(ctx->device, "test_roundtrip.comp",
+                              {.bindings = {layoutBinding(gpu::kTestBindingInput, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                                          VK_SHADER_STAGE_COMPUTE_BIT),
+                                            layoutBinding(gpu::kTestBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                                          VK_SHADER_STAGE_COMPUTE_BIT)},
+                               .pushConstantSize = 8,
+                               .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT},
+                              {/* SCALE= */ 3});
     GpuTimers timers(ctx->device, 4);
     ctx->submitter.immediate([&](VkCommandBuffer cmd) {
         timers.reset(cmd);
         timers.begin(cmd, "roundtrip");
         bindPipeline(cmd, pipeline);
-        pushDescriptors(ctx->device, cmd, pipeline,
-                        {storageBuffer(gpu::kTestBindingInput, src.handle), storageBuffer(gpu::kTestBindingOutput, dst.handle)});
+        pushDescriptors(
+            ctx->device, cmd, pipeline,
+            {storageBuffer(gpu::kTestBindingInput, src.handle), storageBuffer(gpu::kTestBindingOutput, dst.handle)});
         uint32_t push[2] = {count, 7};
         pushConstants(cmd, pipeline, push, sizeof push);
         vkCmdDispatch(cmd, groupCount(count, gpu::kComputeGroupSize), 1, 1);
