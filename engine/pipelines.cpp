@@ -1,6 +1,9 @@
 #include "engine/pipelines.h"
 
 #include "engine/device.h"
+#include "shared/config.h"
+
+#include <algorithm>
 
 #include <cstdlib>
 #include <filesystem>
@@ -220,6 +223,13 @@ void pushDescriptors(const Device& device, VkCommandBuffer cmd, const Pipeline& 
 
 void pushConstants(VkCommandBuffer cmd, const Pipeline& pipeline, const void* data, uint32_t size) {
     vkCmdPushConstants(cmd, pipeline.layout, pipeline.pushConstantStages, 0, size, data);
+}
+
+void dispatchLinear(VkCommandBuffer cmd, uint32_t invocations, uint32_t groupSize) {
+    const uint32_t groups = groupCount(invocations, groupSize);
+    if (groups == 0) return;
+    const uint32_t groupsX = std::min(groups, gpu::kMaxGroupsX);
+    vkCmdDispatch(cmd, groupsX, groupCount(groups, groupsX), 1);
 }
 
 void drawIndexedMesh(const Device& device, VkCommandBuffer cmd, const Pipeline& pipeline,

@@ -101,6 +101,15 @@ template <typename T> void pushConstants(VkCommandBuffer cmd, const Pipeline& pi
     pushConstants(cmd, pipeline, &value, sizeof(T));
 }
 
+// Workgroups of `groupSize` invocations that cover `invocations` (the last one partly).
+constexpr uint32_t groupCount(uint32_t invocations, uint32_t groupSize) {
+    return (invocations + groupSize - 1) / groupSize;
+}
+// Dispatches groupCount(invocations, groupSize) workgroups of the bound compute pipeline, at most
+// gpu::kMaxGroupsX on x and the rest in rows of y; nothing when `invocations` is 0. The shader's linear index is
+// gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * groupSize (skip those >= invocations).
+void dispatchLinear(VkCommandBuffer cmd, uint32_t invocations, uint32_t groupSize);
+
 // Layout binding shorthand: binding(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT).
 inline VkDescriptorSetLayoutBinding layoutBinding(uint32_t binding, VkDescriptorType type, VkShaderStageFlags stages) {
     return {.binding = binding, .descriptorType = type, .descriptorCount = 1, .stageFlags = stages};

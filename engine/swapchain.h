@@ -10,6 +10,7 @@
 #pragma once
 
 #include "engine/vk_common.h"
+#include "shared/config.h"
 
 #include <cstdint>
 #include <vector>
@@ -28,7 +29,7 @@ struct SwapchainImage {
 
 class Swapchain {
 public:
-    static constexpr uint32_t kFramesInFlight = 2;
+    static constexpr uint32_t kFramesInFlight = gpu::kFramesInFlight;
 
     // `surface` is owned by the device (DeviceOptions::createSurface).
     Swapchain(Context& ctx, VkSurfaceKHR surface, VkExtent2D windowExtent, bool vsync);

@@ -2,6 +2,7 @@
 
 #include "engine/barriers.h"
 #include "engine/timestamps.h"
+#include "shared/config.h"
 
 #include <algorithm>
 #include <chrono>
@@ -19,11 +20,12 @@ InteractionGpu::InteractionGpu(Context& ctx, VegetationBuffers& buffers) : ctx_(
         fieldPlantCount_.push_back(f.range.y);
     }
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    PipelineLayoutDesc layout{.bindings = {layoutBinding(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
-                                           layoutBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
-                                           layoutBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)},
-                              .pushConstantSize = sizeof(gpu::RecoveryConstants),
-                              .pushConstantStages = cs};
+    PipelineLayoutDesc layout{
+        .bindings = {layoutBinding(gpu::kRecoveryBindingDynamics, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
+                     layoutBinding(gpu::kRecoveryBindingContacts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
+                     layoutBinding(gpu::kRecoveryBindingActiveFields, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)},
+        .pushConstantSize = sizeof(gpu::RecoveryConstants),
+        .pushConstantStages = cs};
     contactPipeline_ = createComputePipeline(ctx.device, "plant_recovery.comp", layout, {/* CONTACT_PASS= */ 1});
     recoveryPipeline_ = createComputePipeline(ctx.device, "plant_recovery.comp", layout, {/* CONTACT_PASS= */ 0});
     for (Slot& slot : slots_) reserve(slot, 4096, 4096);
@@ -55,7 +57,7 @@ void InteractionGpu::record(VkCommandBuffer cmd, std::span<const gpu::PlantConta
                             GpuTimers* timers) {
     if (contacts.empty() && activeFields.empty()) return; // idle grass costs nothing
     const auto uploadStart = std::chrono::steady_clock::now();
-    Slot& slot = slots_[slotIndex % kSlots];
+    Slot& slot = slots_[slotIndex % gpu::kFrameDataSlots];
     uint64_t contactBytes = contacts.size_bytes(), rangeBytes = activeFields.size() * sizeof(glm::uvec2);
     reserve(slot, contactBytes, rangeBytes);
     std::memcpy(slot.contacts.mapped(), contacts.data(), contactBytes);
@@ -78,34 +80,28 @@ void InteractionGpu::record(VkCommandBuffer cmd, std::span<const gpu::PlantConta
     auto bind = [&](const Pipeline& pipeline) {
         bindPipeline(cmd, pipeline);
         pushDescriptors(ctx_.device, cmd, pipeline,
-                        {storageBuffer(0, buffers_.dynamics.handle), storageBuffer(1, slot.contacts.handle),
-                         storageBuffer(2, slot.ranges.handle)});
+                        {storageBuffer(gpu::kRecoveryBindingDynamics, buffers_.dynamics.handle),
+                         storageBuffer(gpu::kRecoveryBindingContacts, slot.contacts.handle),
+                         storageBuffer(gpu::kRecoveryBindingActiveFields, slot.ranges.handle)});
         pushConstants(cmd, pipeline, constants);
     };
     if (timers) timers->begin(cmd, "recovery");
-    // Earlier readers and writers of the dynamic records (last frame's expansion, last tick's recovery).
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
-                  VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    // Earlier readers and writers of the dynamic records (last frame's expansion, last tick's recovery, uploads).
+    computeAndCopyToComputeBarrier(cmd);
     if (!contacts.empty()) {
         bind(contactPipeline_);
-        vkCmdDispatch(cmd, uint32_t((contacts.size() + 63) / 64), 1, 1);
+        vkCmdDispatch(cmd, groupCount(uint32_t(contacts.size()), gpu::kComputeGroupSize), 1, 1);
         ++stats_.dispatches;
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        computeToComputeBarrier(cmd);
     }
     if (!activeFields.empty() && maxPlants > 0) {
-        bind(recoveryPipeline_);
-        vkCmdDispatch(cmd, (maxPlants + 63) / 64, uint32_t(activeFields.size()), 1);
+        bind(recoveryPipeline_); // workgroup row y = active field
+        vkCmdDispatch(cmd, groupCount(maxPlants, gpu::kComputeGroupSize), uint32_t(activeFields.size()), 1);
         ++stats_.dispatches;
         stats_.fieldsDispatched += activeFields.size();
     }
     // The expansion (compute) and readbacks (copy) read the updated records.
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
-                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    computeToComputeAndCopyBarrier(cmd);
     if (timers) timers->end(cmd);
 }
 

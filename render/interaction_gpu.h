@@ -8,6 +8,7 @@
 #include "engine/pipelines.h"
 #include "interaction/recovery.h"
 #include "render/vegetation_buffers.h"
+#include "shared/config.h"
 
 #include <span>
 #include <vector>
@@ -31,7 +32,8 @@ public:
     InteractionGpu& operator=(const InteractionGpu&) = delete;
 
     // Records one tick: contacts (sorted by plant, at most one per plant), then one spring step for every plant
-    // of the active fields (field indices into the tile). `slot` selects the upload ring slot (frames in flight).
+    // of the active fields (field indices into the tile). `slot` selects the upload ring slot (taken modulo
+    // gpu::kFrameDataSlots).
     void record(VkCommandBuffer cmd, std::span<const gpu::PlantContact> contacts, std::span<const uint32_t> activeFields,
                 const RecoveryParams& params, uint32_t slot, GpuTimers* timers = nullptr);
 
@@ -41,7 +43,8 @@ public:
 
     const InteractionGpuStats& stats() const { return stats_; }
 
-    static constexpr uint32_t kSlots = 3;
+    // The upload ring's size; sward-view still names it here (tools/sward-view/viewer.cpp).
+    static constexpr uint32_t kSlots = gpu::kFrameDataSlots;
 
 private:
     struct Slot {

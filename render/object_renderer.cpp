@@ -1,5 +1,6 @@
 #include "render/object_renderer.h"
 
+#include "shared/config.h"
 #include "shared/object_layout.h"
 
 #include <cstring>
@@ -44,16 +45,17 @@ ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Heightfie
     indices_ = createBufferWithData(ctx, bytesOf(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
     const uint64_t align = ctx.device.properties().limits.minStorageBufferOffsetAlignment;
     transformsStride_ = (uint64_t(transformCount_) * sizeof(gpu::ObjectTransform) + align - 1) / align * align;
-    transforms_ =
-        createBuffer(ctx, transformsStride_ * kSlots, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryIntent::Upload);
+    transforms_ = createBuffer(ctx, transformsStride_ * gpu::kFrameDataSlots, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               MemoryIntent::Upload);
 
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     PipelineLayoutDesc layout{
-        .bindings = {layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, stages),
-                     layoutBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT)}};
+        .bindings = {layoutBinding(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, stages),
+                     layoutBinding(gpu::kBindingObjectTransforms, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                   VK_SHADER_STAGE_VERTEX_BIT)}};
     PipelineLayoutDesc shadedLayout = layout; // + the sun shadow map
     shadedLayout.bindings.push_back(
-        layoutBinding(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
+        layoutBinding(gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
     GraphicsPipelineDesc desc{
         .vertexShader = "object.vert",
         .fragmentShader = "object.frag",
@@ -66,7 +68,7 @@ ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Heightfie
         .colorFormats = {formats.mainColor},
         .depthFormat = formats.mainDepth,
         .samples = formats.mainSamples,
-        .specialization = {/* PASS= */ 0},
+        .specialization = {/* PASS= */ gpu::kPassMain},
     };
     mainPipeline_ = createGraphicsPipeline(ctx.device, desc, shadedLayout);
     // Same vertices and rasterisation, ground-truth outputs (depth bits, label), one sample per pixel.
@@ -74,18 +76,19 @@ ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Heightfie
     desc.colorFormats = {formats.truthDepthBits, formats.truthLabel};
     desc.depthFormat = formats.truthDepth;
     desc.samples = VK_SAMPLE_COUNT_1_BIT;
-    desc.specialization = {/* PASS= */ 1};
+    desc.specialization = {/* PASS= */ gpu::kPassTruth};
     truthPipeline_ = createGraphicsPipeline(ctx.device, desc, layout);
     // Depth only from the sun, both faces and the terrain's bias: thin parts (mast, wheels) still cast shadows.
     desc.fragmentShader = "";
     desc.colorFormats = {};
     desc.depthFormat = formats.shadowDepth;
     desc.cullMode = VK_CULL_MODE_NONE;
-    desc.specialization = {/* PASS= */ 2};
+    desc.specialization = {/* PASS= */ gpu::kPassShadow};
     desc.depthBias = -1.0f;
     desc.depthBiasSlope = -1.5f;
     shadowPipeline_ = createGraphicsPipeline(ctx.device, desc, layout);
-    for (uint32_t slot = 0; slot < kSlots; ++slot) update(0.0, slot); // never draw uninitialised transforms
+    for (uint32_t slot = 0; slot < gpu::kFrameDataSlots; ++slot)
+        update(0.0, slot); // never draw uninitialised transforms
 }
 
 ObjectRenderer::~ObjectRenderer() {
@@ -114,7 +117,7 @@ void ObjectRenderer::setVisible(size_t k, bool visible) {
 
 void ObjectRenderer::update(double time, uint32_t slot) {
     if (empty()) return;
-    require(slot < kSlots, "ObjectRenderer::update: slot out of range");
+    require(slot < gpu::kFrameDataSlots, "ObjectRenderer::update: slot out of range");
     std::vector<gpu::ObjectTransform> transforms;
     transforms.reserve(transformCount_);
     for (size_t k = 0; k < objects_.size(); ++k) {
@@ -128,7 +131,7 @@ void ObjectRenderer::update(double time, uint32_t slot) {
 }
 
 DescriptorBinding ObjectRenderer::transformsBinding(uint32_t slot) const {
-    return storageBuffer(1, transforms_.handle, slot * transformsStride_,
+    return storageBuffer(gpu::kBindingObjectTransforms, transforms_.handle, slot * transformsStride_,
                          uint64_t(transformCount_) * sizeof(gpu::ObjectTransform));
 }
 

@@ -3,9 +3,9 @@
 //
 // All objects share one vertex and one index buffer (node-frame vertices tagged with their node's transform
 // index and their object's truth label), so each pass is one indexed draw. update() writes every node's world
-// transform for a simulation time into one of kSlots host-visible slots (frames in flight); the record*()
-// calls draw into a rendering pass the caller has begun, with the same descriptor conventions as the terrain
-// (push descriptors: binding 0 frame constants, binding 5 sun shadow map; binding 1 is the transforms).
+// transform for a simulation time into one of gpu::kFrameDataSlots host-visible slots; the record*() calls
+// draw into a rendering pass the caller has begun, with the same descriptor conventions as the terrain (push
+// descriptors: gpu::kBindingFrame, gpu::kBindingShadowMap; gpu::kBindingObjectTransforms is the transforms).
 #pragma once
 
 #include "engine/context.h"
@@ -39,16 +39,14 @@ public:
     void place(size_t k, glm::dvec2 position, double headingRadians);
     void setVisible(size_t k, bool visible);
 
-    // Writes the node transforms at simulation time `time` into slot `slot` (< kSlots). The slot must not be
+    // Writes the node transforms at simulation time `time` into slot `slot` (< gpu::kFrameDataSlots). The slot must not be
     // in use by a frame still executing on the GPU (the caller's frames-in-flight rotation guarantees this).
     void update(double time, uint32_t slot = 0);
-    // Draw calls into the current pass; `slot` as given to update(). `frame` is the frame-constants binding 0.
+    // Draw calls into the current pass; `slot` as given to update(). `frame` is the frame-constants binding.
     void recordMain(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& shadowMap,
                     uint32_t slot = 0);
     void recordShadow(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot = 0);
     void recordTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot = 0);
-
-    static constexpr uint32_t kSlots = 3;
 
 private:
     void draw(VkCommandBuffer cmd, const Pipeline& pipeline, std::initializer_list<DescriptorBinding> bindings);

@@ -1,10 +1,11 @@
 #include "render/scene_renderer.h"
 
 #include "engine/barriers.h"
-#include "render/object_renderer.h"
-#include "shared/gpu_layout.h"
 #include "engine/timestamps.h"
+#include "render/object_renderer.h"
 #include "render/vegetation_renderer.h"
+#include "shared/config.h"
+#include "shared/gpu_layout.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -83,16 +84,17 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield
 
     uint64_t align = ctx.device.properties().limits.minUniformBufferOffsetAlignment;
     constantsStride_ = (sizeof(gpu::FrameConstants) + align - 1) / align * align;
-    constants_ = createBuffer(ctx, constantsStride_ * kFramesInFlight * kMaxViews, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                              MemoryIntent::Upload);
+    constants_ = createBuffer(ctx, constantsStride_ * gpu::kFrameDataSlots * kMaxViews,
+                              VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryIntent::Upload);
 
     RenderTargetDesc mainDesc = mainPassTargetDesc(1, 1, samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1);
     RenderTargetDesc truthDesc = truthPassTargetDesc(1, 1);
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    PipelineLayoutDesc layout{.bindings = {layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, stages)}};
+    PipelineLayoutDesc layout{
+        .bindings = {layoutBinding(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, stages)}};
     PipelineLayoutDesc shadedLayout = layout; // + the sun shadow map
     shadedLayout.bindings.push_back(
-        layoutBinding(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
+        layoutBinding(gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
 
     // Sun shadow map: always present (1x1 and disabled when shadow_map_size is 0) so bindings stay valid.
     uint32_t shadowSize = std::max(scene.render.shadowMapSize, 1u);
@@ -129,12 +131,12 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield
     terrainDesc.fragmentShader = "truth.frag";
     terrainDesc.colorFormats = {truthDesc.colors[0].format, truthDesc.colors[1].format};
     terrainDesc.samples = truthDesc.samples;
-    terrainDesc.specialization = {/* PASS= */ 1};
+    terrainDesc.specialization = {/* PASS= */ gpu::kPassTruth};
     terrainTruthPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, layout);
     terrainDesc.fragmentShader = "";
     terrainDesc.colorFormats = {};
     terrainDesc.cullMode = VK_CULL_MODE_NONE; // hills facing away from the sun still cast shadows
-    terrainDesc.specialization = {/* PASS= */ 2};
+    terrainDesc.specialization = {/* PASS= */ gpu::kPassShadow};
     terrainDesc.depthBias = -1.0f; // reversed Z: push casters away from the sun
     terrainDesc.depthBiasSlope = -1.5f;
     terrainShadowPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, layout);
@@ -229,11 +231,12 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline,
 }
 
 DescriptorBinding SceneRenderer::frameBinding(uint32_t slot) const {
-    return uniformBuffer(0, constants_.handle, slot * constantsStride_, sizeof(gpu::FrameConstants));
+    return uniformBuffer(gpu::kBindingFrame, constants_.handle, slot * constantsStride_, sizeof(gpu::FrameConstants));
 }
 
 DescriptorBinding SceneRenderer::shadowBinding() const {
-    return sampledImage(5, shadowMap_->depth().view, shadowSampler_, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
+    return sampledImage(gpu::kBindingShadowMap, shadowMap_->depth().view, shadowSampler_,
+                        VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
 }
 
 void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint32_t frameSlot, uint32_t slot,
@@ -266,16 +269,17 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
                                 uint32_t frameIndex, GpuTimers* timers) {
     require(!views.empty() && views.size() <= kMaxViews, "a frame has one or two views");
     const Camera& reference = *views[0].camera;
-    const uint32_t firstSlot = (frameIndex % kFramesInFlight) * kMaxViews;
+    const uint32_t dataSlot = frameIndex % gpu::kFrameDataSlots; // objects' and vegetation's per-frame data
+    const uint32_t firstSlot = dataSlot * kMaxViews;             // frame constants: one per view
     for (uint32_t v = 0; v < views.size(); ++v) writeConstants(firstSlot + v, *views[v].camera, reference, timeSeconds);
     DescriptorBinding frame = frameBinding(firstSlot), shadow = shadowBinding();
-    if (objects_) objects_->update(timeSeconds, frameIndex % kFramesInFlight);
+    if (objects_) objects_->update(timeSeconds, dataSlot);
 
     if (vegetation_) {
         if (timers) timers->begin(cmd, "expansion");
         std::array<glm::vec4, 5> planes =
             views.size() == 2 ? stereoFrustumPlanes(reference, *views[1].camera) : reference.frustumPlanes();
-        vegetation_->expand(cmd, reference, timeSeconds, frameIndex % kFramesInFlight, &planes);
+        vegetation_->expand(cmd, reference, timeSeconds, dataSlot, &planes);
         if (timers) timers->end(cmd);
     }
 
@@ -283,21 +287,21 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
     shadowMap_->begin(cmd);
     if (scene_.render.shadowMapSize > 0) {
         drawTerrain(cmd, terrainShadowPipeline_, {frame});
-        if (objects_) objects_->recordShadow(cmd, frame, frameIndex % kFramesInFlight);
-        if (vegetation_) vegetation_->draw(cmd, PlantPass::Shadow, frame, shadow, frameIndex % kFramesInFlight);
+        if (objects_) objects_->recordShadow(cmd, frame, dataSlot);
+        if (vegetation_) vegetation_->draw(cmd, PlantPass::Shadow, frame, shadow, dataSlot);
     }
     shadowMap_->end(cmd);
     if (timers) timers->end(cmd);
 
     for (uint32_t v = 0; v < views.size(); ++v) {
         const uint32_t slot = firstSlot + v;
-        recordMainPass(cmd, *views[v].main, slot, frameIndex % kFramesInFlight, timers, nullptr);
+        recordMainPass(cmd, *views[v].main, slot, dataSlot, timers, nullptr);
         if (!views[v].truth) continue;
         if (timers) timers->begin(cmd, "truth");
         views[v].truth->begin(cmd);
         drawTerrain(cmd, terrainTruthPipeline_, {frameBinding(slot)});
-        if (objects_) objects_->recordTruth(cmd, frameBinding(slot), frameIndex % kFramesInFlight);
-        if (vegetation_) vegetation_->draw(cmd, PlantPass::Truth, frameBinding(slot), shadow, frameIndex % kFramesInFlight);
+        if (objects_) objects_->recordTruth(cmd, frameBinding(slot), dataSlot);
+        if (vegetation_) vegetation_->draw(cmd, PlantPass::Truth, frameBinding(slot), shadow, dataSlot);
         views[v].truth->end(cmd);
         if (timers) timers->end(cmd);
     }
@@ -305,7 +309,7 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
 
 void SceneRenderer::recordMainOnly(VkCommandBuffer cmd, RenderTarget& main, const Camera& camera, double timeSeconds,
                                    uint32_t frameIndex, GpuTimers* timers, const BakedPlants* baked) {
-    const uint32_t slot = frameIndex % kFramesInFlight;
+    const uint32_t slot = frameIndex % gpu::kFrameDataSlots;
     writeConstants(slot * kMaxViews, camera, camera, timeSeconds);
     if (objects_) objects_->update(timeSeconds, slot);
     if (vegetation_ && !baked) {

@@ -55,8 +55,8 @@ public:
     };
     static constexpr uint32_t kMaxViews = 2;
 
-    // Records the whole frame into `cmd`. `frameIndex` selects the constants slot, so up to kFramesInFlight
-    // frames may be in flight. `truth` may be null (viewer). Timers (optional) get one entry per pass.
+    // Records the whole frame into `cmd`. `frameIndex` selects the constants slot (modulo gpu::kFrameDataSlots),
+    // so frames may be in flight. `truth` may be null (viewer). Timers (optional) get one entry per pass.
     void record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget* truth, const Camera& camera,
                 double timeSeconds, uint32_t frameIndex, GpuTimers* timers = nullptr);
     // One instant seen by a rectified stereo rig (views[1] = views[0] moved along its own +x axis) or a single
@@ -81,7 +81,6 @@ public:
     VegetationRenderer* vegetation() { return vegetation_.get(); }
     ObjectRenderer* objects() { return objects_.get(); } // null when the scene has no objects
     uint32_t samples() const { return samples_; }
-    static constexpr uint32_t kFramesInFlight = 3;
 
 private:
     // Frame constants of `camera`, with the shadow map fitted in front of `shadowCamera`.
@@ -99,7 +98,7 @@ private:
     Buffer terrainVertices_, terrainIndices_;
     uint32_t terrainIndexCount_ = 0;
     float terrainMinHeight_ = 0.0f, terrainMaxHeight_ = 0.0f;
-    Buffer constants_; // kFramesInFlight * kMaxViews slots of FrameConstants, host-visible
+    Buffer constants_; // gpu::kFrameDataSlots * kMaxViews slots of FrameConstants, host-visible
     uint64_t constantsStride_ = 0;
     Pipeline terrainPipeline_, terrainTruthPipeline_, terrainShadowPipeline_, skyPipeline_;
     std::unique_ptr<RenderTarget> shadowMap_;

@@ -54,8 +54,7 @@ VegetationBuffers::VegetationBuffers(Context& ctx, const VegetationTile& tile) :
         copy(clusters, clusterAt, stats.clusterBytes);
         copy(fields, fieldAt, table.size() * sizeof(gpu::PlantField));
         // The records are read by compute (expansion, recovery) in later submissions.
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+        copyToComputeReadBarrier(cmd);
     });
     destroyBuffer(ctx, staging);
     uploadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

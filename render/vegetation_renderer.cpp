@@ -11,6 +11,21 @@ namespace {
 
 constexpr VkShaderStageFlags kDrawStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
+// Set 0 of every plant draw (expanded or baked): frame and vegetation constants, the instances (or baked
+// vertices), the atlas cell table and the atlas.
+std::vector<VkDescriptorSetLayoutBinding> plantDrawBindings() {
+    return {layoutBinding(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages),
+            layoutBinding(gpu::kBindingVegetation, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages),
+            layoutBinding(gpu::kBindingPlantInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kDrawStages),
+            layoutBinding(gpu::kBindingAtlasCells, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kDrawStages),
+            layoutBinding(gpu::kBindingAtlas, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT)};
+}
+
+VkDescriptorSetLayoutBinding shadowMapLayoutBinding() {
+    return layoutBinding(gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                         VK_SHADER_STAGE_FRAGMENT_BIT);
+}
+
 } // namespace
 
 VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const VegetationTile& tile, const Atlas& atlas,
@@ -24,7 +39,8 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
 
     uint64_t align = ctx.device.properties().limits.minUniformBufferOffsetAlignment;
     constantsStride_ = (sizeof(gpu::VegetationConstants) + align - 1) / align * align;
-    constants_ = createBuffer(ctx, constantsStride_ * kSlots, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryIntent::Upload);
+    constants_ = createBuffer(ctx, constantsStride_ * gpu::kFrameDataSlots, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                              MemoryIntent::Upload);
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     clusterCounts_ = createBuffer(ctx, uint64_t(std::max(buffers_.clusterCount, 1u)) * 16, storage,
@@ -40,24 +56,27 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
         return layoutBinding(b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, stages);
     };
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    PipelineLayoutDesc expandLayout{.bindings = {ssbo(0, cs), layoutBinding(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs),
-                                                 ssbo(2, cs), ssbo(3, cs), ssbo(4, cs), ssbo(5, cs), ssbo(6, cs),
-                                                 ssbo(7, cs)}};
+    PipelineLayoutDesc expandLayout{
+        .bindings = {ssbo(gpu::kExpandBindingStatics, cs),
+                     layoutBinding(gpu::kBindingVegetation, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs),
+                     ssbo(gpu::kExpandBindingDynamics, cs), ssbo(gpu::kExpandBindingClusters, cs),
+                     ssbo(gpu::kExpandBindingFields, cs), ssbo(gpu::kExpandBindingClusterCounts, cs),
+                     ssbo(gpu::kExpandBindingInstances, cs), ssbo(gpu::kExpandBindingInstancePlants, cs)}};
     countPipeline_ = createComputePipeline(ctx.device, "vegetation_expand.comp", expandLayout, {/* WRITE_PASS= */ 0});
     writePipeline_ = createComputePipeline(ctx.device, "vegetation_expand.comp", expandLayout, {/* WRITE_PASS= */ 1});
-    scanPipeline_ = createComputePipeline(ctx.device, "vegetation_scan.comp",
-                                          {.bindings = {ssbo(0, cs), ssbo(1, cs), ssbo(2, cs)},
-                                           .pushConstantSize = 8,
-                                           .pushConstantStages = cs});
+    scanPipeline_ =
+        createComputePipeline(ctx.device, "vegetation_scan.comp",
+                              {.bindings = {ssbo(gpu::kScanBindingClusterCounts, cs), ssbo(gpu::kScanBindingDraws, cs),
+                                            ssbo(gpu::kScanBindingStats, cs)},
+                               .pushConstantSize = sizeof(gpu::ScanConstants),
+                               .pushConstantStages = cs});
 
-    std::vector<VkDescriptorSetLayoutBinding> drawBindings = {
-        layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages),
-        layoutBinding(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages), ssbo(2, kDrawStages), ssbo(3, kDrawStages),
-        layoutBinding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT),
-        ssbo(6, VK_SHADER_STAGE_VERTEX_BIT)};
-    PipelineLayoutDesc shadowLayout{.bindings = drawBindings, .pushConstantSize = 4, .pushConstantStages = kDrawStages};
+    std::vector<VkDescriptorSetLayoutBinding> drawBindings = plantDrawBindings();
+    drawBindings.push_back(ssbo(gpu::kBindingInstancePlants, VK_SHADER_STAGE_VERTEX_BIT));
+    PipelineLayoutDesc shadowLayout{
+        .bindings = drawBindings, .pushConstantSize = sizeof(uint32_t), .pushConstantStages = kDrawStages}; // lod
     PipelineLayoutDesc mainLayout = shadowLayout;
-    mainLayout.bindings.push_back(layoutBinding(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
+    mainLayout.bindings.push_back(shadowMapLayoutBinding());
 
     const bool msaa = formats.mainSamples != VK_SAMPLE_COUNT_1_BIT;
     GraphicsPipelineDesc plants{
@@ -68,7 +87,7 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
         .depthFormat = formats.mainDepth,
         .samples = formats.mainSamples,
         .alphaToCoverage = msaa,
-        .specialization = {/* PASS= */ 0, /* ALPHA_TO_COVERAGE= */ msaa ? 1u : 0u},
+        .specialization = {/* PASS= */ gpu::kPassMain, /* ALPHA_TO_COVERAGE= */ msaa ? 1u : 0u},
     };
     mainPipeline_ = createGraphicsPipeline(ctx.device, plants, mainLayout);
     plants.fragmentShader = "plant_truth.frag";
@@ -76,12 +95,12 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
     plants.depthFormat = formats.truthDepth;
     plants.samples = VK_SAMPLE_COUNT_1_BIT;
     plants.alphaToCoverage = false;
-    plants.specialization = {/* PASS= */ 1, /* ALPHA_TO_COVERAGE= */ 0};
+    plants.specialization = {/* PASS= */ gpu::kPassTruth, /* ALPHA_TO_COVERAGE= */ 0};
     truthPipeline_ = createGraphicsPipeline(ctx.device, plants, shadowLayout);
     plants.fragmentShader = "plant_shadow.frag";
     plants.colorFormats = {};
     plants.depthFormat = formats.shadowDepth;
-    plants.specialization = {/* PASS= */ 2, /* ALPHA_TO_COVERAGE= */ 0};
+    plants.specialization = {/* PASS= */ gpu::kPassShadow, /* ALPHA_TO_COVERAGE= */ 0};
     plants.depthBias = -1.0f; // reversed Z: push casters away from the sun
     plants.depthBiasSlope = -1.5f;
     shadowPipeline_ = createGraphicsPipeline(ctx.device, plants, shadowLayout);
@@ -135,15 +154,10 @@ void VegetationRenderer::uploadAtlas(const Atlas& atlas) {
         offset += mip.rgba.size();
     }
     ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
-        imageBarrier(cmd, atlasImage_.handle, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
-                     VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        discardToCopyDstBarrier(cmd, atlasImage_.handle, VK_IMAGE_ASPECT_COLOR_BIT);
         vkCmdCopyBufferToImage(cmd, staging.handle, atlasImage_.handle, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                uint32_t(regions.size()), regions.data());
-        imageBarrier(cmd, atlasImage_.handle, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
-                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        copyToFragmentSampledBarrier(cmd, atlasImage_.handle, VK_IMAGE_ASPECT_COLOR_BIT);
     });
     destroyBuffer(ctx_, staging);
 
@@ -160,8 +174,17 @@ void VegetationRenderer::uploadAtlas(const Atlas& atlas) {
     VK_CHECK(vkCreateSampler(ctx_.vk(), &sampler, nullptr, &atlasSampler_));
 }
 
+DescriptorBinding VegetationRenderer::atlasCellsBinding() const {
+    return storageBuffer(gpu::kBindingAtlasCells, atlasCells_.handle);
+}
+
+DescriptorBinding VegetationRenderer::atlasBinding() const {
+    return sampledImage(gpu::kBindingAtlas, atlasImage_.view, atlasSampler_);
+}
+
 DescriptorBinding VegetationRenderer::constantsBinding(uint32_t slot) const {
-    return uniformBuffer(1, constants_.handle, (slot % kSlots) * constantsStride_, sizeof(gpu::VegetationConstants));
+    return uniformBuffer(gpu::kBindingVegetation, constants_.handle, (slot % gpu::kFrameDataSlots) * constantsStride_,
+                         sizeof(gpu::VegetationConstants));
 }
 
 void VegetationRenderer::expand(VkCommandBuffer cmd, const Camera& camera, double timeSeconds, uint32_t slot,
@@ -179,44 +202,38 @@ void VegetationRenderer::expand(VkCommandBuffer cmd, const Camera& camera, doubl
     }
     c.atlasColumns = atlasColumns_;
     c.counts = glm::uvec4(buffers_.clusterCount, buffers_.clustersPerField, capacity_, atlasMaxColumns_);
-    std::memcpy(constants_.mapped() + (slot % kSlots) * constantsStride_, &c, sizeof c);
+    std::memcpy(constants_.mapped() + (slot % gpu::kFrameDataSlots) * constantsStride_, &c, sizeof c);
 
     // The previous frame's draws read instances and draw commands; this frame overwrites them (WAR).
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_NONE,
-                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE);
+    drawReadsToComputeWritesBarrier(cmd);
     auto bindExpand = [&](const Pipeline& pipeline) {
         bindPipeline(cmd, pipeline);
         pushDescriptors(ctx_.device, cmd, pipeline,
-                        {storageBuffer(0, buffers_.statics.handle), constantsBinding(slot),
-                         storageBuffer(2, buffers_.dynamics.handle), storageBuffer(3, buffers_.clusters.handle),
-                         storageBuffer(4, buffers_.fields.handle), storageBuffer(5, clusterCounts_.handle),
-                         storageBuffer(6, instances_.handle), storageBuffer(7, instancePlants_.handle)});
-    };
-    // One invocation per cluster, 64 per workgroup.
-    const uint32_t groups = (buffers_.clusterCount + gpu::kExpandGroupSize - 1) / gpu::kExpandGroupSize;
-    const uint32_t groupsX = std::min(groups, 65535u);
-    const uint32_t groupsY = (groups + groupsX - 1) / groupsX;
-    const auto computeToCompute = [&] {
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                        {storageBuffer(gpu::kExpandBindingStatics, buffers_.statics.handle), constantsBinding(slot),
+                         storageBuffer(gpu::kExpandBindingDynamics, buffers_.dynamics.handle),
+                         storageBuffer(gpu::kExpandBindingClusters, buffers_.clusters.handle),
+                         storageBuffer(gpu::kExpandBindingFields, buffers_.fields.handle),
+                         storageBuffer(gpu::kExpandBindingClusterCounts, clusterCounts_.handle),
+                         storageBuffer(gpu::kExpandBindingInstances, instances_.handle),
+                         storageBuffer(gpu::kExpandBindingInstancePlants, instancePlants_.handle)});
     };
 
+    // Count and write passes: one invocation per cluster.
     bindExpand(countPipeline_);
-    vkCmdDispatch(cmd, groupsX, groupsY, 1);
-    computeToCompute();
+    dispatchLinear(cmd, buffers_.clusterCount, gpu::kExpandGroupSize);
+    computeToComputeBarrier(cmd);
 
     bindPipeline(cmd, scanPipeline_);
     pushDescriptors(ctx_.device, cmd, scanPipeline_,
-                    {storageBuffer(0, clusterCounts_.handle), storageBuffer(1, draws_.handle),
-                     storageBuffer(2, stats_.handle)});
-    uint32_t push[2] = {buffers_.clusterCount, capacity_};
-    pushConstants(cmd, scanPipeline_, push, sizeof push);
-    vkCmdDispatch(cmd, 1, 1, 1);
-    computeToCompute();
+                    {storageBuffer(gpu::kScanBindingClusterCounts, clusterCounts_.handle),
+                     storageBuffer(gpu::kScanBindingDraws, draws_.handle),
+                     storageBuffer(gpu::kScanBindingStats, stats_.handle)});
+    pushConstants(cmd, scanPipeline_, gpu::ScanConstants{.clusterCount = buffers_.clusterCount, .capacity = capacity_});
+    vkCmdDispatch(cmd, 1, 1, 1); // one workgroup scans every cluster
+    computeToComputeBarrier(cmd);
 
     bindExpand(writePipeline_);
-    vkCmdDispatch(cmd, groupsX, groupsY, 1);
+    dispatchLinear(cmd, buffers_.clusterCount, gpu::kExpandGroupSize);
     computeToDrawBarrier(cmd);
 }
 
@@ -224,16 +241,15 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
                               const DescriptorBinding& shadowMap, uint32_t slot) {
     const Pipeline& pipeline = pass == PlantPass::Main ? mainPipeline_ : pass == PlantPass::Truth ? truthPipeline_ : shadowPipeline_;
     bindPipeline(cmd, pipeline);
-    DescriptorBinding atlas = sampledImage(4, atlasImage_.view, atlasSampler_);
-    DescriptorBinding plants = storageBuffer(6, instancePlants_.handle);
+    DescriptorBinding instances = storageBuffer(gpu::kBindingPlantInstances, instances_.handle);
+    DescriptorBinding plants = storageBuffer(gpu::kBindingInstancePlants, instancePlants_.handle);
     if (pass == PlantPass::Main)
-        pushDescriptors(ctx_.device, cmd, pipeline,
-                        {frame, constantsBinding(slot), storageBuffer(2, instances_.handle),
-                         storageBuffer(3, atlasCells_.handle), atlas, shadowMap, plants});
+        pushDescriptors(
+            ctx_.device, cmd, pipeline,
+            {frame, constantsBinding(slot), instances, atlasCellsBinding(), atlasBinding(), shadowMap, plants});
     else
         pushDescriptors(ctx_.device, cmd, pipeline,
-                        {frame, constantsBinding(slot), storageBuffer(2, instances_.handle),
-                         storageBuffer(3, atlasCells_.handle), atlas, plants});
+                        {frame, constantsBinding(slot), instances, atlasCellsBinding(), atlasBinding(), plants});
     for (uint32_t lod = 0; lod < gpu::kLodCount; ++lod) {
         pushConstants(cmd, pipeline, lod);
         vkCmdDrawIndirect(cmd, draws_.handle, lod * sizeof(VkDrawIndirectCommand), 1, sizeof(VkDrawIndirectCommand));
@@ -256,14 +272,16 @@ BakedPlants VegetationRenderer::bake(uint32_t slot) {
     if (!bakePipeline_.handle)
         bakePipeline_ = createComputePipeline(
             ctx_.device, "plant_bake.comp",
-            {.bindings = {layoutBinding(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs),
-                          layoutBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
-                          layoutBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
-                          layoutBinding(4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)},
-             .pushConstantSize = 16,
+            {.bindings = {layoutBinding(gpu::kBindingVegetation, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, cs),
+                          layoutBinding(gpu::kBindingPlantInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
+                          layoutBinding(gpu::kBindingAtlasCells, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs),
+                          layoutBinding(gpu::kBindingBakedVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cs)},
+             .pushConstantSize = sizeof(gpu::BakeConstants),
              .pushConstantStages = cs});
     BakedPlants baked{.stats = readStats()};
-    const uint32_t verticesPerPlant[gpu::kLodCount] = {24, 12, 6};
+    const uint32_t verticesPerPlant[gpu::kLodCount] = {gpu::kVerticesPerQuad * gpu::kQuadsNear,
+                                                       gpu::kVerticesPerQuad * gpu::kQuadsMid,
+                                                       gpu::kVerticesPerQuad * gpu::kQuadsFar};
     uint32_t kept = std::min(baked.stats.instances.w, capacity_);
     for (uint32_t lod = 0, first = 0; lod < gpu::kLodCount; ++lod) {
         uint32_t count = std::min(baked.stats.instances[int(lod)], kept - std::min(kept, first));
@@ -276,23 +294,23 @@ BakedPlants VegetationRenderer::bake(uint32_t slot) {
     ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
         bindPipeline(cmd, bakePipeline_);
         pushDescriptors(ctx_.device, cmd, bakePipeline_,
-                        {constantsBinding(slot), storageBuffer(2, instances_.handle),
-                         storageBuffer(3, atlasCells_.handle), storageBuffer(4, baked.vertices.handle)});
+                        {constantsBinding(slot), storageBuffer(gpu::kBindingPlantInstances, instances_.handle),
+                         atlasCellsBinding(), storageBuffer(gpu::kBindingBakedVertices, baked.vertices.handle)});
         for (uint32_t lod = 0, firstInstance = 0, firstVertex = 0; lod < gpu::kLodCount; ++lod) {
             uint32_t count = std::min(baked.stats.instances[int(lod)], kept - std::min(kept, firstInstance));
-            uint32_t push[4] = {lod, firstInstance, firstVertex, count * verticesPerPlant[lod]};
-            if (push[3] > 0) {
-                pushConstants(cmd, bakePipeline_, push, sizeof push);
-                uint32_t groups = (push[3] + 63) / 64;
-                uint32_t x = std::min(groups, 65535u);
-                vkCmdDispatch(cmd, x, (groups + x - 1) / x, 1);
+            gpu::BakeConstants push{.lod = lod,
+                                    .firstInstance = firstInstance,
+                                    .firstVertex = firstVertex,
+                                    .vertexCount = count * verticesPerPlant[lod]};
+            if (push.vertexCount > 0) {
+                pushConstants(cmd, bakePipeline_, push);
+                dispatchLinear(cmd, push.vertexCount, gpu::kComputeGroupSize);
             }
             firstInstance += baked.stats.instances[int(lod)];
-            firstVertex += push[3];
+            firstVertex += push.vertexCount;
         }
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+        // Baked vertices are drawn (vertex shader) and read back by tests (copy).
+        computeToVertexAndCopyBarrier(cmd);
     });
     return baked;
 }
@@ -300,13 +318,8 @@ BakedPlants VegetationRenderer::bake(uint32_t slot) {
 void VegetationRenderer::drawBaked(VkCommandBuffer cmd, const BakedPlants& baked, const DescriptorBinding& frame,
                                    const DescriptorBinding& shadowMap, uint32_t slot) {
     if (!staticPipeline_.handle) {
-        std::vector<VkDescriptorSetLayoutBinding> bindings = {
-            layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages),
-            layoutBinding(1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages),
-            layoutBinding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kDrawStages),
-            layoutBinding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kDrawStages),
-            layoutBinding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT),
-            layoutBinding(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT)};
+        std::vector<VkDescriptorSetLayoutBinding> bindings = plantDrawBindings();
+        bindings.push_back(shadowMapLayoutBinding());
         const bool msaa = formats_.mainSamples != VK_SAMPLE_COUNT_1_BIT;
         staticPipeline_ = createGraphicsPipeline(
             ctx_.device,
@@ -317,13 +330,13 @@ void VegetationRenderer::drawBaked(VkCommandBuffer cmd, const BakedPlants& baked
              .depthFormat = formats_.mainDepth,
              .samples = formats_.mainSamples,
              .alphaToCoverage = msaa,
-             .specialization = {/* PASS= */ 0, /* ALPHA_TO_COVERAGE= */ msaa ? 1u : 0u}},
+             .specialization = {/* PASS= */ gpu::kPassMain, /* ALPHA_TO_COVERAGE= */ msaa ? 1u : 0u}},
             {.bindings = bindings});
     }
     bindPipeline(cmd, staticPipeline_);
     pushDescriptors(ctx_.device, cmd, staticPipeline_,
-                    {frame, constantsBinding(slot), storageBuffer(2, baked.vertices.handle),
-                     storageBuffer(3, atlasCells_.handle), sampledImage(4, atlasImage_.view, atlasSampler_), shadowMap});
+                    {frame, constantsBinding(slot), storageBuffer(gpu::kBindingPlantInstances, baked.vertices.handle),
+                     atlasCellsBinding(), atlasBinding(), shadowMap});
     if (baked.vertexCount) vkCmdDraw(cmd, baked.vertexCount, 1, 0, 0);
 }
 

@@ -15,6 +15,7 @@
 #include "scene/scene.h"
 #include "render/vegetation_buffers.h"
 
+#include "shared/config.h"
 #include "shared/gpu_layout.h"
 
 namespace sward {
@@ -45,11 +46,11 @@ public:
     VegetationRenderer& operator=(const VegetationRenderer&) = delete;
 
     // Records the three expansion dispatches for this camera and simulation time. `slot` selects the
-    // constants slot (frames in flight).
+    // constants slot (taken modulo gpu::kFrameDataSlots).
     // `cullPlanes` (optional) replaces the camera's frustum for culling, e.g. the union of a stereo pair's.
     void expand(VkCommandBuffer cmd, const Camera& camera, double timeSeconds, uint32_t slot,
                 const std::array<glm::vec4, 5>* cullPlanes = nullptr);
-    // Records the plant draws into the current rendering pass. `frame` is the frame-constants binding 0;
+    // Records the plant draws into the current rendering pass. `frame` is the frame-constants binding;
     // `shadowMap` is the sampled sun shadow map for the main pass (ignored otherwise).
     void draw(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame, const DescriptorBinding& shadowMap,
               uint32_t slot);
@@ -73,11 +74,11 @@ public:
     const Buffer& instances() const { return instances_; }
     const Buffer& drawCommands() const { return draws_; }
 
-    static constexpr uint32_t kSlots = 3;
-
 private:
     void uploadAtlas(const Atlas& atlas);
     DescriptorBinding constantsBinding(uint32_t slot) const;
+    DescriptorBinding atlasCellsBinding() const;
+    DescriptorBinding atlasBinding() const;
 
     Context& ctx_;
     Scene scene_;

@@ -4,9 +4,9 @@
 #include "shared/frame.glsl"
 #include "shared/object_layout.h"
 
-layout(constant_id = 0) const uint PASS = 0; // 0 main colour, 1 ground truth, 2 sun shadow map
+layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain, kPassTruth or kPassShadow
 
-layout(set = 0, binding = 1, std430) readonly buffer TransformBlock {
+layout(set = 0, binding = kBindingObjectTransforms, std430) readonly buffer TransformBlock {
     ObjectTransform transforms[];
 };
 
@@ -24,7 +24,7 @@ layout(location = 4) flat out uint outLabel;
 void main() {
     ObjectTransform t = transforms[inInfo.x];
     vec4 world = t.worldFromNode * vec4(inPosition.xyz, 1.0);
-    gl_Position = (PASS == 2 ? frame.shadowViewProj : frame.viewProj) * world;
+    gl_Position = (PASS == kPassShadow ? frame.shadowViewProj : frame.viewProj) * world;
     outWorld = world.xyz;
     outNormal = mat3(t.normalFromNode) * inNormal.xyz;
     // Planar depth along the optical axis (OpenCV camera axes, z forward), as the terrain's.

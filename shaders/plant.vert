@@ -1,16 +1,15 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Plant quads from expanded instances: one indirect draw per LOD (push constant lod), 6 vertices per quad.
-// PASS: 0 main colour, 1 ground truth, 2 sun shadow map.
 #include "shared/frame.glsl"
 #include "shared/vegetation.glsl"
 #include "shared/plant_vertex.glsl"
 
-layout(constant_id = 0) const uint PASS = 0;
+layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain, kPassTruth or kPassShadow
 layout(push_constant) uniform Push { uint lod; } push;
 
-layout(set = 0, binding = 2, std430) readonly buffer Instances { ExpandedPlant instances[]; };
-layout(set = 0, binding = 6, std430) readonly buffer InstancePlants { uint instancePlants[]; };
+layout(set = 0, binding = kBindingPlantInstances, std430) readonly buffer Instances { ExpandedPlant instances[]; };
+layout(set = 0, binding = kBindingInstancePlants, std430) readonly buffer InstancePlants { uint instancePlants[]; };
 
 layout(location = 0) out vec2 outUv;
 layout(location = 1) out vec3 outWorld;
@@ -31,7 +30,7 @@ void main() {
     outFade = instance.fade | (push.lod << 21); // bits 21-22: the LOD, for the viewer's LOD colours
     outHeightFraction = v.heightFraction;
     outRandom = v.random;
-    if (PASS == 1) {
+    if (PASS == kPassTruth) {
         uint state = bitfieldExtract(instance.fade, 17, 4);
         uint semantic = state == kPlantStateFelled ? kSemanticFelled
                       : state == kPlantStateCut    ? kSemanticCut
@@ -40,5 +39,5 @@ void main() {
     } else {
         outLabel = 0u;
     }
-    gl_Position = (PASS == 2 ? frame.shadowViewProj : frame.viewProj) * vec4(v.position, 1.0);
+    gl_Position = (PASS == kPassShadow ? frame.shadowViewProj : frame.viewProj) * vec4(v.position, 1.0);
 }

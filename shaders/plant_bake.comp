@@ -5,20 +5,15 @@
 #include "shared/vegetation.glsl"
 #include "shared/plant_vertex.glsl"
 
-layout(local_size_x = 64) in;
-layout(set = 0, binding = 2, std430) readonly buffer Instances { ExpandedPlant instances[]; };
-layout(set = 0, binding = 4, std430) writeonly buffer Baked { BakedVertex baked[]; };
-layout(push_constant) uniform Push {
-    uint lod;
-    uint firstInstance;
-    uint firstVertex; // output offset
-    uint vertexCount; // instances * 6 * quads(lod)
-} push;
+layout(local_size_x = kComputeGroupSize) in;
+layout(set = 0, binding = kBindingPlantInstances, std430) readonly buffer Instances { ExpandedPlant instances[]; };
+layout(set = 0, binding = kBindingBakedVertices, std430) writeonly buffer Baked { BakedVertex baked[]; };
+layout(push_constant) uniform Push { BakeConstants push; };
 
 void main() {
-    uint i = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u;
+    uint i = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * kComputeGroupSize;
     if (i >= push.vertexCount) return;
-    uint verticesPerPlant = push.lod == kLodNear ? 24u : push.lod == kLodMid ? 12u : 6u;
+    uint verticesPerPlant = kVerticesPerQuad * (push.lod == kLodNear ? kQuadsNear : push.lod == kLodMid ? kQuadsMid : kQuadsFar);
     ExpandedPlant instance = instances[push.firstInstance + i / verticesPerPlant];
     PlantVertex v = plantVertex(instance, push.lod, i % verticesPerPlant);
     baked[push.firstVertex + i] = BakedVertex(vec4(v.position, v.heightFraction), vec4(v.uv, v.random, 0.0),

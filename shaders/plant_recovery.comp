@@ -5,16 +5,17 @@
 //   CONTACT_PASS = 1  one invocation per contact: apply it to its plant's dynamic record
 //   CONTACT_PASS = 0  one invocation per plant of each active field (workgroup row y = active field):
 //                     one step of the damped spring, written back to the dynamic buffer
+#include "shared/config.h"
 #include "shared/gpu_layout.h"
 #include "shared/plant_layout.h"
 #include "shared/recovery.glsl"
 
 layout(constant_id = 0) const uint CONTACT_PASS = 0;
-layout(local_size_x = 64) in;
+layout(local_size_x = kComputeGroupSize) in;
 
-layout(set = 0, binding = 0, std430) buffer Dynamics { PlantDynamic dynamics[]; };
-layout(set = 0, binding = 1, std430) readonly buffer Contacts { PlantContact contacts[]; };
-layout(set = 0, binding = 2, std430) readonly buffer ActiveFields { uvec2 activeFields[]; }; // first plant, count
+layout(set = 0, binding = kRecoveryBindingDynamics, std430) buffer Dynamics { PlantDynamic dynamics[]; };
+layout(set = 0, binding = kRecoveryBindingContacts, std430) readonly buffer Contacts { PlantContact contacts[]; };
+layout(set = 0, binding = kRecoveryBindingActiveFields, std430) readonly buffer ActiveFields { uvec2 activeFields[]; }; // first plant, count
 layout(push_constant) uniform Push { RecoveryConstants params; } push;
 
 void main() {

@@ -4,9 +4,9 @@
 #include "shared/frame.glsl"
 #include "shared/vegetation.glsl"
 
-layout(set = 0, binding = 2, std430) readonly buffer Baked { BakedVertex baked[]; };
+layout(set = 0, binding = kBindingPlantInstances, std430) readonly buffer Baked { BakedVertex baked[]; };
 // Unused here, declared so the pipeline layout matches plant.vert's.
-layout(set = 0, binding = 3, std430) readonly buffer Cells { AtlasCellGpu cells[]; };
+layout(set = 0, binding = kBindingAtlasCells, std430) readonly buffer Cells { AtlasCellGpu cells[]; };
 
 layout(location = 0) out vec2 outUv;
 layout(location = 1) out vec3 outWorld;

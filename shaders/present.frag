@@ -2,9 +2,12 @@
 // sward-view: tonemaps the resolved linear HDR image into the swapchain with exactly the curve of
 // engine/image_files.cpp tonemapPreview (exposure, then Narkowicz's ACES fit), so the window shows what the
 // PNG previews show. SRGB_TARGET: the swapchain format encodes sRGB itself; else it is encoded here.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/config.h"
+
 layout(constant_id = 0) const bool SRGB_TARGET = true;
 
-layout(set = 0, binding = 0) uniform sampler2D hdr;
+layout(set = 0, binding = kPresentBindingImage) uniform sampler2D hdr;
 layout(push_constant) uniform Push { float exposure; } push;
 
 layout(location = 0) in vec2 inUv;

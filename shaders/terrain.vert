@@ -3,7 +3,7 @@
 // Terrain: a static triangle mesh of the heightfield, positions already in world space.
 #include "shared/frame.glsl"
 
-layout(constant_id = 0) const uint PASS = 0; // 0 main colour, 1 ground truth, 2 sun shadow map
+layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain, kPassTruth or kPassShadow
 
 layout(location = 0) in vec4 inPosition;
 layout(location = 1) in vec4 inNormal;
@@ -14,7 +14,7 @@ layout(location = 2) out float outViewDepth;
 
 void main() {
     vec4 world = vec4(inPosition.xyz, 1.0);
-    gl_Position = (PASS == 2 ? frame.shadowViewProj : frame.viewProj) * world;
+    gl_Position = (PASS == kPassShadow ? frame.shadowViewProj : frame.viewProj) * world;
     outWorld = world.xyz;
     outNormal = inNormal.xyz;
     // Planar depth along the optical axis: view space uses OpenCV camera axes (z forward).

@@ -12,19 +12,19 @@
 #include "shared/vegetation.glsl"
 
 layout(constant_id = 0) const uint WRITE_PASS = 0;
-layout(local_size_x = 64) in;
+layout(local_size_x = kExpandGroupSize) in;
 
-layout(set = 0, binding = 0, std430) readonly buffer Statics { PlantStatic statics[]; };
-layout(set = 0, binding = 2, std430) readonly buffer Dynamics { PlantDynamic dynamics[]; };
-layout(set = 0, binding = 3, std430) readonly buffer Clusters { PlantCluster clusters[]; };
-layout(set = 0, binding = 4, std430) readonly buffer Fields { PlantField fields[]; };
-layout(set = 0, binding = 5, std430) buffer ClusterCounts { uvec4 clusterCounts[]; }; // count: out, write: offsets in
-layout(set = 0, binding = 6, std430) writeonly buffer Instances { ExpandedPlant instances[]; };
+layout(set = 0, binding = kExpandBindingStatics, std430) readonly buffer Statics { PlantStatic statics[]; };
+layout(set = 0, binding = kExpandBindingDynamics, std430) readonly buffer Dynamics { PlantDynamic dynamics[]; };
+layout(set = 0, binding = kExpandBindingClusters, std430) readonly buffer Clusters { PlantCluster clusters[]; };
+layout(set = 0, binding = kExpandBindingFields, std430) readonly buffer Fields { PlantField fields[]; };
+layout(set = 0, binding = kExpandBindingClusterCounts, std430) buffer ClusterCounts { uvec4 clusterCounts[]; }; // count: out, write: offsets in
+layout(set = 0, binding = kExpandBindingInstances, std430) writeonly buffer Instances { ExpandedPlant instances[]; };
 // Parallel to instances: the plant's index in the tile's record buffers (ground-truth instance ids).
-layout(set = 0, binding = 7, std430) writeonly buffer InstancePlants { uint instancePlants[]; };
+layout(set = 0, binding = kExpandBindingInstancePlants, std430) writeonly buffer InstancePlants { uint instancePlants[]; };
 
 void main() {
-    uint cluster = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u;
+    uint cluster = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * kExpandGroupSize;
     if (cluster >= veg.counts.x) return;
     PlantCluster box = clusters[cluster];
     if (box.range.y == 0u || !clusterVisible(box.boundsMin.xyz, box.boundsMax.xyz)) {
@@ -62,7 +62,7 @@ void main() {
         float height = veg.categoryHeight[plantCategory(plant)] * plantSizeScale(plant) * cut;
         vec2 tip = plantBend(dyn) + windTip(position, random, time);
         float len = length(tip);
-        if (len > 0.95) tip *= 0.95 / len; // a blade bends, it does not stretch
+        if (len > kMaxTipOffset) tip *= kMaxTipOffset / len; // a blade bends, it does not stretch
         ExpandedPlant instance;
         instance.positionHeight = vec4(position, height);
         instance.up = plant.up;

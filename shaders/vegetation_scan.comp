@@ -3,9 +3,10 @@
 // Exclusive prefix sum of the per-cluster LOD counts, in cluster order, by a single workgroup; turns counts
 // into instance offsets (in place) and writes the three indirect draw commands. Instances are laid out as
 // [all near | all mid | all far], each LOD in cluster order.
+#include "shared/config.h"
 #include "shared/gpu_layout.h"
 
-layout(local_size_x = 1024) in;
+layout(local_size_x = kScanGroupSize) in;
 
 struct DrawIndirectCommand {
     uint vertexCount;
@@ -14,20 +15,17 @@ struct DrawIndirectCommand {
     uint firstInstance;
 };
 
-layout(set = 0, binding = 0, std430) buffer ClusterCounts { uvec4 clusterCounts[]; };
-layout(set = 0, binding = 1, std430) writeonly buffer Draws { DrawIndirectCommand draws[]; };
-layout(set = 0, binding = 2, std430) writeonly buffer Stats { ExpansionStats stats; };
-layout(push_constant) uniform Push {
-    uint clusterCount;
-    uint capacity;
-} push;
+layout(set = 0, binding = kScanBindingClusterCounts, std430) buffer ClusterCounts { uvec4 clusterCounts[]; };
+layout(set = 0, binding = kScanBindingDraws, std430) writeonly buffer Draws { DrawIndirectCommand draws[]; };
+layout(set = 0, binding = kScanBindingStats, std430) writeonly buffer Stats { ExpansionStats stats; };
+layout(push_constant) uniform Push { ScanConstants push; };
 
-shared uvec4 partial[1024];
+shared uvec4 partial[kScanGroupSize];
 shared uint visibleClusters;
 
 void main() {
     uint lane = gl_LocalInvocationID.x;
-    uint perLane = (push.clusterCount + 1023u) / 1024u;
+    uint perLane = (push.clusterCount + kScanGroupSize - 1u) / kScanGroupSize;
     uint begin = min(lane * perLane, push.clusterCount), end = min(begin + perLane, push.clusterCount);
     if (lane == 0u) visibleClusters = 0u;
     barrier();
@@ -41,13 +39,13 @@ void main() {
     atomicAdd(visibleClusters, visible); // a sum: order-independent
     partial[lane] = sum;
     barrier();
-    for (uint offset = 1u; offset < 1024u; offset <<= 1u) {
+    for (uint offset = 1u; offset < kScanGroupSize; offset <<= 1u) {
         uvec4 add = lane >= offset ? partial[lane - offset] : uvec4(0u);
         barrier();
         partial[lane] += add;
         barrier();
     }
-    uvec4 total = partial[1023];
+    uvec4 total = partial[kScanGroupSize - 1u];
     uvec4 lodBase = uvec4(0u, total.x, total.x + total.y, 0u);
     uvec4 running = partial[lane] - sum; // exclusive prefix of this lane's chunk
     for (uint i = begin; i < end; ++i) {
@@ -56,11 +54,11 @@ void main() {
         running += counts;
     }
     if (lane < kLodCount) {
-        const uint quads[3] = uint[](4u, 2u, 1u);
+        const uint quads[kLodCount] = uint[](kQuadsNear, kQuadsMid, kQuadsFar);
         uint base = lodBase[lane];
         uint count = total[lane];
         uint kept = base >= push.capacity ? 0u : min(count, push.capacity - base);
-        draws[lane] = DrawIndirectCommand(6u * quads[lane], kept, 0u, base);
+        draws[lane] = DrawIndirectCommand(kVerticesPerQuad * quads[lane], kept, 0u, base);
     }
     if (lane == 0u) {
         uint all = total.x + total.y + total.z;

@@ -1,10 +1,11 @@
-// Per-frame constants block (set 0, binding 0) and common helpers, included by every render shader.
+// Per-frame constants block (set 0, binding kBindingFrame) and common helpers, included by every render shader.
 #ifndef SWARD_FRAME_GLSL
 #define SWARD_FRAME_GLSL
 
+#include "config.h"
 #include "gpu_layout.h"
 
-layout(set = 0, binding = 0, std140) uniform FrameBlock {
+layout(set = 0, binding = kBindingFrame, std140) uniform FrameBlock {
     FrameConstants frame;
 };
 

@@ -5,6 +5,8 @@
 #ifndef SWARD_GPU_LAYOUT_H
 #define SWARD_GPU_LAYOUT_H
 
+#include "config.h"
+
 #ifdef __cplusplus
 #include <glm/glm.hpp>
 #include <cstdint>
@@ -18,9 +20,6 @@ using uint = uint32_t;
 #else
 #define SWARD_CONST(type, name, value) const type name = value
 #endif
-
-// Workgroup sizes (also used as specialization-constant defaults).
-SWARD_CONST(uint, kComputeGroupSize, 64u);
 
 // Ground-truth depth is written as the bit pattern of a float into an R32_UINT attachment, so that the MSAA
 // resolve can pick sample 0 (integer formats resolve with SAMPLE_ZERO; float formats could only average,
@@ -77,8 +76,14 @@ SWARD_CONST(uint, kLodNear, 0u); // 4 textured quads at different horizontal and
 SWARD_CONST(uint, kLodMid, 1u);  // 2 crossed vertical quads
 SWARD_CONST(uint, kLodFar, 2u);  // 1 camera-facing billboard
 SWARD_CONST(uint, kLodCount, 3u);
-SWARD_CONST(uint, kExpandGroupSize, 64u); // expansion: one invocation per plant cluster, 64 per workgroup
-SWARD_CONST(uint, kScanGroupSize, 1024u); // single-workgroup scan over all clusters
+// Quads per plant in each level of detail; each quad is two triangles, drawn as 6 vertices without indices.
+SWARD_CONST(uint, kQuadsNear, 4u);
+SWARD_CONST(uint, kQuadsMid, 2u);
+SWARD_CONST(uint, kQuadsFar, 1u);
+SWARD_CONST(uint, kVerticesPerQuad, 6u);
+// Largest horizontal tip offset of an expanded plant (interaction bend + wind), in plant heights: a blade
+// bends, it does not stretch (1 would lay the tip on the ground).
+SWARD_CONST(float, kMaxTipOffset, 0.95);
 
 // Per-frame constants of the vegetation expansion (uniform buffer).
 struct VegetationConstants {
@@ -133,6 +138,20 @@ struct RecoveryConstants {
     uvec4 range;  // x first plant, y plant count (one active field), z contact count, w first contact
 };
 
+// Scan pass parameters (push constants of vegetation_scan.comp).
+struct ScanConstants {
+    uint clusterCount;
+    uint capacity; // instance capacity: draws keep at most this many instances
+};
+
+// Bake pass parameters (push constants of plant_bake.comp): one dispatch per level of detail.
+struct BakeConstants {
+    uint lod;
+    uint firstInstance;
+    uint firstVertex; // output offset
+    uint vertexCount; // instances * kVerticesPerQuad * quads of the lod
+};
+
 // Expansion statistics written by the scan (storage buffer), for benchmarks and the viewer.
 struct ExpansionStats {
     uvec4 instances;     // instances per LOD (x near, y mid, z far), w total
@@ -150,6 +169,8 @@ static_assert(sizeof(ExpansionStats) == 32);
 static_assert(sizeof(BakedVertex) == 48);
 static_assert(sizeof(PlantContact) == 16);
 static_assert(sizeof(RecoveryConstants) == 48);
+static_assert(sizeof(ScanConstants) == 8);
+static_assert(sizeof(BakeConstants) == 16);
 static_assert(sizeof(TerrainVertex) == 32);
 } // namespace sward::gpu
 #endif

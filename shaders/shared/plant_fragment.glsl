@@ -2,7 +2,9 @@
 #ifndef SWARD_PLANT_FRAGMENT_GLSL
 #define SWARD_PLANT_FRAGMENT_GLSL
 
-layout(set = 0, binding = 4) uniform sampler2D atlas;
+#include "config.h"
+
+layout(set = 0, binding = kBindingAtlas) uniform sampler2D atlas;
 
 layout(location = 0) in vec2 inUv;
 layout(location = 1) in vec3 inWorld;

@@ -2,11 +2,11 @@
 // (plant_bake.comp) that writes the same vertices into a static buffer for benchmarks and CPU-reference tests.
 // The instance's level of detail fixes the quad set: near 4 quads (two crossed vertical ones and two tilted
 // ones, dense from above too), mid 2 crossed vertical quads, far 1 billboard turned towards the camera about the
-// plant's up axis. Needs vegetation.glsl (binding 1) first; declares the atlas cell table at binding 3.
+// plant's up axis. Needs vegetation.glsl (its constants) first; declares the atlas cell table.
 #ifndef SWARD_PLANT_VERTEX_GLSL
 #define SWARD_PLANT_VERTEX_GLSL
 
-layout(set = 0, binding = 3, std430) readonly buffer Cells { AtlasCellGpu cells[]; };
+layout(set = 0, binding = kBindingAtlasCells, std430) readonly buffer Cells { AtlasCellGpu cells[]; };
 
 // Corners of the two triangles of a quad: x across (0 left, 1 right), y up (0 bottom, 1 top).
 const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));

@@ -1,8 +1,10 @@
-// Sun shadow lookup (binding 5 of the shading passes): 4 hardware-PCF taps on a reversed-Z shadow map.
+// Sun shadow lookup (kBindingShadowMap of the shading passes): 4 hardware-PCF taps on a reversed-Z shadow map.
 #ifndef SWARD_SHADOW_GLSL
 #define SWARD_SHADOW_GLSL
 
-layout(set = 0, binding = 5) uniform sampler2DShadow shadowMap;
+#include "config.h"
+
+layout(set = 0, binding = kBindingShadowMap) uniform sampler2DShadow shadowMap;
 
 float sunShadow(vec3 world) {
     if (frame.shadowParams.x == 0.0) return 1.0;

@@ -4,11 +4,12 @@
 #ifndef SWARD_VEGETATION_GLSL
 #define SWARD_VEGETATION_GLSL
 
+#include "config.h"
 #include "gpu_layout.h"
 #include "plant_layout.h"
 #include "plant_decode.glsl"
 
-layout(set = 0, binding = 1, std140) uniform VegetationBlock {
+layout(set = 0, binding = kBindingVegetation, std140) uniform VegetationBlock {
     VegetationConstants veg;
 };
 

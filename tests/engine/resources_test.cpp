@@ -4,6 +4,7 @@
 #include "engine/pipelines.h"
 #include "engine/resources.h"
 #include "engine/timestamps.h"
+#include "shared/config.h"
 
 #include <cstring>
 #include <numeric>
@@ -19,22 +20,26 @@ TEST_F(GpuTest, ComputeRoundTripThroughPushDescriptorsAndSpecialization) {
                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     Buffer dst = createBuffer(*ctx, count * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                               MemoryIntent::DeviceLocal);
-    Pipeline pipeline = createComputePipeline(
-        ctx->device, "test_roundtrip.comp",
-        {.bindings = {layoutBinding(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT),
-                      layoutBinding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT)},
-         .pushConstantSize = 8,
-         .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT},
-        {/* SCALE= */ 3});
+    Pipeline pipeline =
+        createComputePipeline(ctx->device, "test_roundtrip.comp",
+                              {.bindings = {layoutBinding(gpu::kTestBindingInput, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                                          VK_SHADER_STAGE_COMPUTE_BIT),
+                                            layoutBinding(gpu::kTestBindingOutput, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                                          VK_SHADER_STAGE_COMPUTE_BIT)},
+                               .pushConstantSize = 8,
+                               .pushConstantStages = VK_SHADER_STAGE_COMPUTE_BIT},
+                              {/* SCALE= */ 3});
     GpuTimers timers(ctx->device, 4);
     ctx->submitter.immediate([&](VkCommandBuffer cmd) {
         timers.reset(cmd);
         timers.begin(cmd, "roundtrip");
         bindPipeline(cmd, pipeline);
-        pushDescriptors(ctx->device, cmd, pipeline, {storageBuffer(0, src.handle), storageBuffer(1, dst.handle)});
+        pushDescriptors(
+            ctx->device, cmd, pipeline,
+            {storageBuffer(gpu::kTestBindingInput, src.handle), storageBuffer(gpu::kTestBindingOutput, dst.handle)});
         uint32_t push[2] = {count, 7};
         pushConstants(cmd, pipeline, push, sizeof push);
-        vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
+        vkCmdDispatch(cmd, groupCount(count, gpu::kComputeGroupSize), 1, 1);
         timers.end(cmd);
     });
     std::vector<uint8_t> bytes = readBuffer(*ctx, dst, 0, count * 4);
