@@ -2,6 +2,7 @@
 
 #include "dataset/dataset_writer.h"
 #include "dataset/frame_record.h"
+#include "dataset/naming.h"
 #include "engine/context.h"
 #include "io/sha256.h"
 #include "render/scene_gpu.h"
@@ -152,8 +153,7 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
 // the same command (no dates, no timings), so identical datasets have identical manifests.
 void writeJobManifest(const DatasetWriter& dataset, const Scene& scene, const JobPlan& plan, const Device& device,
                       const RenderJobOptions& options) {
-    std::vector<std::string> files = {"frames.jsonl"};
-    if (scene.camera.rig.stereo()) files.push_back("calib.txt");
+    std::vector<std::string> files = dataset.datasetFiles();
     for (uint32_t frame = plan.firstFrame; frame < plan.endFrame; ++frame)
         for (std::string& file : dataset.frameFiles(frame)) files.push_back(std::move(file));
     nlohmann::json jobOptions = {{"resolution", std::to_string(plan.width) + "x" + std::to_string(plan.height)},
@@ -173,9 +173,7 @@ void writeJobManifest(const DatasetWriter& dataset, const Scene& scene, const Jo
                            {"sward_revision", SWARD_REVISION},
                            {"device", device.name()},
                            {"driver", device.driver()}};
-    std::string manifest = options.shard ? "manifest.shard-" + std::to_string(plan.shardIndex) + "-of-" +
-                                               std::to_string(plan.shardCount) + ".json"
-                                         : "manifest.json";
+    std::string manifest = options.shard ? shardManifestName(plan.shardIndex, plan.shardCount) : kManifestFile;
     dataset.writeManifest(manifest, info, files);
 }
 

@@ -78,7 +78,7 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
                                (float(decoded.size) / gpu::kPlantSizeDivisor) * cut;
                 glm::vec2 tip = motion.bend + windTip(wind, position, random, float(time));
                 float len = glm::length(tip);
-                if (len > 0.95f) tip *= 0.95f / len;
+                if (len > gpu::kMaxTipOffset) tip *= gpu::kMaxTipOffset / len;
                 uint32_t cutByte = (field.dynamicRecords[i].state >> 24) & 0xffu;
                 uint32_t fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 65535.0f + 0.5f) | (cutByte << 24);
                 gpu::ExpandedPlant expanded{glm::vec4(position, height), plant.up, plant.attributes,
@@ -99,7 +99,7 @@ std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, u
     static const glm::vec2 corners[6] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}};
     static const glm::vec2 nearQuads[4] = {{0.0f, 0.0f}, {1.5707963f, 0.0f}, {0.7853982f, 0.95f}, {3.9269908f, 0.95f}};
     static const glm::vec2 midQuads[2] = {{0.0f, 0.6f}, {4.712389f, 0.6f}};
-    const uint32_t quads = lod == gpu::kLodNear ? 4 : lod == gpu::kLodMid ? 2 : 1;
+    const uint32_t quads = lod == gpu::kLodNear ? gpu::kQuadsNear : lod == gpu::kLodMid ? gpu::kQuadsMid : gpu::kQuadsFar;
     glm::vec3 base(plant.positionHeight);
     float height = plant.positionHeight.w;
     glm::vec3 up = decodeOctahedral(plant.up);
@@ -107,9 +107,9 @@ std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, u
     float width = height * cellBaseAspect.z;
     glm::vec2 tip = glm::unpackHalf2x16(plant.tip);
     std::vector<glm::vec3> vertices;
-    for (uint32_t v = 0; v < 6 * quads; ++v) {
-        uint32_t quad = v / 6;
-        glm::vec2 corner = corners[v % 6];
+    for (uint32_t v = 0; v < gpu::kVerticesPerQuad * quads; ++v) {
+        uint32_t quad = v / gpu::kVerticesPerQuad;
+        glm::vec2 corner = corners[v % gpu::kVerticesPerQuad];
         glm::vec3 side, rise;
         if (lod == gpu::kLodFar) {
             glm::vec3 toCamera = glm::normalize(cameraPosition - base);
