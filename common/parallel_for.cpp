@@ -113,7 +113,7 @@ private:
     uint64_t generation_ = 0;
     uint32_t busy_ = 0;
     bool quit_ = false;
-    std::atomic<uint32_t> next_{0};
+    alignas(64) std::atomic<uint32_t> next_{0}; // taken by every index: on a cache line of its own
     FirstError error_;
     std::vector<std::thread> threads_;
 };
