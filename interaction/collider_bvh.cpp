@@ -29,6 +29,13 @@ void ColliderBvh::build(std::span<const Collider> colliders, const Aabb& keep) {
     // Linear BVH: ranks sorted along a Morton curve of their xy centres (vegetation is flat, so xy carries the
     // locality), leaves of 4 consecutive colliders, then pairs of consecutive nodes merged level by level. The
     // keys hold the rank below the code, so the order is total and the tree deterministic; O(n) after one sort.
+    sortAlongMortonCurve();
+    buildLevels();
+}
+
+// items_ = the ranks in Morton order of their box centres, ties by rank.
+void ColliderBvh::sortAlongMortonCurve() {
+    const uint32_t n = uint32_t(bounds_.size());
     glm::vec2 lo(bounds_[0].min), hi(bounds_[0].max);
     for (const Aabb& box : bounds_) {
         lo = glm::min(lo, glm::vec2(box.min + box.max) * 0.5f);
@@ -60,7 +67,11 @@ void ColliderBvh::build(std::span<const Collider> colliders, const Aabb& keep) {
     }
     items_.resize(n);
     for (uint32_t i = 0; i < n; ++i) items_[i] = uint32_t(keys[i]);
+}
 
+// nodes_ = the leaves over items_, then each level above them; root_ = the last level's only node.
+void ColliderBvh::buildLevels() {
+    const uint32_t n = uint32_t(items_.size());
     constexpr uint32_t kLeaf = 4;
     nodes_.reserve(2 * (n / kLeaf + 1) + 64);
     uint32_t levelBegin = 0;

@@ -24,6 +24,9 @@ public:
     const Aabb& bounds(uint32_t rank) const { return bounds_[rank]; }
 
 private:
+    void sortAlongMortonCurve();
+    void buildLevels();
+
     struct Node {
         Aabb box;
         uint32_t first = 0, count = 0; // leaf: items_[first, first + count); inner (count 0): children first, first+1
