@@ -21,120 +21,20 @@
 // the smallest one. Output: at most one gpu::PlantContact per plant, sorted by plant index.
 #pragma once
 
-#include "interaction/colliders.h"
-#include "interaction/recovery.h"
-#include "vegetation/vegetation_params.h"
-#include "vegetation/vegetation_tile.h"
+#include "interaction/collider_bvh.h"
+#include "interaction/collision_index.h"
+#include "interaction/interaction_params.h"
 
 #include "shared/gpu_layout.h"
 
-#include <nlohmann/json_fwd.hpp>
-
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
-#include <string>
 #include <vector>
 
 namespace sward {
 
-// How the plants of one category respond to colliders.
-struct CategoryInteraction {
-    float fellForce = 0.6f; // a Push collider with a larger force flattens the plant for good (collider units)
-    float pushGain = 2.0f;  // bend per unit of force * penetration / plant height
-};
-
-// Interaction configuration: per category responses (index = atlas row, as VegetationParams::categories) and the
-// recovery spring. Defaults: ferns 1.0, grass 0.6, flowers 0.8, extra 0.8 fell force; push gain 2.
-struct InteractionParams {
-    std::array<CategoryInteraction, gpu::kMaxPlantCategories> categories = {
-        CategoryInteraction{1.0f, 2.0f}, CategoryInteraction{0.6f, 2.0f}, CategoryInteraction{0.8f, 2.0f},
-        CategoryInteraction{0.8f, 2.0f}};
-    RecoveryParams recovery;
-};
-
-// Reads the scene file's "interaction" object (every key optional, unknown keys are errors):
-//   categories  array of 1..4 objects {"fell_force": 0..1e6, "push_gain": 0..1000}; entry i sets category i
-//   recovery    {"time_step": (0, 1], "stiffness": 0..1e6, "damping": 0..1e6, "rest_bend": 0..0.5,
-//                "fell_bend": 0..0.95, "rest_ticks": 1..1e6}
-// Throws sward::Error naming `source` and the offending key.
-InteractionParams parseInteractionParams(const nlohmann::json& json, const std::string& source);
-
-// Colliders in a linear bounding volume hierarchy (Morton order), rebuilt per tick. Ranks are positions in (id, input index) order.
-class ColliderBvh {
-public:
-    // Keeps the colliders whose bounds overlap `keep` (the vegetation's bounds) and builds the tree over them.
-    void build(std::span<const Collider> colliders, const Aabb& keep);
-    // Appends the ranks of the kept colliders whose bounds overlap box, in ascending rank (= id) order.
-    void query(const Aabb& box, std::vector<uint32_t>& ranks) const;
-
-    uint32_t size() const { return uint32_t(input_.size()); }
-    uint32_t inputIndex(uint32_t rank) const { return input_[rank]; } // index into build()'s span
-    const Aabb& bounds(uint32_t rank) const { return bounds_[rank]; }
-
-private:
-    struct Node {
-        Aabb box;
-        uint32_t first = 0, count = 0; // leaf: items_[first, first + count); inner (count 0): children first, first+1
-    };
-    struct Kept {
-        uint32_t id, input;
-        Aabb box;
-    };
-    std::vector<Kept> kept_;                // scratch of build(), kept for its capacity
-    std::vector<uint64_t> keys_, keysTmp_;  // likewise
-    std::vector<uint32_t> input_; // rank -> input index
-    std::vector<Aabb> bounds_;    // by rank
-    std::vector<uint32_t> items_; // ranks in tree order
-    std::vector<Node> nodes_;
-    uint32_t root_ = 0;
-};
-
-// Plant positions and heights of a tile decoded once, bucketed per cluster into an 8x8 grid of sub-cells so a
-// collider visits only the plants under its footprint. Built from the tile's static records; immutable.
-// The pass is bound by memory latency (a worst-case tick reads thousands of scattered runs of a 64 MB index), so
-// each plant is one 16-byte Stem (four per cache line) holding everything the tests need, and all stems and cell
-// offsets live in one block backed by huge pages where the system allows (fewer TLB misses).
-class TileCollisionIndex {
-public:
-    static constexpr uint32_t kCellsPerSide = 8;
-    static constexpr uint32_t kMaxFieldPlants = 1u << 22;
-    struct Stem {
-        float x, y, z;  // base position (decodePlantPosition), metres
-        uint32_t packed; // bits 0-21 plant index within the field's records, 22-23 category, 24-31 size byte
-        uint32_t plant() const { return packed & (kMaxFieldPlants - 1); }
-        uint32_t category() const { return (packed >> 22) & 3u; }
-        uint32_t shape() const { return packed >> 22; } // category | size << 2: the index into heights()
-    };
-    struct Field {
-        const Stem* stems = nullptr;         // by cluster, then cell (row-major, x fastest), then record index
-        const uint32_t* cellStart = nullptr; // clusters * 64 + 1 offsets into stems
-        uint32_t clustersWithPlants = 0;
-        float overhang = 0.0f; // how far any cluster's box reaches beyond its square of the cluster grid, metres
-    };
-
-    TileCollisionIndex() = default;
-    // Requires params to be the ones the tile was generated with (category heights). Throws sward::Error if a
-    // field holds more than kMaxFieldPlants plants.
-    TileCollisionIndex(const VegetationTile& tile, const VegetationParams& params);
-
-    const Field& field(uint32_t f) const { return fields_[f]; }
-    const Aabb& bounds() const { return bounds_; } // union of every field's bounds
-    float cellSize() const { return cellSize_; }
-    // Full plant height in metres by Stem::shape(): the same expression as placement's cluster bounds.
-    const float* heights() const { return heights_.data(); }
-
-private:
-    struct Free {
-        void operator()(void* p) const;
-    };
-    std::unique_ptr<Stem[], Free> stems_;
-    std::vector<Field> fields_;
-    std::array<float, 4 * 256> heights_{};
-    Aabb bounds_;
-    float cellSize_ = 0.0f;
-};
+class ParallelFor;
 
 struct CollisionStats {
     uint32_t colliders = 0;      // given
@@ -168,8 +68,8 @@ gpu::PlantContact combineTouches(std::span<const PlantTouch> touches, const Reco
 
 // The collision pass. Owns the plant index, the BVH, per-field output slots and a persistent worker pool, so a
 // tick neither allocates much nor starts threads; not thread-safe itself, but runs on `threads` threads inside and
-// its result does not depend on the thread count (each field is collided by one thread into its own slot, and the
-// slots are merged in field order).
+// its result does not depend on the thread count (each field is collided into its own slot, common/parallel_for.h,
+// and the slots are merged in field order).
 class CollisionPass {
 public:
     // tile must outlive the pass; vegetation are the params it was generated with. Builds the plant index.
@@ -189,16 +89,22 @@ private:
         bool tested = false;
     };
     struct Scratch;
-    class Workers;
+    // The steps of one field's collision, in order (collision.cpp tells how each keeps the result deterministic).
     void collideField(uint32_t f, std::span<const Collider> colliders, Scratch& scratch, FieldOutput& out) const;
+    void findCellRuns(const FieldVegetation& field, const TileCollisionIndex::Field& index, Scratch& s) const;
+    uint64_t touchStems(const TileCollisionIndex::Field& index, uint32_t plantCount,
+                        std::span<const Collider> colliders, Scratch& s) const;
+    void emitContacts(uint32_t f, const FieldVegetation& field, Scratch& s, FieldOutput& out) const;
+    void collideFields(std::span<const Collider> colliders, uint32_t threads);
+    CollisionResult mergeFields(std::span<const Collider> colliders) const;
 
     const VegetationTile* tile_;
     TileCollisionIndex index_;
     InteractionParams params_;
     ColliderBvh bvh_;
     std::vector<FieldOutput> outputs_;
-    std::vector<Scratch> scratch_;     // one per thread, kept between ticks
-    std::unique_ptr<Workers> workers_; // threads - 1 helpers, started on first use
+    std::vector<Scratch> scratch_;      // one per thread, kept between ticks
+    std::unique_ptr<ParallelFor> pool_; // threads - 1 helpers, started on first use
 };
 
 } // namespace sward

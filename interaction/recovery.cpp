@@ -1,5 +1,7 @@
 #include "interaction/recovery.h"
 
+#include "common/snorm.h"
+
 #include <algorithm>
 
 namespace sward {
@@ -8,24 +10,17 @@ namespace {
 
 // Bit-for-bit twin of shaders/shared/recovery.glsl. Only + - * and comparisons (correctly rounded on every
 // Vulkan device; division and sqrt are not), no contraction (-ffp-contract=off here, `precise` there), and
-// snorm rounding half away from zero.
-constexpr float kInv32767 = 1.0f / 32767.0f;
-constexpr float kInv511 = 1.0f / 511.0f;
-
+// snorm rounding half away from zero; snorms decode by multiplying with the reciprocal for the same reason.
 struct Motion {
     float bx, by, vx, vy;
     uint32_t state, cut;
 };
 
-int32_t roundHalfAway(float x) { return x >= 0.0f ? int32_t(x + 0.5f) : -int32_t(-x + 0.5f); }
-uint32_t packSnorm(float v, float scale, uint32_t bits) {
-    return uint32_t(roundHalfAway(std::clamp(v, -1.0f, 1.0f) * scale)) & ((1u << bits) - 1u);
+float unpack16(uint32_t bits) {
+    return unpackSnorm(bits, 16, SnormDivide::ByReciprocal);
 }
-float unpack16(uint32_t bits) { return std::max(float(int16_t(uint16_t(bits))) * kInv32767, -1.0f); }
 float unpack10(uint32_t bits) {
-    int32_t q = int32_t(bits & 0x3ffu);
-    if (q >= 512) q -= 1024;
-    return std::max(float(q) * kInv511, -1.0f);
+    return unpackSnorm(bits, 10, SnormDivide::ByReciprocal);
 }
 
 Motion decode(const gpu::PlantDynamic& r) {
@@ -35,8 +30,8 @@ Motion decode(const gpu::PlantDynamic& r) {
 
 gpu::PlantDynamic encode(const Motion& m) {
     const float toUnit = 1.0f / gpu::kMaxBendVelocity; // 0.25: exact
-    return {packSnorm(m.bx, 32767.0f, 16) | (packSnorm(m.by, 32767.0f, 16) << 16),
-            packSnorm(m.vx * toUnit, 511.0f, 10) | (packSnorm(m.vy * toUnit, 511.0f, 10) << 10) | (m.state << 20) |
+    return {packSnorm(m.bx, 16) | (packSnorm(m.by, 16) << 16),
+            packSnorm(m.vx * toUnit, 10) | (packSnorm(m.vy * toUnit, 10) << 10) | (m.state << 20) |
                 (m.cut << 24)};
 }
 

@@ -1,12 +1,11 @@
 #include "interaction/state_file.h"
 
+#include "common/atomic_file.h"
 #include "common/error.h"
 
 #include <bit>
 #include <cassert>
-#include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -62,20 +61,7 @@ void saveInteractionState(const std::string& path, const InteractionState& state
         std::memcpy(bytes.data() + at, state.dynamics.data(), state.dynamics.size() * sizeof(gpu::PlantDynamic));
     put(bytes, fnv1a64(bytes));
 
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        require(bool(out), path + ": cannot write the interaction state (cannot create " + tmp + ")");
-        out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-        out.flush();
-        require(bool(out), path + ": cannot write the interaction state (write to " + tmp + " failed)");
-    }
-    std::error_code error;
-    std::filesystem::rename(tmp, path, error);
-    if (error) {
-        std::filesystem::remove(tmp, error);
-        throw Error(path + ": cannot write the interaction state (rename failed)");
-    }
+    writeBytesAtomically(path, bytes.data(), bytes.size());
 }
 
 InteractionState loadInteractionState(const std::string& path) {

@@ -1,5 +1,6 @@
 #include "scene/rover_model.h"
 
+#include "common/atomic_file.h"
 #include "common/error.h"
 
 #include <nlohmann/json.hpp>
@@ -10,8 +11,6 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <vector>
 
 namespace sward {
@@ -276,25 +275,7 @@ std::string roverGltf(const RoverDimensions& d) {
 }
 
 void saveRoverGltf(const std::string& path, const RoverDimensions& dimensions) {
-    const std::string text = roverGltf(dimensions);
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
-        if (!file) throw Error("cannot write '" + path + "': cannot create '" + tmp + "'");
-        file.write(text.data(), std::streamsize(text.size()));
-        file.close();
-        if (!file) {
-            std::error_code ignored;
-            std::filesystem::remove(tmp, ignored);
-            throw Error("cannot write '" + path + "': writing '" + tmp + "' failed");
-        }
-    }
-    std::error_code error;
-    std::filesystem::rename(tmp, path, error);
-    if (error) {
-        std::filesystem::remove(tmp, error);
-        throw Error("cannot write '" + path + "': rename from '" + tmp + "' failed");
-    }
+    writeTextAtomically(path, roverGltf(dimensions));
 }
 
 } // namespace sward

@@ -2,15 +2,13 @@
 
 #include "common/error.h"
 #include "common/hash.h"
+#include "common/parallel_for.h"
 #include "vegetation/records.h"
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <thread>
 
 namespace sward {
 
@@ -107,6 +105,60 @@ struct Bounds {
     }
 };
 
+// Places the n plants of category c in cluster (cx, cy), whose sub-cell densities are d: a stratified point set
+// warped through the density. Appends their records and grows bounds by each plant's extent.
+void placeCategory(const Ground& ground, const VegetationParams& p, const FieldFrame& frame, uint64_t key, uint32_t cx,
+                   uint32_t cy, uint32_t c, uint32_t n, const std::array<double, kCells>& d,
+                   std::vector<gpu::PlantStatic>& records, Bounds& bounds) {
+    const double cell = double(p.clusterSize) / kDensityGrid;
+    const glm::vec3 worldUp(0.0f, 0.0f, 1.0f);
+    std::array<double, kDensityGrid> columns{};
+    for (uint32_t j = 0; j < kDensityGrid; ++j)
+        for (uint32_t i = 0; i < kDensityGrid; ++i) columns[i] += d[j * kDensityGrid + i];
+    double total = 0.0;
+    for (double col : columns) total += col;
+    const VegetationCategory& category = p.categories[c];
+    // Strata: R rows, row r split into n_r equal cells, so every one of the n strata is ~1/n of the area.
+    const uint32_t rows = std::max(1u, uint32_t(std::floor(std::sqrt(double(n)) + 0.5)));
+    for (uint32_t r = 0, sample = 0; r < rows; ++r) {
+        const uint32_t inRow = uint32_t(uint64_t(r + 1) * n / rows - uint64_t(r) * n / rows);
+        for (uint32_t s = 0; s < inRow; ++s, ++sample) {
+            const uint64_t h = hashKey({key, sample});
+            const uint64_t g = mix64(h ^ 0xa0761d6478bd642full);
+            const double u = (s + unitDouble(h)) / inRow;
+            const double v = (r + double(uint32_t(h) >> 8) * (1.0 / 16777216.0)) / rows;
+            // Warp the stratified point through the density: column from the x marginal, row from the column's
+            // conditional.
+            auto [i, fx] = invertCdf(u * total, kDensityGrid, [&](uint32_t b) { return columns[b]; });
+            auto [j, fy] = invertCdf(v * columns[i], kDensityGrid, [&](uint32_t b) { return d[b * kDensityGrid + i]; });
+            const double lx = double(cx) * p.clusterSize + (i + fx) * cell;
+            const double ly = double(cy) * p.clusterSize + (j + fy) * cell;
+            // Truncation is floor here (non-negative), without a libm call.
+            const uint32_t qx = std::min(uint32_t(lx * frame.stepsPerMetre), 65535u);
+            const uint32_t qy = std::min(uint32_t(ly * frame.stepsPerMetre), 65535u);
+            const glm::vec2 xy = decodePlanarPosition(qx, qy, frame.origin, frame.step);
+            const std::optional<SurfacePoint> ground_ = ground.surface(xy);
+            if (!ground_) continue; // no ground here: the plant does not exist
+            const glm::vec3 blended = worldUp + (ground_->normal - worldUp) * p.upNormalBlend;
+            const double sizeScale = 1.0 + category.heightVariation * (2.0 * unitDouble(g) - 1.0);
+            const uint32_t size = std::clamp(uint32_t(sizeScale * gpu::kPlantSizeDivisor + 0.5), 1u, 255u);
+            const PlantInstance plant{
+                .positionX = qx,
+                .positionY = qy,
+                .height = ground_->height,
+                .up = blended / std::sqrt(glm::dot(blended, blended)),
+                .category = c,
+                .variant = uint32_t(g & 0xffffu) % category.variants,
+                .orientation = uint32_t(g >> 16) & 255u,
+                .random = uint32_t(g >> 24) & 255u,
+                .size = size,
+            };
+            records.push_back(encodePlantStatic(plant));
+            bounds.add(glm::vec3(xy, ground_->height), category.height * float(size) / gpu::kPlantSizeDivisor);
+        }
+    }
+}
+
 } // namespace
 
 double predictPlantCount(const GrassMap& map, const VegetationParams& p) {
@@ -157,8 +209,6 @@ FieldVegetation generateField(const Ground& ground, const GrassMap& map, const V
     field.staticRecords.reserve(planned);
     field.clusters.resize(clusterCount);
 
-    const double cell = double(p.clusterSize) / kDensityGrid;
-    const glm::vec3 worldUp(0.0f, 0.0f, 1.0f);
     Bounds fieldBounds;
     for (uint32_t cy = 0, k = 0; cy < clustersPerField; ++cy) {
         for (uint32_t cx = 0; cx < clustersPerField; ++cx, ++k) {
@@ -168,55 +218,8 @@ FieldVegetation generateField(const Ground& ground, const GrassMap& map, const V
             for (uint32_t c = 0; c < p.categoryCount; ++c) {
                 const uint32_t n = plan.counts[c];
                 if (n == 0) continue;
-                const auto& d = plan.cells[c];
-                std::array<double, kDensityGrid> columns{};
-                for (uint32_t j = 0; j < kDensityGrid; ++j)
-                    for (uint32_t i = 0; i < kDensityGrid; ++i) columns[i] += d[j * kDensityGrid + i];
-                double total = 0.0;
-                for (double col : columns) total += col;
-                const VegetationCategory& category = p.categories[c];
-                const uint64_t key = clusterKey(p, tile, fieldIndex, k, c);
-                // Strata: R rows, row r split into n_r equal cells, so every one of the n strata is ~1/n of the area.
-                const uint32_t rows = std::max(1u, uint32_t(std::floor(std::sqrt(double(n)) + 0.5)));
-                for (uint32_t r = 0, sample = 0; r < rows; ++r) {
-                    const uint32_t inRow = uint32_t(uint64_t(r + 1) * n / rows - uint64_t(r) * n / rows);
-                    for (uint32_t s = 0; s < inRow; ++s, ++sample) {
-                        const uint64_t h = hashKey({key, sample});
-                        const uint64_t g = mix64(h ^ 0xa0761d6478bd642full);
-                        const double u = (s + unitDouble(h)) / inRow;
-                        const double v = (r + double(uint32_t(h) >> 8) * (1.0 / 16777216.0)) / rows;
-                        // Warp the stratified point through the density: column from the x marginal, row from
-                        // the column's conditional.
-                        auto [i, fx] = invertCdf(u * total, kDensityGrid, [&](uint32_t b) { return columns[b]; });
-                        auto [j, fy] = invertCdf(v * columns[i], kDensityGrid,
-                                                 [&](uint32_t b) { return d[b * kDensityGrid + i]; });
-                        const double lx = double(cx) * p.clusterSize + (i + fx) * cell;
-                        const double ly = double(cy) * p.clusterSize + (j + fy) * cell;
-                        // Truncation is floor here (non-negative), without a libm call.
-                        const uint32_t qx = std::min(uint32_t(lx * frame.stepsPerMetre), 65535u);
-                        const uint32_t qy = std::min(uint32_t(ly * frame.stepsPerMetre), 65535u);
-                        const glm::vec2 xy = decodePlanarPosition(qx, qy, frame.origin, frame.step);
-                        const std::optional<SurfacePoint> ground_ = ground.surface(xy);
-                        if (!ground_) continue; // no ground here: the plant does not exist
-                        const glm::vec3 blended = worldUp + (ground_->normal - worldUp) * p.upNormalBlend;
-                        const double sizeScale = 1.0 + category.heightVariation * (2.0 * unitDouble(g) - 1.0);
-                        const uint32_t size = std::clamp(uint32_t(sizeScale * gpu::kPlantSizeDivisor + 0.5), 1u, 255u);
-                        const PlantInstance plant{
-                            .positionX = qx,
-                            .positionY = qy,
-                            .height = ground_->height,
-                            .up = blended / std::sqrt(glm::dot(blended, blended)),
-                            .category = c,
-                            .variant = uint32_t(g & 0xffffu) % category.variants,
-                            .orientation = uint32_t(g >> 16) & 255u,
-                            .random = uint32_t(g >> 24) & 255u,
-                            .size = size,
-                        };
-                        field.staticRecords.push_back(encodePlantStatic(plant));
-                        bounds.add(glm::vec3(xy, ground_->height),
-                                   category.height * float(size) / gpu::kPlantSizeDivisor);
-                    }
-                }
+                placeCategory(ground, p, frame, clusterKey(p, tile, fieldIndex, k, c), cx, cy, c, n, plan.cells[c],
+                              field.staticRecords, bounds);
             }
             gpu::PlantCluster& cluster = field.clusters[k];
             const uint32_t count = field.plantCount() - first;
@@ -258,29 +261,12 @@ VegetationTile generateTile(const Ground& ground, const GrassMap& map, const Veg
     const uint32_t fieldCount = tile.fieldsPerSide * tile.fieldsPerSide;
     tile.fields.resize(fieldCount);
 
-    // Each worker takes the next field index and writes only that field's slot, so the result is the same for
-    // any thread count and scheduling. Errors are kept per field and the first one in field order is rethrown,
-    // so even the reported error does not depend on the scheduling.
-    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-    threads = std::min(threads, fieldCount);
-    std::vector<std::exception_ptr> errors(fieldCount);
-    std::atomic<uint32_t> next{0};
-    auto work = [&] {
-        for (uint32_t f; (f = next.fetch_add(1)) < fieldCount;) {
-            try {
-                tile.fields[f] =
-                    generateField(ground, map, p, coord, FieldCoord{f % tile.fieldsPerSide, f / tile.fieldsPerSide});
-            } catch (...) {
-                errors[f] = std::current_exception();
-            }
-        }
-    };
-    std::vector<std::thread> pool;
-    for (uint32_t t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (std::thread& t : pool) t.join();
-    for (const std::exception_ptr& e : errors)
-        if (e) std::rethrow_exception(e);
+    // Each field writes only its own slot, so the result is the same for any thread count and scheduling; the
+    // first error in field order is rethrown.
+    parallelFor(fieldCount, threads, [&](uint32_t f, uint32_t) {
+        const FieldCoord field{f % tile.fieldsPerSide, f / tile.fieldsPerSide};
+        tile.fields[f] = generateField(ground, map, p, coord, field);
+    });
 
     uint64_t plants = 0, clusters = 0;
     for (FieldVegetation& f : tile.fields) {

@@ -1,36 +1,13 @@
 #include "vegetation/records.h"
 
+#include "common/snorm.h"
+
 #include <algorithm>
 #include <bit>
 #include <cassert>
 #include <cmath>
 
 namespace sward {
-
-namespace {
-
-// Round half away from zero. Truncating a non-negative float is floor, and a cast compiles to one instruction
-// where std::floor is a libm call on baseline x86-64; both are exact, so results are identical everywhere.
-int32_t roundToInt(float v) {
-    return v >= 0.0f ? int32_t(v + 0.5f) : -int32_t(-v + 0.5f);
-}
-
-uint32_t packSnorm16(float v) {
-    return uint32_t(roundToInt(std::clamp(v, -1.0f, 1.0f) * 32767.0f)) & 0xffffu;
-}
-float unpackSnorm16(uint32_t bits) {
-    return std::max(float(int16_t(uint16_t(bits))) / 32767.0f, -1.0f);
-}
-uint32_t packSnorm10(float v) {
-    return uint32_t(roundToInt(std::clamp(v, -1.0f, 1.0f) * 511.0f)) & 0x3ffu;
-}
-float unpackSnorm10(uint32_t bits) {
-    int32_t q = int32_t(bits & 0x3ffu);
-    if (q >= 512) q -= 1024; // sign-extend 10 bits
-    return std::max(float(q) / 511.0f, -1.0f);
-}
-
-} // namespace
 
 uint32_t encodeOctahedral(glm::vec3 n) {
     float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
@@ -41,11 +18,11 @@ uint32_t encodeOctahedral(glm::vec3 n) {
         glm::vec2 folded(1.0f - std::abs(p.y), 1.0f - std::abs(p.x));
         p = glm::vec2(p.x >= 0.0f ? folded.x : -folded.x, p.y >= 0.0f ? folded.y : -folded.y);
     }
-    return packSnorm16(p.x) | (packSnorm16(p.y) << 16);
+    return packSnorm(p.x, 16) | (packSnorm(p.y, 16) << 16);
 }
 
 glm::vec3 decodeOctahedral(uint32_t packed) {
-    glm::vec2 f(unpackSnorm16(packed), unpackSnorm16(packed >> 16));
+    glm::vec2 f(unpackSnorm(packed, 16, SnormDivide::Exact), unpackSnorm(packed >> 16, 16, SnormDivide::Exact));
     glm::vec3 n(f.x, f.y, 1.0f - std::abs(f.x) - std::abs(f.y));
     float t = std::max(-n.z, 0.0f);
     n.x += n.x >= 0.0f ? -t : t;
@@ -95,20 +72,22 @@ float orientationRadians(uint32_t orientation) {
 }
 
 gpu::PlantDynamic encodePlantDynamic(const PlantMotion& m) {
-    uint32_t cut = uint32_t(roundToInt(std::clamp(m.cutFraction, 0.0f, 1.0f) * 255.0f));
-    uint32_t velocity = packSnorm10(m.bendVelocity.x / gpu::kMaxBendVelocity) |
-                        (packSnorm10(m.bendVelocity.y / gpu::kMaxBendVelocity) << 10);
+    uint32_t cut = uint32_t(roundHalfAway(std::clamp(m.cutFraction, 0.0f, 1.0f) * 255.0f));
+    uint32_t velocity = packSnorm(m.bendVelocity.x / gpu::kMaxBendVelocity, 10) |
+                        (packSnorm(m.bendVelocity.y / gpu::kMaxBendVelocity, 10) << 10);
     assert(m.state < 16);
     return gpu::PlantDynamic{
-        .bend = packSnorm16(m.bend.x) | (packSnorm16(m.bend.y) << 16),
+        .bend = packSnorm(m.bend.x, 16) | (packSnorm(m.bend.y, 16) << 16),
         .state = velocity | (m.state << 20) | (cut << 24),
     };
 }
 
 PlantMotion decodePlantDynamic(const gpu::PlantDynamic& r) {
     return PlantMotion{
-        .bend = {unpackSnorm16(r.bend), unpackSnorm16(r.bend >> 16)},
-        .bendVelocity = glm::vec2(unpackSnorm10(r.state), unpackSnorm10(r.state >> 10)) * gpu::kMaxBendVelocity,
+        .bend = {unpackSnorm(r.bend, 16, SnormDivide::Exact), unpackSnorm(r.bend >> 16, 16, SnormDivide::Exact)},
+        .bendVelocity = glm::vec2(unpackSnorm(r.state, 10, SnormDivide::Exact),
+                                  unpackSnorm(r.state >> 10, 10, SnormDivide::Exact)) *
+                        gpu::kMaxBendVelocity,
         .state = (r.state >> 20) & 15u,
         .cutFraction = float(r.state >> 24) / 255.0f,
     };

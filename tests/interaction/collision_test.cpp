@@ -171,6 +171,8 @@ TEST(Collision, IdenticalContactsWithOneAndFourThreads) {
     EXPECT_GT(total, 10000u);
 }
 
+// One world per thread count, plus one whose pool is resized between ticks: every tick's contacts, fields and
+// statistics, and the simulated records, must be bitwise the same.
 TEST(Collision, BitwiseIdenticalWithOneTwoAndThreeThreads) {
     const VegetationTile& tile = smallTile();
     Sim one = makeSim(tile, {}, 1), two = makeSim(tile, {}, 2), three = makeSim(tile, {}, 3);
@@ -203,6 +205,8 @@ TEST(Collision, BitwiseIdenticalWithOneTwoAndThreeThreads) {
     EXPECT_TRUE(sameBytes(one.dynamics, switching.dynamics));
 }
 
+// The worst case: one colliding sphere on every 5 x 5 m cluster of a full 500 x 500 m tile at 16 plants/m^2
+// (400 fields x 25 colliders). Prints the collision time; the goal is <= 4 ms on 2 cores.
 TEST(CollisionPerf, FourHundredFieldsWithTwentyFiveCollidersEach) {
     const VegetationTile tile = makeTile(500.0f);
     ASSERT_EQ(tile.fields.size(), 400u);

@@ -1,12 +1,11 @@
 // sward-bench: prints benchmark figures (and writes them as JSON with --json). Thin: parsing and printing only.
 #include "render/benchmarks.h"
-#include "common/error.h"
+#include "common/atomic_file.h"
 #include "scene/scene.h"
 
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
-#include <fstream>
 
 namespace {
 
@@ -15,13 +14,7 @@ void emit(const nlohmann::json& result, const std::string& jsonPath, const std::
     for (auto it = result.begin(); it != result.end(); ++it)
         if (it.key() != tableKey) std::printf("%-32s %s\n", it.key().c_str(), it.value().dump().c_str());
     if (jsonPath.empty()) return;
-    std::string tmp = jsonPath + ".tmp";
-    {
-        std::ofstream file(tmp);
-        file << result.dump(2) << "\n";
-        if (!file) throw sward::Error("cannot write '" + jsonPath + "'");
-    }
-    if (std::rename(tmp.c_str(), jsonPath.c_str()) != 0) throw sward::Error("cannot write '" + jsonPath + "'");
+    sward::writeTextAtomically(jsonPath, result.dump(2) + "\n");
 }
 
 } // namespace

@@ -1,0 +1,92 @@
+// The one parallel-for: every index once, per-worker scratch, results and errors independent of the thread count.
+#include "common/parallel_for.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using namespace sward;
+
+namespace {
+
+// A float result per index that depends on the order of its additions, computed in per-worker scratch (reused
+// across indices, as the collision pass does) and merged in index order.
+std::vector<uint32_t> floatSums(uint32_t threads, uint32_t count) {
+    std::vector<std::vector<float>> scratch(threads);
+    std::vector<float> slots(count);
+    ParallelFor pool(threads);
+    pool.run(count, [&](uint32_t i, uint32_t worker) {
+        std::vector<float>& terms = scratch[worker];
+        terms.clear();
+        for (uint32_t k = 0; k < 1000 + i % 7 * 300; ++k) terms.push_back(1.0f / float(k + i + 1));
+        float sum = 0.0f;
+        for (float t : terms) sum += t;
+        slots[i] = sum;
+    });
+    std::vector<uint32_t> bits;
+    float total = 0.0f;
+    for (float s : slots) {
+        total += s;
+        bits.push_back(std::bit_cast<uint32_t>(s));
+    }
+    bits.push_back(std::bit_cast<uint32_t>(total));
+    return bits;
+}
+
+} // namespace
+
+TEST(ParallelFor, RunsEveryIndexOnceWithWorkersBelowTheThreadCount) {
+    for (uint32_t threads : {1u, 2u, 3u, 8u}) {
+        ParallelFor pool(threads);
+        EXPECT_EQ(pool.threads(), threads);
+        for (uint32_t count : {0u, 1u, 5u, 1000u}) {
+            std::vector<uint32_t> runs(count, 0), workers(count, ~0u);
+            pool.run(count, [&](uint32_t i, uint32_t worker) {
+                ++runs[i];
+                workers[i] = worker;
+            });
+            for (uint32_t i = 0; i < count; ++i) {
+                EXPECT_EQ(runs[i], 1u) << threads << " threads, index " << i;
+                EXPECT_LT(workers[i], threads);
+            }
+        }
+    }
+}
+
+TEST(ParallelFor, ResultsAreBitwiseTheSameForOneTwoAndThreeThreads) {
+    const std::vector<uint32_t> one = floatSums(1, 200);
+    EXPECT_EQ(floatSums(2, 200), one);
+    EXPECT_EQ(floatSums(3, 200), one);
+}
+
+TEST(ParallelFor, RethrowsTheErrorOfTheLowestIndexAfterRunningEveryIndex) {
+    for (uint32_t threads : {1u, 2u, 3u}) {
+        std::vector<int> ran(100, 0);
+        try {
+            parallelFor(100, threads, [&](uint32_t i, uint32_t) {
+                ran[i] = 1;
+                if (i % 30 == 17) throw std::runtime_error("index " + std::to_string(i));
+            });
+            ADD_FAILURE() << "no error with " << threads << " threads";
+        } catch (const std::runtime_error& e) {
+            EXPECT_STREQ(e.what(), "index 17") << threads << " threads";
+        }
+        EXPECT_EQ(ran, std::vector<int>(100, 1)) << threads << " threads";
+    }
+}
+
+TEST(ParallelFor, APoolRunsManyTimesAndZeroThreadsMeansEveryCore) {
+    ParallelFor pool(3);
+    uint64_t total = 0;
+    std::vector<uint64_t> slots(64);
+    for (int round = 0; round < 200; ++round) {
+        pool.run(64, [&](uint32_t i, uint32_t) { slots[i] = uint64_t(i) * uint64_t(round); });
+        for (uint64_t s : slots) total += s;
+    }
+    EXPECT_EQ(total, uint64_t(63 * 64 / 2) * uint64_t(199 * 200 / 2));
+    EXPECT_GE(resolveThreadCount(0), 1u);
+    EXPECT_EQ(resolveThreadCount(5), 5u);
+}
