@@ -6,6 +6,7 @@
 #include "engine/swapchain.h"
 #include "engine/timestamps.h"
 #include "fly_camera.h"
+#include "input.h"
 #include "present_pass.h"
 #include "render/vegetation_renderer.h"
 #include "rover_control.h"
@@ -17,6 +18,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -42,24 +44,6 @@ std::filesystem::file_time_type modificationTime(const std::string& path) {
     std::error_code ec;
     auto t = std::filesystem::last_write_time(path, ec);
     return ec ? std::filesystem::file_time_type{} : t;
-}
-
-// --overlay "lod,active-fields,...": switches those overlays on in `panel`.
-void enableOverlays(PanelState& panel, const std::string& overlays) {
-    for (std::string item; const char c : overlays + ",") {
-        if (c != ',') {
-            item += c;
-            continue;
-        }
-        if (item == "lod") panel.lodColors = true;
-        else if (item == "active-fields") panel.activeFields = true;
-        else if (item == "updated-plants") panel.updatedPlants = true;
-        else if (item == "clusters") panel.clusterBounds = true;
-        else if (item == "colliders") panel.colliders = true;
-        else if (!item.empty())
-            throw Error("unknown overlay '" + item + "' (use lod, active-fields, updated-plants, clusters, colliders)");
-        item.clear();
-    }
 }
 
 // The viewer wires the window, the scene state, the cameras, the rover, the panel and the passes; each frame is
@@ -115,9 +99,9 @@ private:
     FlyCamera camera_;
     RoverControl rover_;
     bool driving_ = false; // camera follows the rover, arrow keys drive it
-    bool uiVisible_ = true, looking_ = false;
-    glm::dvec2 lastCursor_{0.0};
-    double scroll_ = 0.0, tickClock_ = 0.0;
+    FlyControls flyControls_;
+    bool uiVisible_ = true;
+    double tickClock_ = 0.0;
     uint64_t frame_ = 0, attempts_ = 0;
     bool screenshotPending_ = false, stepPending_ = false;
     std::filesystem::file_time_type sceneTime_{};
@@ -149,7 +133,7 @@ Viewer::Viewer(const ViewerOptions& options, Window& window, Context& ctx)
         static_cast<Viewer*>(glfwGetWindowUserPointer(w))->onKey(key, action, mods);
     });
     glfwSetScrollCallback(window_.handle, [](GLFWwindow* w, double, double y) {
-        static_cast<Viewer*>(glfwGetWindowUserPointer(w))->scroll_ += y;
+        static_cast<Viewer*>(glfwGetWindowUserPointer(w))->flyControls_.addScroll(y);
     });
     ui_ = std::make_unique<Ui>(ctx_, window_.handle, swapchain_);
 
@@ -236,46 +220,15 @@ void Viewer::reload() {
 
 void Viewer::onKey(int key, int action, int) {
     if (action != GLFW_PRESS || (ui_ && ui_->wantsKeyboard())) return;
-    switch (key) {
-    case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_.handle, GLFW_TRUE); break;
-    case GLFW_KEY_F: panel_.toggleDrive = true; break;
-    case GLFW_KEY_SPACE: panel_.paused = !panel_.paused; break;
-    case GLFW_KEY_N: panel_.step = true; break;
-    case GLFW_KEY_F12:
-    case GLFW_KEY_P: panel_.screenshot = true; break;
-    case GLFW_KEY_R: panel_.reload = true; break;
-    case GLFW_KEY_H: uiVisible_ = !uiVisible_; break;
-    case GLFW_KEY_M: panel_.msaa = !panel_.msaa; break;
-    case GLFW_KEY_1: panel_.lodColors = !panel_.lodColors; break;
-    case GLFW_KEY_2: panel_.activeFields = !panel_.activeFields; break;
-    case GLFW_KEY_3: panel_.updatedPlants = !panel_.updatedPlants; break;
-    case GLFW_KEY_4: panel_.clusterBounds = !panel_.clusterBounds; break;
-    case GLFW_KEY_5: panel_.colliders = !panel_.colliders; break;
-    default: break;
-    }
+    applyKey(key, panel_, uiVisible_, window_.handle);
 }
 
 void Viewer::handleInput(double dt) {
-    GLFWwindow* w = window_.handle;
-    auto down = [&](int key) { return glfwGetKey(w, key) == GLFW_PRESS; };
     const bool keyboard = !(ui_ && ui_->wantsKeyboard());
-    // Mouse look while the right button is held (or the left one outside the panel).
-    bool wantLook = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
-                    (glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && !(ui_ && ui_->wantsMouse()));
-    glm::dvec2 cursor;
-    glfwGetCursorPos(w, &cursor.x, &cursor.y);
-    FlyInput input;
-    if (wantLook && looking_) input.turn = cursor - lastCursor_;
-    looking_ = wantLook;
-    lastCursor_ = cursor;
-    if (keyboard && !driving_) {
-        input.move.y = (down(GLFW_KEY_W) ? 1.0 : 0.0) - (down(GLFW_KEY_S) ? 1.0 : 0.0);
-        input.move.x = (down(GLFW_KEY_D) ? 1.0 : 0.0) - (down(GLFW_KEY_A) ? 1.0 : 0.0);
-        input.move.z = (down(GLFW_KEY_E) ? 1.0 : 0.0) - (down(GLFW_KEY_Q) ? 1.0 : 0.0);
-        input.fast = down(GLFW_KEY_LEFT_SHIFT) || down(GLFW_KEY_RIGHT_SHIFT);
-    }
-    if (scroll_ != 0.0 && !(ui_ && ui_->wantsMouse())) camera_.scaleSpeed(scroll_);
-    scroll_ = 0.0;
+    const bool panelHasMouse = ui_ && ui_->wantsMouse();
+    FlyInput input = flyControls_.read(window_.handle, keyboard && !driving_, panelHasMouse);
+    const double scroll = flyControls_.takeScroll();
+    if (scroll != 0.0 && !panelHasMouse) camera_.scaleSpeed(scroll);
     if (!driving_) {
         camera_.update(input, dt);
         glm::dvec3 p = camera_.position();
