@@ -5,6 +5,11 @@
 // Frame: [interaction tick] -> SceneRenderer::record (expansion, shadow, main + overlay lines, resolve)
 //        -> present pass (tonemap the resolved HDR image into the swapchain image) -> panel -> present.
 // Two frames are in flight; the Swapchain's per-frame serials are their fences.
+//
+// Files: viewer.cpp wires the pieces and runs the frame loop; window (GLFW + surface), scene_state (what a scene
+// file builds), input (keys, mouse), rover_control (the keyboard rover), fly_camera, overlay (debug lines),
+// present_pass (tonemap into the swapchain), ui (the panel), screenshots (image files), test_hooks (scripted
+// window changes and key presses).
 #pragma once
 
 #include <glm/glm.hpp>

@@ -1,0 +1,59 @@
+#include "scene_state.h"
+
+#include "render/vegetation_renderer.h"
+
+#include <filesystem>
+#include <string>
+
+#ifndef SWARD_SOURCE_DIR
+#define SWARD_SOURCE_DIR "."
+#endif
+
+namespace sward {
+
+namespace {
+
+// The default rover model (sward-rover), drawn where the keyboard rover drives; none if it is not installed.
+std::string roverModelPath() {
+    for (std::string path : {std::string("examples/assets/rover.gltf"), std::string(SWARD_SOURCE_DIR) + "/examples/assets/rover.gltf"})
+        if (std::filesystem::exists(path)) return path;
+    return {};
+}
+
+} // namespace
+
+std::unique_ptr<SceneState> loadSceneState(Context& ctx, const Scene& sceneIn, uint32_t samples) {
+    // The keyboard rover is drawn as one more scene object without colliders (its wheels collide through
+    // Simulation::setExternalColliders); ObjectRenderer::place moves it every frame.
+    Scene scene = sceneIn;
+    std::optional<size_t> roverObject;
+    if (std::string model = roverModelPath(); !model.empty()) {
+        ObjectParams rover;
+        rover.name = "sward-view rover";
+        rover.model = model;
+        rover.path.points = {glm::dvec2(0.0)};
+        roverObject = scene.objects.size();
+        scene.objects.push_back(rover);
+    }
+    auto state = std::make_unique<SceneState>(SceneState{scene, buildTerrain(scene), std::nullopt,
+                                                         loadObjectModels(scene.objects, scene.source), roverObject,
+                                                         nullptr, nullptr, nullptr});
+    std::optional<Atlas> atlas;
+    if (scene.vegetationEnabled) {
+        state->tile = buildVegetation(state->scene, state->terrain);
+        atlas = buildAtlas(state->scene);
+    }
+    VkSampleCountFlagBits sampleBits = samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
+    state->renderer = std::make_unique<SceneRenderer>(ctx, state->scene, state->terrain, sampleBits,
+                                                      state->tile ? &*state->tile : nullptr, atlas ? &*atlas : nullptr,
+                                                      &state->models);
+    if (state->tile && state->renderer->vegetation())
+        state->simulation = std::make_unique<Simulation>(ctx, state->scene, state->terrain, *state->tile,
+                                                         state->renderer->vegetation()->buffers());
+    if (state->simulation) state->simulation->setObjectModels(&state->models);
+    if (state->roverObject && state->renderer->objects()) state->renderer->objects()->setVisible(*state->roverObject, false);
+    state->overlay = std::make_unique<Overlay>(ctx, sampleBits);
+    return state;
+}
+
+} // namespace sward
