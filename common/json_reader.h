@@ -10,7 +10,6 @@
 
 #include <glm/glm.hpp>
 
-#include <cmath>
 #include <cstdint>
 #include <initializer_list>
 #include <set>
@@ -90,18 +89,9 @@ glm::vec<N, double> JsonReader::vector(const char* key, glm::vec<N, double> valu
 
 template <int N>
 glm::vec<N, uint32_t> JsonReader::wholeVector(const char* key, glm::vec<N, uint32_t> value, uint32_t lo, uint32_t hi) {
-    if (const nlohmann::json* v = find(key)) {
-        if (!v->is_array() || v->size() != N) fail(name(key) + " must be an array of " + std::to_string(N) + " numbers");
-        for (int i = 0; i < N; ++i) {
-            const nlohmann::json& e = (*v)[size_t(i)];
-            const double x = e.is_number() ? e.get<double>() : -1.0;
-            if (!e.is_number() || !(x >= double(lo) && x <= double(hi)) || x != std::floor(x))
-                fail(name(key) + " must hold whole numbers between " + std::to_string(lo) + " and " +
-                     std::to_string(hi));
-            value[i] = uint32_t(x);
-        }
-    }
-    return value;
+    const glm::vec<N, double> v = vector<N>(key, glm::vec<N, double>(value), lo, hi);
+    if (v != glm::floor(v)) fail(name(key) + " must hold whole numbers");
+    return glm::vec<N, uint32_t>(v);
 }
 
 template <int N> std::vector<glm::vec<N, double>> JsonReader::vectors(const char* key, double lo, double hi) {

@@ -27,7 +27,8 @@ ObjectColliderParams parseCollider(JsonReader r) {
     c.kind = ColliderKind(r.choice("kind", 0, {"push", "gust", "downwash", "mower"}));
     c.radius = r.numberF("radius", c.radius, 0.001, 100.0);
     c.length = r.numberF("length", c.kind == ColliderKind::Downwash ? 2.0f : 0.0f, 0.0, 1000.0);
-    if (c.kind == ColliderKind::Downwash && c.length <= 0.0f) r.fail(r.name("length") + " must be above 0 for a downwash");
+    if (c.kind == ColliderKind::Downwash && c.length <= 0.0f)
+        r.fail(r.name("length") + " must be above 0 for a downwash");
     c.axis = r.choice("axis", 0, {"x", "y", "z"});
     c.halfExtents = glm::vec3(r.vector<3>("half_extents", glm::dvec3(c.halfExtents), 0.001, 100.0));
     c.offset = glm::vec3(r.vector<3>("offset", glm::dvec3(c.offset), -1000.0, 1000.0));

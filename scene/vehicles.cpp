@@ -98,7 +98,8 @@ MovingColliderParams parseMovingCollider(JsonReader r) {
     if (shape == ColliderShape::Sphere)
         m.collider = makeSphere(0, glm::vec3(0.0f), radius, force, kind);
     else if (shape == ColliderShape::Capsule)
-        m.collider = makeCapsule(0, glm::vec3(-0.5f * length, 0, 0), glm::vec3(0.5f * length, 0, 0), radius, force, kind);
+        m.collider =
+            makeCapsule(0, glm::vec3(-0.5f * length, 0, 0), glm::vec3(0.5f * length, 0, 0), radius, force, kind);
     else
         m.collider = makeBox(0, glm::vec3(0.0f), half, glm::mat3(1.0f), force, kind);
     if (kind == ColliderKind::Mower) m.collider = makeMower(m.collider, cutHeight);

@@ -85,8 +85,9 @@ struct VegetationParams {
     uint32_t clustersPerField() const; // per side
 };
 
-// Throws sward::Error (message names sourceName and the key, as 'vegetation.<key>') unless params is consistent: sizes positive and
-// nested in whole numbers, densities/heights finite and in range, channel mapping pointing at existing categories.
+// Throws sward::Error (message names sourceName and the key, as 'vegetation.<key>') unless params is consistent:
+// sizes positive and nested in whole numbers, densities/heights finite and in range, channel mapping pointing at
+// existing categories.
 void validateVegetationParams(const VegetationParams& params, const std::string& sourceName);
 
 // Reads the keys documented above from the scene file's "vegetation" object (null: the defaults); unknown keys are

@@ -317,7 +317,8 @@ TEST(SensorModel, ParseErrorsNameTheJsonPath) {
     EXPECT_EQ(message({{"k1", "strong"}}), "scene.json: 'rigs[0].sensor.k1' must be a number");
     EXPECT_EQ(message({{"vignetting", 1.5}}),
               "scene.json: 'rigs[0].sensor.vignetting' must be between 0 and 1 (got 1.5)");
-    EXPECT_EQ(message({{"exposure", 0}}), "scene.json: 'rigs[0].sensor.exposure' must be between 1e-09 and 1e+09 (got 0)");
+    EXPECT_EQ(message({{"exposure", 0}}),
+              "scene.json: 'rigs[0].sensor.exposure' must be between 1e-09 and 1e+09 (got 0)");
     EXPECT_EQ(message({{"k4", 0.1}}), "scene.json: unknown key 'rigs[0].sensor.k4'");
     EXPECT_EQ(message({{"enabled", 1}}), "scene.json: 'rigs[0].sensor.enabled' must be true or false");
     EXPECT_EQ(message({{"exposure", 2}, {"exposure_ev", 1}}),
