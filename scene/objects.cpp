@@ -13,7 +13,7 @@ namespace sward {
 namespace {
 
 // A string that names something (a node, a model file, an object): present means non-empty.
-std::string name(JsonReader& r, const char* key, std::string value) {
+std::string nonEmptyString(JsonReader& r, const char* key, std::string value) {
     value = r.string(key, std::move(value));
     if (value.empty()) r.fail(r.name(key) + " must be a non-empty string");
     return value;
@@ -22,7 +22,7 @@ std::string name(JsonReader& r, const char* key, std::string value) {
 ObjectColliderParams parseCollider(JsonReader r) {
     ObjectColliderParams c;
     r.required("node", "the name of a node of the model");
-    c.node = name(r, "node", "");
+    c.node = nonEmptyString(r, "node", "");
     c.shape = ColliderShape(r.choice("shape", 0, {"sphere", "capsule", "box"}));
     c.kind = ColliderKind(r.choice("kind", 0, {"push", "gust", "downwash", "mower"}));
     c.radius = r.numberF("radius", c.radius, 0.001, 100.0);
@@ -40,12 +40,12 @@ ObjectColliderParams parseCollider(JsonReader r) {
 
 ObjectParams parseObject(JsonReader r, size_t k, const std::vector<ObjectParams>& before, const std::string& sceneDir) {
     ObjectParams o;
-    o.name = name(r, "name", "object" + std::to_string(k));
+    o.name = nonEmptyString(r, "name", "object" + std::to_string(k));
     for (size_t j = 0; j < before.size(); ++j) // camera rigs mount on objects by name
         if (before[j].name == o.name)
             r.fail(r.name("name") + " '" + o.name + "' is already the name of objects[" + std::to_string(j) + "]");
     r.required("model", "a .gltf or .glb file");
-    o.model = name(r, "model", "");
+    o.model = nonEmptyString(r, "model", "");
     if (!sceneDir.empty() && std::filesystem::path(o.model).is_relative())
         o.model = (std::filesystem::path(sceneDir) / o.model).lexically_normal().string();
     o.scale = r.number("scale", o.scale, 0.001, 1000.0);
