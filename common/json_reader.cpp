@@ -51,6 +51,27 @@ bool JsonReader::boolean(const char* key, bool value) {
     return value;
 }
 
+int JsonReader::choice(const char* key, int value, std::initializer_list<const char*> names) {
+    if (const nlohmann::json* v = find(key)) {
+        std::string list;
+        int index = 0, found = -1;
+        for (const char* n : names) {
+            if (v->is_string() && v->get<std::string>() == n) found = index;
+            list += (index ? (index + 1 == int(names.size()) ? " or " : ", ") : "") + std::string(n);
+            ++index;
+        }
+        if (found < 0) fail(name(key) + " must be " + list);
+        value = found;
+    }
+    return value;
+}
+
+const nlohmann::json& JsonReader::required(const char* key, const std::string& what) {
+    const nlohmann::json* v = find(key);
+    if (!v) fail(name(key) + " is required (" + what + ")");
+    return *v;
+}
+
 JsonReader JsonReader::child(const char* key) {
     seen_.insert(key);
     static const nlohmann::json empty = nlohmann::json::object();

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <initializer_list>
 #include <set>
 #include <string>
 #include <vector>
@@ -31,8 +32,17 @@ public:
     std::string string(const char* key, std::string value);
     bool boolean(const char* key, bool value);
     template <int N> glm::vec<N, double> vector(const char* key, glm::vec<N, double> value, double lo, double hi);
+    // Whole numbers (written as integers or as numbers like 640.0) in [lo, hi].
+    template <int N> glm::vec<N, uint32_t> wholeVector(const char* key, glm::vec<N, uint32_t> value, uint32_t lo,
+                                                       uint32_t hi);
+    // An array of N-number arrays (e.g. points [[x, y], ...]); empty when absent.
+    template <int N> std::vector<glm::vec<N, double>> vectors(const char* key, double lo, double hi);
+    // The index in `names` of the string under `key`, or `value` when absent: "'<k>' must be a, b or c".
+    int choice(const char* key, int value, std::initializer_list<const char*> names);
 
     bool has(const char* key) const { return json_.contains(key); }
+    // Throws "'<path>.<key>' is required (<what>)" when the key is absent; returns its raw value (marked as read).
+    const nlohmann::json& required(const char* key, const std::string& what);
     // The object under `key` (an empty object when absent); its errors name "<path>.<key>".
     JsonReader child(const char* key);
     // The elements of the array under `key` (none when absent), each an object read by its own reader whose
@@ -45,6 +55,8 @@ public:
 
     // "'<path>.<key>'", as the messages write it.
     std::string name(const std::string& key) const;
+    // "<path>.<key>": the JSON path of a value under this object, for a parser of its own (e.g. parsePath).
+    std::string childPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
     const std::string& source() const { return source_; }
     const std::string& path() const { return path_; }
     // Throws sward::Error("<source>: <message>").
@@ -52,7 +64,6 @@ public:
 
 private:
     const nlohmann::json* find(const char* key);
-    std::string childPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
 
     const nlohmann::json& json_;
     std::string source_, path_;
@@ -74,6 +85,32 @@ glm::vec<N, double> JsonReader::vector(const char* key, glm::vec<N, double> valu
         }
     }
     return value;
+}
+
+template <int N>
+glm::vec<N, uint32_t> JsonReader::wholeVector(const char* key, glm::vec<N, uint32_t> value, uint32_t lo, uint32_t hi) {
+    const glm::vec<N, double> v = vector<N>(key, glm::vec<N, double>(value), lo, hi);
+    if (v != glm::floor(v)) fail(name(key) + " must hold whole numbers");
+    return glm::vec<N, uint32_t>(v);
+}
+
+template <int N> std::vector<glm::vec<N, double>> JsonReader::vectors(const char* key, double lo, double hi) {
+    std::vector<glm::vec<N, double>> out;
+    const nlohmann::json* v = find(key);
+    if (!v) return out;
+    const std::string shape = "must be an array of arrays of " + std::to_string(N) + " numbers between " +
+                              formatNumber(lo) + " and " + formatNumber(hi);
+    if (!v->is_array()) fail(name(key) + " " + shape);
+    for (const nlohmann::json& item : *v) {
+        if (!item.is_array() || item.size() != N) fail(name(key) + " " + shape);
+        glm::vec<N, double>& p = out.emplace_back();
+        for (int i = 0; i < N; ++i) {
+            const nlohmann::json& e = item[size_t(i)];
+            if (!e.is_number() || !(e.get<double>() >= lo && e.get<double>() <= hi)) fail(name(key) + " " + shape);
+            p[i] = e.get<double>();
+        }
+    }
+    return out;
 }
 
 } // namespace sward

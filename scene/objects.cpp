@@ -1,9 +1,8 @@
 #include "scene/objects.h"
 
 #include "common/error.h"
+#include "common/json_reader.h"
 #include "world/heightfield.h"
-
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -13,93 +12,53 @@ namespace sward {
 
 namespace {
 
-// Typed, range-checked reads from one JSON object whose path (e.g. "objects[0].colliders[1]") names it in errors.
-struct Fields {
-    const nlohmann::json& json;
-    const std::string& source;
-    std::string path;
+// A string that names something (a node, a model file, an object): present means non-empty.
+std::string nonEmptyString(JsonReader& r, const char* key, std::string value) {
+    value = r.string(key, std::move(value));
+    if (value.empty()) r.fail(r.name(key) + " must be a non-empty string");
+    return value;
+}
 
-    [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
-        throw Error(source + ": '" + path + (key.empty() ? "" : "." + key) + "' " + problem);
-    }
-    void onlyKeys(std::initializer_list<const char*> keys) const {
-        if (!json.is_object()) fail("", "must be an object");
-        for (auto it = json.begin(); it != json.end(); ++it) {
-            bool known = false;
-            for (const char* k : keys) known = known || it.key() == k;
-            if (!known) throw Error(source + ": unknown key '" + path + "." + it.key() + "'");
-        }
-    }
-    const nlohmann::json* find(const char* key) const {
-        auto it = json.find(key);
-        return it == json.end() ? nullptr : &*it;
-    }
-    static std::string fmt(double v) {
-        char buffer[32];
-        std::snprintf(buffer, sizeof buffer, "%g", v);
-        return buffer;
-    }
-    double number(const char* key, double value, double lo, double hi) const {
-        if (const nlohmann::json* v = find(key)) {
-            if (!v->is_number()) fail(key, "must be a number");
-            value = v->get<double>();
-            if (!std::isfinite(value) || value < lo || value > hi)
-                fail(key, "must be between " + fmt(lo) + " and " + fmt(hi) + " (got " + fmt(value) + ")");
-        }
-        return value;
-    }
-    glm::vec3 vec3(const char* key, glm::vec3 value, double lo, double hi) const {
-        if (const nlohmann::json* v = find(key)) {
-            if (!v->is_array() || v->size() != 3) fail(key, "must be an array of 3 numbers");
-            for (size_t i = 0; i < 3; ++i) {
-                const nlohmann::json& e = (*v)[i];
-                if (!e.is_number() || !std::isfinite(e.get<double>()) || e.get<double>() < lo || e.get<double>() > hi)
-                    fail(key, "must hold numbers between " + fmt(lo) + " and " + fmt(hi));
-                value[int(i)] = e.get<float>();
-            }
-        }
-        return value;
-    }
-    std::string string(const char* key, std::string value) const {
-        if (const nlohmann::json* v = find(key)) {
-            if (!v->is_string() || v->get<std::string>().empty()) fail(key, "must be a non-empty string");
-            value = v->get<std::string>();
-        }
-        return value;
-    }
-    // One of `names` (index returned), or `value` when the key is absent.
-    int choice(const char* key, int value, std::initializer_list<const char*> names) const {
-        if (const nlohmann::json* v = find(key)) {
-            std::string list;
-            int index = 0, found = -1;
-            for (const char* n : names) {
-                if (v->is_string() && v->get<std::string>() == n) found = index;
-                list += (index ? (index + 1 == int(names.size()) ? " or " : ", ") : "") + std::string(n);
-                ++index;
-            }
-            if (found < 0) fail(key, "must be " + list);
-            value = found;
-        }
-        return value;
-    }
-};
-
-ObjectColliderParams parseCollider(const Fields& f) {
-    f.onlyKeys({"node", "shape", "kind", "radius", "length", "axis", "half_extents", "offset", "force", "cut_height"});
+ObjectColliderParams parseCollider(JsonReader r) {
     ObjectColliderParams c;
-    if (!f.find("node")) f.fail("node", "is required (the name of a node of the model)");
-    c.node = f.string("node", "");
-    c.shape = ColliderShape(f.choice("shape", 0, {"sphere", "capsule", "box"}));
-    c.kind = ColliderKind(f.choice("kind", 0, {"push", "gust", "downwash", "mower"}));
-    c.radius = float(f.number("radius", c.radius, 0.001, 100.0));
-    c.length = float(f.number("length", c.kind == ColliderKind::Downwash ? 2.0 : 0.0, 0.0, 1000.0));
-    if (c.kind == ColliderKind::Downwash && c.length <= 0.0f) f.fail("length", "must be above 0 for a downwash");
-    c.axis = f.choice("axis", 0, {"x", "y", "z"});
-    c.halfExtents = f.vec3("half_extents", c.halfExtents, 0.001, 100.0);
-    c.offset = f.vec3("offset", c.offset, -1000.0, 1000.0);
-    c.force = float(f.number("force", c.force, 0.0, 1e6));
-    c.cutHeight = float(f.number("cut_height", c.cutHeight, 0.0, 10.0));
+    r.required("node", "the name of a node of the model");
+    c.node = nonEmptyString(r, "node", "");
+    c.shape = ColliderShape(r.choice("shape", 0, {"sphere", "capsule", "box"}));
+    c.kind = ColliderKind(r.choice("kind", 0, {"push", "gust", "downwash", "mower"}));
+    c.radius = r.numberF("radius", c.radius, 0.001, 100.0);
+    c.length = r.numberF("length", c.kind == ColliderKind::Downwash ? 2.0f : 0.0f, 0.0, 1000.0);
+    if (c.kind == ColliderKind::Downwash && c.length <= 0.0f)
+        r.fail(r.name("length") + " must be above 0 for a downwash");
+    c.axis = r.choice("axis", 0, {"x", "y", "z"});
+    c.halfExtents = glm::vec3(r.vector<3>("half_extents", glm::dvec3(c.halfExtents), 0.001, 100.0));
+    c.offset = glm::vec3(r.vector<3>("offset", glm::dvec3(c.offset), -1000.0, 1000.0));
+    c.force = r.numberF("force", c.force, 0.0, 1e6);
+    c.cutHeight = r.numberF("cut_height", c.cutHeight, 0.0, 10.0);
+    r.finish();
     return c;
+}
+
+ObjectParams parseObject(JsonReader r, size_t k, const std::vector<ObjectParams>& before, const std::string& sceneDir) {
+    ObjectParams o;
+    o.name = nonEmptyString(r, "name", "object" + std::to_string(k));
+    for (size_t j = 0; j < before.size(); ++j) // camera rigs mount on objects by name
+        if (before[j].name == o.name)
+            r.fail(r.name("name") + " '" + o.name + "' is already the name of objects[" + std::to_string(j) + "]");
+    r.required("model", "a .gltf or .glb file");
+    o.model = nonEmptyString(r, "model", "");
+    if (!sceneDir.empty() && std::filesystem::path(o.model).is_relative())
+        o.model = (std::filesystem::path(sceneDir) / o.model).lexically_normal().string();
+    o.scale = r.number("scale", o.scale, 0.001, 1000.0);
+    o.yawDegrees = r.number("yaw_deg", o.yawDegrees, -360.0, 360.0);
+    o.alignToTerrain = r.boolean("align_to_terrain", o.alignToTerrain);
+    o.path = parsePath(r.required("path", "{\"points\": [[x, y], ...], \"speed\": ...}"), r.source(),
+                       r.childPath("path"));
+    std::vector<JsonReader> colliders = r.objects("colliders");
+    if (colliders.size() > kMaxCollidersPerObject)
+        r.fail(r.name("colliders") + " has more than " + std::to_string(kMaxCollidersPerObject) + " entries");
+    for (JsonReader& collider : colliders) o.colliders.push_back(parseCollider(collider));
+    r.finish();
+    return o;
 }
 
 // The object's footprint in its travel frame: signed extents along forward (front, rear) and left (left, right).
@@ -130,44 +89,13 @@ const ObjectModel& modelOf(const std::vector<ObjectModel>& models, size_t k) {
 
 } // namespace
 
-std::vector<ObjectParams> parseObjects(const nlohmann::json* objects, const std::string& source,
-                                       const std::string& sceneDir) {
+std::vector<ObjectParams> parseObjects(JsonReader& scene, const std::string& sceneDir) {
+    std::vector<JsonReader> objects = scene.objects("objects");
+    if (objects.size() > kMaxObjects)
+        scene.fail(scene.name("objects") + " has " + std::to_string(objects.size()) + " entries, at most " +
+                   std::to_string(kMaxObjects) + " are supported");
     std::vector<ObjectParams> result;
-    if (!objects) return result;
-    if (!objects->is_array()) throw Error(source + ": 'objects' must be an array");
-    if (objects->size() > kMaxObjects)
-        throw Error(source + ": 'objects' has " + std::to_string(objects->size()) + " entries, at most " +
-                    std::to_string(kMaxObjects) + " are supported");
-    for (size_t k = 0; k < objects->size(); ++k) {
-        Fields f{(*objects)[k], source, "objects[" + std::to_string(k) + "]"};
-        f.onlyKeys({"name", "model", "scale", "yaw_deg", "align_to_terrain", "path", "colliders"});
-        ObjectParams o;
-        o.name = f.string("name", "object" + std::to_string(k));
-        for (size_t j = 0; j < result.size(); ++j) // camera rigs mount on objects by name
-            if (result[j].name == o.name)
-                f.fail("name", "'" + o.name + "' is already the name of objects[" + std::to_string(j) + "]");
-        if (!f.find("model")) f.fail("model", "is required (a .gltf or .glb file)");
-        o.model = f.string("model", "");
-        if (!sceneDir.empty() && std::filesystem::path(o.model).is_relative())
-            o.model = (std::filesystem::path(sceneDir) / o.model).lexically_normal().string();
-        o.scale = f.number("scale", o.scale, 0.001, 1000.0);
-        o.yawDegrees = f.number("yaw_deg", o.yawDegrees, -360.0, 360.0);
-        if (const nlohmann::json* align = f.find("align_to_terrain")) {
-            if (!align->is_boolean()) f.fail("align_to_terrain", "must be true or false");
-            o.alignToTerrain = align->get<bool>();
-        }
-        if (!f.find("path")) f.fail("path", "is required ({\"points\": [[x, y], ...], \"speed\": ...})");
-        o.path = parsePath(*f.find("path"), source + ": '" + f.path + ".path'");
-        if (const nlohmann::json* colliders = f.find("colliders")) {
-            if (!colliders->is_array()) f.fail("colliders", "must be an array");
-            if (colliders->size() > kMaxCollidersPerObject)
-                f.fail("colliders", "has more than " + std::to_string(kMaxCollidersPerObject) + " entries");
-            for (size_t c = 0; c < colliders->size(); ++c)
-                o.colliders.push_back(
-                    parseCollider({(*colliders)[c], source, f.path + ".colliders[" + std::to_string(c) + "]"}));
-        }
-        result.push_back(std::move(o));
-    }
+    for (size_t k = 0; k < objects.size(); ++k) result.push_back(parseObject(objects[k], k, result, sceneDir));
     return result;
 }
 

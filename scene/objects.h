@@ -14,8 +14,6 @@
 
 #include "shared/object_layout.h"
 
-#include <nlohmann/json_fwd.hpp>
-
 #include <glm/glm.hpp>
 
 #include <string>
@@ -24,6 +22,7 @@
 namespace sward {
 
 class Heightfield;
+class JsonReader;
 
 // A collider attached to a node of the object's model. Sizes and offsets are metres in the node's frame
 // (Z-up), multiplied by the object's scale.
@@ -63,11 +62,10 @@ inline uint32_t objectLabel(size_t k) {
     return gpu::kSemanticObject << gpu::kInstanceBits | objectInstanceId(k);
 }
 
-// Reads the scene's "objects" array (null: none). Model paths are resolved against `sceneDir` (empty: as they
-// are). Errors name `source` and the JSON path, e.g. "scene.json: 'objects[0].colliders[1].radius' must be ...".
-// Does not open the model files (loadObjectModels does).
-std::vector<ObjectParams> parseObjects(const nlohmann::json* objects, const std::string& source,
-                                       const std::string& sceneDir);
+// Reads the "objects" array (absent: none) of the scene object `scene`. Model paths are resolved against
+// `sceneDir` (empty: as they are). Errors name the file and the JSON path, e.g.
+// "scene.json: 'objects[0].colliders[1].radius' must be ...". Does not open the model files (loadObjectModels does).
+std::vector<ObjectParams> parseObjects(JsonReader& scene, const std::string& sceneDir);
 
 // Loads every object's model and checks that each collider names a node of it; errors name `source` and the
 // JSON path of the offending value. Models are returned in object order.

@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include "common/error.h"
+#include "common/json_reader.h"
 #include "world/ground.h"
 #include "vegetation/placement.h"
 
@@ -9,236 +10,151 @@
 #include <cmath>
 #include <fstream>
 #include <numbers>
-#include <set>
 
 namespace sward {
 
 namespace {
 
-// Reads typed, range-checked values from one JSON object and rejects keys nobody asked for.
-class Reader {
-public:
-    Reader(const nlohmann::json& json, std::string source, std::string path)
-        : json_(json), source_(std::move(source)), path_(std::move(path)) {
-        if (!json_.is_object()) fail(path_.empty() ? "the scene must be a JSON object" : path_ + " must be an object");
-    }
-
-    double number(const char* key, double value, double lo, double hi) {
-        if (const nlohmann::json* v = find(key)) {
-            if (!v->is_number()) fail(name(key) + " must be a number");
-            value = v->get<double>();
-            if (!std::isfinite(value) || value < lo || value > hi)
-                fail(name(key) + " must be between " + fmt(lo) + " and " + fmt(hi) + " (got " + fmt(value) + ")");
-        }
-        return value;
-    }
-    uint64_t integer(const char* key, uint64_t value, uint64_t lo, uint64_t hi) {
-        if (const nlohmann::json* v = find(key)) {
-            if (!v->is_number_integer() ||
-                (v->is_number_integer() && v->get<int64_t>() < 0 && !v->is_number_unsigned()))
-                fail(name(key) + " must be a non-negative integer");
-            value = v->get<uint64_t>();
-            if (value < lo || value > hi)
-                fail(name(key) + " must be between " + std::to_string(lo) + " and " + std::to_string(hi) + " (got " +
-                     std::to_string(value) + ")");
-        }
-        return value;
-    }
-    std::string string(const char* key, std::string value) {
-        if (const nlohmann::json* v = find(key)) {
-            if (!v->is_string()) fail(name(key) + " must be a string");
-            value = v->get<std::string>();
-        }
-        return value;
-    }
-    template <int N> glm::vec<N, double> vector(const char* key, glm::vec<N, double> value, double lo, double hi) {
-        if (const nlohmann::json* v = find(key)) {
-            if (!v->is_array() || v->size() != N)
-                fail(name(key) + " must be an array of " + std::to_string(N) + " numbers");
-            for (int i = 0; i < N; ++i) {
-                const nlohmann::json& e = (*v)[size_t(i)];
-                if (!e.is_number() || !std::isfinite(e.get<double>()) || e.get<double>() < lo || e.get<double>() > hi)
-                    fail(name(key) + " must hold numbers between " + fmt(lo) + " and " + fmt(hi));
-                value[i] = e.get<double>();
-            }
-        }
-        return value;
-    }
-    bool has(const char* key) const { return json_.contains(key); }
-    Reader child(const char* key) {
-        seen_.insert(key);
-        static const nlohmann::json empty = nlohmann::json::object();
-        return Reader(json_.contains(key) ? json_.at(key) : empty, source_, path_.empty() ? key : path_ + "." + key);
-    }
-    const nlohmann::json* raw(const char* key) { return find(key); }
-    // Call after reading: any key not read is a typo or an unsupported option.
-    void finish() const {
-        for (auto it = json_.begin(); it != json_.end(); ++it)
-            if (!seen_.count(it.key())) fail("unknown key " + name(it.key().c_str()));
-    }
-
-private:
-    const nlohmann::json* find(const char* key) {
-        seen_.insert(key);
-        auto it = json_.find(key);
-        return it == json_.end() ? nullptr : &*it;
-    }
-    std::string name(const char* key) const {
-        std::string full = "'";
-        if (!path_.empty()) full.append(path_).append(".");
-        return full.append(key).append("'");
-    }
-    static std::string fmt(double v) {
-        char buffer[32];
-        std::snprintf(buffer, sizeof buffer, "%g", v);
-        return buffer;
-    }
-    [[noreturn]] void fail(const std::string& message) const { throw Error(source_ + ": " + message); }
-
-    const nlohmann::json& json_;
-    std::string source_, path_;
-    std::set<std::string> seen_;
-};
-
 glm::vec3 toVec3(glm::dvec3 v) {
     return glm::vec3(v);
 }
 
-} // namespace
-
-glm::vec3 SunParams::direction() const {
-    double az = azimuthDegrees * std::numbers::pi / 180.0, el = elevationDegrees * std::numbers::pi / 180.0;
-    return glm::vec3(float(std::sin(az) * std::cos(el)), float(std::cos(az) * std::cos(el)), float(std::sin(el)));
+// Built-in scenes ("<built-in>") have no folder: the paths they name are used as given.
+bool isFile(const std::string& source) {
+    return source.find('<') == std::string::npos;
 }
 
-Scene parseScene(const nlohmann::json& json, const std::string& source) {
-    Scene scene;
-    scene.source = source;
-    Reader root(json, source, "");
-    scene.name = root.string("name", scene.name);
-    scene.seed = root.integer("seed", scene.seed, 0, UINT64_MAX);
+// Paths in a scene file are relative to the scene file's folder.
+std::string resolveAgainstScene(const std::string& source, std::string path) {
+    if (!path.empty() && std::filesystem::path(path).is_relative() && isFile(source))
+        path = (std::filesystem::path(source).parent_path() / path).string();
+    return path;
+}
 
-    Reader terrain = root.child("terrain");
-    ProceduralTerrainParams& t = scene.terrain;
-    t.size = float(terrain.number("size", t.size, 10.0, 4000.0));
-    t.spacing = float(terrain.number("spacing", t.spacing, 0.1, 50.0));
-    t.amplitude = float(terrain.number("amplitude", t.amplitude, 0.0, 1000.0));
-    t.featureSize = float(terrain.number("feature_size", t.featureSize, 1.0, 10000.0));
-    t.octaves = uint32_t(terrain.integer("octaves", t.octaves, 1, 8));
-    if (t.size / t.spacing > 8192.0f) throw Error(source + ": 'terrain.size' / 'terrain.spacing' exceeds 8192 cells");
-    terrain.finish();
-    t.seed = scene.seed;
+void readTerrain(JsonReader r, ProceduralTerrainParams& t) {
+    t.size = r.numberF("size", t.size, 10.0, 4000.0);
+    t.spacing = r.numberF("spacing", t.spacing, 0.1, 50.0);
+    t.amplitude = r.numberF("amplitude", t.amplitude, 0.0, 1000.0);
+    t.featureSize = r.numberF("feature_size", t.featureSize, 1.0, 10000.0);
+    t.octaves = uint32_t(r.integer("octaves", t.octaves, 1, 8));
+    if (t.size / t.spacing > 8192.0f) r.fail(r.name("size") + " / " + r.name("spacing") + " exceeds 8192 cells");
+    r.finish();
+}
 
-    Reader sun = root.child("sun");
-    scene.sun.azimuthDegrees = sun.number("azimuth_deg", scene.sun.azimuthDegrees, -360.0, 360.0);
-    scene.sun.elevationDegrees = sun.number("elevation_deg", scene.sun.elevationDegrees, -90.0, 90.0);
-    scene.sun.radiance = toVec3(sun.vector<3>("radiance", glm::dvec3(scene.sun.radiance), 0.0, 1e6));
-    sun.finish();
+void readSun(JsonReader r, SunParams& sun) {
+    sun.azimuthDegrees = r.number("azimuth_deg", sun.azimuthDegrees, -360.0, 360.0);
+    sun.elevationDegrees = r.number("elevation_deg", sun.elevationDegrees, -90.0, 90.0);
+    sun.radiance = toVec3(r.vector<3>("radiance", glm::dvec3(sun.radiance), 0.0, 1e6));
+    r.finish();
+}
 
-    Reader sky = root.child("sky");
-    scene.sky.zenith = toVec3(sky.vector<3>("zenith", glm::dvec3(scene.sky.zenith), 0.0, 1e6));
-    scene.sky.horizon = toVec3(sky.vector<3>("horizon", glm::dvec3(scene.sky.horizon), 0.0, 1e6));
-    scene.sky.groundAmbient = toVec3(sky.vector<3>("ground", glm::dvec3(scene.sky.groundAmbient), 0.0, 1e6));
-    sky.finish();
+void readSky(JsonReader r, SkyParams& sky) {
+    sky.zenith = toVec3(r.vector<3>("zenith", glm::dvec3(sky.zenith), 0.0, 1e6));
+    sky.horizon = toVec3(r.vector<3>("horizon", glm::dvec3(sky.horizon), 0.0, 1e6));
+    sky.groundAmbient = toVec3(r.vector<3>("ground", glm::dvec3(sky.groundAmbient), 0.0, 1e6));
+    r.finish();
+}
 
-    Reader camera = root.child("camera");
-    CameraParams& c = scene.camera;
-    c.position = camera.vector<3>("position", c.position, -1e6, 1e6);
-    c.useHeightAboveGround = camera.has("height_above_ground") || !camera.has("position");
-    c.heightAboveGround = camera.number("height_above_ground", c.heightAboveGround, -1e4, 1e5);
-    c.lookAt = camera.vector<3>("look_at", c.lookAt, -1e6, 1e6);
-    c.lookAtUsesGround = camera.has("look_at_height_above_ground") || !camera.has("look_at");
-    c.lookAtHeightAboveGround = camera.number("look_at_height_above_ground", c.lookAtHeightAboveGround, -1e4, 1e5);
-    c.fovYDegrees = camera.number("fov_y_deg", c.fovYDegrees, 1.0, 170.0);
-    if (const nlohmann::json* path = camera.raw("path")) {
-        c.hasPath = true;
-        c.path = parsePath(*path, source + ": 'camera.path'");
-        if (!path->contains("height_above_ground")) c.path.heightAboveGround = c.heightAboveGround;
-    }
-    c.lookAhead = camera.number("look_ahead", c.lookAhead, 0.1, 1e4);
-    RigParams& rig = c.rig;
+void readMount(JsonReader r, RigParams& rig) {
+    rig.mountObject = r.string("object", "");
+    rig.mountNode = r.string("node", "");
+    if (rig.mountObject.empty() || rig.mountNode.empty())
+        r.fail("'" + r.path() + "' needs 'object' and 'node' (names of a scene object and a node of its model)");
+    rig.mountOffset = r.vector<3>("offset", rig.mountOffset, -1e3, 1e3);
+    rig.mountPitchDegrees = r.number("pitch_deg", rig.mountPitchDegrees, -90.0, 90.0);
+    r.finish();
+}
+
+// The stereo rig's keys live in the "camera" object next to the camera's own.
+void readRig(JsonReader& camera, RigParams& rig) {
     rig.baseline = camera.number("baseline", rig.baseline, 0.0, 100.0);
     rig.minDepth = camera.number("min_depth", rig.minDepth, 0.01, 1e4);
     rig.focalLengthPx = camera.number("focal_length_px", rig.focalLengthPx, 0.0, 1e6);
     rig.hasPrincipalPoint = camera.has("principal_point");
     rig.principalPoint = camera.vector<2>("principal_point", rig.principalPoint, -1e5, 1e5);
-    if (camera.has("mount")) {
-        Reader mount = camera.child("mount");
-        rig.mountObject = mount.string("object", "");
-        rig.mountNode = mount.string("node", "");
-        if (rig.mountObject.empty() || rig.mountNode.empty())
-            throw Error(source + ": 'camera.mount' needs 'object' and 'node' (names of a scene object and a node of its model)");
-        rig.mountOffset = mount.vector<3>("offset", rig.mountOffset, -1e3, 1e3);
-        rig.mountPitchDegrees = mount.number("pitch_deg", rig.mountPitchDegrees, -90.0, 90.0);
-        mount.finish();
+    if (camera.has("mount")) readMount(camera.child("mount"), rig);
+    if (const nlohmann::json* sensor = camera.raw("sensor"))
+        rig.sensor = parseSensor(*sensor, camera.source(), camera.childPath("sensor"));
+}
+
+void readCamera(JsonReader r, CameraParams& c) {
+    c.position = r.vector<3>("position", c.position, -1e6, 1e6);
+    c.useHeightAboveGround = r.has("height_above_ground") || !r.has("position");
+    c.heightAboveGround = r.number("height_above_ground", c.heightAboveGround, -1e4, 1e5);
+    c.lookAt = r.vector<3>("look_at", c.lookAt, -1e6, 1e6);
+    c.lookAtUsesGround = r.has("look_at_height_above_ground") || !r.has("look_at");
+    c.lookAtHeightAboveGround = r.number("look_at_height_above_ground", c.lookAtHeightAboveGround, -1e4, 1e5);
+    c.fovYDegrees = r.number("fov_y_deg", c.fovYDegrees, 1.0, 170.0);
+    if (const nlohmann::json* path = r.raw("path")) {
+        c.hasPath = true;
+        c.path = parsePath(*path, r.source(), r.childPath("path"));
+        if (!path->contains("height_above_ground")) c.path.heightAboveGround = c.heightAboveGround;
     }
-    if (const nlohmann::json* sensor = camera.raw("sensor")) rig.sensor = parseSensor(*sensor, "camera.sensor", source);
-    camera.finish();
+    c.lookAhead = r.number("look_ahead", c.lookAhead, 0.1, 1e4);
+    readRig(r, c.rig);
+    r.finish();
+}
 
-    Reader sequence = root.child("sequence");
-    scene.sequence.frames = uint32_t(sequence.integer("frames", scene.sequence.frames, 1, 1000000));
-    scene.sequence.timeStep = sequence.number("time_step", scene.sequence.timeStep, 1e-4, 10.0);
-    sequence.finish();
+void readSequence(JsonReader r, SequenceParams& sequence) {
+    sequence.frames = uint32_t(r.integer("frames", sequence.frames, 1, 1000000));
+    sequence.timeStep = r.number("time_step", sequence.timeStep, 1e-4, 10.0);
+    r.finish();
+}
 
-    Reader render = root.child("render");
-    glm::dvec2 resolution =
-        render.vector<2>("resolution", glm::dvec2(scene.render.width, scene.render.height), 1, 16384);
-    if (resolution.x != std::floor(resolution.x) || resolution.y != std::floor(resolution.y))
-        throw Error(source + ": 'render.resolution' must hold whole numbers");
-    scene.render.width = uint32_t(resolution.x);
-    scene.render.height = uint32_t(resolution.y);
-    scene.render.samples = uint32_t(render.integer("samples", scene.render.samples, 1, 4));
-    if (scene.render.samples != 1 && scene.render.samples != 4)
-        throw Error(source + ": 'render.samples' must be 1 or 4");
-    scene.render.shadowMapSize = uint32_t(render.integer("shadow_map_size", scene.render.shadowMapSize, 0, 8192));
-    scene.render.shadowDistance = float(render.number("shadow_distance", scene.render.shadowDistance, 1.0, 2000.0));
-    render.finish();
+void readRender(JsonReader r, RenderParams& render) {
+    const glm::uvec2 resolution = r.wholeVector<2>("resolution", glm::uvec2(render.width, render.height), 1, 16384);
+    render.width = resolution.x;
+    render.height = resolution.y;
+    render.samples = uint32_t(r.integer("samples", render.samples, 1, 4));
+    if (render.samples != 1 && render.samples != 4) r.fail(r.name("samples") + " must be 1 or 4");
+    render.shadowMapSize = uint32_t(r.integer("shadow_map_size", render.shadowMapSize, 0, 8192));
+    render.shadowDistance = r.numberF("shadow_distance", render.shadowDistance, 1.0, 2000.0);
+    r.finish();
+}
 
-    Reader lod = root.child("lod");
-    LodParams& l = scene.lod;
-    l.nearToMid = float(lod.number("near", l.nearToMid, 0.0, 1e4));
-    l.midToFar = float(lod.number("mid", l.midToFar, 0.0, 1e4));
-    l.farLimit = float(lod.number("far", l.farLimit, 0.0, 1e5));
-    l.band = float(lod.number("band", l.band, 0.01, 100.0));
+void readLod(JsonReader r, LodParams& l) {
+    l.nearToMid = r.numberF("near", l.nearToMid, 0.0, 1e4);
+    l.midToFar = r.numberF("mid", l.midToFar, 0.0, 1e4);
+    l.farLimit = r.numberF("far", l.farLimit, 0.0, 1e5);
+    l.band = r.numberF("band", l.band, 0.01, 100.0);
     if (!(l.nearToMid <= l.midToFar && l.midToFar <= l.farLimit))
-        throw Error(source + ": 'lod' distances must satisfy near <= mid <= far");
-    lod.finish();
+        r.fail("'" + r.path() + "' distances must satisfy near <= mid <= far");
+    r.finish();
+}
 
-    Reader wind = root.child("wind");
-    WindParams& w = scene.wind;
-    w.directionDegrees = wind.number("direction_deg", w.directionDegrees, -360.0, 360.0);
-    w.strength = float(wind.number("strength", w.strength, 0.0, 0.9));
-    w.gustStrength = float(wind.number("gust_strength", w.gustStrength, 0.0, 0.9));
-    w.gustFrequency = float(wind.number("gust_frequency", w.gustFrequency, 0.0, 10.0));
-    w.gustWavelength = float(wind.number("gust_wavelength", w.gustWavelength, 1.0, 1e4));
-    w.flutter = float(wind.number("flutter", w.flutter, 0.0, 0.5));
-    wind.finish();
+void readWind(JsonReader r, WindParams& w) {
+    w.directionDegrees = r.number("direction_deg", w.directionDegrees, -360.0, 360.0);
+    w.strength = r.numberF("strength", w.strength, 0.0, 0.9);
+    w.gustStrength = r.numberF("gust_strength", w.gustStrength, 0.0, 0.9);
+    w.gustFrequency = r.numberF("gust_frequency", w.gustFrequency, 0.0, 10.0);
+    w.gustWavelength = r.numberF("gust_wavelength", w.gustWavelength, 1.0, 1e4);
+    w.flutter = r.numberF("flutter", w.flutter, 0.0, 0.5);
+    r.finish();
+}
 
+void readAtlas(JsonReader r, Scene& scene) {
+    scene.atlasPngPath = resolveAgainstScene(scene.source, r.string("png", ""));
+    scene.atlasJsonPath = resolveAgainstScene(scene.source, r.string("json", ""));
+    if (scene.atlasPngPath.empty() != scene.atlasJsonPath.empty())
+        r.fail("'" + r.path() + "' needs both 'png' and 'json'");
+    r.finish();
+}
+
+// "interaction", "vehicles", "colliders", "gusts" and "objects": everything that moves or bends the plants.
+void readActors(JsonReader& root, Scene& scene) {
     if (const nlohmann::json* interaction = root.raw("interaction"))
-        scene.interaction = parseInteractionParams(*interaction, source);
+        scene.interaction = parseInteractionParams(*interaction, scene.source);
     // One clock: the interaction ticks with the sequence's frames.
     scene.interaction.recovery.timeStep = float(scene.sequence.timeStep);
-    scene.actors = parseActors(root.raw("vehicles"), root.raw("colliders"), root.raw("gusts"), source);
     // Gusts follow the scene seed (and so --seed) unless the scene pins their own.
-    if (const nlohmann::json* gusts = root.raw("gusts"); !gusts || !gusts->is_object() || !gusts->contains("seed"))
-        scene.actors.gusts.seed = scene.seed;
-    // Model paths are relative to the scene file's folder (built-in scenes, "<...>", use them as given).
-    scene.objects = parseObjects(root.raw("objects"), source,
-                                 source.find('<') == std::string::npos ? std::filesystem::path(source).parent_path().string()
-                                                                      : std::string());
+    scene.actors = parseActors(root, scene.seed);
+    scene.objects =
+        parseObjects(root, isFile(scene.source) ? std::filesystem::path(scene.source).parent_path().string() : "");
+}
 
-    Reader atlas = root.child("atlas");
-    auto resolve = [&](std::string path) {
-        if (!path.empty() && std::filesystem::path(path).is_relative() && source.find('<') == std::string::npos)
-            path = (std::filesystem::path(source).parent_path() / path).string();
-        return path;
-    };
-    scene.atlasPngPath = resolve(atlas.string("png", ""));
-    scene.atlasJsonPath = resolve(atlas.string("json", ""));
-    if (scene.atlasPngPath.empty() != scene.atlasJsonPath.empty())
-        throw Error(source + ": 'atlas' needs both 'png' and 'json'");
-    atlas.finish();
-
+// "vegetation", "vegetation_enabled" and "grass_map". Needs the terrain (the tile covers it by default).
+void readVegetation(JsonReader& root, Scene& scene) {
+    const std::string& source = scene.source;
     const nlohmann::json* vegetation = root.raw("vegetation");
     if (vegetation) scene.vegetation = parseVegetationParams(*vegetation, source);
     if (!vegetation || !vegetation->contains("seed")) scene.vegetation.seed = scene.seed;
@@ -251,10 +167,37 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
         scene.vegetationEnabled = enabled->get<bool>();
     else
         scene.vegetationEnabled = root.number("vegetation_enabled", 1.0, 0.0, 1.0) != 0.0;
-    scene.grassMapPath = resolve(root.string("grass_map", ""));
+    scene.grassMapPath = resolveAgainstScene(source, root.string("grass_map", ""));
     if (scene.vegetation.tileSize > scene.terrain.size + 1e-3f)
-        throw Error(source + ": 'vegetation.tile_size' (" + std::to_string(scene.vegetation.tileSize) +
-                    " m) must not exceed 'terrain.size' (" + std::to_string(scene.terrain.size) + " m)");
+        root.fail("'vegetation.tile_size' (" + std::to_string(scene.vegetation.tileSize) +
+                  " m) must not exceed 'terrain.size' (" + std::to_string(scene.terrain.size) + " m)");
+}
+
+} // namespace
+
+glm::vec3 SunParams::direction() const {
+    double az = azimuthDegrees * std::numbers::pi / 180.0, el = elevationDegrees * std::numbers::pi / 180.0;
+    return glm::vec3(float(std::sin(az) * std::cos(el)), float(std::cos(az) * std::cos(el)), float(std::sin(el)));
+}
+
+Scene parseScene(const nlohmann::json& json, const std::string& source) {
+    Scene scene;
+    scene.source = source;
+    JsonReader root(json, source);
+    scene.name = root.string("name", scene.name);
+    scene.seed = root.integer("seed", scene.seed, 0, UINT64_MAX);
+    readTerrain(root.child("terrain"), scene.terrain);
+    scene.terrain.seed = scene.seed;
+    readSun(root.child("sun"), scene.sun);
+    readSky(root.child("sky"), scene.sky);
+    readCamera(root.child("camera"), scene.camera);
+    readSequence(root.child("sequence"), scene.sequence);
+    readRender(root.child("render"), scene.render);
+    readLod(root.child("lod"), scene.lod);
+    readWind(root.child("wind"), scene.wind);
+    readActors(root, scene);
+    readAtlas(root.child("atlas"), scene);
+    readVegetation(root, scene);
     root.finish();
     return scene;
 }

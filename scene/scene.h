@@ -2,7 +2,7 @@
 //
 // Every field is optional and has a documented default (docs/scene-format.md); unknown keys are errors, so
 // a typo never silently falls back to a default. All values are validated (type, finiteness, range) and
-// errors name the file and the JSON path, e.g. "examples/meadow.json: terrain.amplitude must be ...".
+// errors name the file and the JSON path, e.g. "examples/meadow.json: 'terrain.amplitude' must be ...".
 #pragma once
 
 #include "vegetation/atlas.h"

@@ -4,13 +4,13 @@
 #include "common/error.h"
 #include "common/half_float.h"
 #include "common/hash.h"
+#include "common/json_reader.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <set>
 
 namespace sward {
 
@@ -38,41 +38,6 @@ void distortJacobian(const SensorParams& p, double x, double y, double j[4]) {
     j[2] = 2.0 * x * y * dRadial + 2.0 * p.p1 * x + 2.0 * p.p2 * y;
     j[3] = radial + 2.0 * y * y * dRadial + 6.0 * p.p1 * y + 2.0 * p.p2 * x;
 }
-
-class SensorReader {
-public:
-    SensorReader(const nlohmann::json& json, std::string path, std::string source)
-        : json_(json), path_(std::move(path)), source_(std::move(source)) {
-        if (!json_.is_object()) fail(path_ + ": must be an object");
-        static const std::set<std::string> known = {
-            "enabled", "exposure", "exposure_ev", "vignetting",         "k1",         "k2",
-            "k3",      "p1",       "p2",          "electrons_per_unit", "read_noise", "full_well"};
-        for (auto it = json_.begin(); it != json_.end(); ++it)
-            if (!known.count(it.key())) fail(path_ + ": unknown key '" + it.key() + "'");
-    }
-    bool has(const char* key) const { return json_.contains(key); }
-    double number(const char* key, double value, double lo, double hi, const char* range) const {
-        if (!json_.contains(key)) return value;
-        const nlohmann::json& v = json_.at(key);
-        if (!v.is_number() || !std::isfinite(v.get<double>())) fail(name(key) + ": must be a finite number");
-        value = v.get<double>();
-        if (value < lo || value > hi) fail(name(key) + ": must be " + range + " (got " + v.dump() + ")");
-        return value;
-    }
-    bool boolean(const char* key, bool value) const {
-        if (!json_.contains(key)) return value;
-        if (!json_.at(key).is_boolean()) fail(name(key) + ": must be true or false");
-        return json_.at(key).get<bool>();
-    }
-    std::string name(const char* key) const { return path_ + "." + key; }
-    [[noreturn]] void fail(const std::string& message) const {
-        throw Error(source_.empty() ? message : source_ + ": " + message);
-    }
-
-private:
-    const nlohmann::json& json_;
-    std::string path_, source_;
-};
 
 } // namespace
 
@@ -200,27 +165,28 @@ void applySensorHalf(const SensorParams& params, const Intrinsics& intrinsics, u
     SensorModel(params, intrinsics).applyHalf(seed, frame, camera, rgbaHalf);
 }
 
-SensorParams parseSensor(const nlohmann::json& json, const std::string& jsonPath, const std::string& source) {
+SensorParams parseSensor(const nlohmann::json& json, const std::string& source, const std::string& jsonPath) {
     SensorParams p;
     if (json.is_null()) return p;
-    SensorReader r(json, jsonPath, source);
+    JsonReader r(json, source, jsonPath);
     constexpr double kBig = 1e6;
     p.enabled = r.boolean("enabled", true);
     if (r.has("exposure") && r.has("exposure_ev"))
-        r.fail(jsonPath + ": give either 'exposure' or 'exposure_ev', not both");
-    p.exposure = r.number("exposure", 1.0, 1e-9, 1e9, "positive");
-    if (r.has("exposure_ev")) p.exposure = std::exp2(r.number("exposure_ev", 0.0, -30.0, 30.0, "between -30 and 30"));
-    p.vignetting = r.number("vignetting", 0.0, 0.0, 1.0, "between 0 and 1");
-    p.k1 = r.number("k1", 0.0, -kBig, kBig, "between -1e6 and 1e6");
-    p.k2 = r.number("k2", 0.0, -kBig, kBig, "between -1e6 and 1e6");
-    p.k3 = r.number("k3", 0.0, -kBig, kBig, "between -1e6 and 1e6");
-    p.p1 = r.number("p1", 0.0, -kBig, kBig, "between -1e6 and 1e6");
-    p.p2 = r.number("p2", 0.0, -kBig, kBig, "between -1e6 and 1e6");
-    p.electronsPerUnit = r.number("electrons_per_unit", 0.0, 0.0, 1e12, "between 0 and 1e12");
-    p.readNoise = r.number("read_noise", 0.0, 0.0, 1e9, "between 0 and 1e9");
-    p.fullWell = r.number("full_well", 0.0, 0.0, 1e15, "between 0 and 1e15");
+        r.fail("'" + jsonPath + "' must give either 'exposure' or 'exposure_ev', not both");
+    p.exposure = r.number("exposure", 1.0, 1e-9, 1e9);
+    if (r.has("exposure_ev")) p.exposure = std::exp2(r.number("exposure_ev", 0.0, -30.0, 30.0));
+    p.vignetting = r.number("vignetting", 0.0, 0.0, 1.0);
+    p.k1 = r.number("k1", 0.0, -kBig, kBig);
+    p.k2 = r.number("k2", 0.0, -kBig, kBig);
+    p.k3 = r.number("k3", 0.0, -kBig, kBig);
+    p.p1 = r.number("p1", 0.0, -kBig, kBig);
+    p.p2 = r.number("p2", 0.0, -kBig, kBig);
+    p.electronsPerUnit = r.number("electrons_per_unit", 0.0, 0.0, 1e12);
+    p.readNoise = r.number("read_noise", 0.0, 0.0, 1e9);
+    p.fullWell = r.number("full_well", 0.0, 0.0, 1e15);
     if ((p.readNoise > 0.0 || p.fullWell > 0.0) && p.electronsPerUnit <= 0.0)
-        r.fail(r.name("electrons_per_unit") + ": must be positive when 'read_noise' or 'full_well' is set");
+        r.fail(r.name("electrons_per_unit") + " must be positive when 'read_noise' or 'full_well' is set");
+    r.finish();
     return p;
 }
 

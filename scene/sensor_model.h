@@ -85,9 +85,9 @@ void applySensorHalf(const SensorParams& params, const Intrinsics& intrinsics, u
 
 // Reads a sensor object: {"enabled", "exposure" | "exposure_ev", "vignetting", "k1", "k2", "k3", "p1", "p2",
 // "electrons_per_unit", "read_noise", "full_well"}, all optional. A present object without "enabled" is
-// enabled. Errors name the JSON path, e.g. "camera.sensor.k1: must be a finite number"; `source` (a file
-// name), when given, prefixes them. A null `json` gives the defaults (disabled).
-SensorParams parseSensor(const nlohmann::json& json, const std::string& jsonPath, const std::string& source = {});
+// enabled. Errors name `source` and the JSON path, e.g. "scene.json: 'camera.sensor.k1' must be a number".
+// A null `json` gives the defaults (disabled).
+SensorParams parseSensor(const nlohmann::json& json, const std::string& source, const std::string& jsonPath);
 // The parameters as JSON (the parser's keys), for frames.jsonl / manifests.
 nlohmann::json sensorToJson(const SensorParams& params);
 

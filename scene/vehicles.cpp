@@ -1,9 +1,7 @@
 #include "scene/vehicles.h"
 
-#include "common/error.h"
+#include "common/json_reader.h"
 #include "world/heightfield.h"
-
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 
@@ -66,100 +64,60 @@ std::vector<Collider> actorColliders(const ActorParams& actors, const Heightfiel
 
 namespace {
 
-float number(const nlohmann::json& j, const char* key, float value, float lo, float hi, const std::string& where) {
-    if (!j.contains(key)) return value;
-    const nlohmann::json& v = j.at(key);
-    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < lo || v.get<double>() > hi)
-        throw Error(where + "." + key + " must be a number between " + std::to_string(lo) + " and " + std::to_string(hi));
-    return v.get<float>();
+VehicleParams parseVehicle(JsonReader r) {
+    VehicleParams v;
+    v.name = r.string("name", v.name);
+    v.path = parsePath(r.required("path", "the vehicle centre's path"), r.source(), r.childPath("path"));
+    v.wheelBase = r.numberF("wheel_base", v.wheelBase, 0.05, 20.0);
+    v.trackWidth = r.numberF("track_width", v.trackWidth, 0.05, 20.0);
+    v.wheelRadius = r.numberF("wheel_radius", v.wheelRadius, 0.01, 5.0);
+    v.wheelWidth = r.numberF("wheel_width", v.wheelWidth, 0.01, 5.0);
+    v.weight = r.numberF("weight", v.weight, 0.0, 1e6);
+    v.sink = r.numberF("sink", v.sink, 0.0, 1.0);
+    r.finish();
+    return v;
 }
 
-void onlyKeys(const nlohmann::json& j, std::initializer_list<const char*> keys, const std::string& where) {
-    if (!j.is_object()) throw Error(where + " must be an object");
-    for (auto it = j.begin(); it != j.end(); ++it) {
-        bool known = false;
-        for (const char* k : keys) known = known || it.key() == k;
-        if (!known) throw Error(where + ": unknown key '" + it.key() + "'");
+MovingColliderParams parseMovingCollider(JsonReader r) {
+    const auto shape = ColliderShape(r.choice("shape", 0, {"sphere", "capsule", "box"}));
+    const auto kind = ColliderKind(r.choice("kind", 0, {"push", "gust", "downwash", "mower"}));
+    MovingColliderParams m;
+    m.path = parsePath(r.required("path", "the collider's path"), r.source(), r.childPath("path"));
+    const float radius = r.numberF("radius", 0.5f, 0.01, 100.0);
+    const float force = r.numberF("force", 0.5f, 0.0, 1e6);
+    // "length" is a downwash's reach below the path (default 2 m) or a capsule's segment length (default 1 m).
+    const bool downwash = kind == ColliderKind::Downwash;
+    const float length = r.numberF("length", downwash ? 2.0f : 1.0f, downwash ? 0.01 : 0.0, 1000.0);
+    const glm::vec3 half(r.vector<3>("half_extents", glm::dvec3(0.5), 0.0, 1000.0));
+    const float cutHeight = r.numberF("cut_height", 0.1f, 0.0, 10.0);
+    r.finish();
+    if (downwash) {
+        m.collider = makeDownwash(0, glm::vec3(0.0f), radius, length, force);
+        return m;
     }
+    if (shape == ColliderShape::Sphere)
+        m.collider = makeSphere(0, glm::vec3(0.0f), radius, force, kind);
+    else if (shape == ColliderShape::Capsule)
+        m.collider =
+            makeCapsule(0, glm::vec3(-0.5f * length, 0, 0), glm::vec3(0.5f * length, 0, 0), radius, force, kind);
+    else
+        m.collider = makeBox(0, glm::vec3(0.0f), half, glm::mat3(1.0f), force, kind);
+    if (kind == ColliderKind::Mower) m.collider = makeMower(m.collider, cutHeight);
+    return m;
 }
 
 } // namespace
 
-ActorParams parseActors(const nlohmann::json* vehicles, const nlohmann::json* colliders, const nlohmann::json* gusts,
-                        const std::string& source) {
+ActorParams parseActors(JsonReader& scene, uint64_t gustSeed) {
     ActorParams actors;
-    if (vehicles) {
-        if (!vehicles->is_array()) throw Error(source + ": 'vehicles' must be an array");
-        for (size_t i = 0; i < vehicles->size(); ++i) {
-            const nlohmann::json& j = (*vehicles)[i];
-            std::string where = source + ": 'vehicles[" + std::to_string(i) + "]'";
-            onlyKeys(j, {"name", "path", "wheel_base", "track_width", "wheel_radius", "wheel_width", "weight", "sink"}, where);
-            VehicleParams v;
-            if (j.contains("name")) v.name = j.at("name").is_string() ? j.at("name").get<std::string>() : v.name;
-            if (!j.contains("path")) throw Error(where + " needs a 'path'");
-            v.path = parsePath(j.at("path"), where + ".path");
-            v.wheelBase = number(j, "wheel_base", v.wheelBase, 0.05f, 20.0f, where);
-            v.trackWidth = number(j, "track_width", v.trackWidth, 0.05f, 20.0f, where);
-            v.wheelRadius = number(j, "wheel_radius", v.wheelRadius, 0.01f, 5.0f, where);
-            v.wheelWidth = number(j, "wheel_width", v.wheelWidth, 0.01f, 5.0f, where);
-            v.weight = number(j, "weight", v.weight, 0.0f, 1e6f, where);
-            v.sink = number(j, "sink", v.sink, 0.0f, 1.0f, where);
-            actors.vehicles.push_back(v);
-        }
-    }
-    if (colliders) {
-        if (!colliders->is_array()) throw Error(source + ": 'colliders' must be an array");
-        for (size_t i = 0; i < colliders->size(); ++i) {
-            const nlohmann::json& j = (*colliders)[i];
-            std::string where = source + ": 'colliders[" + std::to_string(i) + "]'";
-            onlyKeys(j, {"shape", "kind", "radius", "length", "half_extents", "force", "cut_height", "path"}, where);
-            for (const char* key : {"shape", "kind"})
-                if (j.contains(key) && !j.at(key).is_string()) throw Error(where + "." + key + " must be a string");
-            std::string shape = j.value("shape", "sphere"), kind = j.value("kind", "push");
-            if (!j.contains("path")) throw Error(where + " needs a 'path'");
-            MovingColliderParams m;
-            m.path = parsePath(j.at("path"), where + ".path");
-            float radius = number(j, "radius", 0.5f, 0.01f, 100.0f, where);
-            float force = number(j, "force", 0.5f, 0.0f, 1e6f, where);
-            if (kind == "downwash") {
-                float reach = number(j, "length", 2.0f, 0.01f, 1000.0f, where);
-                m.collider = makeDownwash(0, glm::vec3(0.0f), radius, reach, force);
-            } else {
-                ColliderKind k = kind == "push" ? ColliderKind::Push : kind == "gust" ? ColliderKind::Gust
-                                 : kind == "mower" ? ColliderKind::Mower
-                                                   : throw Error(where + ".kind must be push, gust, downwash or mower");
-                if (shape == "sphere") m.collider = makeSphere(0, glm::vec3(0.0f), radius, force, k);
-                else if (shape == "capsule") {
-                    float length = number(j, "length", 1.0f, 0.0f, 1000.0f, where);
-                    m.collider = makeCapsule(0, glm::vec3(-0.5f * length, 0, 0), glm::vec3(0.5f * length, 0, 0), radius, force, k);
-                } else if (shape == "box") {
-                    glm::vec3 half(0.5f);
-                    if (j.contains("half_extents")) {
-                        const auto& h = j.at("half_extents");
-                        if (!h.is_array() || h.size() != 3) throw Error(where + ".half_extents must be [x, y, z]");
-                        half = glm::vec3(h[0].get<float>(), h[1].get<float>(), h[2].get<float>());
-                    }
-                    m.collider = makeBox(0, glm::vec3(0.0f), half, glm::mat3(1.0f), force, k);
-                } else {
-                    throw Error(where + ".shape must be sphere, capsule or box");
-                }
-                if (k == ColliderKind::Mower) m.collider = makeMower(m.collider, number(j, "cut_height", 0.1f, 0.0f, 10.0f, where));
-            }
-            actors.colliders.push_back(m);
-        }
-    }
-    if (gusts) {
-        std::string where = source + ": 'gusts'";
-        onlyKeys(*gusts, {"count", "seed", "height"}, where);
-        // Whole numbers, read exactly (a float would round seeds above 2^24).
-        for (const char* key : {"count", "seed"})
-            if (gusts->contains(key) && !gusts->at(key).is_number_unsigned())
-                throw Error(where + "." + key + " must be a non-negative integer");
-        actors.gusts.count = gusts->value("count", 0u);
-        if (actors.gusts.count > 100000) throw Error(where + ".count must be at most 100000");
-        actors.gusts.seed = gusts->value("seed", uint64_t(1));
-        actors.gusts.height = number(*gusts, "height", actors.gusts.height, 0.0f, 1000.0f, where);
-    }
+    for (JsonReader& vehicle : scene.objects("vehicles")) actors.vehicles.push_back(parseVehicle(vehicle));
+    for (JsonReader& collider : scene.objects("colliders")) actors.colliders.push_back(parseMovingCollider(collider));
+    JsonReader gusts = scene.child("gusts");
+    // Whole numbers, read exactly (a float would round seeds above 2^24).
+    actors.gusts.count = uint32_t(gusts.integer("count", 0, 0, 100000));
+    actors.gusts.seed = gusts.integer("seed", gustSeed, 0, UINT64_MAX);
+    actors.gusts.height = gusts.numberF("height", actors.gusts.height, 0.0, 1000.0);
+    gusts.finish();
     return actors;
 }
 

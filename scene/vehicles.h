@@ -6,14 +6,13 @@
 #include "interaction/colliders.h"
 #include "world/path.h"
 
-#include <nlohmann/json_fwd.hpp>
-
 #include <string>
 #include <vector>
 
 namespace sward {
 
 class Heightfield;
+class JsonReader;
 
 struct VehicleParams {
     std::string name = "rover";
@@ -62,8 +61,8 @@ std::vector<Collider> wheelColliders(const VehicleParams& vehicle, const std::ve
 std::vector<Collider> actorColliders(const ActorParams& actors, const Heightfield& terrain, double time, uint64_t tick,
                                      float timeStep);
 
-// Reads the scene's "vehicles", "colliders" and "gusts" values (each optional); errors name `source`.
-ActorParams parseActors(const nlohmann::json* vehicles, const nlohmann::json* colliders, const nlohmann::json* gusts,
-                        const std::string& source);
+// Reads the "vehicles", "colliders" and "gusts" keys (each optional) of the scene object `scene`; the gusts'
+// seed defaults to `gustSeed` (the scene seed). Errors name the file and the JSON path ("vehicles[1].path").
+ActorParams parseActors(JsonReader& scene, uint64_t gustSeed);
 
 } // namespace sward

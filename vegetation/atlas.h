@@ -85,6 +85,10 @@ struct Atlas {
     std::vector<AtlasMip> mips;
 };
 
+// Throws sward::Error naming `source` unless the grid is one an atlas can have: cell sizes powers of two from 4 to
+// 4096, 1..64 rows of 1..64 columns, an image of at most kMaxImageEdge texels per edge.
+void validateAtlasDesc(const AtlasDesc& desc, const std::string& source);
+
 // Which procedural painter fills a row.
 enum class AtlasPlantKind {
     Grass,   // clumps of tapered, curved blades, greens to straw tips, some with seed heads
@@ -136,7 +140,7 @@ float alphaCoverage(const AtlasMip& mip, const AtlasRect& rect, float reference)
 // the JSON grid.
 Atlas loadAtlas(const std::string& pngPath, const std::string& jsonPath);
 
-// Writes mips[0] as PNG and the description as JSON (schema above), each atomically (<path>.tmp, then rename).
+// Writes mips[0] as PNG and the description as JSON (schema above), each atomically (common/atomic_file.h).
 // Throws sward::Error naming the file if it cannot be written.
 void saveAtlas(const Atlas& atlas, const std::string& pngPath, const std::string& jsonPath);
 

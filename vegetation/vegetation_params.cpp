@@ -1,12 +1,10 @@
 #include "vegetation/vegetation_params.h"
 
 #include "common/error.h"
-
-#include <nlohmann/json.hpp>
+#include "common/json_reader.h"
 
 #include <cmath>
 #include <numbers>
-#include <set>
 
 namespace sward {
 
@@ -32,15 +30,28 @@ uint32_t wholeRatio(float whole, float part) {
     return n >= 1.0 && std::abs(ratio - n) <= 1e-5 * n ? uint32_t(n) : 0;
 }
 
-std::string show(double v) {
-    nlohmann::json j = v;
-    return std::isfinite(v) ? j.dump() : (std::isnan(v) ? "NaN" : "infinity");
+// The ranges of the documented keys: the parser refuses a value outside them naming its JSON path, and
+// validateVegetationParams checks parameters built in code against the same ranges.
+struct Range {
+    double lo, hi;
+};
+constexpr Range kTileSize{1.0, 65536.0}, kFieldSize{1.0, 256.0}, kClusterSize{0.5, 256.0}, kWorldOrigin{-1e7, 1e7},
+    kDensityMultiplier{0.0, 100.0}, kUpNormalBlend{0.0, 1.0}, kMemoryBudgetMib{1.0, 1024.0 * 1024.0},
+    kDensity{0.0, 1000.0}, kHeight{0.01, 20.0}, kHeightVariation{0.0, 0.95};
+
+// Messages in the JSON reader's wording: "<source>: 'vegetation.<key>' must be ...".
+std::string quoted(const std::string& key) {
+    return "'vegetation." + key + "'";
 }
 
-void requireRange(const std::string& source, const std::string& key, double value, double lo, double hi) {
-    require(std::isfinite(value) && value >= lo && value <= hi, source + ": vegetation '" + key +
-                                                                    "' must be a number in [" + show(lo) + ", " +
-                                                                    show(hi) + "] (got " + show(value) + ")");
+void requireRange(const std::string& source, const std::string& key, double value, Range range) {
+    require(std::isfinite(value) && value >= range.lo && value <= range.hi,
+            source + ": " + quoted(key) + " must be between " + formatNumber(range.lo) + " and " +
+                formatNumber(range.hi) + " (got " + formatNumber(value) + ")");
+}
+
+float readNumber(JsonReader& r, const char* key, float value, Range range) {
+    return r.numberF(key, value, range.lo, range.hi);
 }
 
 } // namespace
@@ -53,148 +64,103 @@ uint32_t VegetationParams::clustersPerField() const {
 }
 
 void validateVegetationParams(const VegetationParams& p, const std::string& source) {
-    requireRange(source, "field_size", p.fieldSize, 1.0, 256.0);
-    requireRange(source, "cluster_size", p.clusterSize, 0.5, 256.0);
-    requireRange(source, "tile_size", p.tileSize, 1.0, 65536.0);
-    require(p.fieldsPerTile() != 0 && p.fieldsPerTile() <= 1024, source + ": vegetation 'tile_size' (" +
-                                                                     show(p.tileSize) +
-                                                                     ") must be a whole multiple (at most 1024) of "
-                                                                     "'field_size' (" +
-                                                                     show(p.fieldSize) + ")");
-    require(p.clustersPerField() != 0 && p.clustersPerField() <= 64, source + ": vegetation 'field_size' (" +
-                                                                         show(p.fieldSize) +
-                                                                         ") must be a whole multiple (at most 64) "
-                                                                         "of 'cluster_size' (" +
-                                                                         show(p.clusterSize) + ")");
-    requireRange(source, "world_origin[0]", p.worldOrigin.x, -1e7, 1e7);
-    requireRange(source, "world_origin[1]", p.worldOrigin.y, -1e7, 1e7);
-    requireRange(source, "density_multiplier", p.densityMultiplier, 0.0, 100.0);
-    requireRange(source, "up_normal_blend", p.upNormalBlend, 0.0, 1.0);
-    require(p.memoryBudgetBytes > 0, source + ": vegetation 'memory_budget_mib' must be positive");
+    requireRange(source, "field_size", p.fieldSize, kFieldSize);
+    requireRange(source, "cluster_size", p.clusterSize, kClusterSize);
+    requireRange(source, "tile_size", p.tileSize, kTileSize);
+    require(p.fieldsPerTile() != 0 && p.fieldsPerTile() <= 1024,
+            source + ": " + quoted("tile_size") + " (" + formatNumber(p.tileSize) +
+                ") must be a whole multiple (at most 1024) of " + quoted("field_size") + " (" +
+                formatNumber(p.fieldSize) + ")");
+    require(p.clustersPerField() != 0 && p.clustersPerField() <= 64,
+            source + ": " + quoted("field_size") + " (" + formatNumber(p.fieldSize) +
+                ") must be a whole multiple (at most 64) of " + quoted("cluster_size") + " (" +
+                formatNumber(p.clusterSize) + ")");
+    requireRange(source, "world_origin[0]", p.worldOrigin.x, kWorldOrigin);
+    requireRange(source, "world_origin[1]", p.worldOrigin.y, kWorldOrigin);
+    requireRange(source, "density_multiplier", p.densityMultiplier, kDensityMultiplier);
+    requireRange(source, "up_normal_blend", p.upNormalBlend, kUpNormalBlend);
+    require(p.memoryBudgetBytes > 0, source + ": " + quoted("memory_budget_mib") + " must be positive");
     require(p.categoryCount >= 1 && p.categoryCount <= gpu::kMaxPlantCategories,
-            source + ": vegetation 'categories' must list 1 to 4 categories");
+            source + ": " + quoted("categories") + " must list 1 to 4 categories");
     for (uint32_t i = 0; i < p.categoryCount; ++i) {
         const VegetationCategory& c = p.categories[i];
         const std::string key = "categories[" + std::to_string(i) + "].";
-        requireRange(source, key + "density", c.density, 0.0, 1000.0);
-        requireRange(source, key + "height", c.height, 0.01, 20.0);
-        requireRange(source, key + "height_variation", c.heightVariation, 0.0, 0.95);
+        requireRange(source, key + "density", c.density, kDensity);
+        requireRange(source, key + "height", c.height, kHeight);
+        requireRange(source, key + "height_variation", c.heightVariation, kHeightVariation);
         require(c.variants >= 1 && c.variants <= gpu::kMaxPlantVariants,
-                source + ": vegetation '" + key + "variants' must be 1..64 (got " + std::to_string(c.variants) + ")");
+                source + ": " + quoted(key + "variants") + " must be between 1 and 64 (got " +
+                    std::to_string(c.variants) + ")");
     }
     for (uint32_t ch = 0; ch < 4; ++ch) {
         int32_t cat = p.channelCategory[ch];
         require(cat == kUnusedChannel || (cat >= 0 && uint32_t(cat) < p.categoryCount),
-                source + ": vegetation 'channels." + "rgba"[ch] + "' refers to category " + std::to_string(cat) +
-                    ", but only " + std::to_string(p.categoryCount) + " categories exist");
+                source + ": " + quoted(std::string("channels.") + "rgba"[ch]) + " refers to category " +
+                    std::to_string(cat) + ", but only " + std::to_string(p.categoryCount) + " categories exist");
     }
 }
 
 namespace {
 
-using Json = nlohmann::json;
-
-void requireKeys(const Json& object, const std::set<std::string>& known, const std::string& source,
-                 const std::string& where) {
-    require(object.is_object(), source + ": vegetation '" + where + "' must be a JSON object");
-    for (auto it = object.begin(); it != object.end(); ++it)
-        require(known.count(it.key()) != 0,
-                source + ": unknown vegetation key '" + where + (where.empty() ? "" : ".") + it.key() + "'");
+void parseCategory(JsonReader r, VegetationCategory& c) {
+    c.name = r.string("name", c.name);
+    c.density = readNumber(r, "density", c.density, kDensity);
+    c.height = readNumber(r, "height", c.height, kHeight);
+    c.heightVariation = readNumber(r, "height_variation", c.heightVariation, kHeightVariation);
+    c.variants = uint32_t(r.integer("variants", c.variants, 1, gpu::kMaxPlantVariants));
+    r.finish();
 }
 
-double number(const Json& value, const std::string& source, const std::string& key) {
-    require(value.is_number(), source + ": vegetation '" + key + "' must be a number (got " + value.dump() + ")");
-    return value.get<double>();
-}
-
-uint64_t unsignedInteger(const Json& value, const std::string& source, const std::string& key) {
-    require(value.is_number_unsigned() || (value.is_number_integer() && value.get<int64_t>() >= 0),
-            source + ": vegetation '" + key + "' must be a non-negative integer (got " + value.dump() + ")");
-    return value.get<uint64_t>();
-}
-
-// Numbers are read as double and range-checked by validateVegetationParams after narrowing; a double that does
-// not fit a float becomes infinity and fails there with the original key name.
-void readFloat(const Json& object, const char* key, float& out, const std::string& source,
-               const std::string& prefix = "") {
-    if (object.contains(key)) out = float(number(object.at(key), source, prefix + key));
+// Grass-map channel -> category: an index, a category name, or null (unused). Whether the category exists is
+// checked by validateVegetationParams.
+void parseChannels(JsonReader r, VegetationParams& p) {
+    static const char* kNames[] = {"r", "g", "b", "a"};
+    for (uint32_t ch = 0; ch < 4; ++ch) {
+        const nlohmann::json* v = r.raw(kNames[ch]);
+        if (!v) continue;
+        if (v->is_null()) {
+            p.channelCategory[ch] = kUnusedChannel;
+        } else if (v->is_string()) {
+            int32_t found = kUnusedChannel;
+            for (uint32_t i = 0; i < p.categoryCount; ++i)
+                if (p.categories[i].name == v->get<std::string>()) found = int32_t(i);
+            if (found == kUnusedChannel) r.fail(r.name(kNames[ch]) + " names unknown category " + v->dump());
+            p.channelCategory[ch] = found;
+        } else {
+            p.channelCategory[ch] = int32_t(r.integer(kNames[ch], 0, 0, 1000));
+        }
+    }
+    r.finish();
 }
 
 } // namespace
 
-VegetationParams parseVegetationParams(const Json& json, const std::string& source) {
+VegetationParams parseVegetationParams(const nlohmann::json& json, const std::string& source) {
     VegetationParams p;
     if (json.is_null()) return p;
-    requireKeys(json,
-                {"seed", "tile_size", "field_size", "cluster_size", "world_origin", "density_multiplier",
-                 "up_normal_blend", "memory_budget_mib", "categories", "channels"},
-                source, "");
-    if (json.contains("seed")) p.seed = unsignedInteger(json.at("seed"), source, "seed");
-    readFloat(json, "tile_size", p.tileSize, source);
-    readFloat(json, "field_size", p.fieldSize, source);
-    readFloat(json, "cluster_size", p.clusterSize, source);
-    readFloat(json, "density_multiplier", p.densityMultiplier, source);
-    readFloat(json, "up_normal_blend", p.upNormalBlend, source);
-    if (json.contains("world_origin")) {
-        const Json& o = json.at("world_origin");
-        require(o.is_array() && o.size() == 2, source + ": vegetation 'world_origin' must be an array [x, y]");
-        p.worldOrigin =
-            glm::vec2(float(number(o[0], source, "world_origin[0]")), float(number(o[1], source, "world_origin[1]")));
-    }
-    if (json.contains("memory_budget_mib")) {
-        double mib = number(json.at("memory_budget_mib"), source, "memory_budget_mib");
-        requireRange(source, "memory_budget_mib", mib, 1.0, 1024.0 * 1024.0);
-        p.memoryBudgetBytes = uint64_t(mib * 1048576.0);
-    }
-    if (json.contains("categories")) {
-        const Json& list = json.at("categories");
-        require(list.is_array() && !list.empty() && list.size() <= gpu::kMaxPlantCategories,
-                source + ": vegetation 'categories' must be an array of 1 to 4 objects");
-        p.categoryCount = uint32_t(list.size());
-        for (uint32_t i = 0; i < p.categoryCount; ++i) {
-            const std::string where = "categories[" + std::to_string(i) + "]";
-            const Json& entry = list[i];
-            requireKeys(entry, {"name", "density", "height", "height_variation", "variants"}, source, where);
-            VegetationCategory& c = p.categories[i];
-            if (entry.contains("name")) {
-                require(entry.at("name").is_string(), source + ": vegetation '" + where + ".name' must be a string");
-                c.name = entry.at("name").get<std::string>();
-            }
-            readFloat(entry, "density", c.density, source, where + ".");
-            readFloat(entry, "height", c.height, source, where + ".");
-            readFloat(entry, "height_variation", c.heightVariation, source, where + ".");
-            if (entry.contains("variants")) {
-                uint64_t v = unsignedInteger(entry.at("variants"), source, where + ".variants");
-                c.variants = uint32_t(std::min<uint64_t>(v, 1u << 20)); // range-checked below
-            }
-        }
+    JsonReader r(json, source, "vegetation");
+    p.seed = r.integer("seed", p.seed, 0, UINT64_MAX);
+    p.tileSize = readNumber(r, "tile_size", p.tileSize, kTileSize);
+    p.fieldSize = readNumber(r, "field_size", p.fieldSize, kFieldSize);
+    p.clusterSize = readNumber(r, "cluster_size", p.clusterSize, kClusterSize);
+    p.densityMultiplier = readNumber(r, "density_multiplier", p.densityMultiplier, kDensityMultiplier);
+    p.upNormalBlend = readNumber(r, "up_normal_blend", p.upNormalBlend, kUpNormalBlend);
+    p.worldOrigin = glm::vec2(r.vector<2>("world_origin", glm::dvec2(p.worldOrigin), kWorldOrigin.lo, kWorldOrigin.hi));
+    if (r.has("memory_budget_mib"))
+        p.memoryBudgetBytes =
+            uint64_t(r.number("memory_budget_mib", 0.0, kMemoryBudgetMib.lo, kMemoryBudgetMib.hi) * 1048576.0);
+    if (r.has("categories")) {
+        const std::vector<JsonReader> categories = r.objects("categories");
+        if (categories.empty() || categories.size() > gpu::kMaxPlantCategories)
+            r.fail(r.name("categories") + " must be an array of 1 to 4 objects");
+        p.categoryCount = uint32_t(categories.size());
+        for (uint32_t i = 0; i < p.categoryCount; ++i) parseCategory(categories[i], p.categories[i]);
     }
     // The default mapping R, G, B -> 0, 1, 2 shrinks with a shorter category list instead of failing.
     for (int32_t& cat : p.channelCategory)
         if (cat != kUnusedChannel && uint32_t(cat) >= p.categoryCount) cat = kUnusedChannel;
-    if (json.contains("channels")) {
-        const Json& channels = json.at("channels");
-        requireKeys(channels, {"r", "g", "b", "a"}, source, "channels");
-        static const char* kNames[] = {"r", "g", "b", "a"};
-        for (uint32_t ch = 0; ch < 4; ++ch) {
-            if (!channels.contains(kNames[ch])) continue;
-            const Json& v = channels.at(kNames[ch]);
-            const std::string key = std::string("channels.") + kNames[ch];
-            if (v.is_null()) {
-                p.channelCategory[ch] = kUnusedChannel;
-            } else if (v.is_string()) {
-                int32_t found = kUnusedChannel;
-                for (uint32_t i = 0; i < p.categoryCount; ++i)
-                    if (p.categories[i].name == v.get<std::string>()) found = int32_t(i);
-                require(found != kUnusedChannel,
-                        source + ": vegetation '" + key + "' names unknown category " + v.dump());
-                p.channelCategory[ch] = found;
-            } else {
-                uint64_t index = unsignedInteger(v, source, key);
-                p.channelCategory[ch] = int32_t(std::min<uint64_t>(index, 1000)); // range-checked below
-            }
-        }
-    }
+    if (r.has("channels")) parseChannels(r.child("channels"), p);
+    r.finish();
     validateVegetationParams(p, source);
     return p;
 }

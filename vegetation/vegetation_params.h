@@ -85,12 +85,14 @@ struct VegetationParams {
     uint32_t clustersPerField() const; // per side
 };
 
-// Throws sward::Error (message names sourceName and the key) unless params is consistent: sizes positive and
-// nested in whole numbers, densities/heights finite and in range, channel mapping pointing at existing categories.
+// Throws sward::Error (message names sourceName and the key, as 'vegetation.<key>') unless params is consistent:
+// sizes positive and nested in whole numbers, densities/heights finite and in range, channel mapping pointing at
+// existing categories.
 void validateVegetationParams(const VegetationParams& params, const std::string& sourceName);
 
-// Reads the keys documented above from a JSON object (usually the scene file's "vegetation" object); unknown keys
-// are errors so that typos do not pass silently. Throws sward::Error naming sourceName and the offending key.
+// Reads the keys documented above from the scene file's "vegetation" object (null: the defaults); unknown keys are
+// errors so that typos do not pass silently. Errors name the file and the JSON path, e.g.
+// "meadow.json: 'vegetation.categories[0].density' must be between 0 and 1000 (got -1)".
 VegetationParams parseVegetationParams(const nlohmann::json& json, const std::string& sourceName);
 
 } // namespace sward

@@ -1,9 +1,8 @@
 #include "world/path.h"
 
 #include "common/error.h"
+#include "common/json_reader.h"
 #include "world/heightfield.h"
-
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 
@@ -53,42 +52,17 @@ glm::dvec3 pathPointAhead(const PathParams& path, const Heightfield& terrain, do
     return glm::dvec3(xy, double(terrain.height(glm::vec2(xy))));
 }
 
-PathParams parsePath(const nlohmann::json& json, const std::string& where) {
-    auto fail = [&](const std::string& what) { throw Error(where + ": " + what); };
-    if (!json.is_object()) fail("must be an object with \"points\"");
+PathParams parsePath(const nlohmann::json& json, const std::string& source, const std::string& jsonPath) {
+    JsonReader r(json, source, jsonPath);
     PathParams path;
-    for (auto it = json.begin(); it != json.end(); ++it) {
-        const std::string& key = it.key();
-        const nlohmann::json& v = it.value();
-        if (key == "points") {
-            if (!v.is_array() || v.empty()) fail("'points' must be a non-empty array of [x, y]");
-            for (const nlohmann::json& p : v) {
-                if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number() ||
-                    !std::isfinite(p[0].get<double>()) || !std::isfinite(p[1].get<double>()))
-                    fail("'points' must hold [x, y] pairs of finite numbers");
-                path.points.emplace_back(p[0].get<double>(), p[1].get<double>());
-            }
-        } else if (key == "speed" || key == "height_above_ground" || key == "start_time") {
-            if (!v.is_number() || !std::isfinite(v.get<double>())) fail("'" + key + "' must be a finite number");
-            double x = v.get<double>();
-            if (key == "speed") {
-                if (x < 0.0 || x > 1000.0) fail("'speed' must be between 0 and 1000 m/s");
-                path.speed = x;
-            } else if (key == "height_above_ground") {
-                if (x < -100.0 || x > 10000.0) fail("'height_above_ground' must be between -100 and 10000 m");
-                path.heightAboveGround = x;
-            } else {
-                if (x < 0.0) fail("'start_time' must not be negative");
-                path.startTime = x;
-            }
-        } else if (key == "loop") {
-            if (!v.is_boolean()) fail("'loop' must be true or false");
-            path.loop = v.get<bool>();
-        } else {
-            fail("unknown key '" + key + "'");
-        }
-    }
-    if (path.points.empty()) fail("'points' is required");
+    r.required("points", "[[x, y], ...]");
+    path.points = r.vectors<2>("points", -1e9, 1e9);
+    if (path.points.empty()) r.fail(r.name("points") + " must not be empty");
+    path.speed = r.number("speed", path.speed, 0.0, 1000.0);
+    path.heightAboveGround = r.number("height_above_ground", path.heightAboveGround, -100.0, 10000.0);
+    path.startTime = r.number("start_time", path.startTime, 0.0, 1e9);
+    path.loop = r.boolean("loop", path.loop);
+    r.finish();
     return path;
 }
 

@@ -35,7 +35,8 @@ glm::dvec3 pathPointAhead(const PathParams& path, const Heightfield& terrain, do
 // Total polyline length in metres.
 double pathLength(const PathParams& path);
 
-// Reads {"points": [[x, y], ...], "speed", "height_above_ground", "start_time", "loop"}; errors name `where`.
-PathParams parsePath(const nlohmann::json& json, const std::string& where);
+// Reads {"points": [[x, y], ...], "speed", "height_above_ground", "start_time", "loop"} ("points" required and
+// non-empty); errors name `source` and the JSON path, e.g. "scene.json: 'camera.path.speed' must be ...".
+PathParams parsePath(const nlohmann::json& json, const std::string& source, const std::string& jsonPath);
 
 } // namespace sward

@@ -51,3 +51,46 @@ TEST(JsonReader, ErrorsNameTheFileAndTheJsonPath) {
               "f.json: unknown key 'typo'");
     EXPECT_EQ(errorOf([&] { JsonReader(nlohmann::json::array(), "f.json"); }), "f.json: the file must hold a JSON object");
 }
+
+TEST(JsonReader, ChoiceReturnsTheIndexOfANamedValue) {
+    const auto json = nlohmann::json::parse(R"({"shape": "box", "bad": "cone", "number": 3})");
+    JsonReader r(json, "f.json");
+    EXPECT_EQ(r.choice("shape", 0, {"sphere", "capsule", "box"}), 2);
+    EXPECT_EQ(r.choice("absent", 1, {"sphere", "capsule", "box"}), 1);
+    EXPECT_EQ(errorOf([&] { r.choice("bad", 0, {"sphere", "capsule", "box"}); }),
+              "f.json: 'bad' must be sphere, capsule or box");
+    EXPECT_EQ(errorOf([&] { r.choice("number", 0, {"x", "y"}); }), "f.json: 'number' must be x or y");
+}
+
+TEST(JsonReader, RequiredKeysNameWhatIsMissing) {
+    const auto json = nlohmann::json::parse(R"({"o": {"path": {"speed": 1}}})");
+    JsonReader r(json, "f.json");
+    JsonReader o = r.child("o");
+    EXPECT_EQ(o.required("path", "a path").at("speed"), 1);
+    EXPECT_EQ(o.childPath("path"), "o.path");
+    EXPECT_EQ(errorOf([&] { o.required("model", "a .gltf file"); }), "f.json: 'o.model' is required (a .gltf file)");
+}
+
+TEST(JsonReader, WholeVectorsRejectFractionsAndOutOfRangeValues) {
+    const auto json = nlohmann::json::parse(R"({"size": [640, 480.0], "half": [640.5, 480], "big": [0, 20000]})");
+    JsonReader r(json, "f.json");
+    EXPECT_EQ(r.wholeVector<2>("size", glm::uvec2(1), 1, 16384), glm::uvec2(640, 480));
+    EXPECT_EQ(r.wholeVector<2>("absent", glm::uvec2(7, 8), 1, 16384), glm::uvec2(7, 8));
+    EXPECT_EQ(errorOf([&] { r.wholeVector<2>("half", glm::uvec2(1), 1, 16384); }),
+              "f.json: 'half' must hold whole numbers");
+    EXPECT_EQ(errorOf([&] { r.wholeVector<2>("big", glm::uvec2(1), 1, 16384); }),
+              "f.json: 'big' must hold numbers between 1 and 16384");
+}
+
+TEST(JsonReader, ArraysOfVectorsAreReadElementByElement) {
+    const auto json = nlohmann::json::parse(R"({"points": [[0, 1], [2.5, -3]], "flat": [0, 1], "far": [[0, 1e9]]})");
+    JsonReader r(json, "f.json");
+    const auto points = r.vectors<2>("points", -100.0, 100.0);
+    ASSERT_EQ(points.size(), 2u);
+    EXPECT_EQ(points[1], glm::dvec2(2.5, -3.0));
+    EXPECT_TRUE(r.vectors<2>("absent", -100.0, 100.0).empty());
+    EXPECT_EQ(errorOf([&] { r.vectors<2>("flat", -100.0, 100.0); }),
+              "f.json: 'flat' must be an array of arrays of 2 numbers between -100 and 100");
+    EXPECT_EQ(errorOf([&] { r.vectors<2>("far", -100.0, 100.0); }),
+              "f.json: 'far' must be an array of arrays of 2 numbers between -100 and 100");
+}

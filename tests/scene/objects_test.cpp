@@ -1,6 +1,7 @@
 // Scene objects (vegetation/objects.h) and the default rover (vegetation/rover_model.h): parsing with JSON-path
 // errors, the glTF node hierarchy in sward's Z-up frame, poses on the terrain, colliders riding on nodes.
 #include "world/heightfield.h"
+#include "common/json_reader.h"
 #include "scene/objects.h"
 #include "scene/rover_model.h"
 #include "scene/scene.h"
@@ -32,9 +33,17 @@ std::string writeRover() {
     return path;
 }
 
+// The scene's "objects" key holding `objects`, parsed as parseScene does.
+std::vector<ObjectParams> parseObjectList(const nlohmann::json& objects, const std::string& source,
+                                          const std::string& sceneDir) {
+    const nlohmann::json scene = {{"objects", objects}};
+    JsonReader reader(scene, source);
+    return parseObjects(reader, sceneDir);
+}
+
 ObjectParams roverObject(const std::string& model, nlohmann::json path) {
     const nlohmann::json json = nlohmann::json::array({{{"model", model}, {"path", path}}});
-    return parseObjects(&json, "t", "").at(0);
+    return parseObjectList(json, "t", "").at(0);
 }
 
 glm::dvec3 origin(const glm::dmat4& m) {
@@ -190,7 +199,7 @@ TEST(Objects, CollidersRideOnTheirNodes) {
            {"node": "camera_mount", "shape": "sphere", "radius": 0.1, "offset": [0, -0.5, 0]}
          ]}
     ])");
-    const auto objects = parseObjects(&json, "t", "");
+    const auto objects = parseObjectList(json, "t", "");
     const auto models = loadObjectModels(objects, "t");
     for (double time : {0.0, 4.0}) {
         const auto colliders = objectColliders(objects, models, terrain, time);
@@ -232,14 +241,14 @@ TEST(Objects, CollidersRideOnTheirNodes) {
 TEST(Objects, ParseErrorsNameTheJsonPath) {
     auto bad = [](const char* text, std::initializer_list<std::string> fragments) {
         const nlohmann::json json = nlohmann::json::parse(text);
-        expectError([&] { parseObjects(&json, "scene.json", ""); }, fragments);
+        expectError([&] { parseObjectList(json, "scene.json", ""); }, fragments);
     };
     bad(R"({"model": "x"})", {"scene.json", "'objects' must be an array"});
     bad(R"([{"path": {"points": [[0, 0]]}}])", {"'objects[0].model' is required"});
     bad(R"([{"model": "x"}])", {"'objects[0].path' is required"});
     bad(R"([{"model": "x", "path": {"points": [[0, 0]]}, "colour": 1}])", {"unknown key 'objects[0].colour'"});
     bad(R"([{"model": "x", "path": {"points": [[0, 0]]}, "scale": 0}])", {"'objects[0].scale' must be between"});
-    bad(R"([{"model": "x", "path": {"points": [[0, 0]], "speed": -1}}])", {"'objects[0].path'", "speed"});
+    bad(R"([{"model": "x", "path": {"points": [[0, 0]], "speed": -1}}])", {"'objects[0].path.speed'"});
     bad(R"([{"model": "x", "path": {"points": [[0, 0]]}, "align_to_terrain": 1}])",
         {"'objects[0].align_to_terrain' must be true or false"});
     bad(R"([{"model": "x", "path": {"points": [[0, 0]]}}, {"model": "y", "path": {"points": [[0, 0]]},
@@ -262,11 +271,11 @@ TEST(Objects, ParseErrorsNameTheJsonPath) {
     const nlohmann::json json = nlohmann::json::parse(
         R"([{"model": ")" + model +
         R"(", "path": {"points": [[0, 0]]}, "colliders": [{"node": "wheel_fl"}, {"node": "track"}]}])");
-    const auto objects = parseObjects(&json, "scene.json", "");
+    const auto objects = parseObjectList(json, "scene.json", "");
     expectError([&] { loadObjectModels(objects, "scene.json"); },
                 {"scene.json", "'objects[0].colliders[1].node'", "no node named 'track'", "wheel_rr"});
     const nlohmann::json missing = parse(R"([{"model": "nowhere.gltf", "path": {"points": [[0, 0]]}}])");
-    expectError([&] { loadObjectModels(parseObjects(&missing, "scene.json", "/data"), "scene.json"); },
+    expectError([&] { loadObjectModels(parseObjectList(missing, "scene.json", "/data"), "scene.json"); },
                 {"'objects[0].model'", "/data/nowhere.gltf"});
 }
 

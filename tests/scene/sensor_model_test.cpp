@@ -191,7 +191,7 @@ TEST(SensorModel, VignettingDarkensCornersByCos4) {
 }
 
 TEST(SensorModel, ExposureScalesLinearly) {
-    SensorParams p = parseSensor({{"exposure_ev", 1.5}}, "camera.sensor");
+    SensorParams p = parseSensor({{"exposure_ev", 1.5}}, "s.json", "camera.sensor");
     std::vector<float> image = flatImage(0.25f);
     applySensor(p, testCamera(), 0, 0, 0, image);
     EXPECT_FLOAT_EQ(image[0], 0.25f * float(std::exp2(1.5)));
@@ -291,7 +291,7 @@ TEST(SensorModel, ParsesEveryKeyAndRoundTripsThroughJson) {
     nlohmann::json j = {{"exposure", 0.8},   {"vignetting", 0.4}, {"k1", -0.1},  {"k2", 0.01},
                         {"k3", 0.001},       {"p1", 1e-4},        {"p2", -2e-4}, {"electrons_per_unit", 3000},
                         {"read_noise", 3.5}, {"full_well", 20000}};
-    SensorParams p = parseSensor(j, "camera.sensor");
+    SensorParams p = parseSensor(j, "s.json", "camera.sensor");
     EXPECT_TRUE(p.enabled); // a sensor object is on unless it says "enabled": false
     EXPECT_EQ(p.exposure, 0.8);
     EXPECT_EQ(p.vignetting, 0.4);
@@ -300,30 +300,31 @@ TEST(SensorModel, ParsesEveryKeyAndRoundTripsThroughJson) {
     EXPECT_EQ(p.electronsPerUnit, 3000.0);
     EXPECT_EQ(p.readNoise, 3.5);
     EXPECT_EQ(p.fullWell, 20000.0);
-    EXPECT_EQ(sensorToJson(parseSensor(sensorToJson(p), "x")), sensorToJson(p));
-    EXPECT_FALSE(parseSensor(nlohmann::json(), "camera.sensor").enabled);
-    EXPECT_FALSE(parseSensor({{"enabled", false}, {"k1", 0.2}}, "camera.sensor").enabled);
+    EXPECT_EQ(sensorToJson(parseSensor(sensorToJson(p), "s.json", "x")), sensorToJson(p));
+    EXPECT_FALSE(parseSensor(nlohmann::json(), "s.json", "camera.sensor").enabled);
+    EXPECT_FALSE(parseSensor({{"enabled", false}, {"k1", 0.2}}, "s.json", "camera.sensor").enabled);
 }
 
 TEST(SensorModel, ParseErrorsNameTheJsonPath) {
     auto message = [](const nlohmann::json& j) {
         try {
-            parseSensor(j, "rigs[0].sensor", "scene.json");
+            parseSensor(j, "scene.json", "rigs[0].sensor");
         } catch (const Error& e) {
             return std::string(e.what());
         }
         return std::string("no error");
     };
-    EXPECT_EQ(message({{"k1", "strong"}}), "scene.json: rigs[0].sensor.k1: must be a finite number");
+    EXPECT_EQ(message({{"k1", "strong"}}), "scene.json: 'rigs[0].sensor.k1' must be a number");
     EXPECT_EQ(message({{"vignetting", 1.5}}),
-              "scene.json: rigs[0].sensor.vignetting: must be between 0 and 1 (got 1.5)");
-    EXPECT_EQ(message({{"exposure", 0}}), "scene.json: rigs[0].sensor.exposure: must be positive (got 0)");
-    EXPECT_EQ(message({{"k4", 0.1}}), "scene.json: rigs[0].sensor: unknown key 'k4'");
-    EXPECT_EQ(message({{"enabled", 1}}), "scene.json: rigs[0].sensor.enabled: must be true or false");
+              "scene.json: 'rigs[0].sensor.vignetting' must be between 0 and 1 (got 1.5)");
+    EXPECT_EQ(message({{"exposure", 0}}),
+              "scene.json: 'rigs[0].sensor.exposure' must be between 1e-09 and 1e+09 (got 0)");
+    EXPECT_EQ(message({{"k4", 0.1}}), "scene.json: unknown key 'rigs[0].sensor.k4'");
+    EXPECT_EQ(message({{"enabled", 1}}), "scene.json: 'rigs[0].sensor.enabled' must be true or false");
     EXPECT_EQ(message({{"exposure", 2}, {"exposure_ev", 1}}),
-              "scene.json: rigs[0].sensor: give either 'exposure' or 'exposure_ev', not both");
+              "scene.json: 'rigs[0].sensor' must give either 'exposure' or 'exposure_ev', not both");
     EXPECT_EQ(
         message({{"read_noise", 2}}),
-        "scene.json: rigs[0].sensor.electrons_per_unit: must be positive when 'read_noise' or 'full_well' is set");
-    EXPECT_EQ(message(nlohmann::json::array()), "scene.json: rigs[0].sensor: must be an object");
+        "scene.json: 'rigs[0].sensor.electrons_per_unit' must be positive when 'read_noise' or 'full_well' is set");
+    EXPECT_EQ(message(nlohmann::json::array()), "scene.json: 'rigs[0].sensor' must be an object");
 }

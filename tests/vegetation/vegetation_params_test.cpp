@@ -50,11 +50,11 @@ TEST(VegetationParams, RejectsNonNumbersUnknownKeysAndBadNesting) {
     expectError([] { parseVegetationParams(Json::parse(R"({"up_normal_blend": "x"})"), "s.json"); },
                 {"s.json", "up_normal_blend", "number"});
     expectError([] { parseVegetationParams(Json::parse(R"({"densty_multiplier": 2})"), "s.json"); },
-                {"unknown vegetation key", "densty_multiplier"});
+                {"unknown key 'vegetation.densty_multiplier'"});
     expectError([] { parseVegetationParams(Json::parse(R"({"field_size": 24})"), "s.json"); },
                 {"tile_size", "whole multiple"});
     expectError([] { parseVegetationParams(Json::parse(R"({"channels": {"a": 3}})"), "s.json"); },
                 {"channels.a", "category 3"});
     expectError([] { parseVegetationParams(Json::parse(R"({"categories": [{"height": 1e40}]})"), "s.json"); },
-                {"categories[0].height", "infinity"});
+                {"categories[0].height", "got 1e+40"});
 }
