@@ -135,7 +135,7 @@ void Swapchain::create(VkExtent2D windowExtent) {
 }
 
 bool Swapchain::acquire(uint64_t frame, VkExtent2D windowExtent, SwapchainImage& out) {
-    const uint32_t slot = uint32_t(frame % kFramesInFlight);
+    const uint32_t slot = uint32_t(frame % gpu::kFramesInFlight);
     // The slot's previous submission must be complete before its acquire semaphore is used again.
     ctx_.submitter.wait(frameSerial_[slot]);
     if (windowExtent.width == 0 || windowExtent.height == 0) return false; // minimised: nothing to present
@@ -159,7 +159,7 @@ bool Swapchain::acquire(uint64_t frame, VkExtent2D windowExtent, SwapchainImage&
 }
 
 void Swapchain::present(uint64_t frame, uint64_t serial, const SwapchainImage& image) {
-    frameSerial_[frame % kFramesInFlight] = serial;
+    frameSerial_[frame % gpu::kFramesInFlight] = serial;
     VkPresentInfoKHR info{
         .sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR,
         .waitSemaphoreCount = 1,

@@ -29,7 +29,6 @@ struct SwapchainImage {
 
 class Swapchain {
 public:
-    static constexpr uint32_t kFramesInFlight = gpu::kFramesInFlight;
 
     // `surface` is owned by the device (DeviceOptions::createSurface).
     Swapchain(Context& ctx, VkSurfaceKHR surface, VkExtent2D windowExtent, bool vsync);
@@ -37,7 +36,7 @@ public:
     Swapchain(const Swapchain&) = delete;
     Swapchain& operator=(const Swapchain&) = delete;
 
-    // Waits until frame slot `frame % kFramesInFlight` is free, recreates the swapchain if it is stale or
+    // Waits until frame slot `frame % gpu::kFramesInFlight` is free, recreates the swapchain if it is stale or
     // `windowExtent` (the framebuffer size) differs, and acquires the next image. Returns false when nothing
     // can be presented now (minimised window, or the surface changed during acquire): skip the frame.
     bool acquire(uint64_t frame, VkExtent2D windowExtent, SwapchainImage& out);
@@ -68,8 +67,8 @@ private:
     std::vector<VkImage> images_;
     std::vector<VkImageView> views_;
     std::vector<VkSemaphore> finished_;         // per swapchain image
-    VkSemaphore acquired_[kFramesInFlight] = {}; // per frame in flight
-    uint64_t frameSerial_[kFramesInFlight] = {};
+    VkSemaphore acquired_[gpu::kFramesInFlight] = {}; // per frame in flight
+    uint64_t frameSerial_[gpu::kFramesInFlight] = {};
     uint64_t generation_ = 0;
 };
 

@@ -2,10 +2,6 @@
 // samples. Writing is io/image_files.h.
 #pragma once
 
-// Transitional: writeExr moved to image_files.h (one EXR write path); tests that call it still include this
-// header only. Remove once they include io/image_files.h.
-#include "io/image_files.h"
-
 #include <cstdint>
 #include <string>
 #include <vector>

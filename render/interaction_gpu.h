@@ -44,7 +44,6 @@ public:
     const InteractionGpuStats& stats() const { return stats_; }
 
     // The upload ring's size; sward-view still names it here (tools/sward-view/viewer.cpp).
-    static constexpr uint32_t kSlots = gpu::kFrameDataSlots;
 
 private:
     struct Slot {
@@ -55,7 +54,7 @@ private:
     Context& ctx_;
     VegetationBuffers& buffers_;
     std::vector<uint32_t> fieldFirstPlant_, fieldPlantCount_;
-    Slot slots_[kSlots];
+    Slot slots_[gpu::kFrameDataSlots];
     Pipeline contactPipeline_, recoveryPipeline_;
     InteractionGpuStats stats_;
 };

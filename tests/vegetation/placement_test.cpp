@@ -1,5 +1,6 @@
 // Acceptance tests of issue 4: reproducible, density-faithful placement on the ground, in compact records.
 #include "world/gltf_mesh.h"
+#include "io/image_files.h"
 #include "io/image_io.h"
 #include "vegetation/placement.h"
 #include "vegetation/records.h"

@@ -1,4 +1,5 @@
 #include "world/heightfield.h"
+#include "io/image_files.h"
 #include "io/image_io.h"
 
 #include "test_files.h"

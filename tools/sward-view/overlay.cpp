@@ -24,7 +24,7 @@ Overlay::Overlay(Context& ctx, VkSampleCountFlagBits samples) : ctx_(ctx) {
          .depthWrite = false, // lines never hide each other or later geometry
          .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL,
          .samples = samples},
-        {.bindings = {layoutBinding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT)}});
+        {.bindings = {layoutBinding(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT)}});
 }
 
 Overlay::~Overlay() {

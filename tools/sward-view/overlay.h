@@ -8,6 +8,7 @@
 #include "engine/context.h"
 #include "engine/pipelines.h"
 #include "engine/resources.h"
+#include "shared/config.h"
 #include "shared/gpu_layout.h"
 
 #include <glm/glm.hpp>
@@ -43,7 +44,7 @@ public:
     void draw(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot);
     size_t lineCount() const { return vertices_.size() / 2; }
 
-    static constexpr uint32_t kSlots = 3;
+    static constexpr uint32_t kSlots = gpu::kFrameDataSlots; // line buffers written per frame (shaders/shared/config.h)
 
 private:
     Context& ctx_;

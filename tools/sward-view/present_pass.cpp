@@ -36,7 +36,7 @@ void PresentPass::ensurePipeline(const Swapchain& swapchain) {
          .depthTest = false,
          .depthWrite = false,
          .specialization = {/* SRGB_TARGET= */ swapchain.srgb() ? 1u : 0u}},
-        {.bindings = {layoutBinding(0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT)},
+        {.bindings = {layoutBinding(gpu::kPresentBindingImage, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT)},
          .pushConstantSize = sizeof(float),
          .pushConstantStages = VK_SHADER_STAGE_FRAGMENT_BIT});
     format_ = swapchain.format();
@@ -77,7 +77,7 @@ void PresentPass::record(VkCommandBuffer cmd, const Swapchain& swapchain, const 
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
     bindPipeline(cmd, pipeline_);
-    pushDescriptors(ctx_.device, cmd, pipeline_, {sampledImage(0, hdr.view, sampler_)});
+    pushDescriptors(ctx_.device, cmd, pipeline_, {sampledImage(gpu::kPresentBindingImage, hdr.view, sampler_)});
     pushConstants(cmd, pipeline_, exposure);
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRendering(cmd);

@@ -1,6 +1,5 @@
 #include "scene_state.h"
 
-#include "render/vegetation_renderer.h"
 
 #include <filesystem>
 #include <string>
@@ -35,24 +34,12 @@ std::unique_ptr<SceneState> loadSceneState(Context& ctx, const Scene& sceneIn, u
         roverObject = scene.objects.size();
         scene.objects.push_back(rover);
     }
-    auto state = std::make_unique<SceneState>(SceneState{scene, buildTerrain(scene), std::nullopt,
-                                                         loadObjectModels(scene.objects, scene.source), roverObject,
-                                                         nullptr, nullptr, nullptr});
-    std::optional<Atlas> atlas;
-    if (scene.vegetationEnabled) {
-        state->tile = buildVegetation(state->scene, state->terrain);
-        atlas = buildAtlas(state->scene);
-    }
-    VkSampleCountFlagBits sampleBits = samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
-    state->renderer = std::make_unique<SceneRenderer>(ctx, state->scene, state->terrain, sampleBits,
-                                                      state->tile ? &*state->tile : nullptr, atlas ? &*atlas : nullptr,
-                                                      &state->models);
-    if (state->tile && state->renderer->vegetation())
-        state->simulation = std::make_unique<Simulation>(ctx, state->scene, state->terrain, *state->tile,
-                                                         state->renderer->vegetation()->buffers());
-    if (state->simulation) state->simulation->setObjectModels(&state->models);
-    if (state->roverObject && state->renderer->objects()) state->renderer->objects()->setVisible(*state->roverObject, false);
-    state->overlay = std::make_unique<Overlay>(ctx, sampleBits);
+    auto state = std::make_unique<SceneState>(SceneState{.resources = buildSceneResources(std::move(scene)),
+                                                         .roverObject = roverObject});
+    state->gpu = createSceneGpu(ctx, state->resources, samples, SimulationMode::Always);
+    if (state->roverObject && state->gpu.renderer->objects())
+        state->gpu.renderer->objects()->setVisible(*state->roverObject, false);
+    state->overlay = std::make_unique<Overlay>(ctx, samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT);
     return state;
 }
 

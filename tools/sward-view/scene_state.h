@@ -1,30 +1,24 @@
-// SceneState: everything the viewer builds from a scene file (terrain, tile, objects, renderer, simulation,
-// overlay). Rebuilt on reload, density or MSAA changes.
+// SceneState: everything the viewer builds from a scene file: the shared CPU assembly (SceneResources), its GPU
+// side (SceneGpu, always with a simulation: the user's rover may touch plants at any time) and the overlay.
+// Rebuilt on reload, density or MSAA changes.
 #pragma once
 
 #include "engine/context.h"
 #include "overlay.h"
 #include "render/object_renderer.h"
-#include "render/scene_renderer.h"
-#include "render/simulation.h"
-#include "scene/scene.h"
+#include "render/scene_gpu.h"
+#include "scene/scene_resources.h"
 
 #include <memory>
 #include <optional>
-#include <vector>
 
 namespace sward {
 
-// Members are declared in construction order, so the simulation (which uses the renderer's buffers) is
-// destroyed first.
+// Members are declared in construction order: the GPU side (which reads the resources) is destroyed first.
 struct SceneState {
-    Scene scene;
-    Heightfield terrain;
-    std::optional<VegetationTile> tile;
-    std::vector<ObjectModel> models; // the scene's glTF objects (drawn and colliding)
+    SceneResources resources;
     std::optional<size_t> roverObject; // the keyboard rover's glTF model: the object after the scene's own
-    std::unique_ptr<SceneRenderer> renderer;
-    std::unique_ptr<Simulation> simulation;
+    SceneGpu gpu;
     std::unique_ptr<Overlay> overlay;
 };
 

@@ -59,7 +59,7 @@ private:
     void rebuild(const Scene& scene, bool keepInteraction);
     void reload();
     void resetCameraAndRover();
-    void spawnRover() { rover_.spawn(camera_, state_->terrain); }
+    void spawnRover() { rover_.spawn(camera_, state_->resources.terrain); }
     float canopyHeight() const;
     // Input and the panel's edits.
     void onKey(int key, int action, int mods);
@@ -80,7 +80,7 @@ private:
     uint32_t samples() const { return panel_.msaa ? 4u : 1u; }
     bool headless() const { return options_.frames > 0; }
     // The keyboard rover's vehicle index: after the scene's own vehicles, so their collider ids never clash.
-    uint32_t roverIndex() const { return uint32_t(state_->scene.actors.vehicles.size()); }
+    uint32_t roverIndex() const { return uint32_t(state_->resources.scene.actors.vehicles.size()); }
 
     ViewerOptions options_;
     std::string scenePath_;
@@ -92,7 +92,7 @@ private:
     std::unique_ptr<Ui> ui_;
     std::unique_ptr<SceneState> state_;
     std::unique_ptr<RenderTarget> main_;
-    std::unique_ptr<GpuTimers> timers_[Swapchain::kFramesInFlight];
+    std::unique_ptr<GpuTimers> timers_[gpu::kFramesInFlight];
     TestHooks hooks_;
 
     PanelState panel_;
@@ -158,12 +158,12 @@ Viewer::~Viewer() {
 }
 
 void Viewer::rebuild(const Scene& sceneIn, bool keepInteraction) {
-    Scene scene = sceneIn; // may be state_->scene, which is about to go
+    Scene scene = sceneIn; // may be state_->resources.scene, which is about to go
     // Interaction state survives an MSAA change (same plants): read it back, rebuild, upload it again.
     std::string stateFile;
-    if (keepInteraction && state_ && state_->simulation) {
+    if (keepInteraction && state_ && state_->gpu.simulation) {
         stateFile = (std::filesystem::temp_directory_path() / ("sward-view-" + std::to_string(getpid()) + ".state")).string();
-        state_->simulation->world().saveState(stateFile, state_->simulation->gpu().readDynamics());
+        state_->gpu.simulation->world().saveState(stateFile, state_->gpu.simulation->gpu().readDynamics());
     }
     ctx_.submitter.waitIdle();
     state_.reset();
@@ -172,20 +172,20 @@ void Viewer::rebuild(const Scene& sceneIn, bool keepInteraction) {
     // Kept interaction needs the very same plants; otherwise the panel's density applies.
     if (!keepInteraction) scene.vegetation.densityMultiplier = panel_.density;
     state_ = loadSceneState(ctx_, scene, samples());
-    if (!stateFile.empty() && state_->simulation) {
-        state_->simulation->gpu().writeDynamics(state_->simulation->world().restoreState(stateFile));
+    if (!stateFile.empty() && state_->gpu.simulation) {
+        state_->gpu.simulation->gpu().writeDynamics(state_->gpu.simulation->world().restoreState(stateFile));
         std::filesystem::remove(stateFile);
     }
-    state_->renderer->setMainPassOverlay([this](VkCommandBuffer cmd, const DescriptorBinding& frame) {
+    state_->gpu.renderer->setMainPassOverlay([this](VkCommandBuffer cmd, const DescriptorBinding& frame) {
         state_->overlay->draw(cmd, frame, uint32_t(frame_));
     });
-    panel_.scene = state_->scene.name + " (" + scenePath_ + ")";
-    panel_.fieldCount = state_->tile ? state_->tile->fields.size() : 0;
-    rover_.setVehicle(state_->scene.actors.vehicles.empty() ? VehicleParams{} : state_->scene.actors.vehicles[0]);
+    panel_.scene = state_->resources.scene.name + " (" + scenePath_ + ")";
+    panel_.fieldCount = state_->resources.tile ? state_->resources.tile->fields.size() : 0;
+    rover_.setVehicle(state_->resources.scene.actors.vehicles.empty() ? VehicleParams{} : state_->resources.scene.actors.vehicles[0]);
 }
 
 void Viewer::resetCameraAndRover() {
-    Camera c = sceneCamera(state_->scene, state_->terrain, 16, 16, 0.0);
+    Camera c = sceneCamera(state_->resources.scene, state_->resources.terrain, 16, 16, 0.0);
     camera_ = FlyCamera(c.position, c.position + glm::dvec3(c.worldFromCamera[2]));
     rover_.deactivate();
     driving_ = false;
@@ -193,14 +193,14 @@ void Viewer::resetCameraAndRover() {
 
 float Viewer::canopyHeight() const {
     float top = 0.0f;
-    const VegetationParams& v = state_->scene.vegetation;
+    const VegetationParams& v = state_->resources.scene.vegetation;
     for (uint32_t i = 0; i < v.categoryCount; ++i)
         top = std::max(top, v.categories[i].height * (1.0f + v.categories[i].heightVariation));
     return top;
 }
 
 void Viewer::reload() {
-    Scene previous = state_->scene;
+    Scene previous = state_->resources.scene;
     try {
         Scene scene = loadScene(scenePath_);
         panel_.wind = scene.wind;
@@ -232,7 +232,7 @@ void Viewer::handleInput(double dt) {
     if (!driving_) {
         camera_.update(input, dt);
         glm::dvec3 p = camera_.position();
-        camera_.clampAbove(state_->terrain.height(glm::vec2(p)), 0.3);
+        camera_.clampAbove(state_->resources.terrain.height(glm::vec2(p)), 0.3);
     }
 }
 
@@ -254,21 +254,21 @@ void Viewer::applyPanel() {
         reload();
     }
     if (panel_.applyDensity) applyDensity();
-    if (uint32_t(state_->renderer->samples()) != samples()) rebuild(state_->scene, true);
+    if (uint32_t(state_->gpu.renderer->samples()) != samples()) rebuild(state_->resources.scene, true);
     if (panel_.screenshot) {
         panel_.screenshot = false;
         screenshotPending_ = true;
     }
-    state_->scene.wind = panel_.wind;
-    state_->scene.lod = panel_.lod;
-    if (VegetationRenderer* v = state_->renderer->vegetation()) v->setWindAndLod(panel_.wind, panel_.lod);
-    state_->renderer->setDebugFlags((panel_.lodColors ? gpu::kDebugLodColors : 0u) |
+    state_->resources.scene.wind = panel_.wind;
+    state_->resources.scene.lod = panel_.lod;
+    if (VegetationRenderer* v = state_->gpu.renderer->vegetation()) v->setWindAndLod(panel_.wind, panel_.lod);
+    state_->gpu.renderer->setDebugFlags((panel_.lodColors ? gpu::kDebugLodColors : 0u) |
                                     (panel_.updatedPlants ? gpu::kDebugUpdatedPlants : 0u));
 }
 
 void Viewer::applyDensity() {
     panel_.applyDensity = false;
-    Scene scene = state_->scene;
+    Scene scene = state_->resources.scene;
     const float previous = scene.vegetation.densityMultiplier;
     try {
         rebuild(scene, false);
@@ -308,7 +308,7 @@ double Viewer::advanceClocks() {
     auto now = Clock::now();
     double dt = std::min(std::chrono::duration<double>(now - lastFrame_).count(), 0.25);
     lastFrame_ = now;
-    if (!panel_.paused) tickClock_ = std::min(tickClock_ + dt, 4.0 * state_->scene.sequence.timeStep);
+    if (!panel_.paused) tickClock_ = std::min(tickClock_ + dt, 4.0 * state_->resources.scene.sequence.timeStep);
 
     // Reload the scene when its file changes (checked twice a second; editors write in bursts).
     if (!headless() && now - lastReloadCheck_ > std::chrono::milliseconds(500)) {
@@ -319,7 +319,7 @@ double Viewer::advanceClocks() {
 }
 
 void Viewer::renderFrame(const SwapchainImage& image, double dt) {
-    const uint32_t slot = uint32_t(frame_ % Swapchain::kFramesInFlight);
+    const uint32_t slot = uint32_t(frame_ % gpu::kFramesInFlight);
     // The slot's previous frame has completed (acquire waited for it): its timings can be read.
     panel_.passTimes = timers_[slot]->read();
     frameTimes_.push_back(float(dt * 1000.0));
@@ -345,13 +345,13 @@ void Viewer::renderFrame(const SwapchainImage& image, double dt) {
 
 // Shows the frame's state in the panel (when visible) and takes its edits (applied next frame).
 void Viewer::updatePanel() {
-    Simulation* sim = state_->simulation.get();
+    Simulation* sim = state_->gpu.simulation.get();
     panel_.frameTimes = frameTimes_;
     panel_.cameraSpeed = camera_.speed();
     panel_.driving = driving_;
     if (sim) {
         panel_.tick = sim->nextTick();
-        panel_.simulationSeconds = double(sim->nextTick()) * state_->scene.sequence.timeStep;
+        panel_.simulationSeconds = double(sim->nextTick()) * state_->resources.scene.sequence.timeStep;
         panel_.activeFieldCount = sim->world().activeFields().size();
         panel_.contacts = sim->lastTick().contacts.size();
         panel_.collisionMs = sim->lastTick().stats.cpuMs;
@@ -360,8 +360,8 @@ void Viewer::updatePanel() {
 }
 
 void Viewer::tickSimulation(VkCommandBuffer cmd, GpuTimers& timers) {
-    Simulation* sim = state_->simulation.get();
-    const double step = state_->scene.sequence.timeStep;
+    Simulation* sim = state_->gpu.simulation.get();
+    const double step = state_->resources.scene.sequence.timeStep;
     bool run = false;
     if (stepPending_) run = true;
     else if (!panel_.paused) run = options_.frames > 0 || tickClock_ >= step; // --frames: one tick per frame
@@ -370,32 +370,32 @@ void Viewer::tickSimulation(VkCommandBuffer cmd, GpuTimers& timers) {
     tickClock_ = std::max(tickClock_ - step, 0.0);
     if (rover_.active()) rover_.step(window_.handle, driving_ && !(ui_ && ui_->wantsKeyboard()), options_.autodrive, step);
     if (!sim) return;
-    if (rover_.active()) sim->setExternalColliders(rover_.wheelColliders(state_->terrain, roverIndex()));
+    if (rover_.active()) sim->setExternalColliders(rover_.wheelColliders(state_->resources.terrain, roverIndex()));
     else sim->setExternalColliders({});
     timers.begin(cmd, "interaction");
-    sim->recordNextTick(cmd, uint32_t(sim->nextTick() % InteractionGpu::kSlots));
+    sim->recordNextTick(cmd, uint32_t(sim->nextTick() % gpu::kFrameDataSlots));
     timers.end(cmd);
 }
 
 Camera Viewer::viewCamera(VkExtent2D extent) const {
-    double fov = state_->scene.camera.fovYDegrees;
+    double fov = state_->resources.scene.camera.fovYDegrees;
     if (!driving_) return camera_.camera(fov, extent.width, extent.height);
-    return rover_.followCamera(state_->terrain, fov, extent.width, extent.height);
+    return rover_.followCamera(state_->resources.terrain, fov, extent.width, extent.height);
 }
 
 void Viewer::buildOverlay(const Camera& camera) {
     Overlay& overlay = *state_->overlay;
     overlay.clear();
     glm::vec3 eye(camera.position);
-    Simulation* sim = state_->simulation.get();
-    if (panel_.activeFields && state_->tile) {
-        std::vector<uint8_t> active(state_->tile->fields.size(), 0);
+    Simulation* sim = state_->gpu.simulation.get();
+    if (panel_.activeFields && state_->resources.tile) {
+        std::vector<uint8_t> active(state_->resources.tile->fields.size(), 0);
         if (sim)
             for (uint32_t f : sim->world().activeFields()) active[f] = 1;
         // Just above the canopy: at the ground the grass would hide the outlines.
-        overlay.fields(*state_->tile, state_->terrain, active, eye, 200.0f, 1.1f * canopyHeight());
+        overlay.fields(*state_->resources.tile, state_->resources.terrain, active, eye, 200.0f, 1.1f * canopyHeight());
     }
-    if (panel_.clusterBounds && state_->tile) overlay.clusters(*state_->tile, eye, 40.0f);
+    if (panel_.clusterBounds && state_->resources.tile) overlay.clusters(*state_->resources.tile, eye, 40.0f);
     // All colliders with the overlay on; without a rover model, the rover's wheels always (they are how it is seen).
     const bool wheelsOnly = rover_.active() && !state_->roverObject;
     if (sim && (panel_.colliders || wheelsOnly)) {
@@ -403,7 +403,7 @@ void Viewer::buildOverlay(const Camera& camera) {
             if (panel_.colliders || RoverControl::isWheel(c, roverIndex()))
                 overlay.collider(c, c.kind == ColliderKind::Gust ? glm::vec3(0.5f, 1.5f, 3.0f) : glm::vec3(4.0f, 4.0f, 0.5f));
     }
-    rover_.show(state_->renderer->objects(), state_->roverObject, state_->terrain, overlay);
+    rover_.show(state_->gpu.renderer->objects(), state_->roverObject, state_->resources.terrain, overlay);
     overlay.upload(uint32_t(frame_));
 }
 
@@ -423,12 +423,12 @@ void Viewer::ensureTargets(VkExtent2D extent) {
 uint64_t Viewer::recordFrame(const SwapchainImage& image, const Camera& camera, RenderTarget* truth, bool capture) {
     const bool keyShot = truth != nullptr;
     VkCommandBuffer cmd = ctx_.submitter.begin();
-    GpuTimers& timers = *timers_[frame_ % Swapchain::kFramesInFlight];
+    GpuTimers& timers = *timers_[frame_ % gpu::kFramesInFlight];
     timers.reset(cmd);
     tickSimulation(cmd, timers);
-    Simulation* sim = state_->simulation.get();
-    const double simTime = sim ? double(sim->nextTick()) * state_->scene.sequence.timeStep : 0.0;
-    state_->renderer->record(cmd, *main_, truth, camera, simTime, uint32_t(frame_), &timers);
+    Simulation* sim = state_->gpu.simulation.get();
+    const double simTime = sim ? double(sim->nextTick()) * state_->resources.scene.sequence.timeStep : 0.0;
+    state_->gpu.renderer->record(cmd, *main_, truth, camera, simTime, uint32_t(frame_), &timers);
     if (keyShot) screenshots_.recordKeyShotReadback(cmd, *main_);
     timers.begin(cmd, "present");
     present_.record(cmd, swapchain_, image, main_->output(0), panel_.exposure);
@@ -449,7 +449,7 @@ void Viewer::writeCaptures(uint64_t serial, bool keyShot, bool capture) {
     const VkExtent2D extent = swapchain_.extent();
     if (keyShot) {
         ctx_.submitter.wait(serial);
-        panel_.message = screenshots_.writeKeyShot(*main_, state_->scene.name, panel_.exposure);
+        panel_.message = screenshots_.writeKeyShot(*main_, state_->resources.scene.name, panel_.exposure);
         std::fprintf(stderr, "sward-view: %s\n", panel_.message.c_str());
     }
     if (capture) {
@@ -463,9 +463,9 @@ void Viewer::printSummary() const {
     VkExtent2D e = swapchain_.extent();
     std::printf("sward-view: %s, %llu frame(s), final size %ux%u, %llu swapchain creation(s), %u render-target "
                 "size(s), tick %llu\n",
-                state_->scene.name.c_str(), (unsigned long long)frame_, e.width, e.height,
+                state_->resources.scene.name.c_str(), (unsigned long long)frame_, e.width, e.height,
                 (unsigned long long)swapchain_.generation(), recreations_,
-                (unsigned long long)(state_->simulation ? state_->simulation->nextTick() : 0));
+                (unsigned long long)(state_->gpu.simulation ? state_->gpu.simulation->nextTick() : 0));
 }
 
 } // namespace
