@@ -3,6 +3,8 @@
 #include "vegetation/atlas.h"
 #include "common/error.h"
 
+#include "tools/tool_main.h"
+
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -17,15 +19,7 @@ int main(int argc, char** argv) {
     app.add_option("--cell", params.cellSize, "Cell edge in texels, a power of two 32..2048")->capture_default_str();
     app.add_option("--seed", params.seed, "Random seed; every texel is a pure function of it")->capture_default_str();
     app.add_option("--variants", variants, "Columns per row (default: each category's variants)");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "sward-atlas: error: %s (see --help)\n", e.what());
-        return 1;
-    }
-    try {
+    return sward::runTool(app, argc, argv, "sward-atlas", [&] {
         if (variants > 0) params.rows = sward::defaultAtlasRows(variants);
         std::error_code error;
         std::filesystem::create_directories(outDir, error);
@@ -38,9 +32,6 @@ int main(int argc, char** argv) {
                     atlas.desc.height(), atlas.desc.cellWidth, atlas.desc.cellHeight, json.c_str());
         for (const sward::AtlasRow& row : atlas.desc.rows)
             std::printf("  row %-8s %zu variants\n", row.category.c_str(), row.cells.size());
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "sward-atlas: error: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+        return 0;
+    });
 }

@@ -3,6 +3,8 @@
 #include "common/atomic_file.h"
 #include "scene/scene.h"
 
+#include "tools/tool_main.h"
+
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -60,15 +62,7 @@ int main(int argc, char** argv) {
     col->add_flag("!--no-gpu", collide.gpu, "CPU collision only: no Vulkan device, no upload or GPU figures");
     col->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "sward-bench: error: %s (see --help)\n", e.what());
-        return 2;
-    }
-    try {
+    return sward::runTool(app, argc, argv, "sward-bench", [&] {
         if (gen->parsed()) emit(sward::benchGenerate(generate), json);
         if (frm->parsed()) {
             sward::parseResolution(resolution, frame.width, frame.height);
@@ -79,9 +73,6 @@ int main(int argc, char** argv) {
             std::fputs(sward::collideTable(result).c_str(), stdout);
             emit(result, json, "results");
         }
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "sward-bench: error: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+        return 0;
+    });
 }

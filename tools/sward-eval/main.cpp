@@ -2,6 +2,8 @@
 #include "common/error.h"
 #include "eval/evaluation.h"
 
+#include "tools/tool_main.h"
+
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -63,15 +65,7 @@ int main(int argc, char** argv) {
     app.add_option("--threads", options.threads, "Frames matched at once (default: all cores)");
     app.add_flag("--no-pictures", noPictures, "Skip the per-frame disparity and difference PNGs");
     app.add_flag("--save-disparities", options.saveDisparities, "Also write SGBM estimates as OUT/disparity/*.pfm");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "sward-eval: error: %s (see --help)\n", e.what());
-        return 2;
-    }
-    try {
+    return sward::runTool(app, argc, argv, "sward-eval", [&] {
         sgbm.mode = sward::parseSgbmMode(mode);
         sgbm.numDisparities = numDisparities;
         if (!frames.empty()) options.frames = parseFrameRange(frames);
@@ -79,9 +73,6 @@ int main(int argc, char** argv) {
         options.pictures = !noPictures;
         options.log = [](const std::string& line) { std::fprintf(stderr, "sward-eval: %s\n", line.c_str()); };
         sward::runEvaluation(options);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "sward-eval: error: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+        return 0;
+    });
 }

@@ -2,6 +2,8 @@
 #include "common/error.h"
 #include "render/render_job.h"
 
+#include "tools/tool_main.h"
+
 #include <CLI/CLI.hpp>
 
 #include <cmath>
@@ -45,15 +47,7 @@ int main(int argc, char** argv) {
     app.add_option("--time", options.time, "Time offset in seconds added to every frame's wind")->capture_default_str();
     app.add_flag("--no-vegetation", options.noVegetation, "Render the same scene without vegetation");
     app.add_flag("--validation", options.validation, "Enable Vulkan validation; any message fails the run");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "sward-render: error: %s (see --help)\n", e.what());
-        return 2;
-    }
-    try {
+    return sward::runTool(app, argc, argv, "sward-render", [&] {
         if (!resolution.empty()) options.resolution = resolution;
         if (!frames.empty()) options.frames = frames;
         if (!shard.empty()) options.shard = shard;
@@ -63,9 +57,6 @@ int main(int argc, char** argv) {
         if (!position.empty()) options.cameraPosition = parseVec3(position, "--camera");
         if (!lookAt.empty()) options.cameraLookAt = parseVec3(lookAt, "--look-at");
         sward::runRenderJob(options);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "sward-render: error: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+        return 0;
+    });
 }

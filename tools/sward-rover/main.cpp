@@ -4,6 +4,8 @@
 #include "common/error.h"
 #include "scene/rover_model.h"
 
+#include "tools/tool_main.h"
+
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -18,20 +20,9 @@ int main(int argc, char** argv) {
     app.add_option("--wheel-base", d.wheelBase, "Front to rear axle, metres")->capture_default_str();
     app.add_option("--track-width", d.trackWidth, "Left to right wheel centre, metres")->capture_default_str();
     app.add_option("--baseline", d.cameraBaseline, "Stereo head lens spacing, metres")->capture_default_str();
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "sward-rover: error: %s (see --help)\n", e.what());
-        return 1;
-    }
-    try {
+    return sward::runTool(app, argc, argv, "sward-rover", [&] {
         sward::saveRoverGltf(out, d);
         std::printf("sward-rover: wrote %s\n", out.c_str());
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "sward-rover: error: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+        return 0;
+    });
 }
