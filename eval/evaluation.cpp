@@ -1,5 +1,7 @@
 #include "eval/evaluation.h"
 
+#include "common/parallel_for.h"
+
 #include "common/error.h"
 #include "dataset/naming.h"
 #include "eval/dataset_reader.h"
@@ -100,7 +102,7 @@ void merge(FrameWork& f, DatasetEvaluation& result) {
 void evaluateFrames(const DatasetSetup& setup, const std::vector<uint32_t>& frames, DatasetEvaluation& result) {
     SingleThreadedOpenCV singleThreaded;
     const EvaluationOptions& options = *setup.options;
-    unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+    unsigned threads = resolveThreadCount(options.threads);
     threads = std::min<unsigned>(threads, unsigned(frames.size()));
     for (size_t begin = 0; begin < frames.size(); begin += threads) {
         const size_t count = std::min<size_t>(threads, frames.size() - begin);

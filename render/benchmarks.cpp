@@ -1,5 +1,6 @@
 #include "render/benchmarks.h"
 
+#include "common/parallel_for.h"
 #include "engine/context.h"
 #include "engine/render_target.h"
 #include "engine/timestamps.h"
@@ -31,9 +32,6 @@ double median(std::vector<double> values) {
     std::sort(values.begin(), values.end());
     return values.empty() ? 0.0 : values[values.size() / 2];
 }
-uint32_t threadsOrAll(uint32_t threads) {
-    return threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-}
 
 // Uniform grass (every plant costs the same, so figures compare between runs) over a `tileSize` tile, independent
 // of example files.
@@ -55,7 +53,7 @@ const GrassMap& uniformGrassMap() {
 nlohmann::json benchGenerate(const GenerateBenchOptions& options) {
     require(options.density > 0.0f && options.density <= 1000.0f, "--density must be in (0, 1000] plants per m^2");
     require(options.repeats >= 1, "--repeats must be at least 1");
-    const uint32_t threads = threadsOrAll(options.threads);
+    const uint32_t threads = resolveThreadCount(options.threads);
     const VegetationParams params = uniformGrassParams(options.tileSize, options.density, "sward-bench generate");
     const GrassMap& map = uniformGrassMap();
     Ground ground(makeProceduralTerrain({.size = options.tileSize, .spacing = 2.0f, .seed = 1}));
@@ -201,7 +199,7 @@ std::vector<Collider> circlingSpheres(const VegetationTile& tile, uint32_t field
 class CollideBench {
 public:
     explicit CollideBench(const CollideBenchOptions& options)
-        : threads(threadsOrAll(options.threads)),
+        : threads(resolveThreadCount(options.threads)),
           params(uniformGrassParams(500.0f, options.density, "sward-bench collide")), tile(flatTile(params, threads)) {
         require(tile.fields.size() == 400, "sward-bench collide: the synthetic tile must have 400 fields");
         if (!options.gpu) return;

@@ -1,5 +1,7 @@
 #include "render/simulation.h"
 
+#include "common/parallel_for.h"
+
 #include <thread>
 
 namespace sward {
@@ -7,7 +9,7 @@ namespace sward {
 Simulation::Simulation(Context& ctx, const Scene& scene, const Heightfield& terrain, const VegetationTile& tile,
                        VegetationBuffers& buffers, uint32_t threads)
     : ctx_(ctx), scene_(scene), terrain_(terrain),
-      world_(tile, scene.vegetation, scene.interaction, threads ? threads : std::max(1u, std::thread::hardware_concurrency())),
+      world_(tile, scene.vegetation, scene.interaction, resolveThreadCount(threads)),
       gpu_(ctx, buffers) {}
 
 void Simulation::recordNextTick(VkCommandBuffer cmd, uint32_t slot) {
