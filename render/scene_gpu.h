@@ -23,8 +23,8 @@ struct SceneGpu {
 };
 
 // Uploads `resources` (terrain, objects, vegetation, atlas) with `samples` (1 or 4) MSAA. `resources` must outlive
-// the result (the simulation reads the tile, scene, terrain and models). Without a simulation the CPU copy of the
-// tile is no longer needed and is released.
+// the result (the simulation reads the tile, scene, terrain and models). The CPU copies of the atlas and (without a
+// simulation) of the tile are released once uploaded.
 SceneGpu createSceneGpu(Context& ctx, SceneResources& resources, uint32_t samples, SimulationMode mode);
 
 } // namespace sward

@@ -11,6 +11,7 @@ SceneResources buildSceneResources(Scene scene, bool withVegetation, uint32_t th
     if (!withVegetation || !r.scene.vegetationEnabled) return r;
     r.tile = buildVegetation(r.scene, r.terrain, threads);
     r.atlas = buildAtlas(r.scene);
+    r.vegetation = true;
     require(r.atlas->desc.rows.size() >= r.scene.vegetation.categoryCount,
             r.scene.source + ": the atlas has " + std::to_string(r.atlas->desc.rows.size()) +
                 " rows but 'vegetation' has " + std::to_string(r.scene.vegetation.categoryCount) +

@@ -18,10 +18,11 @@ struct SceneResources {
     Scene scene;
     Heightfield terrain;
     std::vector<ObjectModel> models;   // object k of scene.objects
-    std::optional<VegetationTile> tile; // present when the vegetation is drawn
-    std::optional<Atlas> atlas;         // present with the tile
+    std::optional<VegetationTile> tile; // CPU copies, present when the vegetation is drawn; createSceneGpu
+    std::optional<Atlas> atlas;         // releases them once uploaded, unless the simulation reads the tile
+    bool vegetation = false;            // the vegetation is drawn (stays true after the copies are released)
 
-    bool withVegetation() const { return tile.has_value(); }
+    bool withVegetation() const { return vegetation; }
 };
 
 // Builds the scene's terrain, object models and, when `withVegetation` and the scene enables it, its vegetation
