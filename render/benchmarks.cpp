@@ -96,7 +96,8 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
     require(options.frames >= 1, "--frames must be at least 1");
     require(options.samples == 1 || options.samples == 4, "--samples must be 1 or 4");
     SceneResources resources = buildSceneResources(
-        loadScene(options.scenePath.empty() ? std::string(SWARD_SOURCE_DIR "/examples/meadow.json") : options.scenePath));
+        loadScene(options.scenePath.empty() ? std::string(SWARD_SOURCE_DIR "/examples/meadow.json") : options.scenePath,
+                  std::nullopt, options.allowAssets));
     require(resources.withVegetation(), "sward-bench frame: the scene has no vegetation");
     const uint64_t plantsTotal = countVegetation(*resources.tile).plants;
     Camera camera = sceneCamera(resources.scene, resources.terrain, options.width, options.height);

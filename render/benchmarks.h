@@ -26,6 +26,7 @@ nlohmann::json benchGenerate(const GenerateBenchOptions& options);
 
 struct FrameBenchOptions {
     std::string scenePath;            // empty: examples/meadow.json of this source tree
+    std::vector<std::string> allowAssets; // --allow-assets: more folders the scene may read assets from
     uint32_t width = 1024, height = 768;
     uint32_t samples = 4;
     uint32_t frames = 5;              // measured frames per figure (medians are reported)

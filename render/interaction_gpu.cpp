@@ -14,7 +14,7 @@ InteractionGpu::InteractionGpu(Context& ctx, VegetationBuffers& buffers) : ctx_(
     // The field table (first plant, count) is needed on the CPU to build the active ranges.
     std::vector<uint8_t> bytes = readBuffer(ctx, buffers.fields, 0, uint64_t(buffers.fieldCount) * sizeof(gpu::PlantField));
     std::vector<gpu::PlantField> fields(buffers.fieldCount);
-    std::memcpy(fields.data(), bytes.data(), bytes.size());
+    if (!bytes.empty()) std::memcpy(fields.data(), bytes.data(), bytes.size()); // data() may be null when empty
     for (const gpu::PlantField& f : fields) {
         fieldFirstPlant_.push_back(f.range.x);
         fieldPlantCount_.push_back(f.range.y);
@@ -60,7 +60,8 @@ void InteractionGpu::record(VkCommandBuffer cmd, std::span<const gpu::PlantConta
     Slot& slot = slots_[slotIndex % gpu::kFrameDataSlots];
     uint64_t contactBytes = contacts.size_bytes(), rangeBytes = activeFields.size() * sizeof(glm::uvec2);
     reserve(slot, contactBytes, rangeBytes);
-    std::memcpy(slot.contacts.mapped(), contacts.data(), contactBytes);
+    // An idle slot may have fields but no contacts: memcpy from an empty span's null data() is undefined.
+    if (contactBytes > 0) std::memcpy(slot.contacts.mapped(), contacts.data(), contactBytes);
     auto* ranges = reinterpret_cast<glm::uvec2*>(slot.ranges.mapped());
     uint32_t maxPlants = 0;
     for (size_t i = 0; i < activeFields.size(); ++i) {
@@ -108,7 +109,7 @@ void InteractionGpu::record(VkCommandBuffer cmd, std::span<const gpu::PlantConta
 std::vector<gpu::PlantDynamic> InteractionGpu::readDynamics() {
     std::vector<gpu::PlantDynamic> out(buffers_.plantCount);
     std::vector<uint8_t> bytes = readBuffer(ctx_, buffers_.dynamics, 0, out.size() * sizeof(gpu::PlantDynamic));
-    std::memcpy(out.data(), bytes.data(), bytes.size());
+    if (!bytes.empty()) std::memcpy(out.data(), bytes.data(), bytes.size());
     return out;
 }
 

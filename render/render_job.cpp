@@ -183,7 +183,7 @@ void runRenderJob(const RenderJobOptions& options) {
     const auto start = std::chrono::steady_clock::now();
 
     // Everything that can be checked without a GPU is checked first, so bad input fails fast and writes nothing.
-    Scene scene = loadScene(options.scenePath, options.seed);
+    Scene scene = loadScene(options.scenePath, options.seed, options.allowAssets);
     const JobPlan plan = planJob(scene, options);
     SceneResources resources = buildSceneResources(std::move(scene), !options.noVegetation);
     RigCameras firstRig;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -23,6 +24,7 @@ struct RenderJobOptions {
     std::optional<std::string> frames;      // "A:B" = frames A .. B-1; default: the scene's whole sequence
     std::optional<std::string> shard;       // "I/N": the I-th of N contiguous blocks of the selected frames
     std::optional<uint64_t> seed;           // overrides the scene's seed (terrain, placement, gusts, noise)
+    std::vector<std::string> allowAssets;   // --allow-assets: folders outside the scene's the scene may read from
     bool quiet = false;                     // no progress line even on a terminal
 };
 

@@ -33,15 +33,19 @@ VegetationBuffers::VegetationBuffers(Context& ctx, const VegetationTile& tile) :
     uint64_t staticAt = 0, dynamicAt = stats.staticBytes, clusterAt = dynamicAt + stats.dynamicBytes,
              fieldAt = clusterAt + stats.clusterBytes;
     uint64_t s = staticAt, d = dynamicAt, c = clusterAt;
+    // An empty field's vectors have a null data(): memcpy from null is undefined even for zero bytes.
+    auto copy = [&](uint64_t at, const void* from, size_t bytes) {
+        if (bytes > 0) std::memcpy(out + at, from, bytes);
+    };
     for (const FieldVegetation& field : tile.fields) {
-        std::memcpy(out + s, field.staticRecords.data(), field.staticRecords.size() * sizeof(gpu::PlantStatic));
-        std::memcpy(out + d, field.dynamicRecords.data(), field.dynamicRecords.size() * sizeof(gpu::PlantDynamic));
-        std::memcpy(out + c, field.clusters.data(), field.clusters.size() * sizeof(gpu::PlantCluster));
+        copy(s, field.staticRecords.data(), field.staticRecords.size() * sizeof(gpu::PlantStatic));
+        copy(d, field.dynamicRecords.data(), field.dynamicRecords.size() * sizeof(gpu::PlantDynamic));
+        copy(c, field.clusters.data(), field.clusters.size() * sizeof(gpu::PlantCluster));
         s += field.staticRecords.size() * sizeof(gpu::PlantStatic);
         d += field.dynamicRecords.size() * sizeof(gpu::PlantDynamic);
         c += field.clusters.size() * sizeof(gpu::PlantCluster);
     }
-    std::memcpy(out + fieldAt, table.data(), table.size() * sizeof(gpu::PlantField));
+    copy(fieldAt, table.data(), table.size() * sizeof(gpu::PlantField));
 
     ctx.submitter.immediate([&](VkCommandBuffer cmd) {
         auto copy = [&](const Buffer& dst, uint64_t from, uint64_t size) {

@@ -5,7 +5,6 @@
 #include "world/heightfield.h"
 
 #include <cmath>
-#include <filesystem>
 #include <numbers>
 
 namespace sward {
@@ -38,16 +37,16 @@ ObjectColliderParams parseCollider(JsonReader r) {
     return c;
 }
 
-ObjectParams parseObject(JsonReader r, size_t k, const std::vector<ObjectParams>& before, const std::string& sceneDir) {
+ObjectParams parseObject(JsonReader r, size_t k, const std::vector<ObjectParams>& before, const std::string& sceneDir,
+                         const AssetPolicy& assets) {
     ObjectParams o;
     o.name = nonEmptyString(r, "name", "object" + std::to_string(k));
     for (size_t j = 0; j < before.size(); ++j) // camera rigs mount on objects by name
         if (before[j].name == o.name)
             r.fail(r.name("name") + " '" + o.name + "' is already the name of objects[" + std::to_string(j) + "]");
     r.required("model", "a .gltf or .glb file");
-    o.model = nonEmptyString(r, "model", "");
-    if (!sceneDir.empty() && std::filesystem::path(o.model).is_relative())
-        o.model = (std::filesystem::path(sceneDir) / o.model).lexically_normal().string();
+    o.model = assets.resolve(nonEmptyString(r, "model", ""), sceneDir, r.source() + ": " + r.name("model"));
+    o.assets = assets;
     o.scale = r.number("scale", o.scale, 0.001, 1000.0);
     o.yawDegrees = r.number("yaw_deg", o.yawDegrees, -360.0, 360.0);
     o.alignToTerrain = r.boolean("align_to_terrain", o.alignToTerrain);
@@ -89,13 +88,13 @@ const ObjectModel& modelOf(const std::vector<ObjectModel>& models, size_t k) {
 
 } // namespace
 
-std::vector<ObjectParams> parseObjects(JsonReader& scene, const std::string& sceneDir) {
+std::vector<ObjectParams> parseObjects(JsonReader& scene, const std::string& sceneDir, const AssetPolicy& assets) {
     std::vector<JsonReader> objects = scene.objects("objects");
     if (objects.size() > kMaxObjects)
         scene.fail(scene.name("objects") + " has " + std::to_string(objects.size()) + " entries, at most " +
                    std::to_string(kMaxObjects) + " are supported");
     std::vector<ObjectParams> result;
-    for (size_t k = 0; k < objects.size(); ++k) result.push_back(parseObject(objects[k], k, result, sceneDir));
+    for (size_t k = 0; k < objects.size(); ++k) result.push_back(parseObject(objects[k], k, result, sceneDir, assets));
     return result;
 }
 
@@ -104,7 +103,7 @@ std::vector<ObjectModel> loadObjectModels(const std::vector<ObjectParams>& objec
     for (size_t k = 0; k < objects.size(); ++k) {
         const std::string where = source + ": 'objects[" + std::to_string(k) + "]";
         try {
-            models.push_back(loadGltfModel(objects[k].model));
+            models.push_back(loadGltfModel(objects[k].model, objects[k].assets));
         } catch (const Error& e) {
             throw Error(where + ".model': " + e.what());
         }

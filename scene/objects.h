@@ -42,6 +42,7 @@ struct ObjectColliderParams {
 struct ObjectParams {
     std::string name;           // "object<k>" when not given
     std::string model;          // path of the .gltf / .glb file, resolved against the scene's folder
+    AssetPolicy assets;         // the scene's: where the model and the buffer files it names may be read from
     double scale = 1.0;         // uniform scale of the model
     double yawDegrees = 0.0;    // extra turn of the model about its up axis (counter-clockwise seen from above)
     bool alignToTerrain = true; // pitch and roll with the terrain under the model's footprint
@@ -63,12 +64,13 @@ inline uint32_t objectLabel(size_t k) {
 }
 
 // Reads the "objects" array (absent: none) of the scene object `scene`. Model paths are resolved against
-// `sceneDir` (empty: as they are). Errors name the file and the JSON path, e.g.
+// `sceneDir` (empty: as they are) and checked against `assets`. Errors name the file and the JSON path, e.g.
 // "scene.json: 'objects[0].colliders[1].radius' must be ...". Does not open the model files (loadObjectModels does).
-std::vector<ObjectParams> parseObjects(JsonReader& scene, const std::string& sceneDir);
+std::vector<ObjectParams> parseObjects(JsonReader& scene, const std::string& sceneDir, const AssetPolicy& assets = {});
 
-// Loads every object's model and checks that each collider names a node of it; errors name `source` and the
-// JSON path of the offending value. Models are returned in object order.
+// Loads every object's model (its buffer files checked against the object's `assets`) and checks that each collider
+// names a node of it; errors name `source` and the JSON path of the offending value. Models are returned in object
+// order.
 std::vector<ObjectModel> loadObjectModels(const std::vector<ObjectParams>& objects, const std::string& source);
 
 struct ObjectPose {

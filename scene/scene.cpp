@@ -25,10 +25,15 @@ bool isFile(const std::string& source) {
 }
 
 // Paths in a scene file are relative to the scene file's folder.
-std::string resolveAgainstScene(const std::string& source, std::string path) {
-    if (!path.empty() && std::filesystem::path(path).is_relative() && isFile(source))
-        path = (std::filesystem::path(source).parent_path() / path).string();
-    return path;
+std::string sceneFolder(const std::string& source) {
+    return isFile(source) ? std::filesystem::path(source).parent_path().string() : std::string();
+}
+
+// The file named under `key` ("" when absent), resolved against the scene's folder and checked against its asset
+// policy.
+std::string assetPath(JsonReader& r, const char* key, const Scene& scene) {
+    const std::string path = r.string(key, "");
+    return path.empty() ? path : scene.assets.resolve(path, sceneFolder(scene.source), r.source() + ": " + r.name(key));
 }
 
 void readTerrain(JsonReader r, ProceduralTerrainParams& t) {
@@ -133,8 +138,8 @@ void readWind(JsonReader r, WindParams& w) {
 }
 
 void readAtlas(JsonReader r, Scene& scene) {
-    scene.atlasPngPath = resolveAgainstScene(scene.source, r.string("png", ""));
-    scene.atlasJsonPath = resolveAgainstScene(scene.source, r.string("json", ""));
+    scene.atlasPngPath = assetPath(r, "png", scene);
+    scene.atlasJsonPath = assetPath(r, "json", scene);
     if (scene.atlasPngPath.empty() != scene.atlasJsonPath.empty())
         r.fail("'" + r.path() + "' needs both 'png' and 'json'");
     r.finish();
@@ -148,8 +153,7 @@ void readActors(JsonReader& root, Scene& scene) {
     scene.interaction.recovery.timeStep = float(scene.sequence.timeStep);
     // Gusts follow the scene seed (and so --seed) unless the scene pins their own.
     scene.actors = parseActors(root, scene.seed);
-    scene.objects =
-        parseObjects(root, isFile(scene.source) ? std::filesystem::path(scene.source).parent_path().string() : "");
+    scene.objects = parseObjects(root, sceneFolder(scene.source), scene.assets);
 }
 
 // "vegetation", "vegetation_enabled" and "grass_map". Needs the terrain (the tile covers it by default).
@@ -167,7 +171,7 @@ void readVegetation(JsonReader& root, Scene& scene) {
         scene.vegetationEnabled = enabled->get<bool>();
     else
         scene.vegetationEnabled = root.number("vegetation_enabled", 1.0, 0.0, 1.0) != 0.0;
-    scene.grassMapPath = resolveAgainstScene(source, root.string("grass_map", ""));
+    scene.grassMapPath = assetPath(root, "grass_map", scene);
     if (scene.vegetation.tileSize > scene.terrain.size + 1e-3f)
         root.fail("'vegetation.tile_size' (" + std::to_string(scene.vegetation.tileSize) +
                   " m) must not exceed 'terrain.size' (" + std::to_string(scene.terrain.size) + " m)");
@@ -180,9 +184,10 @@ glm::vec3 SunParams::direction() const {
     return glm::vec3(float(std::sin(az) * std::cos(el)), float(std::cos(az) * std::cos(el)), float(std::sin(el)));
 }
 
-Scene parseScene(const nlohmann::json& json, const std::string& source) {
+Scene parseScene(const nlohmann::json& json, const std::string& source, const AssetPolicy& assets) {
     Scene scene;
     scene.source = source;
+    scene.assets = assets;
     JsonReader root(json, source);
     scene.name = root.string("name", scene.name);
     scene.seed = root.integer("seed", scene.seed, 0, UINT64_MAX);
@@ -202,7 +207,7 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
     return scene;
 }
 
-Scene loadScene(const std::string& path, std::optional<uint64_t> seed) {
+Scene loadScene(const std::string& path, std::optional<uint64_t> seed, const std::vector<std::string>& allowedAssetDirs) {
     nlohmann::json json = nlohmann::json::object();
     if (!path.empty()) {
         std::ifstream file(path);
@@ -214,7 +219,10 @@ Scene loadScene(const std::string& path, std::optional<uint64_t> seed) {
         }
     }
     if (seed && json.is_object()) json["seed"] = *seed; // before parsing: every seed derived from it follows
-    return parseScene(json, path.empty() ? "<built-in>" : path);
+    if (path.empty()) return parseScene(json, "<built-in>");
+    // A scene file's assets stay inside its folder and the folders the user allows.
+    return parseScene(json, path, AssetPolicy::confinedTo(std::filesystem::path(path).parent_path().string(),
+                                                          allowedAssetDirs));
 }
 
 Heightfield buildTerrain(const Scene& scene) {

@@ -16,6 +16,7 @@
 #include "scene/vehicles.h"
 #include "vegetation/vegetation_params.h"
 #include "vegetation/vegetation_tile.h"
+#include "world/asset_policy.h"
 
 #include <nlohmann/json.hpp>
 
@@ -87,14 +88,19 @@ struct Scene {
     bool vegetationEnabled = true; // false: bare ground (paired studies, --no-vegetation)
     std::string grassMapPath;      // "grass_map", resolved against the scene's folder; empty = procedural meadow
     std::string atlasPngPath, atlasJsonPath; // "atlas": {"png", "json"}; empty = the built-in procedural atlas
+    AssetPolicy assets; // where the files it names may be read from (loadScene: the scene file's folder)
 };
 
-// Parses and validates a scene; `source` names it in error messages.
-Scene parseScene(const nlohmann::json& json, const std::string& source);
+// Parses and validates a scene; `source` names it in error messages, and relative file paths are taken against
+// its folder. Every file the scene names (objects' models and their buffers, grass_map, atlas) must pass `assets`
+// (default: unconfined); the check runs here, so a refused path fails before anything is loaded.
+Scene parseScene(const nlohmann::json& json, const std::string& source, const AssetPolicy& assets = {});
 // Reads and parses a scene file ("" = the built-in default scene); throws sward::Error naming the file for missing
 // files and bad JSON. `seed`, when set, replaces the scene's seed before parsing, so every seed derived from it
-// (terrain, plants, gusts, sensor noise) follows.
-Scene loadScene(const std::string& path, std::optional<uint64_t> seed = {});
+// (terrain, plants, gusts, sensor noise) follows. A scene file's assets must resolve (symlinks followed) inside its
+// folder or one of `allowedAssetDirs` (--allow-assets); the built-in scene is unconfined.
+Scene loadScene(const std::string& path, std::optional<uint64_t> seed = {},
+                const std::vector<std::string>& allowedAssetDirs = {});
 // The scene's atlas with its coverage-preserving mip chain: the files it names, or the built-in procedural one.
 Atlas buildAtlas(const Scene& scene);
 // Builds the scene's terrain.

@@ -9,7 +9,9 @@
 
 #include "common/error.h"
 
+#include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -26,6 +28,10 @@ bool ignoreImage(tinygltf::Image*, const int, std::string*, std::string*, int, i
 }
 
 // glTF Y-up -> sward Z-up: (x, y, z) -> (x, -z, y). A rotation, so it keeps triangle winding.
+// Largest coordinate (metres) of a vertex and largest entry of a node transform: far beyond any ground or model,
+// small enough that every product of them stays finite in float.
+constexpr double kMaxCoordinate = 1e8;
+
 glm::dvec3 toZUp(glm::dvec3 v) {
     return {v.x, -v.z, v.y};
 }
@@ -54,29 +60,45 @@ struct GltfReader {
     };
     View view(int accessorIndex, int expectType, size_t elementSize) const {
         if (accessorIndex < 0 || size_t(accessorIndex) >= model.accessors.size()) fail("accessor index out of range");
-        const tinygltf::Accessor& a = model.accessors[accessorIndex];
+        const std::string name = "accessor " + std::to_string(accessorIndex);
+        const tinygltf::Accessor& a = model.accessors[size_t(accessorIndex)];
         if (a.sparse.isSparse) fail("sparse accessors are not supported");
-        if (a.type != expectType) fail("accessor " + std::to_string(accessorIndex) + " has the wrong element type");
+        if (a.type != expectType) fail(name + " has the wrong element type");
         if (a.bufferView < 0 || size_t(a.bufferView) >= model.bufferViews.size())
-            fail("accessor " + std::to_string(accessorIndex) + " has no valid buffer view");
-        const tinygltf::BufferView& v = model.bufferViews[a.bufferView];
+            fail(name + " has no valid buffer view");
+        const tinygltf::BufferView& v = model.bufferViews[size_t(a.bufferView)];
         if (v.buffer < 0 || size_t(v.buffer) >= model.buffers.size()) fail("buffer view refers to a missing buffer");
-        const std::vector<unsigned char>& buffer = model.buffers[v.buffer].data;
+        const std::vector<unsigned char>& buffer = model.buffers[size_t(v.buffer)].data;
         const size_t stride = v.byteStride ? v.byteStride : elementSize;
-        const size_t begin = v.byteOffset + a.byteOffset;
-        const size_t needed = a.count == 0 ? 0 : stride * (a.count - 1) + elementSize;
-        if (stride < elementSize || a.byteOffset + needed > v.byteLength || v.byteOffset + v.byteLength > buffer.size())
-            fail("accessor " + std::to_string(accessorIndex) + " reaches past the end of its buffer");
-        return {buffer.data() + begin, stride, a.count};
+        if (stride < elementSize) fail(name + "'s buffer view has a byteStride smaller than its elements");
+        // Every number here comes from the file: compare by subtraction and division, never by a sum or product
+        // that could wrap (a count near 2^62 times the stride wraps to a small number).
+        if (v.byteOffset > buffer.size() || v.byteLength > buffer.size() - v.byteOffset)
+            fail("buffer view " + std::to_string(a.bufferView) + " reaches past the end of its buffer");
+        if (a.byteOffset > v.byteLength) fail(name + " starts past the end of its buffer view");
+        const size_t room = v.byteLength - a.byteOffset;
+        if (a.count > 0 && (elementSize > room || (a.count - 1) > (room - elementSize) / stride))
+            fail(name + " (" + std::to_string(a.count) + " elements) reaches past the end of buffer view " +
+                 std::to_string(a.bufferView));
+        return {buffer.data() + v.byteOffset + a.byteOffset, stride, a.count};
     }
 
+    // Positions must also lie within kMaxCoordinate metres, so that every transformed vertex stays finite in
+    // float; non-finite values are refused for both positions and normals.
     std::vector<glm::vec3> floatVec3(int accessor, const char* what) const {
         if (accessor < 0 || size_t(accessor) >= model.accessors.size()) fail("accessor index out of range");
         if (model.accessors[size_t(accessor)].componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
             fail(std::string(what) + " must be float");
         const View values = view(accessor, TINYGLTF_TYPE_VEC3, 12);
+        const bool position = std::string(what) == "POSITION";
         std::vector<glm::vec3> out(values.count);
-        for (size_t i = 0; i < values.count; ++i) std::memcpy(&out[i], values.data + i * values.stride, 12);
+        for (size_t i = 0; i < values.count; ++i) {
+            std::memcpy(&out[i], values.data + i * values.stride, 12);
+            for (int c = 0; c < 3; ++c)
+                if (!std::isfinite(out[i][c]) || (position && std::abs(out[i][c]) > kMaxCoordinate))
+                    fail("accessor " + std::to_string(accessor) + " (" + what + "): element " + std::to_string(i) +
+                         (position ? " is not finite or beyond 1e8 m" : " is not finite"));
+        }
         return out;
     }
 
@@ -91,6 +113,7 @@ struct GltfReader {
         auto position = prim.attributes.find("POSITION");
         if (position == prim.attributes.end()) fail("a triangle primitive has no POSITION attribute");
         out.positions = floatVec3(position->second, "POSITION");
+        if (out.positions.size() > std::numeric_limits<uint32_t>::max()) fail("a primitive has more than 2^32 vertices");
         const uint32_t count = uint32_t(out.positions.size());
         if (wantNormals) {
             auto normal = prim.attributes.find("NORMAL");
@@ -120,13 +143,27 @@ struct GltfReader {
                 index = uint32_t(at[0] | at[1] << 8);
             else
                 std::memcpy(&index, at, 4);
-            if (index >= count) fail("index " + std::to_string(index) + " exceeds the vertex count");
+            // The value is not quoted: it comes from a buffer file, which may be any file the scene may read.
+            if (index >= count)
+                fail("accessor " + std::to_string(prim.indices) + " (indices): element " + std::to_string(i) +
+                     " is not below the vertex count " + std::to_string(count));
             out.indices.push_back(index);
         }
         return true;
     }
 
-    glm::dmat4 localTransform(const tinygltf::Node& node) const {
+    // The node's parent-from-node transform (glTF frame). JSON holds no infinity (tinygltf refuses 1e999), but
+    // a finite 1e308 is just as fatal once multiplied: each value must lie within kMaxCoordinate.
+    glm::dmat4 localTransform(int index, const tinygltf::Node& node) const {
+        auto bounded = [&](const std::vector<double>& values, const char* key) {
+            for (double v : values)
+                if (!(std::abs(v) <= kMaxCoordinate))
+                    fail(nodeName(index, node) + ": '" + key + "' holds a value beyond 1e8 (or not finite)");
+        };
+        bounded(node.matrix, "matrix");
+        bounded(node.translation, "translation");
+        bounded(node.rotation, "rotation");
+        bounded(node.scale, "scale");
         if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());
         glm::dmat4 m(1.0);
         if (node.translation.size() == 3)
@@ -135,6 +172,20 @@ struct GltfReader {
             m *= glm::mat4_cast(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
         if (node.scale.size() == 3) m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
         return m;
+    }
+
+    // A node's transform composed with its parents' must keep every vertex finite in float: each entry within
+    // kMaxCoordinate (a scale of 1e308 is finite in double but not in anything drawn).
+    void checkComposed(int index, const tinygltf::Node& node, const glm::dmat4& m) const {
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                if (!std::isfinite(m[c][r]) || std::abs(m[c][r]) > kMaxCoordinate)
+                    fail(nodeName(index, node) + ": its transform (with its parents') is not finite or has an entry "
+                                                 "beyond 1e8 (a huge scale or translation?)");
+    }
+
+    static std::string nodeName(int index, const tinygltf::Node& node) {
+        return "node " + std::to_string(index) + (node.name.empty() ? "" : " ('" + node.name + "')");
     }
 
     // glTF nodes form a strict tree; a node reached twice would be a cycle or a shared subtree, whose visits can
@@ -161,16 +212,101 @@ struct GltfReader {
     }
 };
 
-tinygltf::Model readFile(const std::string& path, const char* kind) {
+// tinygltf opens the files a glTF's buffers name through these callbacks, so each one is checked against the
+// asset policy (symlinks resolved) before a byte of it is read.
+struct BufferFiles {
+    const AssetPolicy& assets;
+    std::string where;    // "glTF model 'm.gltf': buffer uri", for the policy's error
+    std::string joinedTo; // what tinygltf puts before "/<uri>": the glTF path up to its last separator
+    std::string folder;   // the glTF's folder, which a relative uri is relative to
+    std::string refused;  // the policy's error, once it refused a file
+    std::string lastUri;  // the last buffer file read (tinygltf then compares its size with byteLength)
+
+    // The uri tinygltf joined into `path`; "" for its fallback to the current directory (a relative uri is
+    // relative to the glTF's folder only).
+    std::string uriOf(const std::string& path) const {
+        if (joinedTo.empty()) return path;
+        const size_t skip = joinedTo.size() + (joinedTo.back() == '/' ? 0 : 1);
+        if (path.size() <= skip || path.compare(0, joinedTo.size(), joinedTo) != 0) return {};
+        return path.substr(skip);
+    }
+};
+
+bool bufferFileExists(const std::string& path, void* user) {
+    const BufferFiles& files = *static_cast<const BufferFiles*>(user);
+    const std::string uri = files.uriOf(path);
+    std::error_code error;
+    return !uri.empty() && std::filesystem::exists(std::filesystem::path(files.folder) / uri, error);
+}
+
+std::string keepPath(const std::string& path, void*) {
+    return path;
+}
+
+bool readBufferFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    BufferFiles& files = *static_cast<BufferFiles*>(user);
+    std::string opened;
+    try {
+        opened = files.assets.resolve(files.uriOf(path), files.folder, files.where);
+    } catch (const Error& e) {
+        files.refused = e.what();
+        return false;
+    }
+    files.lastUri = files.uriOf(path);
+    return tinygltf::ReadWholeFile(out, err, opened, nullptr);
+}
+
+bool writeNothing(std::string*, const std::string&, const std::vector<unsigned char>&, void*) {
+    return false;
+}
+
+// glTF's extensionsRequired: a file that needs an extension cannot be read correctly without it.
+void checkRequiredExtensions(const tinygltf::Model& model, const std::string& what) {
+    for (const std::string& name : model.extensionsRequired) {
+        if (name == "KHR_draco_mesh_compression")
+            throw Error(what + ": uses KHR_draco_mesh_compression, which sward does not support; export without "
+                               "Draco compression");
+        throw Error(what + ": uses " + name + " (extensionsRequired), which sward does not support; export without it");
+    }
+}
+
+// tinygltf's error text, on one line.
+std::string oneLine(std::string text) {
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+    for (char& c : text)
+        if (c == '\n') c = ';';
+    return text.empty() ? "unknown error" : text;
+}
+
+tinygltf::Model readFile(const std::string& path, const char* kind, const AssetPolicy& assets) {
+    const std::string what = std::string(kind) + " '" + path + "'";
+    const size_t slash = path.find_last_of("/\\"); // tinygltf's own split (GetBaseDir)
+    BufferFiles files{.assets = assets,
+                      .where = what + ": buffer uri",
+                      .joinedTo = slash == std::string::npos ? std::string() : path.substr(0, slash),
+                      .folder = std::filesystem::path(path).parent_path().string(),
+                      .refused = {},
+                      .lastUri = {}};
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(ignoreImage, nullptr);
+    loader.SetFsCallbacks({.FileExists = bufferFileExists,
+                           .ExpandFilePath = keepPath,
+                           .ReadWholeFile = readBufferFile,
+                           .WriteWholeFile = writeNothing,
+                           .user_data = &files});
     tinygltf::Model model;
     std::string err, warn;
     const bool binary = path.size() >= 4 && (path.compare(path.size() - 4, 4, ".glb") == 0 ||
                                              path.compare(path.size() - 4, 4, ".GLB") == 0);
     const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
                            : loader.LoadASCIIFromFile(&model, &err, &warn, path);
-    require(ok, "cannot load " + std::string(kind) + " '" + path + "': " + (err.empty() ? "unknown error" : err));
+    if (!files.refused.empty()) throw Error(files.refused);
+    // Before tinygltf's own complaint: a Draco file fails there with "accessor[0] invalid bufferView".
+    checkRequiredExtensions(model, what);
+    // tinygltf's size-mismatch text states the file's size: never quote a buffer file, it may be any file.
+    if (!ok && err.find("File size mismatch") != std::string::npos)
+        throw Error(what + ": the file of buffer uri '" + files.lastUri + "' is not byteLength bytes long");
+    require(ok, "cannot load " + what + ": " + oneLine(err));
     return model;
 }
 
@@ -190,7 +326,8 @@ struct MeshBuilder {
 
     void addNode(int index, const glm::dmat4& parent, int depth) {
         const tinygltf::Node& node = reader.node(index, depth);
-        const glm::dmat4 transform = parent * reader.localTransform(node);
+        const glm::dmat4 transform = parent * reader.localTransform(index, node);
+        reader.checkComposed(index, node, transform);
         if (node.mesh >= 0)
             for (const tinygltf::Primitive& prim : reader.model.meshes[size_t(node.mesh)].primitives)
                 addPrimitive(prim, transform);
@@ -253,8 +390,9 @@ struct ModelBuilder {
         ModelNode out;
         out.name = node.name;
         out.parent = parent;
-        out.local = kZUpFromYUp * reader.localTransform(node) * glm::transpose(kZUpFromYUp);
+        out.local = kZUpFromYUp * reader.localTransform(index, node) * glm::transpose(kZUpFromYUp);
         out.modelFromNode = parent < 0 ? out.local : result.nodes[size_t(parent)].modelFromNode * out.local;
+        reader.checkComposed(index, node, out.modelFromNode);
         if (node.mesh >= 0) addMesh(node.mesh, out, glm::determinant(out.modelFromNode) < 0.0);
         const int self = int(result.nodes.size());
         result.nodes.push_back(std::move(out));
@@ -264,8 +402,8 @@ struct ModelBuilder {
 
 } // namespace
 
-TriangleMesh loadGltfMesh(const std::string& path) {
-    const tinygltf::Model model = readFile(path, "glTF ground");
+TriangleMesh loadGltfMesh(const std::string& path, const AssetPolicy& assets) {
+    const tinygltf::Model model = readFile(path, "glTF ground", assets);
     GltfReader reader{path, model, "glTF ground"};
     MeshBuilder builder{reader, {}};
     if (!model.scenes.empty()) {
@@ -292,8 +430,8 @@ size_t ObjectModel::triangleCount() const {
     return count;
 }
 
-ObjectModel loadGltfModel(const std::string& path) {
-    const tinygltf::Model model = readFile(path, "glTF model");
+ObjectModel loadGltfModel(const std::string& path, const AssetPolicy& assets) {
+    const tinygltf::Model model = readFile(path, "glTF model", assets);
     GltfReader reader{path, model, "glTF model"};
     ModelBuilder builder{reader, {}};
     builder.result.path = path;

@@ -5,6 +5,7 @@
 // (glTF +X) is +x and its top is +z.
 #pragma once
 
+#include "world/asset_policy.h"
 #include "world/ground.h"
 
 #include <glm/glm.hpp>
@@ -16,9 +17,12 @@ namespace sward {
 
 // Loads every triangle primitive reachable from the default scene of a .gltf (embedded or external buffers) or
 // .glb file, with node transforms applied and glTF's Y-up converted to sward's Z-up: (x, y, z) -> (x, -z, y).
-// Throws sward::Error naming the file for a missing or malformed file, out-of-range accessors, strip/fan
-// primitives, sparse accessors, or a file without triangles. Points and lines are ignored.
-TriangleMesh loadGltfMesh(const std::string& path);
+// Throws sward::Error naming the file for a missing or malformed file, out-of-range accessors or indices, strip/fan
+// primitives, sparse accessors, an extension in extensionsRequired (e.g. Draco compression), a non-finite node
+// transform or vertex, a composed node transform with an entry beyond 1e8 or a vertex beyond 1e8 m, or a file
+// without triangles. Points and lines are ignored. The buffer files it names are read only where `assets` allows
+// (asset_policy.h); errors never quote a buffer file's bytes or size.
+TriangleMesh loadGltfMesh(const std::string& path, const AssetPolicy& assets = {});
 
 // One triangle primitive of a model node, in the node's own frame (converted to Z-up).
 struct ModelPrimitive {
@@ -49,6 +53,6 @@ struct ObjectModel {
 
 // Loads the default scene's node hierarchy (no scene: every mesh as an unnamed root node). Same file errors as
 // loadGltfMesh, plus: base colour textures are ignored (the factor is used), node names are kept as they are.
-ObjectModel loadGltfModel(const std::string& path);
+ObjectModel loadGltfModel(const std::string& path, const AssetPolicy& assets = {});
 
 } // namespace sward

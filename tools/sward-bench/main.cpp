@@ -41,6 +41,8 @@ int main(int argc, char** argv) {
     std::string resolution = "1024x768";
     CLI::App* frm = app.add_subcommand("frame", "Render a scene and time the GPU passes and the expansion overhead");
     frm->add_option("scene", frame.scenePath, "Scene JSON (default: examples/meadow.json)");
+    frm->add_option("--allow-assets", frame.allowAssets,
+                    "Also read the scene's assets from this folder (repeatable; default: the scene's folder only)");
     frm->add_option("--resolution", resolution, "WIDTHxHEIGHT")->capture_default_str();
     frm->add_option("--samples", frame.samples, "MSAA samples (1 or 4)")->capture_default_str();
     frm->add_option("--frames", frame.frames, "Measured frames per figure (medians)")->capture_default_str();

@@ -43,6 +43,8 @@ int main(int argc, char** argv) {
     app.add_option("--shard", shard, "Render only block I of N of the frames, I/N (e.g. 0/4): for job arrays");
     std::optional<uint64_t> seed;
     app.add_option("--seed", seed, "Override the scene's seed (terrain, plants, gusts, sensor noise)");
+    app.add_option("--allow-assets", options.allowAssets,
+                   "Also read the scene's assets from this folder (repeatable; default: the scene's folder only)");
     app.add_flag("--quiet,-q", options.quiet, "No progress line");
     app.add_option("--time", options.time, "Time offset in seconds added to every frame's wind")->capture_default_str();
     app.add_flag("--no-vegetation", options.noVegetation, "Render the same scene without vegetation");

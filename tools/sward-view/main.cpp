@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
     sward::ViewerOptions options;
     CLI::App app{"sward-view: fly or drive through a sward scene and watch the interaction live"};
     app.add_option("scene", options.scenePath, "Scene JSON file (default: examples/meadow.json)");
+    app.add_option("--allow-assets", options.allowAssets,
+                   "Also read the scene's assets from this folder (repeatable; default: the scene's folder only)");
     std::string size;
     app.add_option("--size", size, "Initial window size WIDTHxHEIGHT (default 1280x720)");
     app.add_option("--samples", options.samples, "MSAA samples: 1 or 4 (default: the scene's)");

@@ -1,5 +1,6 @@
 #include "screenshots.h"
 
+#include "common/error.h"
 #include "engine/barriers.h"
 #include "engine/swapchain.h"
 #include "io/image_files.h"
@@ -12,6 +13,19 @@
 #include <vector>
 
 namespace sward {
+
+std::string screenshotStem(const std::string& sceneName) {
+    constexpr size_t kMaxLength = 64;
+    std::string stem = sceneName.substr(0, kMaxLength);
+    for (char& c : stem)
+        if (!((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.' || c == '-'))
+            c = '_';
+    for (char& c : stem) {
+        if (c != '.') break;
+        c = '_';
+    }
+    return stem.empty() ? "scene" : stem;
+}
 
 Screenshots::Screenshots(Context& ctx, std::string dir) : ctx_(ctx), dir_(std::move(dir)) {}
 
@@ -45,9 +59,13 @@ std::string Screenshots::writeKeyShot(const RenderTarget& main, const std::strin
     std::memcpy(rgba.data(), colorReadback_.mapped(), pixels * 8);
     std::memcpy(depth.data(), depthReadback_.mapped(), pixels * 4); // float bits written by the truth pass
     ensureWritableDirectory(dir_);
-    char name[64];
-    std::snprintf(name, sizeof name, "/%s-%04llu", sceneName.c_str(), (unsigned long long)count_++);
-    std::string base = dir_ + name;
+    char number[32];
+    std::snprintf(number, sizeof number, "-%04llu", (unsigned long long)count_++);
+    const std::filesystem::path folder = std::filesystem::weakly_canonical(dir_);
+    const std::filesystem::path file = folder / (screenshotStem(sceneName) + number);
+    // The stem cannot hold a separator; this keeps it so if screenshotStem ever changes.
+    require(file.parent_path() == folder, "screenshot name '" + file.string() + "' leaves --screenshot-dir");
+    const std::string base = file.string();
     writeExrRgbaHalf(base + ".exr", w, h, rgba);
     writeExrDepth(base + "-depth.exr", w, h, depth);
     writePng8(base + ".png", w, h, 3, tonemapPreview(rgba, w, h, exposure));

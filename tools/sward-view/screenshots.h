@@ -1,6 +1,7 @@
 // Screenshots: the viewer's image files. A key screenshot (F12 / P) reads back the frame's HDR colour and the
 // truth pass's depth and writes <dir>/<scene name>-NNNN.exr, -NNNN-depth.exr and -NNNN.png (tonemapped); the
-// headless capture (--frames N --screenshot FILE) copies the last presented swapchain image into a PNG.
+// headless capture (--frames N --screenshot FILE) copies the last presented swapchain image into a PNG. The scene
+// name enters file names only through screenshotStem.
 #pragma once
 
 #include "engine/context.h"
@@ -14,6 +15,11 @@
 namespace sward {
 
 struct SwapchainImage;
+
+// The scene name as a file-name stem: characters other than [A-Za-z0-9._-] become '_', leading dots too (no
+// hidden files, no "..") and it is cut to 64 characters; "" becomes "scene". A name from a scene file can then
+// neither leave the screenshot folder nor hide in it.
+std::string screenshotStem(const std::string& sceneName);
 
 class Screenshots {
 public:

@@ -114,7 +114,7 @@ Viewer::Viewer(const ViewerOptions& options, Window& window, Context& ctx)
     : options_(options), scenePath_(options.scenePath.empty() ? defaultScenePath() : options.scenePath),
       window_(window), ctx_(ctx), swapchain_(ctx, ctx.device.surface(), window.framebufferExtent(), options.vsync),
       present_(ctx), screenshots_(ctx, options.screenshotDir), hooks_(options) {
-    Scene scene = loadScene(scenePath_);
+    Scene scene = loadScene(scenePath_, std::nullopt, options_.allowAssets);
     sceneTime_ = modificationTime(scenePath_);
     uint32_t samples = options.samples.value_or(scene.render.samples);
     require(samples == 1 || samples == 4, "--samples must be 1 or 4 (got " + std::to_string(samples) + ")");
@@ -202,7 +202,7 @@ float Viewer::canopyHeight() const {
 void Viewer::reload() {
     Scene previous = state_->resources.scene;
     try {
-        Scene scene = loadScene(scenePath_);
+        Scene scene = loadScene(scenePath_, std::nullopt, options_.allowAssets);
         panel_.wind = scene.wind;
         panel_.lod = scene.lod;
         panel_.density = scene.vegetation.densityMultiplier;
@@ -472,7 +472,7 @@ void Viewer::printSummary() const {
 
 void runViewer(const ViewerOptions& options) {
     // A bad scene file fails fast, before a window or a device exists.
-    loadScene(options.scenePath.empty() ? defaultScenePath() : options.scenePath);
+    loadScene(options.scenePath.empty() ? defaultScenePath() : options.scenePath, std::nullopt, options.allowAssets);
     parsePresses(options.press);
     GlfwLibrary glfw;
     Window window(options.width, options.height, "sward-view");

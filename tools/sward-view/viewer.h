@@ -18,11 +18,13 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace sward {
 
 struct ViewerOptions {
     std::string scenePath;               // empty: examples/meadow.json
+    std::vector<std::string> allowAssets; // --allow-assets: more folders the scene may read assets from
     std::string device;                  // Vulkan device name substring
     bool validation = false;             // also SWARD_VALIDATION
     uint32_t width = 1280, height = 720; // initial window size
