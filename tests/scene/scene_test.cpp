@@ -1,9 +1,15 @@
 #include "world/camera.h"
 #include "common/error.h"
 #include "engine/memory.h"
+#include "scene/rover_model.h"
 #include "scene/scene.h"
 
+#include "test_files.h"
+
 #include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
 
 using namespace sward;
 
@@ -88,4 +94,95 @@ TEST(Scene, StereoRigKeysAreReadAndChecked) {
     EXPECT_NEAR(l.x - r.x, 500.0 * 0.3 / 7.0, 1e-9);
     EXPECT_NEAR(l.y, r.y, 1e-9);
     EXPECT_THROW(parseScene(nlohmann::json::parse(R"({"camera": {"mount": {"object": "x"}}})"), "s.json"), Error);
+}
+
+// Confinement: <tmp>/scene/s.json may read <tmp>/outside only with --allow-assets <tmp>/outside.
+namespace {
+
+namespace fs = std::filesystem;
+
+struct AssetFolders {
+    fs::path root = fs::canonical(test::tempDir());
+    fs::path scene = root / "scene", outside = root / "outside";
+    AssetFolders() {
+        fs::create_directories(scene);
+        fs::create_directories(outside);
+        saveRoverGltf((outside / "m.gltf").string());
+        for (const char* file : {"map.png", "atlas.png", "atlas.json"}) std::ofstream(outside / file) << "x";
+        std::ofstream(scene / "atlas.json") << "x";
+    }
+    // The three ways out of the folder for `file` of outside/: `..`, an absolute path, a symlink in the folder.
+    std::vector<std::string> waysOut(const std::string& file) const {
+        fs::create_symlink(outside / file, scene / ("link-" + file));
+        return {"../outside/" + file, (outside / file).string(), "link-" + file};
+    }
+    std::string write(const nlohmann::json& json) const {
+        std::ofstream(scene / "s.json") << json.dump();
+        return (scene / "s.json").string();
+    }
+};
+
+// A scene naming `path` under `key`: "model" (objects[0].model), "grass_map" or "atlas" (atlas.png).
+nlohmann::json sceneNaming(const std::string& key, const std::string& path) {
+    if (key == "model")
+        return {{"objects", {{{"model", path}, {"path", {{"points", {{10, 10}}}}}}}}};
+    if (key == "atlas") return {{"atlas", {{"png", path}, {"json", "atlas.json"}}}};
+    return {{key, path}};
+}
+
+} // namespace
+
+TEST(SceneAssets, PathsLeavingTheSceneFolderAreRefusedWithoutAllowAssets) {
+    AssetFolders f;
+    const std::vector<std::pair<std::string, std::string>> keys = {
+        {"model", "'objects[0].model'"}, {"grass_map", "'grass_map'"}, {"atlas", "'atlas.png'"}};
+    for (const auto& [key, name] : keys) {
+        const std::string file = key == "model" ? "m.gltf" : key == "atlas" ? "atlas.png" : "map.png";
+        for (const std::string& path : f.waysOut(file)) {
+            const std::string scene = f.write(sceneNaming(key, path));
+            test::expectError([&] { loadScene(scene); },
+                              {scene + ": " + name + ": '" + path + "' resolves to " + (f.outside / file).string() +
+                                   ", outside the scene's folder " + f.scene.string() +
+                                   " (allow with --allow-assets DIR)"});
+        }
+    }
+}
+
+TEST(SceneAssets, AllowAssetsAcceptsTheSameFiles) {
+    AssetFolders f;
+    const std::vector<std::string> allow = {f.outside.string()};
+    for (const std::string& path : f.waysOut("m.gltf")) {
+        const Scene scene = loadScene(f.write(sceneNaming("model", path)), {}, allow);
+        EXPECT_EQ(scene.objects.at(0).model, (f.outside / "m.gltf").string());
+        EXPECT_GT(loadObjectModels(scene.objects, scene.source).at(0).triangleCount(), 0u);
+    }
+    for (const std::string& path : f.waysOut("map.png"))
+        EXPECT_EQ(loadScene(f.write(sceneNaming("grass_map", path)), {}, allow).grassMapPath,
+                  (f.outside / "map.png").string());
+    for (const std::string& path : f.waysOut("atlas.png"))
+        EXPECT_EQ(loadScene(f.write(sceneNaming("atlas", path)), {}, allow).atlasPngPath,
+                  (f.outside / "atlas.png").string());
+}
+
+TEST(SceneAssets, AModelsBufferFilesAreConfinedToo) {
+    AssetFolders f;
+    const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 0, 1};
+    std::ofstream(f.outside / "t.bin", std::ios::binary).write(reinterpret_cast<const char*>(positions), 36);
+    std::ofstream(f.scene / "m.gltf") << R"({"asset": {"version": "2.0"}, "meshes": [{"primitives":
+        [{"attributes": {"POSITION": 0}}]}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3,
+        "type": "VEC3"}], "bufferViews": [{"buffer": 0, "byteLength": 36}], "buffers": [{"byteLength": 36,
+        "uri": "../outside/t.bin"}]})";
+    const std::string path = f.write(sceneNaming("model", "m.gltf"));
+    const Scene confined = loadScene(path);
+    test::expectError([&] { loadObjectModels(confined.objects, confined.source); },
+                      {path + ": 'objects[0].model': glTF model '" + (f.scene / "m.gltf").string() +
+                           "': buffer uri: '../outside/t.bin' resolves to " + (f.outside / "t.bin").string()});
+    const Scene allowed = loadScene(path, {}, {f.outside.string()});
+    EXPECT_EQ(loadObjectModels(allowed.objects, allowed.source).at(0).triangleCount(), 1u);
+}
+
+TEST(SceneAssets, BuiltInScenesAndParsedJsonStayUnconfined) {
+    EXPECT_FALSE(loadScene("").assets.confined());
+    const Scene scene = parseScene(sceneNaming("grass_map", "/etc/passwd"), "s.json");
+    EXPECT_EQ(scene.grassMapPath, "/etc/passwd");
 }

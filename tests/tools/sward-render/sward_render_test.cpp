@@ -1,11 +1,13 @@
 // sward-render as a user runs it: output files, determinism across lavapipe thread counts, clear errors.
 #include "gpu_test.h"
+#include "io/image_files.h"
 
 #include <array>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
+#include <vector>
 
 using sward::test::tempDir;
 
@@ -104,4 +106,24 @@ TEST(SwardRender, MissingOrMalformedSceneIsOneClearError) {
     EXPECT_EQ(countLines(malformed.err, "error"), 1) << malformed.err;
     EXPECT_NE(malformed.err.find("terrain.amplitude"), std::string::npos) << malformed.err;
     EXPECT_FALSE(std::filesystem::exists(dir + "/o/left/000000.exr")) << "nothing is written for a bad scene";
+}
+
+TEST(SwardRender, AGrassMapOutsideTheScenesFolderNeedsAllowAssets) {
+    const std::string dir = std::filesystem::canonical(tempDir("cli-assets")).string();
+    std::filesystem::create_directories(dir + "/scene");
+    std::filesystem::create_directories(dir + "/maps");
+    sward::writePng8(dir + "/maps/m.png", 8, 8, 3, std::vector<uint8_t>(8 * 8 * 3, 0)); // no plants: a fast run
+    std::ofstream(dir + "/scene/s.json") << R"({"terrain": {"size": 50, "spacing": 2},
+        "render": {"resolution": [160, 120], "samples": 1}, "grass_map": "../maps/m.png"})";
+    RunResult refused = runRender(dir + "/scene/s.json --out " + dir + "/o");
+    EXPECT_NE(refused.exitCode, 0);
+    EXPECT_EQ(countLines(refused.err, "error"), 1) << refused.err;
+    EXPECT_NE(refused.err.find("'grass_map': '../maps/m.png' resolves to " + dir + "/maps/m.png, outside the scene's "
+                               "folder " + dir + "/scene (allow with --allow-assets DIR)"),
+              std::string::npos)
+        << refused.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/o")) << "a refused asset writes nothing";
+    RunResult allowed = runRender(dir + "/scene/s.json --validation --allow-assets " + dir + "/maps --out " + dir + "/o");
+    ASSERT_EQ(allowed.exitCode, 0) << allowed.err;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/o/preview/000000.png"));
 }

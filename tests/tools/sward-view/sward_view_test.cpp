@@ -9,6 +9,8 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -109,4 +111,25 @@ TEST(SwardView, MissingSceneIsOneClearError) {
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find("/nonexistent/scene.json"), std::string::npos) << r.output;
     EXPECT_EQ(countLines(r.output, "error"), 1) << r.output;
+}
+
+TEST(SwardView, ASceneNameCannotWriteScreenshotsOutsideTheScreenshotFolder) {
+    // The scene's "name" enters the file names: "../escape/pwned" once wrote into <tmp>/escape.
+    const std::filesystem::path root = tempPath("names");
+    std::filesystem::remove_all(root);
+    std::filesystem::create_directories(root / "escape");
+    std::ifstream in(SWARD_VIEW_TEST_SCENE);
+    std::string scene((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string name = R"("name": "view-test")";
+    ASSERT_NE(scene.find(name), std::string::npos);
+    scene.replace(scene.find(name), name.size(), R"("name": "../escape/pwned")");
+    std::ofstream(root / "scene.json") << scene;
+    const std::string shots = (root / "shots").string();
+    RunResult r = run(underXvfb((root / "scene.json").string() +
+                                " --size 160x120 --samples 1 --frames 4 --press 2:f12 --screenshot-dir " + shots));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(std::filesystem::is_empty(root / "escape")) << r.output;
+    for (const char* file : {"/___escape_pwned-0000.exr", "/___escape_pwned-0000-depth.exr",
+                             "/___escape_pwned-0000.png"})
+        EXPECT_TRUE(std::filesystem::exists(shots + file)) << file << "\n" << r.output;
 }
