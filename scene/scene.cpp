@@ -207,7 +207,8 @@ Scene parseScene(const nlohmann::json& json, const std::string& source, const As
     return scene;
 }
 
-Scene loadScene(const std::string& path, std::optional<uint64_t> seed, const std::vector<std::string>& allowedAssetDirs) {
+Scene loadScene(const std::string& path, std::optional<uint64_t> seed,
+                const std::vector<std::string>& allowedAssetDirs) {
     nlohmann::json json = nlohmann::json::object();
     if (!path.empty()) {
         std::ifstream file(path);
@@ -221,8 +222,8 @@ Scene loadScene(const std::string& path, std::optional<uint64_t> seed, const std
     if (seed && json.is_object()) json["seed"] = *seed; // before parsing: every seed derived from it follows
     if (path.empty()) return parseScene(json, "<built-in>");
     // A scene file's assets stay inside its folder and the folders the user allows.
-    return parseScene(json, path, AssetPolicy::confinedTo(std::filesystem::path(path).parent_path().string(),
-                                                          allowedAssetDirs));
+    return parseScene(json, path,
+                      AssetPolicy::confinedTo(std::filesystem::path(path).parent_path().string(), allowedAssetDirs));
 }
 
 Heightfield buildTerrain(const Scene& scene) {

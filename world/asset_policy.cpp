@@ -17,7 +17,8 @@ fs::path resolved(const fs::path& path) {
     fs::path result = fs::weakly_canonical(fs::absolute(path), error);
     if (error) result = fs::absolute(path).lexically_normal();
     // "dir/" canonicalises with an empty last element; drop it so folder comparisons see whole components.
-    if (!result.has_filename() && result.has_parent_path() && result != result.root_path()) result = result.parent_path();
+    if (!result.has_filename() && result.has_parent_path() && result != result.root_path())
+        result = result.parent_path();
     return result;
 }
 

@@ -28,8 +28,8 @@ public:
 
 private:
     bool confined_ = false;
-    std::filesystem::path folder_;                // canonical
-    std::vector<std::filesystem::path> allowed_;  // canonical
+    std::filesystem::path folder_;               // canonical
+    std::vector<std::filesystem::path> allowed_; // canonical
 };
 
 } // namespace sward

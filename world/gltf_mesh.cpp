@@ -113,7 +113,8 @@ struct GltfReader {
         auto position = prim.attributes.find("POSITION");
         if (position == prim.attributes.end()) fail("a triangle primitive has no POSITION attribute");
         out.positions = floatVec3(position->second, "POSITION");
-        if (out.positions.size() > std::numeric_limits<uint32_t>::max()) fail("a primitive has more than 2^32 vertices");
+        if (out.positions.size() > std::numeric_limits<uint32_t>::max())
+            fail("a primitive has more than 2^32 vertices");
         const uint32_t count = uint32_t(out.positions.size());
         if (wantNormals) {
             auto normal = prim.attributes.find("NORMAL");

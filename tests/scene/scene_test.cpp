@@ -1,8 +1,8 @@
-#include "world/camera.h"
 #include "common/error.h"
 #include "engine/memory.h"
 #include "scene/rover_model.h"
 #include "scene/scene.h"
+#include "world/camera.h"
 
 #include "test_files.h"
 
@@ -124,8 +124,7 @@ struct AssetFolders {
 
 // A scene naming `path` under `key`: "model" (objects[0].model), "grass_map" or "atlas" (atlas.png).
 nlohmann::json sceneNaming(const std::string& key, const std::string& path) {
-    if (key == "model")
-        return {{"objects", {{{"model", path}, {"path", {{"points", {{10, 10}}}}}}}}};
+    if (key == "model") return {{"objects", {{{"model", path}, {"path", {{"points", {{10, 10}}}}}}}}};
     if (key == "atlas") return {{"atlas", {{"png", path}, {"json", "atlas.json"}}}};
     return {{key, path}};
 }
@@ -142,8 +141,8 @@ TEST(SceneAssets, PathsLeavingTheSceneFolderAreRefusedWithoutAllowAssets) {
             const std::string scene = f.write(sceneNaming(key, path));
             test::expectError([&] { loadScene(scene); },
                               {scene + ": " + name + ": '" + path + "' resolves to " + (f.outside / file).string() +
-                                   ", outside the scene's folder " + f.scene.string() +
-                                   " (allow with --allow-assets DIR)"});
+                               ", outside the scene's folder " + f.scene.string() +
+                               " (allow with --allow-assets DIR)"});
         }
     }
 }
@@ -176,7 +175,7 @@ TEST(SceneAssets, AModelsBufferFilesAreConfinedToo) {
     const Scene confined = loadScene(path);
     test::expectError([&] { loadObjectModels(confined.objects, confined.source); },
                       {path + ": 'objects[0].model': glTF model '" + (f.scene / "m.gltf").string() +
-                           "': buffer uri: '../outside/t.bin' resolves to " + (f.outside / "t.bin").string()});
+                       "': buffer uri: '../outside/t.bin' resolves to " + (f.outside / "t.bin").string()});
     const Scene allowed = loadScene(path, {}, {f.outside.string()});
     EXPECT_EQ(loadObjectModels(allowed.objects, allowed.source).at(0).triangleCount(), 1u);
 }

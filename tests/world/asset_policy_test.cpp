@@ -42,9 +42,10 @@ TEST(AssetPolicy, PathsInsideTheSceneFolderResolveThere) {
 TEST(AssetPolicy, DotDotOutsideTheSceneFolderIsRefusedNamingKeyPathAndFolders) {
     Folders f;
     const AssetPolicy policy = AssetPolicy::confinedTo(f.scene.string(), {});
-    expectError([&] { policy.resolve("models/../../outside/x.gltf", f.scene.string(), "s.json: 'objects[0].model'"); },
-                {"s.json: 'objects[0].model': 'models/../../outside/x.gltf' resolves to " + (f.outside / "x.gltf").string(),
-                 "outside the scene's folder " + f.scene.string(), "--allow-assets DIR"});
+    expectError(
+        [&] { policy.resolve("models/../../outside/x.gltf", f.scene.string(), "s.json: 'objects[0].model'"); },
+        {"s.json: 'objects[0].model': 'models/../../outside/x.gltf' resolves to " + (f.outside / "x.gltf").string(),
+         "outside the scene's folder " + f.scene.string(), "--allow-assets DIR"});
 }
 
 TEST(AssetPolicy, AbsolutePathsOutsideAreRefused) {

@@ -42,7 +42,8 @@ std::vector<uint8_t> triangleBytes(float x1 = 1.0f) {
 }
 
 void writeBytes(const fs::path& path, const std::vector<uint8_t>& bytes) {
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
 std::string writeJson(const fs::path& path, const nlohmann::json& json) {
@@ -51,8 +52,7 @@ std::string writeJson(const fs::path& path, const nlohmann::json& json) {
 }
 
 // A triangle glTF with its buffer embedded, after `edit` changed its JSON.
-template <class Edit>
-std::string writeEdited(const fs::path& dir, Edit edit) {
+template <class Edit> std::string writeEdited(const fs::path& dir, Edit edit) {
     nlohmann::json j = triangleJson("data:application/octet-stream;base64," + base64(triangleBytes()));
     edit(j);
     return writeJson(dir / "m.gltf", j);
@@ -123,7 +123,8 @@ TEST(GltfMeshErrors, HugeParentScaleIsRefusedOnTheComposedTransform) {
         j["nodes"].push_back({{"name", "parent"}, {"scale", {1e5, 1e5, 1e5}}, {"children", {0}}});
         j["nodes"][0]["scale"] = {1e5, 1e5, 1e5}; // each fine alone, 1e10 together
     });
-    expectBothFail(path, {"node 0 ('body'): its transform (with its parents') is not finite or has an entry beyond 1e8"});
+    expectBothFail(path,
+                   {"node 0 ('body'): its transform (with its parents') is not finite or has an entry beyond 1e8"});
 }
 
 TEST(GltfMeshErrors, NonFinitePositionsAreRefused) {
@@ -166,9 +167,10 @@ TEST(GltfMeshErrors, BufferUriOutsideTheSceneFolderIsRefused) {
     fs::create_symlink(root / "outside" / "t.bin", root / "scene" / "link.bin");
     const AssetPolicy confined = AssetPolicy::confinedTo((root / "scene").string(), {});
     for (const std::string& uri : {std::string("../outside/t.bin"), (root / "outside" / "t.bin").string(),
-                                  std::string("link.bin"), std::string("/etc/passwd")}) {
+                                   std::string("link.bin"), std::string("/etc/passwd")}) {
         const std::string path = writeJson(root / "scene" / "m.gltf", triangleJson(uri));
-        expectBothFail(path, {"m.gltf': buffer uri: '" + uri + "' resolves to ", "outside the scene's folder"}, confined);
+        expectBothFail(path, {"m.gltf': buffer uri: '" + uri + "' resolves to ", "outside the scene's folder"},
+                       confined);
     }
     // Allowed: the same files load.
     const AssetPolicy allowed = AssetPolicy::confinedTo((root / "scene").string(), {(root / "outside").string()});
@@ -184,8 +186,8 @@ TEST(GltfMeshErrors, BufferFileErrorsQuoteNeitherItsSizeNorItsBytes) {
     writeBytes(dir / "secret.txt", std::vector<uint8_t>(1000, 0x41));
     // byteLength differs from the file's size: tinygltf's own message states the size.
     const std::string wrongSize = writeJson(dir / "m.gltf", triangleJson("secret.txt"));
-    for (const std::string& message : {messageOf([&] { loadGltfMesh(wrongSize); }),
-                                       messageOf([&] { loadGltfModel(wrongSize); })}) {
+    for (const std::string& message :
+         {messageOf([&] { loadGltfMesh(wrongSize); }), messageOf([&] { loadGltfModel(wrongSize); })}) {
         EXPECT_NE(message.find("the file of buffer uri 'secret.txt' is not byteLength bytes long"), std::string::npos)
             << message;
         EXPECT_EQ(message.find("1000"), std::string::npos) << message;
@@ -193,8 +195,8 @@ TEST(GltfMeshErrors, BufferFileErrorsQuoteNeitherItsSizeNorItsBytes) {
     // byteLength matches: the positions read as 'AAAA' floats (finite), the indices as 0x41414141.
     nlohmann::json j = triangleJson("secret.txt", 1000);
     const std::string matching = writeJson(dir / "m.gltf", j);
-    for (const std::string& message : {messageOf([&] { loadGltfMesh(matching); }),
-                                       messageOf([&] { loadGltfModel(matching); })}) {
+    for (const std::string& message :
+         {messageOf([&] { loadGltfMesh(matching); }), messageOf([&] { loadGltfModel(matching); })}) {
         EXPECT_NE(message.find("accessor 1 (indices): element 0 is not below the vertex count 3"), std::string::npos)
             << message;
         EXPECT_EQ(message.find(std::to_string(0x41414141u)), std::string::npos) << message;

@@ -118,12 +118,15 @@ TEST(SwardRender, AGrassMapOutsideTheScenesFolderNeedsAllowAssets) {
     RunResult refused = runRender(dir + "/scene/s.json --out " + dir + "/o");
     EXPECT_NE(refused.exitCode, 0);
     EXPECT_EQ(countLines(refused.err, "error"), 1) << refused.err;
-    EXPECT_NE(refused.err.find("'grass_map': '../maps/m.png' resolves to " + dir + "/maps/m.png, outside the scene's "
-                               "folder " + dir + "/scene (allow with --allow-assets DIR)"),
+    EXPECT_NE(refused.err.find("'grass_map': '../maps/m.png' resolves to " + dir +
+                               "/maps/m.png, outside the scene's "
+                               "folder " +
+                               dir + "/scene (allow with --allow-assets DIR)"),
               std::string::npos)
         << refused.err;
     EXPECT_FALSE(std::filesystem::exists(dir + "/o")) << "a refused asset writes nothing";
-    RunResult allowed = runRender(dir + "/scene/s.json --validation --allow-assets " + dir + "/maps --out " + dir + "/o");
+    RunResult allowed =
+        runRender(dir + "/scene/s.json --validation --allow-assets " + dir + "/maps --out " + dir + "/o");
     ASSERT_EQ(allowed.exitCode, 0) << allowed.err;
     EXPECT_TRUE(std::filesystem::exists(dir + "/o/preview/000000.png"));
 }

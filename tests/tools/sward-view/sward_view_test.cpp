@@ -129,7 +129,7 @@ TEST(SwardView, ASceneNameCannotWriteScreenshotsOutsideTheScreenshotFolder) {
                                 " --size 160x120 --samples 1 --frames 4 --press 2:f12 --screenshot-dir " + shots));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(std::filesystem::is_empty(root / "escape")) << r.output;
-    for (const char* file : {"/___escape_pwned-0000.exr", "/___escape_pwned-0000-depth.exr",
-                             "/___escape_pwned-0000.png"})
+    for (const char* file :
+         {"/___escape_pwned-0000.exr", "/___escape_pwned-0000-depth.exr", "/___escape_pwned-0000.png"})
         EXPECT_TRUE(std::filesystem::exists(shots + file)) << file << "\n" << r.output;
 }
