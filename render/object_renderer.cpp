@@ -126,6 +126,7 @@ void ObjectRenderer::update(double time, uint32_t slot) {
             transforms.push_back(hidden ? gpu::ObjectTransform{glm::mat4(0.0f), glm::mat4(0.0f)}
                                         : gpu::ObjectTransform{glm::mat4(m), glm::mat4(glm::transpose(glm::inverse(m)))});
     }
+    if (transforms.empty()) return; // memcpy from an empty vector's null data() is undefined
     std::memcpy(transforms_.mapped() + slot * transformsStride_, transforms.data(),
                 transforms.size() * sizeof(gpu::ObjectTransform));
 }
