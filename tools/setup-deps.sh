@@ -16,7 +16,12 @@ packages=(
   nlohmann-json3-dev libcli11-dev libimgui-dev
   # tests and benchmarks; a virtual X server for the viewer test
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
+  # scale-out tests (tests/scale-out): a private single-node Slurm, and the Kubernetes manifest check (YAML in
+  # Python, TypeScript run by Node.js)
+  slurm-wlm munge python3-yaml nodejs
 )
+# A Node.js from another source (e.g. NodeSource) brings its own npm; Debian's npm would conflict with it.
+command -v npm >/dev/null || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -25,12 +30,20 @@ for p in "${packages[@]}"; do
 done
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages present"
-  exit 0
+else
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "setup: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-sudo=""
-[ "$(id -u)" -eq 0 ] || sudo="sudo"
-echo "setup: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-$sudo apt-get update -qq
-$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# npm packages of the Kubernetes manifest check, exactly as its package-lock.json pins them (versions and
+# hashes); the test then runs offline. Skipped when node_modules was installed from the same lock file.
+k8s="$(cd "$(dirname "$0")/.." && pwd)/tests/scale-out/k8s"
+if ! cmp -s "$k8s/package-lock.json" "$k8s/node_modules/.sward-installed-lock.json"; then
+  echo "setup: npm ci in $k8s"
+  npm ci --prefix "$k8s" --no-audit --no-fund --loglevel=error
+  cp "$k8s/package-lock.json" "$k8s/node_modules/.sward-installed-lock.json"
+fi
