@@ -49,8 +49,8 @@ int64_t parseInteger(std::string_view text, int64_t min, int64_t max, std::strin
 }
 
 double parseReal(std::string_view text, double min, double max, std::string_view what) {
-    const std::string expected =
-        std::string(what) + " must be a number from " + boundText(min) + " to " + boundText(max) + ", got " + quoted(text);
+    const std::string expected = std::string(what) + " must be a number from " + boundText(min) + " to " +
+                                 boundText(max) + ", got " + quoted(text);
     // from_chars for double takes no leading '+' and no hex without the format flag: only decimal text passes.
     require(!text.empty() && text.find_first_not_of("0123456789+-.eE") == std::string_view::npos, expected);
     double value = 0.0;

@@ -64,7 +64,8 @@ inline std::string usageMessage(const CLI::App& app, const CLI::ParseError& erro
     static const std::regex missing(R"(^(\S+): \d+ required \S+ missing$)");
     static const std::regex tooFew(R"(^(\S+): At least (\d+) required but received \d+$)");
     std::smatch match;
-    if (std::regex_match(message, match, repeated)) return match[1].str() + " given " + match[2].str() + " times, at most once allowed";
+    if (std::regex_match(message, match, repeated))
+        return match[1].str() + " given " + match[2].str() + " times, at most once allowed";
     if (std::regex_match(message, match, missing)) return match[1].str() + " needs a value";
     if (std::regex_match(message, match, tooFew)) return match[1].str() + " needs " + match[2].str() + " values";
     return message;
@@ -81,7 +82,7 @@ CLI::Option* addParsed(CLI::App& app, const std::string& names, Target& target, 
     CLI::Option* option = app.add_option_function<std::string>(
         names, [&target, flag, parse](const std::string& text) { target = parse(text, flag); }, description);
     option->type_name(typeName);
-    if constexpr (requires(std::ostream& out) { out << target; }) {
+    if constexpr (requires(std::ostream & out) { out << target; }) {
         std::ostringstream shown;
         shown << target;
         option->default_str(shown.str());
@@ -94,10 +95,10 @@ template <class Target>
 CLI::Option* addUnsigned(CLI::App& app, const std::string& names, Target& target, uint64_t min, uint64_t max,
                          const std::string& description) {
     using Value = typename detail::OptionValue<Target>::type;
-    return addParsed(app, names, target, description, "UINT", [min, max](const std::string& text,
-                                                                                 const std::string& flag) {
-        return Value(parseUnsigned(text, min, max, flag));
-    });
+    return addParsed(app, names, target, description, "UINT",
+                     [min, max](const std::string& text, const std::string& flag) {
+                         return Value(parseUnsigned(text, min, max, flag));
+                     });
 }
 
 // A whole-number option in [min, max] that may be negative; Target is a signed integer or std::optional of one.
@@ -105,10 +106,10 @@ template <class Target>
 CLI::Option* addInteger(CLI::App& app, const std::string& names, Target& target, int64_t min, int64_t max,
                         const std::string& description) {
     using Value = typename detail::OptionValue<Target>::type;
-    return addParsed(app, names, target, description, "INT", [min, max](const std::string& text,
-                                                                                const std::string& flag) {
-        return Value(parseInteger(text, min, max, flag));
-    });
+    return addParsed(app, names, target, description, "INT",
+                     [min, max](const std::string& text, const std::string& flag) {
+                         return Value(parseInteger(text, min, max, flag));
+                     });
 }
 
 // A finite real-number option in [min, max]; Target is float, double or std::optional of one.
@@ -116,10 +117,10 @@ template <class Target>
 CLI::Option* addReal(CLI::App& app, const std::string& names, Target& target, double min, double max,
                      const std::string& description) {
     using Value = typename detail::OptionValue<Target>::type;
-    return addParsed(app, names, target, description, "NUMBER", [min, max](const std::string& text,
-                                                                                   const std::string& flag) {
-        return Value(parseReal(text, min, max, flag));
-    });
+    return addParsed(app, names, target, description, "NUMBER",
+                     [min, max](const std::string& text, const std::string& flag) {
+                         return Value(parseReal(text, min, max, flag));
+                     });
 }
 
 // An option whose text must pass `check` (e.g. parseResolution) while parsing, so a bad value is a usage error;
@@ -127,8 +128,7 @@ CLI::Option* addReal(CLI::App& app, const std::string& names, Target& target, do
 template <class Target>
 CLI::Option* addChecked(CLI::App& app, const std::string& names, Target& target, const std::string& description,
                         const char* typeName, const std::function<void(const std::string& text)>& check) {
-    return addParsed(app, names, target, description, typeName, [check](const std::string& text,
-                                                                                const std::string&) {
+    return addParsed(app, names, target, description, typeName, [check](const std::string& text, const std::string&) {
         check(text);
         return text;
     });
@@ -136,12 +136,12 @@ CLI::Option* addChecked(CLI::App& app, const std::string& names, Target& target,
 
 // MSAA samples: 1 or 4, as everywhere in sward.
 template <class Target> CLI::Option* addSamples(CLI::App& app, Target& target, const std::string& description) {
-    return addParsed(app, "--samples", target, description, "1|4", [](const std::string& text,
-                                                                                const std::string& flag) {
-        const uint64_t samples = parseUnsigned(text, 1, 4, flag);
-        require(samples == 1 || samples == 4, flag + " must be 1 or 4, got '" + text + "'");
-        return uint32_t(samples);
-    });
+    return addParsed(app, "--samples", target, description, "1|4",
+                     [](const std::string& text, const std::string& flag) {
+                         const uint64_t samples = parseUnsigned(text, 1, 4, flag);
+                         require(samples == 1 || samples == 4, flag + " must be 1 or 4, got '" + text + "'");
+                         return uint32_t(samples);
+                     });
 }
 
 // A point "X,Y,Z" of finite numbers (metres), e.g. --camera 10,-4.5,2.
@@ -151,8 +151,10 @@ inline CLI::Option* addPoint(CLI::App& app, const std::string& names, std::optio
         const std::string what = flag + " '" + text + "'";
         std::vector<std::string> parts(1);
         for (char c : text)
-            if (c == ',') parts.emplace_back();
-            else parts.back().push_back(c);
+            if (c == ',')
+                parts.emplace_back();
+            else
+                parts.back().push_back(c);
         require(parts.size() == 3, what + ": expected X,Y,Z in metres, e.g. 10,-4.5,2");
         return glm::dvec3(parseReal(parts[0], -1e9, 1e9, what + ": X"), parseReal(parts[1], -1e9, 1e9, what + ": Y"),
                           parseReal(parts[2], -1e9, 1e9, what + ": Z"));

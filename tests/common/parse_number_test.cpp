@@ -45,7 +45,8 @@ TEST(ParseNumber, RealIsFiniteAndInRange) {
     EXPECT_EQ(parseReal("-2e-1", -1.0, 1.0, "--x"), -0.2);
     for (const char* bad : {"", "nan", "inf", "-inf", "1e999", "0x1p3", "+1", " 1", "1,5", "3", "1.5x"})
         EXPECT_THROW(parseReal(bad, 0.0, 2.0, "--x"), Error) << bad;
-    EXPECT_EQ(errorOf([] { parseReal("nan", 1.0, 170.0, "--fov"); }), "--fov must be a number from 1 to 170, got 'nan'");
+    EXPECT_EQ(errorOf([] { parseReal("nan", 1.0, 170.0, "--fov"); }),
+              "--fov must be a number from 1 to 170, got 'nan'");
 }
 
 TEST(ParseNumber, SplitPairNeedsExactlyOneSeparator) {

@@ -1,7 +1,7 @@
 // sward-atlas: writes the procedural vegetation texture atlas (atlas.png + atlas.json). Parses the command line
 // and calls generateAtlas()/saveAtlas(); nothing else.
-#include "vegetation/atlas.h"
 #include "common/error.h"
+#include "vegetation/atlas.h"
 
 #include "tools/tool_main.h"
 
@@ -20,7 +20,8 @@ int main(int argc, char** argv) {
     sward::addParsed(app, "--cell", params.cellSize, "Cell edge in texels, a power of two 32..2048", "UINT",
                      [](const std::string& text, const std::string& flag) {
                          const uint64_t cell = sward::parseUnsigned(text, 32, 2048, flag);
-                         sward::require(std::has_single_bit(cell), flag + " must be a power of two, got '" + text + "'");
+                         sward::require(std::has_single_bit(cell),
+                                        flag + " must be a power of two, got '" + text + "'");
                          return uint32_t(cell);
                      });
     sward::addUnsigned(app, "--seed", params.seed, 0, UINT64_MAX, "Random seed; every texel is a pure function of it");

@@ -1,6 +1,6 @@
 // sward-bench: prints benchmark figures (and writes them as JSON with --json). Thin: parsing and printing only.
-#include "render/benchmarks.h"
 #include "common/atomic_file.h"
+#include "render/benchmarks.h"
 #include "scene/scene.h"
 
 #include "tools/tool_main.h"
@@ -31,7 +31,8 @@ int main(int argc, char** argv) {
     CLI::App* gen = app.add_subcommand("generate", "Generate and upload one full tile of plants");
     sward::addReal(*gen, "--density", generate.density, 0.001, 1000.0, "Grass plants per m^2");
     sward::addReal(*gen, "--tile-size", generate.tileSize, 1.0, 10000.0, "Tile edge in metres");
-    sward::addUnsigned(*gen, "--threads", generate.threads, 0, sward::kMaxThreadsOption, "Worker threads (0 = all cores)");
+    sward::addUnsigned(*gen, "--threads", generate.threads, 0, sward::kMaxThreadsOption,
+                       "Worker threads (0 = all cores)");
     sward::addUnsigned(*gen, "--repeats", generate.repeats, 1, 1000, "Generation runs (median reported)");
     gen->add_option("--device", generate.device, "Vulkan device name substring");
     gen->add_flag("!--no-upload", generate.upload, "Skip the GPU upload");
@@ -41,10 +42,11 @@ int main(int argc, char** argv) {
     std::string resolution = "1024x768";
     CLI::App* frm = app.add_subcommand("frame", "Render a scene and time the GPU passes and the expansion overhead");
     frm->add_option("scene", frame.scenePath, "Scene JSON (default: examples/meadow.json)");
-    sward::addParsed(*frm, "--resolution", resolution, "WIDTHxHEIGHT", "WxH", [&frame](const std::string& text, const std::string&) {
-        sward::parseResolution(text, frame.width, frame.height);
-        return text;
-    });
+    sward::addParsed(*frm, "--resolution", resolution, "WIDTHxHEIGHT", "WxH",
+                     [&frame](const std::string& text, const std::string&) {
+                         sward::parseResolution(text, frame.width, frame.height);
+                         return text;
+                     });
     sward::addSamples(*frm, frame.samples, "MSAA samples (1 or 4)");
     sward::addUnsigned(*frm, "--frames", frame.frames, 1, 10000, "Measured frames per figure (medians)");
     frm->add_option("--device", frame.device, "Vulkan device name substring");
@@ -66,7 +68,8 @@ int main(int argc, char** argv) {
         ->type_name("UINT");
     sward::addUnsigned(*col, "--ticks", collide.ticks, 1, 1000000, "Measured ticks per case (medians)");
     sward::addUnsigned(*col, "--warmup", collide.warmup, 0, 1000000, "Ticks per case before measuring");
-    sward::addUnsigned(*col, "--threads", collide.threads, 0, sward::kMaxThreadsOption, "Collision threads (0 = all cores)");
+    sward::addUnsigned(*col, "--threads", collide.threads, 0, sward::kMaxThreadsOption,
+                       "Collision threads (0 = all cores)");
     sward::addReal(*col, "--density", collide.density, 0.001, 1000.0, "Grass plants per m^2");
     sward::addReal(*col, "--radius", collide.radius, 0.001, 2.0, "Collider sphere radius, metres");
     col->add_option("--device", collide.device, "Vulkan device name substring");

@@ -1,21 +1,21 @@
 // sward-render: offline renderer. Parses the command line and runs the render job; nothing else.
 #include "dataset/dataset_writer.h"
-#include "scene/scene.h"
 #include "render/render_job.h"
+#include "scene/scene.h"
 
 #include "tools/tool_main.h"
 
 #include <CLI/CLI.hpp>
 
-
 int main(int argc, char** argv) {
-    CLI::App app{"sward-render: render a sward scene to a stereo dataset: HDR EXR colour, depth, disparity, semantic and instance ground truth"};
+    CLI::App app{"sward-render: render a sward scene to a stereo dataset: HDR EXR colour, depth, disparity, semantic "
+                 "and instance ground truth"};
     sward::RenderJobOptions options;
     app.add_option("scene", options.scenePath, "Scene JSON file (default: the scene format's built-in defaults)");
     app.add_option("--out,-o", options.outDir, "Output folder (created if missing)")->capture_default_str();
     sward::addChecked(app, "--resolution", options.resolution,
-                      "Image size WIDTHxHEIGHT, e.g. 1280x720 (each side 1..16384, at most 8192x8192 pixels)",
-                      "WxH", [](const std::string& text) {
+                      "Image size WIDTHxHEIGHT, e.g. 1280x720 (each side 1..16384, at most 8192x8192 pixels)", "WxH",
+                      [](const std::string& text) {
                           uint32_t width = 0, height = 0;
                           sward::parseResolution(text, width, height);
                       });

@@ -22,8 +22,9 @@ void addTestHooks(CLI::App& app, sward::ViewerOptions& options) {
            [&options](const std::vector<std::string>& values) {
                uint32_t width = 0, height = 0;
                sward::parseResolution(values.at(1), width, height);
-               options.resizeAt.emplace(uint32_t(sward::parseUnsigned(values.at(0), 0, kMaxViewerFrames, "--resize-at frame")),
-                                        values.at(1));
+               options.resizeAt.emplace(
+                   uint32_t(sward::parseUnsigned(values.at(0), 0, kMaxViewerFrames, "--resize-at frame")),
+                   values.at(1));
            },
            "Test hook: at frame N resize the window to WxH (N WxH)")
         ->expected(2)
@@ -63,7 +64,8 @@ int main(int argc, char** argv) {
     app.add_option("--screenshot", options.screenshot, "With --frames: write the last presented frame to this PNG")
         ->needs(frames);
     addTestHooks(app, options);
-    CLI::Option* camera = sward::addPoint(app, "--camera", options.camera, "Initial camera position X,Y,Z in world metres");
+    CLI::Option* camera =
+        sward::addPoint(app, "--camera", options.camera, "Initial camera position X,Y,Z in world metres");
     sward::addPoint(app, "--look-at", options.lookAt, "Initial camera target X,Y,Z in world metres")->needs(camera);
     return sward::runTool(app, argc, argv, "sward-view", [&] {
         if (!size.empty()) sward::parseResolution(size, options.width, options.height);
