@@ -1,14 +1,48 @@
 #!/usr/bin/env bash
-# One entry point for a new user:
-#   ./sward.sh render [ARGS]  set up, build, render examples/meadow.json into out/ (ARGS go to sward-render)
-#   ./sward.sh test           set up, build, run the whole test suite
-#   ./sward.sh build          set up and build only
-# BUILD_TYPE=Debug|Release (default Release), SANITIZE=1 (ASan + UBSan), BUILD_DIR (default build).
+# One entry point for a new user; see usage() below. Exit status: 0 success, 1 failure, 2 usage error (as every
+# sward tool, tools/tool_main.h).
 set -euo pipefail
 cd "$(dirname "$0")"
 
+usage() {
+  cat <<'USAGE'
+usage: ./sward.sh [render|test|build|help] [ARGS]
+  render [ARGS]  set up, build, then run sward-render ARGS; the scene defaults to examples/meadow.json and --out
+                 to out/ when ARGS name none (e.g. ./sward.sh render my.json --out my-data --frames 0:10)
+  test [ARGS]    set up, build, run the whole test suite (ARGS go to ctest)
+  build          set up and build only
+  help           this text (also -h, --help); sets up and builds nothing
+Environment: BUILD_TYPE=Debug|Release (default Release), SANITIZE=1 (ASan + UBSan), BUILD_DIR (default build).
+USAGE
+}
+
 command=${1:-render}
 [ $# -gt 0 ] && shift
+
+# Answer the cheap questions before the setup and the build (minutes on a fresh machine).
+case "$command" in
+  help|-h|--help) usage; exit 0 ;;
+  render|test|build) ;;
+  *) echo "sward.sh: error: unknown command '$command' (see ./sward.sh --help)" >&2; exit 2 ;;
+esac
+
+# sward-render's arguments: the user's, plus the default scene and --out only where the user gave none. Options
+# that take no value are listed; every other option is taken to be followed by its value (unless --opt=value).
+render_args() {
+  local has_scene=0 has_out=0 expect_value=0 arg
+  for arg in "$@"; do
+    if [ $expect_value = 1 ]; then expect_value=0; continue; fi
+    case "$arg" in
+      --out|-o|--out=*|-o=*) has_out=1; [[ "$arg" == *=* ]] || expect_value=1 ;;
+      -q|--quiet|--no-vegetation|--validation|-h|--help|--version|--*=*) ;;
+      -*) expect_value=1 ;;
+      *) has_scene=1 ;;
+    esac
+  done
+  [ $has_scene = 1 ] || printf '%s\0' examples/meadow.json
+  [ $has_out = 1 ] || printf '%s\0' --out out
+  [ $# = 0 ] || printf '%s\0' "$@"
+}
 
 build_type=${BUILD_TYPE:-Release}
 build_dir=${BUILD_DIR:-build}
@@ -23,13 +57,10 @@ cmake --build "$build_dir" -j "$(nproc)"
 case "$command" in
   build) ;;
   render)
-    "$build_dir/bin/sward-render" examples/meadow.json --out out "$@"
+    mapfile -d '' args < <(render_args "$@")
+    exec "$build_dir/bin/sward-render" "${args[@]}"
     ;;
   test)
     ctest --test-dir "$build_dir" -j "$(nproc)" --output-on-failure --timeout 600 "$@"
-    ;;
-  *)
-    echo "usage: ./sward.sh render|test|build [ARGS]" >&2
-    exit 2
     ;;
 esac

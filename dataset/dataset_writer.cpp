@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/parse_number.h"
 #include "dataset/naming.h"
 #include "io/disparity_files.h"
 #include "io/image_files.h"
@@ -26,13 +27,11 @@ void shardRange(uint32_t first, uint32_t end, uint32_t index, uint32_t count, ui
 }
 
 void parseShard(const std::string& text, uint32_t& index, uint32_t& count) {
-    unsigned i = 0, n = 0;
-    char slash = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%u%c%u%c", &i, &slash, &n, &extra) != 3 || slash != '/' || n == 0 || i >= n ||
-        n > 100000 || text.find_first_not_of("0123456789/") != std::string::npos)
-        throw Error("bad shard '" + text + "': expected I/N with 0 <= I < N, e.g. 0/4");
-    index = i;
-    count = n;
+    // At most one shard per frame: more shards than frames a scene can hold is a typo, not a job array.
+    const std::string what = "bad shard '" + text + "'";
+    const auto [i, n] = splitPair(text, '/', what, "I/N with 0 <= I < N, e.g. 0/4");
+    count = uint32_t(parseUnsigned(n, 1, kFrameLimit, what + ": shard count N"));
+    index = uint32_t(parseUnsigned(i, 0, count - 1, what + ": shard index I"));
 }
 
 DatasetWriter::DatasetWriter(std::string root, bool stereo) : root_(std::move(root)), stereo_(stereo) {}

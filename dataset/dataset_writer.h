@@ -21,7 +21,7 @@ namespace sward {
 // Frames [first, end) split into `count` contiguous blocks; block `index` is [first', end'). Blocks may be
 // empty when there are more shards than frames.
 void shardRange(uint32_t first, uint32_t end, uint32_t index, uint32_t count, uint32_t& shardFirst, uint32_t& shardEnd);
-// Parses "I/N" (0 <= I < N); throws a clear error otherwise.
+// Parses "I/N" (0 <= I < N <= kFrameLimit, digits only); throws a clear error otherwise.
 void parseShard(const std::string& text, uint32_t& index, uint32_t& count);
 
 class DatasetWriter {

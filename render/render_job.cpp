@@ -1,5 +1,6 @@
 #include "render/render_job.h"
 
+#include "common/parse_number.h"
 #include "dataset/dataset_writer.h"
 #include "dataset/frame_record.h"
 #include "dataset/naming.h"
@@ -211,13 +212,9 @@ void runRenderJob(const RenderJobOptions& options) {
 }
 
 void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end) {
-    unsigned a = 0, b = 0;
-    char colon = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%u%c%u%c", &a, &colon, &b, &extra) != 3 || colon != ':' || a >= b ||
-        text.find_first_not_of("0123456789:") != std::string::npos)
-        throw Error("bad frame range '" + text + "': expected A:B with A < B (frames A .. B-1), e.g. 0:60");
-    first = a;
-    end = b;
+    const auto [a, b] = parseHalfOpenRange(text, 0, kFrameLimit, "bad frame range");
+    first = uint32_t(a);
+    end = uint32_t(b);
 }
 
 } // namespace sward

@@ -28,7 +28,7 @@ struct RenderJobOptions {
     bool quiet = false;                     // no progress line even on a terminal
 };
 
-// Parses "A:B" (0 <= A < B): frames A .. B-1. Throws a clear error otherwise.
+// Parses "A:B" (0 <= A < B <= kFrameLimit, digits only): frames A .. B-1. Throws a clear error otherwise.
 void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end);
 
 // Runs the job; throws sward::Error with a one-line message on bad input or failure. Writes the dataset described

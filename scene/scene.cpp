@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "common/json_reader.h"
+#include "common/parse_number.h"
 #include "world/ground.h"
 #include "vegetation/placement.h"
 
@@ -279,14 +280,18 @@ bool sceneHasColliders(const Scene& scene) {
 }
 
 void parseResolution(const std::string& text, uint32_t& width, uint32_t& height) {
-    unsigned w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 || h < 1 ||
-        w > 16384 || h > 16384 || text.find_first_not_of("0123456789xX") != std::string::npos)
-        throw Error("bad resolution '" + text +
-                    "': expected WIDTHxHEIGHT with each between 1 and 16384, e.g. 1280x720");
-    width = w;
-    height = h;
+    const std::string what = "bad resolution '" + text + "'";
+    const size_t x = text.find_first_of("xX");
+    const std::string_view w = std::string_view(text).substr(0, x == std::string::npos ? text.size() : x);
+    const std::string_view h = x == std::string::npos ? std::string_view() : std::string_view(text).substr(x + 1);
+    require(x != std::string::npos && h.find_first_of("xX") == std::string_view::npos,
+            what + ": expected WIDTHxHEIGHT, e.g. 1280x720");
+    const uint64_t wide = parseUnsigned(w, 1, kMaxImageSide, what + ": width");
+    const uint64_t high = parseUnsigned(h, 1, kMaxImageSide, what + ": height");
+    require(wide * high <= kMaxImagePixels, what + ": " + std::to_string(wide * high) + " pixels, more than the " +
+                                                std::to_string(kMaxImagePixels) + " (8192x8192) allowed");
+    width = uint32_t(wide);
+    height = uint32_t(high);
 }
 
 } // namespace sward

@@ -119,7 +119,12 @@ std::vector<Collider> sceneColliders(const Scene& scene, const std::vector<Objec
 // True when anything in the scene can touch the vegetation (the interaction simulation must run).
 bool sceneHasColliders(const Scene& scene);
 
-// Parses "WxH" (e.g. "1280x720"); throws a clear error for anything else or sizes outside 1..16384.
+// Largest image a command-line resolution may ask for: each side at most kMaxImageSide pixels and at most
+// kMaxImagePixels pixels in all (8192x8192 or 16384x4096: several GiB of render targets and readback already).
+inline constexpr uint32_t kMaxImageSide = 16384;
+inline constexpr uint64_t kMaxImagePixels = uint64_t(1) << 26;
+// Parses "WxH" (e.g. "1280x720", digits only); throws a clear error for anything else, a side outside
+// 1..kMaxImageSide or more than kMaxImagePixels pixels.
 void parseResolution(const std::string& text, uint32_t& width, uint32_t& height);
 
 } // namespace sward

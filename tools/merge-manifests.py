@@ -30,6 +30,7 @@ import hashlib
 import json
 import os
 import re
+import subprocess
 import sys
 
 FORMAT = "sward-dataset-1"
@@ -237,19 +238,65 @@ def check_files(dataset, files, verify, jobs, problems):
                 problems.add(message)
 
 
+TOOL = "merge-manifests.py"
+VERSION = "0.1.0"  # the sward version (CMakeLists.txt project())
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse with sward's command-line convention (tools/tool_main.h): a usage error is one line on stderr,
+    "merge-manifests.py: error: ... (see --help)", and exit status 2."""
+
+    def parse_args(self, args=None, namespace=None):
+        # argparse reports missing positionals before unknown options; the unknown option is the real mistake.
+        known = {o for action in self._actions for o in action.option_strings}
+        for arg in sys.argv[1:] if args is None else args:
+            if arg == "--":
+                break
+            negative_number = re.fullmatch(r"-[0-9.]+", arg)
+            if arg.startswith("-") and len(arg) > 1 and not negative_number and arg.split("=", 1)[0] not in known:
+                self.error(f"unknown option '{arg}'")
+        return super().parse_args(args, namespace)
+
+    def error(self, message):
+        print(f"{TOOL}: error: {message} (see --help)", file=sys.stderr)
+        sys.exit(2)
+
+
+def jobs_count(text):
+    """--jobs: a whole number from 1 to 1024, digits only."""
+    if not text.isascii() or not text.isdigit() or not 1 <= int(text) <= 1024:
+        raise argparse.ArgumentTypeError(f"must be a whole number from 1 to 1024, got '{text}'")
+    return int(text)
+
+
+def revision():
+    """The source revision as `git describe` gives it for this file's checkout, or "unknown"."""
+    try:
+        run = subprocess.run(["git", "describe", "--always", "--dirty", "--abbrev=12"], capture_output=True,
+                             text=True, cwd=os.path.dirname(os.path.abspath(__file__)), timeout=10)
+        return run.stdout.strip() or "unknown"
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = Parser(prog=TOOL, description=__doc__.split("\n\n")[0])
     parser.add_argument("dataset", help="dataset folder (sward-render --out)")
     parser.add_argument("manifests", nargs="*", help="shard manifests (default: DIR/manifest.shard-*-of-*.json)")
     parser.add_argument("--verify", action="store_true", help="re-hash every file and compare with the manifest")
-    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="files hashed in parallel")
+    parser.add_argument("--jobs", type=jobs_count, default=min(os.cpu_count() or 1, 1024),
+                        help="files hashed in parallel (1..1024)")
+    parser.add_argument("--version", action="version", version=f"{TOOL} {VERSION} ({revision()})")
     args = parser.parse_args(argv)
 
     problems = Problems()
     paths = args.manifests or sorted(p for p in glob.glob(os.path.join(args.dataset, "manifest.shard-*-of-*.json"))
                                      if SHARD_NAME.match(os.path.basename(p)))
     output = os.path.join(args.dataset, "manifest.json")
-    jobs = max(1, args.jobs)
+    jobs = args.jobs
+    if not os.path.isdir(args.dataset):
+        print(f"{TOOL}: error: dataset folder '{args.dataset}' does not exist", file=sys.stderr)
+        return 1
     if paths:
         merged, jsonl_parts, part_files = merge(args.dataset, paths, problems) or (None, {}, {})
         if merged is not None:
@@ -266,7 +313,7 @@ def main(argv=None):
             check_files(args.dataset, merged["files"], args.verify, jobs, problems)
     if problems.messages:
         for message in problems.messages:
-            print(f"error: {message}", file=sys.stderr)
+            print(f"{TOOL}: error: {message}", file=sys.stderr)
         return 1
     if paths:
         text = json.dumps(merged, indent=2, sort_keys=True, ensure_ascii=False) + "\n"

@@ -278,7 +278,7 @@ TEST(Dataset, MalformedSceneNamesTheJsonPathAndWritesNothing) {
     EXPECT_NE(r.err.find("camera.baseline"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
     r = render(kScene + " --out " + dir + "/out --shard 2/2");
-    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(r.exitCode, 2) << "a bad option value is a usage error (tools/tool_main.h)";
     EXPECT_NE(r.err.find("shard"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
 }

@@ -57,6 +57,18 @@ TEST(Scene, ParsesResolution) {
         EXPECT_THROW(parseResolution(bad, w, h), Error) << bad;
 }
 
+TEST(Scene, ResolutionRefusesWhatWouldWrapAndCapsThePixelCount) {
+    uint32_t w = 7, h = 9;
+    for (const char* bad : {"4294967616x240", "320x4294967536", "+320x240", "320x+240", "0x10x240", "16384x16384"})
+        EXPECT_THROW(parseResolution(bad, w, h), Error) << bad;
+    EXPECT_EQ(w, 7u) << "nothing assigned on error";
+    parseResolution("16384x4096", w, h);
+    EXPECT_EQ(w, 16384u);
+    EXPECT_EQ(h, 4096u);
+    parseResolution("8X6", w, h);
+    EXPECT_EQ(w, 8u);
+}
+
 TEST(Scene, GustsFollowTheSceneSeedUnlessPinned) {
     Scene scene = parseScene(nlohmann::json::parse(R"({"seed": 123456789, "gusts": {"count": 3}})"), "s.json");
     EXPECT_EQ(scene.actors.gusts.seed, 123456789u) << "exact, not rounded through a float";

@@ -1,12 +1,13 @@
 // sward-atlas: writes the procedural vegetation texture atlas (atlas.png + atlas.json). Parses the command line
 // and calls generateAtlas()/saveAtlas(); nothing else.
-#include "vegetation/atlas.h"
 #include "common/error.h"
+#include "vegetation/atlas.h"
 
 #include "tools/tool_main.h"
 
 #include <CLI/CLI.hpp>
 
+#include <bit>
 #include <cstdio>
 #include <filesystem>
 
@@ -16,9 +17,16 @@ int main(int argc, char** argv) {
     sward::AtlasGenParams params;
     uint32_t variants = 0;
     app.add_option("--out,-o", outDir, "Output folder (created if missing)")->required();
-    app.add_option("--cell", params.cellSize, "Cell edge in texels, a power of two 32..2048")->capture_default_str();
-    app.add_option("--seed", params.seed, "Random seed; every texel is a pure function of it")->capture_default_str();
-    app.add_option("--variants", variants, "Columns per row (default: each category's variants)");
+    sward::addParsed(app, "--cell", params.cellSize, "Cell edge in texels, a power of two 32..2048", "UINT",
+                     [](const std::string& text, const std::string& flag) {
+                         const uint64_t cell = sward::parseUnsigned(text, 32, 2048, flag);
+                         sward::require(std::has_single_bit(cell),
+                                        flag + " must be a power of two, got '" + text + "'");
+                         return uint32_t(cell);
+                     });
+    sward::addUnsigned(app, "--seed", params.seed, 0, UINT64_MAX, "Random seed; every texel is a pure function of it");
+    // An atlas row holds at most 64 columns (vegetation/atlas.cpp).
+    sward::addUnsigned(app, "--variants", variants, 1, 64, "Columns per row (default: each category's variants)");
     return sward::runTool(app, argc, argv, "sward-atlas", [&] {
         if (variants > 0) params.rows = sward::defaultAtlasRows(variants);
         std::error_code error;

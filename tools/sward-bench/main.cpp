@@ -1,6 +1,6 @@
 // sward-bench: prints benchmark figures (and writes them as JSON with --json). Thin: parsing and printing only.
-#include "render/benchmarks.h"
 #include "common/atomic_file.h"
+#include "render/benchmarks.h"
 #include "scene/scene.h"
 
 #include "tools/tool_main.h"
@@ -29,10 +29,11 @@ int main(int argc, char** argv) {
 
     sward::GenerateBenchOptions generate;
     CLI::App* gen = app.add_subcommand("generate", "Generate and upload one full tile of plants");
-    gen->add_option("--density", generate.density, "Grass plants per m^2")->capture_default_str();
-    gen->add_option("--tile-size", generate.tileSize, "Tile edge in metres")->capture_default_str();
-    gen->add_option("--threads", generate.threads, "Worker threads (0 = all cores)")->capture_default_str();
-    gen->add_option("--repeats", generate.repeats, "Generation runs (median reported)")->capture_default_str();
+    sward::addReal(*gen, "--density", generate.density, 0.001, 1000.0, "Grass plants per m^2");
+    sward::addReal(*gen, "--tile-size", generate.tileSize, 1.0, 10000.0, "Tile edge in metres");
+    sward::addUnsigned(*gen, "--threads", generate.threads, 0, sward::kMaxThreadsOption,
+                       "Worker threads (0 = all cores)");
+    sward::addUnsigned(*gen, "--repeats", generate.repeats, 1, 1000, "Generation runs (median reported)");
     gen->add_option("--device", generate.device, "Vulkan device name substring");
     gen->add_flag("!--no-upload", generate.upload, "Skip the GPU upload");
     gen->add_option("--json", json, "Also write the figures as a JSON object to this file");
@@ -43,9 +44,13 @@ int main(int argc, char** argv) {
     frm->add_option("scene", frame.scenePath, "Scene JSON (default: examples/meadow.json)");
     frm->add_option("--allow-assets", frame.allowAssets,
                     "Also read the scene's assets from this folder (repeatable; default: the scene's folder only)");
-    frm->add_option("--resolution", resolution, "WIDTHxHEIGHT")->capture_default_str();
-    frm->add_option("--samples", frame.samples, "MSAA samples (1 or 4)")->capture_default_str();
-    frm->add_option("--frames", frame.frames, "Measured frames per figure (medians)")->capture_default_str();
+    sward::addParsed(*frm, "--resolution", resolution, "WIDTHxHEIGHT", "WxH",
+                     [&frame](const std::string& text, const std::string&) {
+                         sward::parseResolution(text, frame.width, frame.height);
+                         return text;
+                     });
+    sward::addSamples(*frm, frame.samples, "MSAA samples (1 or 4)");
+    sward::addUnsigned(*frm, "--frames", frame.frames, 1, 10000, "Measured frames per figure (medians)");
     frm->add_option("--device", frame.device, "Vulkan device name substring");
     frm->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
@@ -53,23 +58,29 @@ int main(int argc, char** argv) {
     CLI::App* col = app.add_subcommand(
         "collide", "Interaction worst case: one colliding sphere per 5 x 5 m cluster of N fields (CPU collision, "
                    "upload, GPU recovery), 10,000 colliders above the grass, and no GPU work with 0 active fields");
-    col->add_option("--fields", collide.fields, "Fields with colliders, one case per value (repeatable)")
-        ->capture_default_str();
-    col->add_option("--ticks", collide.ticks, "Measured ticks per case (medians)")->capture_default_str();
-    col->add_option("--warmup", collide.warmup, "Ticks per case before measuring")->capture_default_str();
-    col->add_option("--threads", collide.threads, "Collision threads (0 = all cores)")->capture_default_str();
-    col->add_option("--density", collide.density, "Grass plants per m^2")->capture_default_str();
-    col->add_option("--radius", collide.radius, "Collider sphere radius, metres")->capture_default_str();
+    col->add_option_function<std::vector<std::string>>(
+           "--fields",
+           [&collide](const std::vector<std::string>& values) {
+               collide.fields.clear();
+               // The synthetic tile is 500 x 500 m: 400 fields.
+               for (const std::string& text : values)
+                   collide.fields.push_back(uint32_t(sward::parseUnsigned(text, 1, 400, "--fields")));
+           },
+           "Fields with colliders, one case per value (repeatable; default 10 100 400)")
+        ->type_name("UINT");
+    sward::addUnsigned(*col, "--ticks", collide.ticks, 1, 1000000, "Measured ticks per case (medians)");
+    sward::addUnsigned(*col, "--warmup", collide.warmup, 0, 1000000, "Ticks per case before measuring");
+    sward::addUnsigned(*col, "--threads", collide.threads, 0, sward::kMaxThreadsOption,
+                       "Collision threads (0 = all cores)");
+    sward::addReal(*col, "--density", collide.density, 0.001, 1000.0, "Grass plants per m^2");
+    sward::addReal(*col, "--radius", collide.radius, 0.001, 2.0, "Collider sphere radius, metres");
     col->add_option("--device", collide.device, "Vulkan device name substring");
     col->add_flag("!--no-gpu", collide.gpu, "CPU collision only: no Vulkan device, no upload or GPU figures");
     col->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
     return sward::runTool(app, argc, argv, "sward-bench", [&] {
         if (gen->parsed()) emit(sward::benchGenerate(generate), json);
-        if (frm->parsed()) {
-            sward::parseResolution(resolution, frame.width, frame.height);
-            emit(sward::benchFrame(frame), json);
-        }
+        if (frm->parsed()) emit(sward::benchFrame(frame), json);
         if (col->parsed()) {
             nlohmann::json result = sward::benchCollide(collide);
             std::fputs(sward::collideTable(result).c_str(), stdout);

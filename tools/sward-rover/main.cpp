@@ -15,11 +15,11 @@ int main(int argc, char** argv) {
     std::string out;
     sward::RoverDimensions d;
     app.add_option("--out,-o", out, "Output .gltf file (buffer embedded as a base64 data URI)")->required();
-    app.add_option("--wheel-radius", d.wheelRadius, "Wheel radius, metres")->capture_default_str();
-    app.add_option("--wheel-width", d.wheelWidth, "Wheel width, metres")->capture_default_str();
-    app.add_option("--wheel-base", d.wheelBase, "Front to rear axle, metres")->capture_default_str();
-    app.add_option("--track-width", d.trackWidth, "Left to right wheel centre, metres")->capture_default_str();
-    app.add_option("--baseline", d.cameraBaseline, "Stereo head lens spacing, metres")->capture_default_str();
+    sward::addReal(app, "--wheel-radius", d.wheelRadius, 0.001, 100.0, "Wheel radius, metres");
+    sward::addReal(app, "--wheel-width", d.wheelWidth, 0.001, 100.0, "Wheel width, metres");
+    sward::addReal(app, "--wheel-base", d.wheelBase, 0.001, 100.0, "Front to rear axle, metres");
+    sward::addReal(app, "--track-width", d.trackWidth, 0.001, 100.0, "Left to right wheel centre, metres");
+    sward::addReal(app, "--baseline", d.cameraBaseline, 0.001, 100.0, "Stereo head lens spacing, metres");
     return sward::runTool(app, argc, argv, "sward-rover", [&] {
         sward::saveRoverGltf(out, d);
         std::printf("sward-rover: wrote %s\n", out.c_str());

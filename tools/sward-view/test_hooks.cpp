@@ -1,6 +1,7 @@
 #include "test_hooks.h"
 
 #include "common/error.h"
+#include "common/parse_number.h"
 #include "scene/scene.h"
 
 #include <GLFW/glfw3.h>
@@ -21,9 +22,9 @@ std::vector<std::pair<uint64_t, int>> parsePresses(const std::string& text) {
         else if (key == "space") code = GLFW_KEY_SPACE;
         else if (key == "f12") code = GLFW_KEY_F12;
         else if (key == "esc") code = GLFW_KEY_ESCAPE;
-        if (frame.empty() || frame.find_first_not_of("0123456789") != std::string::npos || code == GLFW_KEY_UNKNOWN)
-            throw Error("bad --press item '" + item + "': expected FRAME:KEY with KEY a-z, 0-9, space, f12 or esc");
-        presses.emplace_back(std::stoull(frame), code);
+        const std::string what = "bad --press item '" + item + "'";
+        require(code != GLFW_KEY_UNKNOWN, what + ": expected FRAME:KEY with KEY a-z, 0-9, space, f12 or esc");
+        presses.emplace_back(parseUnsigned(frame, 0, UINT32_MAX, what + ": FRAME"), code);
     }
     return presses;
 }

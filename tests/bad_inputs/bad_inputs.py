@@ -1,0 +1,167 @@
+#!/usr/bin/env python3
+"""The bad-input table: every bad input tried on sward's tools, the error it gets, and that nothing was written.
+
+    bad_inputs.py BIN_DIR SOURCE_DIR TABLE.md [--only REGEX]
+
+For each case (cases.py) the tool runs on a freshly made input in a case folder of its own and must
+  - exit with the expected code (2: bad command line, 1: bad input or failed run);
+  - print exactly ONE line on stderr (informational "sward: device: ..." lines aside) that starts with
+    "<tool>: error: " and matches the case's regex (it names the problem);
+  - leave its output folder (--out, or the case's watched path) exactly as found: absent if it was absent,
+    otherwise the same listing and bytes.
+The table (input | command | exit | error | nothing written) goes to TABLE.md. Cases marked expect_fixed_by wait
+for another change (named there): they are reported as PENDING and do not fail the run, but one that passes is
+reported as FIXED so its mark can go. Exit status 1 if any unmarked case fails. Python 3 standard library only.
+"""
+
+import argparse
+import hashlib
+import os
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cases as case_table  # noqa: E402
+
+INFO_LINE = re.compile(r"^sward: device: ")
+
+
+def snapshot(path):
+    """None for a missing path, else every entry below it (itself included) with its bytes' hash."""
+    if not os.path.lexists(path):
+        return None
+    if not os.path.isdir(path) or os.path.islink(path):
+        with open(path, "rb") as f:
+            return {".": hashlib.sha256(f.read()).hexdigest()}
+    entries = {".": "dir"}
+    for root, dirs, files in os.walk(path):
+        for name in dirs:
+            entries[os.path.relpath(os.path.join(root, name), path)] = "dir"
+        for name in files:
+            full = os.path.join(root, name)
+            with open(full, "rb") as f:
+                entries[os.path.relpath(full, path)] = hashlib.sha256(f.read()).hexdigest()
+    return entries
+
+
+def describe_change(before, after):
+    if before is None:
+        return "created: " + ", ".join(sorted(after)[:6])
+    if after is None:
+        return "removed"
+    changed = sorted(k for k in set(before) | set(after) if before.get(k) != after.get(k))
+    return "changed: " + ", ".join(changed[:6])
+
+
+def run_case(case, ctx, work):
+    folder = os.path.join(work, f"{ctx.index:03d}-{case.slug}")
+    ctx.index += 1
+    os.makedirs(folder)
+    env = case_table.Env(ctx.bin, ctx.source, folder, ctx.base_dataset)
+    args = case.setup(env) if case.setup else []
+    watched = env.watched or env.out
+    before = snapshot(watched)
+    tool = case.tool
+    command = [sys.executable, os.path.join(ctx.source, "tools", tool)] if tool.endswith(".py") else \
+        [os.path.join(ctx.bin, tool)]
+    environment = dict(os.environ)
+    environment.pop("DISPLAY", None)
+    try:
+        result = subprocess.run(command + args, capture_output=True, text=True, timeout=120, env=environment,
+                                cwd=folder)
+        code, stderr = result.returncode, result.stderr
+    except subprocess.TimeoutExpired:
+        code, stderr = "timeout", ""
+    after = snapshot(watched)
+    lines = [line for line in stderr.splitlines() if not INFO_LINE.match(line)]
+    problems = []
+    if code != case.exit:
+        problems.append(f"exit {code}, expected {case.exit}")
+    if len(lines) != 1:
+        problems.append(f"{len(lines)} stderr lines, expected 1")
+    elif not lines[0].startswith(f"{tool}: error: ") or not re.search(case.error, lines[0]):
+        problems.append(f"error line does not match /{case.error}/")
+    if before != after:
+        problems.append("output folder " + describe_change(before, after))
+    shown = " ".join(shlex.quote(os.path.relpath(a, folder) if a.startswith(folder) else a) for a in args)
+    return {
+        "case": case,
+        "command": f"{tool} {shown}".strip(),
+        "exit": code,
+        "error": lines[0] if len(lines) == 1 else " / ".join(lines) or "(none)",
+        "untouched": before == after,
+        "problems": problems,
+    }
+
+
+class Context:
+    def __init__(self, bin_dir, source):
+        self.bin = os.path.abspath(bin_dir)
+        self.source = os.path.abspath(source)
+        self.base_dataset = None
+        self.index = 0
+
+
+def make_base_dataset(ctx, work):
+    """One tiny rendered dataset (1 frame, 32x24) that the sward-eval and resume cases corrupt copies of."""
+    out = os.path.join(work, "base-dataset")
+    scene = case_table.write_scene(os.path.join(work, "base-scene"), case_table.base_scene(ctx.source))
+    result = subprocess.run([os.path.join(ctx.bin, "sward-render"), scene, "--out", out, "--quiet"],
+                            capture_output=True, text=True, timeout=300)
+    if result.returncode != 0:
+        sys.exit(f"bad_inputs.py: error: cannot render the base dataset: {result.stderr.strip()}")
+    ctx.base_dataset = out
+
+
+def table_row(r):
+    def cell(text):
+        return str(text).replace("|", "\\|").replace("\n", " ")
+    status = "yes" if r["untouched"] else "NO"
+    return (f"| {cell(r['case'].name)} | `{cell(r['command'])}` | {r['exit']} | {cell(r['error'])} | {status} |")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("bin_dir")
+    parser.add_argument("source_dir")
+    parser.add_argument("table")
+    parser.add_argument("--only", default="", help="run only cases whose name matches this regex")
+    args = parser.parse_args()
+    ctx = Context(args.bin_dir, args.source_dir)
+    selected = [c for c in case_table.CASES if re.search(args.only, c.name)]
+    work = tempfile.mkdtemp(prefix="sward-bad-inputs-")
+    failed = pending = fixed = 0
+    rows = []
+    try:
+        if any(c.needs_dataset for c in selected):
+            make_base_dataset(ctx, work)
+        for case in selected:
+            r = run_case(case, ctx, work)
+            rows.append(r)
+            if case.expect_fixed_by:
+                state = "FIXED" if not r["problems"] else "PENDING"
+                pending += state == "PENDING"
+                fixed += state == "FIXED"
+                note = f" (waits for {case.expect_fixed_by})"
+            else:
+                state = "FAIL" if r["problems"] else "ok"
+                failed += bool(r["problems"])
+                note = ""
+            detail = ": " + "; ".join(r["problems"]) if r["problems"] else ""
+            print(f"{state:7} {case.name}{note}{detail}")
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    with open(args.table, "w", encoding="utf-8") as f:
+        f.write("| input | command | exit | error | nothing written |\n|---|---|---|---|---|\n")
+        f.write("\n".join(table_row(r) for r in rows) + "\n")
+    print(f"{len(rows)} cases: {len(rows) - failed - pending - fixed} ok, {failed} failed, {pending} pending, "
+          f"{fixed} fixed (remove their expect_fixed_by); table: {args.table}")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

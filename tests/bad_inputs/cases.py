@@ -1,0 +1,370 @@
+"""The bad inputs of bad_inputs.py: one Case per row of the table. A case's setup(env) writes its inputs into
+env.folder and returns the tool's arguments; env.out (default FOLDER/out, absent) or env.watched is the path that
+must be left exactly as found. expect_fixed_by names the change a case waits for (reported PENDING meanwhile)."""
+
+import base64
+import json
+import os
+import shutil
+import struct
+from dataclasses import dataclass
+from typing import Callable, Optional
+
+# Topics of other changes of issue 14 that some cases wait for.
+NOTHING_LEFT = "nothing left behind on failure (issue 14 part 2)"
+DUPLICATE_KEYS = "duplicate scene keys rejected (issue 14 part 8)"
+GLTF = "glTF loader hardening (issue 14 memory safety)"
+CONFINEMENT = "asset confinement (issue 14 part 9)"
+RESUME = "resume fingerprint (issue 14 part 1)"
+EVAL_NOTHING_LEFT = "sward-eval: report folder only after its inputs are checked (issue 14 part 2)"
+
+
+class Env:
+    def __init__(self, bin_dir, source, folder, base_dataset):
+        self.bin, self.source, self.folder, self.base_dataset = bin_dir, source, folder, base_dataset
+        self.out = os.path.join(folder, "out")
+        self.watched = None
+
+    def path(self, name):
+        return os.path.join(self.folder, name)
+
+    def write(self, name, data):
+        path = self.path(name)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "wb" if isinstance(data, bytes) else "w") as f:
+            f.write(data)
+        return path
+
+
+@dataclass
+class Case:
+    name: str                      # the input, as the table shows it
+    tool: str
+    setup: Callable                # env -> argument list
+    exit: int
+    error: str                     # regex the one error line must match
+    expect_fixed_by: Optional[str] = None
+    needs_dataset: bool = False
+
+    @property
+    def slug(self):
+        return "".join(c if c.isalnum() else "-" for c in self.name.lower())[:60]
+
+
+def base_scene(source):
+    """The test data scene made tiny: 32x24 pixels, 2 frames, no vehicle (each case is fast)."""
+    with open(os.path.join(source, "tests", "data", "dataset_scene.json")) as f:
+        scene = json.load(f)
+    scene["render"]["resolution"] = [32, 24]
+    scene["sequence"]["frames"] = 2
+    scene.pop("vehicles", None)
+    return scene
+
+
+def write_scene(folder, scene, name="scene.json"):
+    os.makedirs(folder, exist_ok=True)
+    path = os.path.join(folder, name)
+    with open(path, "w") as f:
+        f.write(scene if isinstance(scene, str) else json.dumps(scene, indent=1))
+    return path
+
+
+def render(*extra):
+    """sward-render on the tiny scene with a fresh --out and `extra` arguments."""
+    def setup(env):
+        return [write_scene(env.folder, base_scene(env.source)), "--out", env.out, *extra]
+    return setup
+
+
+def scene_with(edit, files=None):
+    """sward-render on the tiny scene changed by edit(scene, env) (which may write files) with a fresh --out."""
+    def setup(env):
+        scene = base_scene(env.source)
+        result = edit(scene, env)
+        return [write_scene(env.folder, result if result is not None else scene), "--out", env.out]
+    return setup
+
+
+def scene_text(text):
+    def setup(env):
+        return [write_scene(env.folder, text), "--out", env.out]
+    return setup
+
+
+def set_key(path, value):
+    def edit(scene, env):
+        node = scene
+        for key in path[:-1]:
+            node = node.setdefault(key, {})
+        node[path[-1]] = value
+    return edit
+
+
+# --- glTF: a one-triangle model, valid, and bad variants of it -------------------------------------------------
+
+def triangle_gltf(**changes):
+    positions = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)
+    indices = struct.pack("<3H", 0, 1, 2) + b"\0\0"
+    data = positions + indices
+    gltf = {
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"name": "body", "mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "buffers": [{"byteLength": len(data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                        {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+    }
+    for change in changes.values():
+        change(gltf)
+    return gltf
+
+
+def with_object(model_name, model_data):
+    """The tiny scene with one object whose model is `model_data` (dict: glTF JSON; str/bytes: as is)."""
+    def edit(scene, env):
+        if model_data is not None:
+            env.write(model_name, json.dumps(model_data) if isinstance(model_data, dict) else model_data)
+        scene["objects"] = [{"name": "thing", "model": model_name,
+                             "path": {"points": [[50, 46], [50, 60]], "speed": 1.0}}]
+    return edit
+
+
+def gltf_case(name, exit, error, fixed_by=None, **changes):
+    return Case(name, "sward-render", scene_with(with_object("model.gltf", triangle_gltf(**changes))), exit, error,
+                fixed_by)
+
+
+# --- sward-eval: copies of one rendered dataset with one file broken --------------------------------------------
+
+def dataset_with(break_it, *extra):
+    def setup(env):
+        dataset = env.path("dataset")
+        shutil.copytree(env.base_dataset, dataset)
+        break_it(dataset, env)
+        env.out = env.path("report")
+        return [dataset, "--out", env.out, *(a.replace("{dataset}", dataset) for a in extra)]
+    return setup
+
+
+def overwrite(relative, data):
+    def break_it(dataset, env):
+        with open(os.path.join(dataset, relative), "wb") as f:
+            f.write(data)
+    return break_it
+
+
+def truncate(relative, keep):
+    def break_it(dataset, env):
+        path = os.path.join(dataset, relative)
+        with open(path, "rb") as f:
+            head = f.read(keep)
+        with open(path, "wb") as f:
+            f.write(head)
+    return break_it
+
+
+def remove(relative):
+    return lambda dataset, env: os.remove(os.path.join(dataset, relative))
+
+
+def eval_case(name, break_it, error, *extra, exit=1, fixed_by=None):
+    return Case(name, "sward-eval", dataset_with(break_it, *extra), exit, error, fixed_by, needs_dataset=True)
+
+
+# --- cases whose output folder already holds something -----------------------------------------------------------
+
+def out_under_a_file(env):
+    blocker = env.write("a-file", "not a folder\n")
+    env.out = os.path.join(blocker, "out")
+    env.watched = blocker
+    return [write_scene(env.folder, base_scene(env.source)), "--out", env.out]
+
+
+def out_is_a_file(env):
+    env.out = env.write("out-file", "user data\n")
+    return [write_scene(env.folder, base_scene(env.source)), "--out", env.out]
+
+
+def resume_with(*changed):
+    """A finished run in --out, then the same --out with other options: must refuse, not mix datasets."""
+    def setup(env):
+        shutil.copytree(env.base_dataset, env.out)
+        scene = write_scene(env.path("scene"), base_scene(env.source))
+        return [scene, "--out", env.out, *changed]
+    return setup
+
+
+def tool_out(*args, under_file=False):
+    def setup(env):
+        if under_file:
+            blocker = env.write("a-file", "not a folder\n")
+            env.out = os.path.join(blocker, "out")
+            env.watched = blocker
+        return [a.replace("{out}", env.out) for a in args]
+    return setup
+
+
+def corrupt_shard(env):
+    env.watched = env.path("dataset")
+    env.write("dataset/manifest.shard-0-of-2.json", "{ not json")
+    return [env.watched]
+
+
+def png_bytes():
+    """A valid 1x1 8-bit RGB PNG (zlib stored block), for grass maps and atlases."""
+    import zlib
+
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xffffffff)
+    raw = zlib.compress(b"\0\x10\x80\x10")
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 1, 1, 8, 2, 0, 0, 0)) + \
+        chunk(b"IDAT", raw) + chunk(b"IEND", b"")
+
+
+def grass_map(data):
+    def edit(scene, env):
+        env.write("map.png", data)
+        scene["grass_map"] = "map.png"
+    return edit
+
+
+def atlas(png, json_text):
+    def edit(scene, env):
+        entry = {}
+        if png is not None:
+            env.write("atlas.png", png)
+            entry["png"] = "atlas.png"
+        if json_text is not None:
+            env.write("atlas.json", json_text)
+            entry["json"] = "atlas.json"
+        scene["atlas"] = entry
+    return edit
+
+
+def duplicate_seed(env):
+    text = json.dumps(base_scene(env.source), indent=1)
+    text = text.replace('"seed": 5', '"seed": 5,\n "seed": 6', 1)
+    return [write_scene(env.folder, text), "--out", env.out]
+
+
+CASES = [
+    # Command-line values of sward-render (exit 2, before anything is read or written).
+    Case("--resolution wider than 2^32", "sward-render", render("--resolution", "4294967616x240"), 2,
+         r"width must be a whole number from 1 to 16384, got '4294967616'"),
+    Case("--resolution 0x240", "sward-render", render("--resolution", "0x240"), 2, r"width must be"),
+    Case("--resolution over the pixel cap", "sward-render", render("--resolution", "16384x16384"), 2,
+         r"268435456 pixels, more than"),
+    Case("--resolution with a sign", "sward-render", render("--resolution", "+32x24"), 2, r"bad resolution"),
+    Case("--frames past 2^32", "sward-render", render("--frames", "4294967296:4294967297"), 2,
+         r"bad frame range .*start must be a whole number"),
+    Case("--frames reversed", "sward-render", render("--frames", "5:3"), 2, r"start must be less than end"),
+    Case("--frames past the scene's sequence", "sward-render", render("--frames", "0:100"), 1,
+         r"goes past the scene's sequence"),
+    Case("--shard index past 2^32", "sward-render", render("--shard", "4294967296/2"), 2,
+         r"shard index I must be a whole number from 0 to 1"),
+    Case("--shard 2/2", "sward-render", render("--shard", "2/2"), 2, r"shard index I"),
+    Case("--shard 0/0", "sward-render", render("--shard", "0/0"), 2, r"shard count N"),
+    Case("--samples 3", "sward-render", render("--samples", "3"), 2, r"--samples must be 1 or 4"),
+    Case("--samples huge", "sward-render", render("--samples", "99999999999999999999"), 2,
+         r"--samples must be a whole number"),
+    Case("--seed negative", "sward-render", render("--seed", "-5"), 2, r"--seed must be a whole number"),
+    Case("--fov 0", "sward-render", render("--fov", "0"), 2, r"--fov must be a number from 1 to 170"),
+    Case("--time nan", "sward-render", render("--time", "nan"), 2, r"--time must be a number"),
+    Case("--camera with two numbers", "sward-render", render("--camera", "1,2"), 2, r"--camera '1,2'"),
+    Case("unknown option", "sward-render", render("--bogus"), 2, r"unknown option '--bogus'"),
+    Case("--device bogus", "sward-render", render("--device", "no-such-gpu"), 1, r"no-such-gpu", NOTHING_LEFT),
+    Case("--out under a regular file", "sward-render", out_under_a_file, 1, r"a-file"),
+    Case("--out is a regular file", "sward-render", out_is_a_file, 1, r"out-file"),
+    # Scene files.
+    Case("missing scene file", "sward-render", lambda env: [env.path("none.json"), "--out", env.out], 1,
+         r"none\.json"),
+    Case("scene JSON syntax error", "sward-render", scene_text('{"seed": 5,, }'), 1, r"scene\.json"),
+    Case("empty scene file", "sward-render", scene_text(""), 1, r"scene\.json"),
+    Case("scene is a JSON array", "sward-render", scene_text("[1, 2]"), 1, r"scene\.json"),
+    Case("unknown scene key", "sward-render", scene_with(set_key(["colour"], 1)), 1, r"colour"),
+    Case("seed of the wrong type", "sward-render", scene_with(set_key(["seed"], "five")), 1, r"seed"),
+    Case("negative terrain size", "sward-render", scene_with(set_key(["terrain", "size"], -5)), 1, r"size"),
+    Case("resolution 0 in the scene", "sward-render", scene_with(set_key(["render", "resolution"], [0, 10])), 1,
+         r"resolution"),
+    Case("sequence.frames 0", "sward-render", scene_with(set_key(["sequence", "frames"], 0)), 1, r"frames"),
+    Case("sequence.frames 2,000,000", "sward-render", scene_with(set_key(["sequence", "frames"], 2000000)), 1,
+         r"frames"),
+    Case("fov_y_deg 1e400", "sward-render", scene_with(set_key(["camera", "fov_y_deg"], 1e400)), 1, r"fov_y_deg"),
+    Case("duplicate scene key", "sward-render", duplicate_seed, 1, r"seed", DUPLICATE_KEYS),
+    # Grass maps.
+    Case("missing grass_map file", "sward-render", scene_with(set_key(["grass_map"], "none.png")), 1,
+         r"none\.png"),
+    Case("grass_map not an image", "sward-render", scene_with(grass_map("hello\n")), 1, r"map\.png"),
+    Case("grass_map truncated PNG", "sward-render", scene_with(grass_map(png_bytes()[:40])), 1, r"map\.png"),
+    Case("grass_map outside the scene folder", "sward-render",
+         scene_with(lambda s, env: (env.write("../outside.png", png_bytes()), s.update(grass_map="../outside.png"))),
+         1, r"grass_map", CONFINEMENT),
+    # Atlases.
+    Case("atlas with png only", "sward-render", scene_with(atlas(png_bytes(), None)), 1, r"needs both"),
+    Case("atlas json not JSON", "sward-render", scene_with(atlas(png_bytes(), "{ nope")), 1, r"atlas\.json"),
+    Case("atlas png missing", "sward-render",
+         scene_with(lambda s, env: (env.write("atlas.json", "{}"), s.update(atlas={"png": "none.png",
+                                                                                    "json": "atlas.json"}))),
+         1, r"none\.png|atlas"),
+    Case("atlas png garbage", "sward-render", scene_with(atlas(b"garbage", '{"rows": []}')), 1, r"atlas"),
+    # Object models (glTF).
+    # tinygltf's messages end in blank lines today: the glTF loader's rewrite gives one line.
+    Case("missing model file", "sward-render", scene_with(with_object("none.gltf", None)), 1, r"none\.gltf", GLTF),
+    Case("model not glTF", "sward-render", scene_with(with_object("model.gltf", "this is not json")), 1,
+         r"model\.gltf"),
+    Case("glTF buffer file missing", "sward-render", scene_with(with_object("model.gltf", triangle_gltf(
+        uri=lambda g: g["buffers"][0].update(uri="mesh.bin")))), 1, r"mesh\.bin", GLTF),
+    gltf_case("glTF accessor count near 2^62", 1, r"accessor", GLTF,
+              count=lambda g: g["accessors"][0].update(count=2**62)),
+    gltf_case("glTF node scale 1e308", 1, r"scale|finite", GLTF,
+              scale=lambda g: g["nodes"][0].update(scale=[1e308, 1e308, 1e308])),
+    gltf_case("glTF Draco-compressed", 1, r"(?i)draco", GLTF,
+              draco=lambda g: g.update(extensionsRequired=["KHR_draco_mesh_compression"],
+                                       extensionsUsed=["KHR_draco_mesh_compression"])),
+    gltf_case("glTF buffer uri naming a system file", 1, r"buffer", CONFINEMENT,
+              uri=lambda g: g["buffers"][0].update(uri="/etc/passwd")),
+    # Resume into a folder made with other options.
+    Case("resume with another resolution", "sward-render", resume_with("--resolution", "40x30"), 1,
+         r"(?i)fingerprint|different|another", RESUME, needs_dataset=True),
+    Case("resume with --no-vegetation", "sward-render", resume_with("--no-vegetation"), 1,
+         r"(?i)fingerprint|different|another", RESUME, needs_dataset=True),
+    # sward-eval inputs.
+    Case("missing dataset folder", "sward-eval", lambda env: [env.path("none"), "--out", env.out], 1, r"none"),
+    eval_case("dataset without calib.txt", remove("calib.txt"), r"calib\.txt", fixed_by=EVAL_NOTHING_LEFT),
+    eval_case("garbage calib.txt", overwrite("calib.txt", b"cam0=[\n"), r"calib\.txt", fixed_by=EVAL_NOTHING_LEFT),
+    eval_case("truncated ground-truth PFM", truncate("disparity/000000.pfm", 20), r"000000\.pfm",
+              fixed_by=EVAL_NOTHING_LEFT),
+    eval_case("PFM with a huge width", overwrite("disparity/000000.pfm", b"Pf\n99999999 99999999\n-1.0\n"),
+              r"000000\.pfm", fixed_by=EVAL_NOTHING_LEFT),
+    eval_case("estimate PFM truncated", truncate("disparity/000000.pfm", 20), r"000000\.pfm", "--disparities",
+              "{dataset}/disparity", fixed_by=EVAL_NOTHING_LEFT),
+    eval_case("corrupt ground-truth EXR", lambda d, e: (os.remove(os.path.join(d, "disparity/000000.pfm")),
+                                                        overwrite("disparity/000000.exr", b"v/1\x01garbage")(d, e)),
+              r"000000\.exr", fixed_by=EVAL_NOTHING_LEFT),
+    eval_case("corrupt preview PNG", overwrite("preview/000000.png", b"\x89PNG garbage"), r"preview/000000\.png",
+              fixed_by=EVAL_NOTHING_LEFT),
+    eval_case("sward-eval --frames past 2^32", lambda d, e: None, r"--frames", "--frames", "4294967296:4294967297",
+              exit=2),
+    eval_case("sward-eval --block-size 99", lambda d, e: None, r"--block-size", "--block-size", "99", exit=2),
+    # The other tools.
+    Case("sward-view missing scene", "sward-view", lambda env: [env.path("none.json"), "--frames", "1",
+                                                                 "--screenshot-dir", env.out], 1, r"none\.json"),
+    Case("sward-view --size 0x0", "sward-view", lambda env: ["--size", "0x0", "--screenshot-dir", env.out], 2,
+         r"resolution"),
+    Case("sward-atlas --cell 33", "sward-atlas", tool_out("--out", "{out}", "--cell", "33"), 2, r"power of two"),
+    Case("sward-atlas --out under a file", "sward-atlas", tool_out("--out", "{out}", under_file=True), 1,
+         r"a-file"),
+    Case("sward-rover --out in a missing folder", "sward-rover", tool_out("--out", "{out}/rover.gltf"), 1,
+         r"rover\.gltf"),
+    Case("sward-rover --wheel-radius inf", "sward-rover", tool_out("--out", "{out}", "--wheel-radius", "inf"), 2,
+         r"--wheel-radius"),
+    Case("sward-bench --fields 0", "sward-bench", lambda env: ["collide", "--fields", "0", "--json",
+                                                                os.path.join(env.out, "b.json")], 2, r"--fields"),
+    Case("corrupt shard manifest", "merge-manifests.py", corrupt_shard, 1, r"manifest\.shard-0-of-2\.json"),
+]
