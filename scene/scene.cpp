@@ -204,15 +204,7 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
 
 Scene loadScene(const std::string& path, std::optional<uint64_t> seed) {
     nlohmann::json json = nlohmann::json::object();
-    if (!path.empty()) {
-        std::ifstream file(path);
-        if (!file) throw Error("cannot open scene file '" + path + "'");
-        try {
-            json = nlohmann::json::parse(file);
-        } catch (const nlohmann::json::parse_error& e) {
-            throw Error("scene file '" + path + "' is not valid JSON: " + e.what());
-        }
-    }
+    if (!path.empty()) json = readJsonFile(path, "scene file");
     if (seed && json.is_object()) json["seed"] = *seed; // before parsing: every seed derived from it follows
     return parseScene(json, path.empty() ? "<built-in>" : path);
 }
