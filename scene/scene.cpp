@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "common/json_reader.h"
+#include "scene/scene_limits.h"
 #include "world/ground.h"
 #include "vegetation/placement.h"
 
@@ -148,6 +149,7 @@ void readActors(JsonReader& root, Scene& scene) {
     scene.interaction.recovery.timeStep = float(scene.sequence.timeStep);
     // Gusts follow the scene seed (and so --seed) unless the scene pins their own.
     scene.actors = parseActors(root, scene.seed);
+    checkArrayLength(root, "objects", kMaxSceneObjects, "models to load, instance ids");
     scene.objects =
         parseObjects(root, isFile(scene.source) ? std::filesystem::path(scene.source).parent_path().string() : "");
 }
@@ -199,6 +201,7 @@ Scene parseScene(const nlohmann::json& json, const std::string& source) {
     readAtlas(root.child("atlas"), scene);
     readVegetation(root, scene);
     root.finish();
+    checkSceneLimits(scene);
     return scene;
 }
 
