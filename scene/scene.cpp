@@ -8,6 +8,7 @@
 
 #include <filesystem>
 
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -265,14 +266,19 @@ bool sceneHasColliders(const Scene& scene) {
 }
 
 void parseResolution(const std::string& text, uint32_t& width, uint32_t& height) {
-    unsigned w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 || h < 1 ||
-        w > 16384 || h > 16384 || text.find_first_not_of("0123456789xX") != std::string::npos)
+    // from_chars refuses values beyond uint64 instead of wrapping them (sscanf's %u made 4294967616 into 320).
+    const size_t x = text.find_first_of("xX");
+    uint64_t w = 0, h = 0;
+    const auto whole = [&](size_t begin, size_t end, uint64_t& value) {
+        return begin < end && std::from_chars(text.data() + begin, text.data() + end, value) ==
+                                  std::from_chars_result{text.data() + end, std::errc()};
+    };
+    if (x == std::string::npos || !whole(0, x, w) || !whole(x + 1, text.size(), h) || w < 1 || h < 1 || w > 16384 ||
+        h > 16384)
         throw Error("bad resolution '" + text +
                     "': expected WIDTHxHEIGHT with each between 1 and 16384, e.g. 1280x720");
-    width = w;
-    height = h;
+    width = uint32_t(w);
+    height = uint32_t(h);
 }
 
 } // namespace sward

@@ -64,3 +64,14 @@ TEST(SceneLimits, TheIssuesDenseMeadowIsRefusedBeforePlacingItsPlants) {
     EXPECT_NE(error.find("over the limit of 15999999 per tile"), std::string::npos) << error;
     EXPECT_NE(error.find("'vegetation.density_multiplier'"), std::string::npos) << error;
 }
+
+TEST(SceneLimits, ResolutionsThatWouldWrapAreRefused) {
+    uint32_t w = 0, h = 0;
+    // 4294967616 = 2^32 + 320: sscanf's %u wrapped it to 320.
+    for (const char* bad : {"4294967616x240", "320x4294967536", "18446744073709551936x240", "99999999999999999999x1",
+                            "+320x240", "320x 240"})
+        EXPECT_THROW(parseResolution(bad, w, h), Error) << bad;
+    parseResolution("16384X1", w, h);
+    EXPECT_EQ(w, 16384u);
+    EXPECT_EQ(h, 1u);
+}
