@@ -187,9 +187,8 @@ uint64_t physicalMemoryBytes() {
 
 void checkPlantIdSpace(uint64_t plants, const std::string& what) {
     require(plants <= gpu::kMaxPlantInstances,
-            what + " " + std::to_string(plants) + " plants, over the limit of " +
-                std::to_string(gpu::kMaxPlantInstances) +
-                " per tile (the plant instance ids of the ground-truth labels); lower "
+            what + " " + std::to_string(plants) + " plants per tile, over the limit of " +
+                std::to_string(gpu::kMaxPlantInstances) + " (the plant instance ids of the ground-truth labels); lower "
                 "'vegetation.density_multiplier', the categories' 'density' or 'vegetation.tile_size'");
 }
 

@@ -61,7 +61,7 @@ TEST(SceneLimits, TheIssuesDenseMeadowIsRefusedBeforePlacingItsPlants) {
     const Heightfield terrain = buildTerrain(scene);
     const std::string error = errorOf([&] { buildVegetation(scene, terrain, 1); });
     EXPECT_NE(error.find("its densities predict"), std::string::npos) << error;
-    EXPECT_NE(error.find("over the limit of 15999999 per tile"), std::string::npos) << error;
+    EXPECT_NE(error.find("plants per tile, over the limit of 15999999"), std::string::npos) << error;
     EXPECT_NE(error.find("'vegetation.density_multiplier'"), std::string::npos) << error;
 }
 

@@ -39,8 +39,8 @@ std::string errorOf(const std::function<void()>& run) {
 TEST(PlacementLimits, PlantIdsFitUpToTheObjectBase) {
     EXPECT_EQ(gpu::kMaxPlantInstances, gpu::kInstanceObjectBase - 1) << "plant ids are plant index + 1";
     EXPECT_NO_THROW(checkPlantIdSpace(gpu::kMaxPlantInstances, "t:"));
-    EXPECT_EQ(errorOf([] { checkPlantIdSpace(gpu::kMaxPlantInstances + 1ull, "t: the tile holds"); }),
-              "t: the tile holds 16000000 plants, over the limit of 15999999 per tile (the plant instance ids of the "
+    EXPECT_EQ(errorOf([] { checkPlantIdSpace(gpu::kMaxPlantInstances + 1ull, "t: placed"); }),
+              "t: placed 16000000 plants per tile, over the limit of 15999999 (the plant instance ids of the "
               "ground-truth labels); lower 'vegetation.density_multiplier', the categories' 'density' or "
               "'vegetation.tile_size'");
     // Objects take the rest of the 24-bit id space.
@@ -58,7 +58,7 @@ TEST(PlacementLimits, MorePlantsThanInstanceIdsAreRefusedBeforePlacement) {
     p.channelCategory = {0, 1, 2, kUnusedChannel};
     EXPECT_NEAR(predictPlantCount(uniformMap(1.0f), p), 16e6, 1.0);
     const std::string error = errorOf([&] { generateTile(flat(), uniformMap(1.0f), p, {}, 1); });
-    EXPECT_NE(error.find("grass map 'uniform': its densities predict 16000000 plants, over the limit of 15999999"),
+    EXPECT_NE(error.find("grass map 'uniform': its densities predict 16000000 plants per tile, over the limit of 15999999"),
               std::string::npos)
         << error;
 }
