@@ -2,10 +2,117 @@
 
 #include "common/error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 namespace sward {
+
+namespace {
+
+// Tracks the JSON path of the parser's position so that a duplicate key can be named ("rows[2].cells"). The
+// DOM parser would silently keep the last value of a repeated key; a scene that says "strength" twice is a
+// mistake, and which value wins must not be an accident of the library.
+class DuplicateKeyCheck {
+public:
+    explicit DuplicateKeyCheck(const std::string& source) : source_(source) {}
+
+    bool operator()(int depth, nlohmann::json::parse_event_t event, const nlohmann::json& parsed) {
+        using Event = nlohmann::json::parse_event_t;
+        switch (event) {
+        case Event::object_start:
+        case Event::array_start:
+            if (uint32_t(depth) >= kMaxJsonDepth)
+                throw Error(source_ + ": JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+            frames_.push_back({elementPath(), event == Event::array_start, 0, {}, {}});
+            break;
+        case Event::key: {
+            Frame& top = frames_.back();
+            top.lastKey = parsed.get<std::string>();
+            if (!top.keys.insert(top.lastKey).second)
+                throw Error(source_ + ": '" + join(top.path, top.lastKey) + "' appears twice");
+            break;
+        }
+        case Event::value:
+            elementPath(); // counts the element when the value is an array element
+            break;
+        case Event::object_end:
+        case Event::array_end:
+            frames_.pop_back();
+            break;
+        }
+        return true;
+    }
+
+private:
+    struct Frame {
+        std::string path;
+        bool array;
+        size_t next; // index of the next element of an array
+        std::string lastKey;
+        std::set<std::string> keys;
+    };
+
+    static std::string join(const std::string& path, const std::string& key) {
+        return path.empty() ? key : path + "." + key;
+    }
+    // The path of the element that starts now (an array's next element or the value of the last key).
+    std::string elementPath() {
+        if (frames_.empty()) return "";
+        Frame& top = frames_.back();
+        if (top.array) return top.path + "[" + std::to_string(top.next++) + "]";
+        return join(top.path, top.lastKey);
+    }
+
+    const std::string& source_;
+    std::vector<Frame> frames_;
+};
+
+// A value as an error message quotes it: numbers, booleans and null as written, long things by their kind.
+std::string shortDescription(const nlohmann::json& v) {
+    if (v.is_string()) return "a string";
+    if (v.is_array()) return "an array";
+    if (v.is_object()) return "an object";
+    return v.dump();
+}
+
+} // namespace
+
+nlohmann::json parseJsonText(std::string_view text, const std::string& source, const std::string& what) {
+    if (text.size() > kMaxJsonFileBytes)
+        throw Error(source + ": the " + what + " has " + std::to_string(text.size()) + " bytes, over the limit of " +
+                    std::to_string(kMaxJsonFileBytes >> 20) + " MiB");
+    try {
+        return nlohmann::json::parse(text.begin(), text.end(), DuplicateKeyCheck(source));
+    } catch (const nlohmann::json::parse_error& e) {
+        // The library's message quotes the bytes it read; the position is all a user needs to find the mistake.
+        const size_t at = std::min<size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
+        const std::string_view before = text.substr(0, at);
+        const size_t line = size_t(std::count(before.begin(), before.end(), '\n')) + 1;
+        const size_t lineStart = before.rfind('\n');
+        const size_t column = at - (lineStart == std::string_view::npos ? 0 : lineStart + 1) + 1;
+        throw Error(source + ": the " + what + " is not valid JSON (line " + std::to_string(line) + ", column " +
+                    std::to_string(column) + ")");
+    }
+}
+
+nlohmann::json readJsonFile(const std::string& path, const std::string& what) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    std::ifstream file(path, std::ios::binary);
+    if (ec || !file) throw Error(path + ": cannot open the " + what + " (missing or unreadable)");
+    // Checked before reading, so a huge file is refused without being loaded.
+    if (size > kMaxJsonFileBytes)
+        throw Error(path + ": the " + what + " has " + std::to_string(size) + " bytes, over the limit of " +
+                    std::to_string(kMaxJsonFileBytes >> 20) + " MiB");
+    std::ostringstream text;
+    text << file.rdbuf();
+    if (file.bad()) throw Error(path + ": cannot read the " + what);
+    return parseJsonText(text.str(), path, what);
+}
 
 JsonReader::JsonReader(const nlohmann::json& json, std::string source, std::string path)
     : json_(json), source_(std::move(source)), path_(std::move(path)) {
@@ -23,14 +130,20 @@ double JsonReader::number(const char* key, double value, double lo, double hi) {
     return value;
 }
 
+float JsonReader::numberF(const char* key, float value, float lo, float hi) {
+    // A bound beyond the float range would let a value through that becomes inf when stored.
+    if (!std::isfinite(lo) || !std::isfinite(hi)) fail(name(key) + ": range not representable as a float");
+    return float(number(key, value, lo, hi));
+}
+
 uint64_t JsonReader::integer(const char* key, uint64_t value, uint64_t lo, uint64_t hi) {
     if (const nlohmann::json* v = find(key)) {
-        if (!v->is_number_integer() || (!v->is_number_unsigned() && v->get<int64_t>() < 0))
-            fail(name(key) + " must be a non-negative integer");
+        // Values beyond 2^64 - 1 arrive as doubles and negative ones as signed: both are refused, never wrapped.
+        const bool whole = v->is_number_unsigned() || (v->is_number_integer() && v->get<int64_t>() >= 0);
+        if (!whole || v->get<uint64_t>() < lo || v->get<uint64_t>() > hi)
+            fail(name(key) + " must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " +
+                 shortDescription(*v) + ")");
         value = v->get<uint64_t>();
-        if (value < lo || value > hi)
-            fail(name(key) + " must be between " + std::to_string(lo) + " and " + std::to_string(hi) + " (got " +
-                 std::to_string(value) + ")");
     }
     return value;
 }

@@ -14,9 +14,23 @@
 #include <initializer_list>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sward {
+
+// Limits of every JSON input (scene, atlas description): far above any real file, low enough that a hostile
+// one can neither exhaust memory nor recurse deep in a consumer that walks the tree.
+inline constexpr uint64_t kMaxJsonFileBytes = uint64_t(64) << 20;
+inline constexpr uint32_t kMaxJsonDepth = 64;
+
+// The one way sward reads a JSON file: `what` names the kind of file ("scene file"). Throws one sward::Error
+// naming the file for a missing / unreadable file ("<path>: cannot open the <what>"), a file over
+// kMaxJsonFileBytes, invalid JSON ("<path>: the <what> is not valid JSON (line L, column C)"), nesting deeper than
+// kMaxJsonDepth and a key that appears twice in one object ("<path>: 'wind.strength' appears twice").
+nlohmann::json readJsonFile(const std::string& path, const std::string& what);
+// The same checks for JSON text; `source` names it in errors (the file the text came from).
+nlohmann::json parseJsonText(std::string_view text, const std::string& source, const std::string& what);
 
 class JsonReader {
 public:
@@ -26,8 +40,10 @@ public:
 
     // Each getter returns `value` when the key is absent and checks type and range when it is present.
     double number(const char* key, double value, double lo, double hi);
-    float numberF(const char* key, float value, float lo, float hi) { return float(number(key, value, lo, hi)); }
-    // Exact integers (never rounded through a double).
+    // A number stored as a float: [lo, hi] must lie within the float range (so the result is finite).
+    float numberF(const char* key, float value, float lo, float hi);
+    // Exact integers (never rounded through a double, never wrapped): anything else, a fraction, a negative number
+    // or one outside [lo, hi] gets "'<key>' must be an integer in [lo, hi] (got <value as written>)".
     uint64_t integer(const char* key, uint64_t value, uint64_t lo, uint64_t hi);
     std::string string(const char* key, std::string value);
     bool boolean(const char* key, bool value);

@@ -2,10 +2,14 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "vegetation/vegetation_params.h"
+
+#include "shared/gpu_layout.h"
 
 #include <bit>
 #include <cassert>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -17,6 +21,11 @@ constexpr char kMagic[8] = {'S', 'W', 'A', 'R', 'D', 'S', 'T', '1'};
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8;
 constexpr size_t kFieldBytes = 4 + 8;
 constexpr size_t kChecksumBytes = 8;
+// The largest valid state: a tile of kMaxFieldsPerTileSide^2 fields and as many plants as there are plant ids. A
+// longer file is refused from its length, before it is read into memory.
+constexpr uint64_t kMaxStateBytes = kHeaderBytes +
+                                    uint64_t(kMaxFieldsPerTileSide) * kMaxFieldsPerTileSide * kFieldBytes +
+                                    uint64_t(gpu::kMaxPlantInstances) * sizeof(gpu::PlantDynamic) + kChecksumBytes;
 
 // x86-64 and every target sward builds for are little-endian, so native byte copies are the file format.
 static_assert(std::endian::native == std::endian::little);
@@ -67,6 +76,12 @@ void saveInteractionState(const std::string& path, const InteractionState& state
 InteractionState loadInteractionState(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     require(bool(in), path + ": cannot open the interaction state file");
+    std::error_code ec;
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    require(!ec, path + ": cannot read the interaction state file");
+    require(size <= kMaxStateBytes, path + ": not a valid interaction state file: " + std::to_string(size) +
+                                               " bytes, more than the largest valid state (" +
+                                               std::to_string(kMaxStateBytes) + " bytes)");
     std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::string what = path + ": not a valid interaction state file: ";
     require(bytes.size() >= 8 && std::memcmp(bytes.data(), kMagic, 8) == 0, what + "wrong magic (expected SWARDST1)");

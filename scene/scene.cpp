@@ -3,11 +3,13 @@
 #include "common/error.h"
 #include "common/json_reader.h"
 #include "common/parse_number.h"
+#include "scene/scene_limits.h"
 #include "world/ground.h"
 #include "vegetation/placement.h"
 
 #include <filesystem>
 
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -154,6 +156,7 @@ void readActors(JsonReader& root, Scene& scene) {
     scene.interaction.recovery.timeStep = float(scene.sequence.timeStep);
     // Gusts follow the scene seed (and so --seed) unless the scene pins their own.
     scene.actors = parseActors(root, scene.seed);
+    checkArrayLength(root, "objects", kMaxSceneObjects, "models to load, instance ids");
     scene.objects = parseObjects(root, sceneFolder(scene.source), scene.assets);
 }
 
@@ -205,21 +208,14 @@ Scene parseScene(const nlohmann::json& json, const std::string& source, const As
     readAtlas(root.child("atlas"), scene);
     readVegetation(root, scene);
     root.finish();
+    checkSceneLimits(scene);
     return scene;
 }
 
 Scene loadScene(const std::string& path, std::optional<uint64_t> seed,
                 const std::vector<std::string>& allowedAssetDirs) {
     nlohmann::json json = nlohmann::json::object();
-    if (!path.empty()) {
-        std::ifstream file(path);
-        if (!file) throw Error("cannot open scene file '" + path + "'");
-        try {
-            json = nlohmann::json::parse(file);
-        } catch (const nlohmann::json::parse_error& e) {
-            throw Error("scene file '" + path + "' is not valid JSON: " + e.what());
-        }
-    }
+    if (!path.empty()) json = readJsonFile(path, "scene file");
     if (seed && json.is_object()) json["seed"] = *seed; // before parsing: every seed derived from it follows
     if (path.empty()) return parseScene(json, "<built-in>");
     // A scene file's assets stay inside its folder and the folders the user allows.

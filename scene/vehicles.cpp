@@ -1,6 +1,7 @@
 #include "scene/vehicles.h"
 
 #include "common/json_reader.h"
+#include "scene/scene_limits.h"
 #include "world/heightfield.h"
 
 #include <cmath>
@@ -110,6 +111,8 @@ MovingColliderParams parseMovingCollider(JsonReader r) {
 
 ActorParams parseActors(JsonReader& scene, uint64_t gustSeed) {
     ActorParams actors;
+    checkArrayLength(scene, "vehicles", kMaxVehicles, "the wheel collider ids");
+    checkArrayLength(scene, "colliders", kMaxFreeColliders, "the collider ids");
     for (JsonReader& vehicle : scene.objects("vehicles")) actors.vehicles.push_back(parseVehicle(vehicle));
     for (JsonReader& collider : scene.objects("colliders")) actors.colliders.push_back(parseMovingCollider(collider));
     JsonReader gusts = scene.child("gusts");

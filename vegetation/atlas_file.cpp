@@ -71,15 +71,7 @@ nlohmann::json describe(const AtlasDesc& desc) {
 } // namespace
 
 Atlas loadAtlas(const std::string& pngPath, const std::string& jsonPath) {
-    std::ifstream file(jsonPath);
-    require(file.good(), "cannot open atlas description '" + jsonPath + "': file missing or unreadable");
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(file);
-    } catch (const nlohmann::json::exception& e) {
-        throw Error("atlas description '" + jsonPath + "' is not valid JSON: " + e.what());
-    }
-    Atlas atlas{.desc = parseAtlasDesc(j, jsonPath), .mips = {}};
+    Atlas atlas{.desc = parseAtlasDesc(readJsonFile(jsonPath, "atlas description"), jsonPath), .mips = {}};
 
     const ImageData image = loadImage(pngPath);
     require(image.channels == 4 && image.bitDepth == 8,

@@ -5,10 +5,14 @@
 #include "common/parallel_for.h"
 #include "vegetation/records.h"
 
+#include "shared/gpu_layout.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+
+#include <unistd.h>
 
 namespace sward {
 
@@ -171,13 +175,40 @@ double predictPlantCount(const GrassMap& map, const VegetationParams& p) {
     return perSquareMetre * double(p.tileSize) * p.tileSize;
 }
 
+namespace {
+
+// Physical memory of the machine (0 when unknown): a budget above it would end in std::bad_alloc instead of an error.
+uint64_t physicalMemoryBytes() {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && pageSize > 0 ? uint64_t(pages) * uint64_t(pageSize) : 0;
+}
+
+} // namespace
+
+void checkPlantIdSpace(uint64_t plants, const std::string& what) {
+    require(plants <= gpu::kMaxPlantInstances,
+            what + " " + std::to_string(plants) + " plants per tile, over the limit of " +
+                std::to_string(gpu::kMaxPlantInstances) + " (the plant instance ids of the ground-truth labels); lower "
+                "'vegetation.density_multiplier', the categories' 'density' or 'vegetation.tile_size'");
+}
+
 void checkMemoryBudget(const GrassMap& map, const VegetationParams& p) {
     const double plants = predictPlantCount(map, p);
-    const double bytes = plants * double(kBytesPerPlant);
-    require(bytes <= double(p.memoryBudgetBytes) && plants < double(std::numeric_limits<int32_t>::max()),
-            "grass map '" + map.source() + "': its densities predict " + std::to_string(uint64_t(plants)) +
-                " plants per tile (" + mib(bytes) + " of plant records), over the vegetation memory budget of " +
-                mib(double(p.memoryBudgetBytes)) + "; lower the map or 'density' values or raise 'memory_budget_mib'");
+    // The id space first: no budget can lift it, so its error must not suggest raising one.
+    checkPlantIdSpace(uint64_t(std::min(plants, 1e18)), "grass map '" + map.source() + "': its densities predict");
+    // Cluster records are allocated whatever the densities (tiny cluster sizes over a big tile add up too).
+    const double clusters = double(p.fieldsPerTile()) * p.fieldsPerTile() * p.clustersPerField() * p.clustersPerField();
+    const double bytes = plants * double(kBytesPerPlant) + clusters * double(sizeof(gpu::PlantCluster));
+    const std::string what = "grass map '" + map.source() + "': its densities predict " +
+                             std::to_string(uint64_t(std::min(plants, 1e18))) + " plants per tile in " +
+                             std::to_string(uint64_t(clusters)) + " clusters (" + mib(bytes) + " of records)";
+    require(bytes <= double(p.memoryBudgetBytes),
+            what + ", over the vegetation memory budget of " + mib(double(p.memoryBudgetBytes)) +
+                "; lower the map or 'density' values or raise 'memory_budget_mib'");
+    const uint64_t physical = physicalMemoryBytes();
+    require(physical == 0 || bytes <= double(physical),
+            what + ", over this machine's physical memory of " + mib(double(physical)) +
+                "; lower the map or 'density' values, 'vegetation.tile_size' or raise 'vegetation.cluster_size'");
 }
 
 FieldVegetation generateField(const Ground& ground, const GrassMap& map, const VegetationParams& p, TileCoord tile,
@@ -269,6 +300,9 @@ VegetationTile generateTile(const Ground& ground, const GrassMap& map, const Veg
     });
 
     uint64_t plants = 0, clusters = 0;
+    for (const FieldVegetation& f : tile.fields) plants += f.plantCount();
+    checkPlantIdSpace(plants, "grass map '" + map.source() + "': the vegetation tile holds");
+    plants = 0;
     for (FieldVegetation& f : tile.fields) {
         f.firstPlant = uint32_t(plants);
         f.firstCluster = uint32_t(clusters);

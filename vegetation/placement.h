@@ -16,6 +16,7 @@
 #include "vegetation/vegetation_tile.h"
 
 #include <cstdint>
+#include <string>
 
 namespace sward {
 
@@ -26,9 +27,15 @@ inline constexpr uint32_t kDensityGrid = 8;
 // extent is not taken into account).
 double predictPlantCount(const GrassMap& map, const VegetationParams& params);
 
-// Throws sward::Error naming the grass map if the predicted records (static + dynamic) exceed the memory budget.
-// Called by generateTile before anything is allocated.
+// Throws sward::Error naming the grass map if the predicted plant records (static + dynamic) and the tile's cluster
+// records exceed the memory budget or the machine's physical memory, or the predicted plants exceed the plant
+// instance ids (checkPlantIdSpace). Called by generateTile before anything is allocated.
 void checkMemoryBudget(const GrassMap& map, const VegetationParams& params);
+
+// The plants of one tile get the ground-truth instance ids 1 .. gpu::kMaxPlantInstances (plant index + 1); more
+// would wrap into the semantic class bits and into the objects' ids. Throws sward::Error
+// "<what> <plants> plants, over the limit of ..." naming the keys that lower the count.
+void checkPlantIdSpace(uint64_t plants, const std::string& what);
 
 // Generates one field alone. Requires valid params (validateVegetationParams) and coord < fieldsPerTile; throws
 // sward::Error if this field alone exceeds the memory budget. Plants where the ground has no surface are dropped.
@@ -36,7 +43,9 @@ FieldVegetation generateField(const Ground& ground, const GrassMap& map, const V
                               FieldCoord coord);
 
 // Generates every field of a tile on `threads` threads (0 = hardware concurrency). The result does not depend on
-// the thread count. Checks the memory budget first and assigns the fields' buffer ranges in field order.
+// the thread count. Checks the memory budget and the predicted plant count first, the placed plant count against
+// the plant instance ids after placement (a prediction just below the limit may round above it), and assigns the
+// fields' buffer ranges in field order.
 VegetationTile generateTile(const Ground& ground, const GrassMap& map, const VegetationParams& params, TileCoord tile,
                             uint32_t threads);
 

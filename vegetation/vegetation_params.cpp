@@ -67,13 +67,13 @@ void validateVegetationParams(const VegetationParams& p, const std::string& sour
     requireRange(source, "field_size", p.fieldSize, kFieldSize);
     requireRange(source, "cluster_size", p.clusterSize, kClusterSize);
     requireRange(source, "tile_size", p.tileSize, kTileSize);
-    require(p.fieldsPerTile() != 0 && p.fieldsPerTile() <= 1024,
-            source + ": " + quoted("tile_size") + " (" + formatNumber(p.tileSize) +
-                ") must be a whole multiple (at most 1024) of " + quoted("field_size") + " (" +
+    require(p.fieldsPerTile() != 0 && p.fieldsPerTile() <= kMaxFieldsPerTileSide,
+            source + ": " + quoted("tile_size") + " (" + formatNumber(p.tileSize) + ") must be a whole multiple (at most " +
+                std::to_string(kMaxFieldsPerTileSide) + ") of " + quoted("field_size") + " (" +
                 formatNumber(p.fieldSize) + ")");
-    require(p.clustersPerField() != 0 && p.clustersPerField() <= 64,
-            source + ": " + quoted("field_size") + " (" + formatNumber(p.fieldSize) +
-                ") must be a whole multiple (at most 64) of " + quoted("cluster_size") + " (" +
+    require(p.clustersPerField() != 0 && p.clustersPerField() <= kMaxClustersPerFieldSide,
+            source + ": " + quoted("field_size") + " (" + formatNumber(p.fieldSize) + ") must be a whole multiple (at most " +
+                std::to_string(kMaxClustersPerFieldSide) + ") of " + quoted("cluster_size") + " (" +
                 formatNumber(p.clusterSize) + ")");
     requireRange(source, "world_origin[0]", p.worldOrigin.x, kWorldOrigin);
     requireRange(source, "world_origin[1]", p.worldOrigin.y, kWorldOrigin);

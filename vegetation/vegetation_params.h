@@ -64,6 +64,9 @@ struct VegetationCategory {
 VegetationCategory defaultVegetationCategory(uint32_t index);
 
 inline constexpr int32_t kUnusedChannel = -1;
+// Fields per tile side and clusters per field side at most (validateVegetationParams): bounds of the tile's arrays.
+inline constexpr uint32_t kMaxFieldsPerTileSide = 1024;
+inline constexpr uint32_t kMaxClustersPerFieldSide = 64;
 
 struct VegetationParams {
     uint64_t seed = 1;

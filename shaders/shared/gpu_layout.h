@@ -36,6 +36,11 @@ SWARD_CONST(uint, kSemanticFelled, 9u);     // felled plants: tyre tracks
 SWARD_CONST(uint, kSemanticCut, 10u);       // mowed plants
 SWARD_CONST(uint, kInstanceBits, 24u);      // instance id: 0 sky / ground, plant index + 1, kInstanceObjectBase + object
 SWARD_CONST(uint, kInstanceObjectBase, 16000000u);
+// The id space's two disjoint ranges: plant ids 1 .. kInstanceObjectBase - 1, object ids kInstanceObjectBase ..
+// 2^kInstanceBits - 1. More plants in a tile or more objects in a scene would wrap into the class bits or into
+// each other's ids, so scenes above these counts are refused (checkPlantIdSpace, checkObjectIdSpace).
+SWARD_CONST(uint, kMaxPlantInstances, kInstanceObjectBase - 1u);
+SWARD_CONST(uint, kMaxObjectInstances, (1u << kInstanceBits) - kInstanceObjectBase);
 
 // Per-frame constants (uniform buffer, set 0 binding 0).
 struct FrameConstants {

@@ -94,3 +94,27 @@ TEST(JsonReader, ArraysOfVectorsAreReadElementByElement) {
     EXPECT_EQ(errorOf([&] { r.vectors<2>("far", -100.0, 100.0); }),
               "f.json: 'far' must be an array of arrays of 2 numbers between -100 and 100");
 }
+
+TEST(JsonReader, IntegersOutsideTheRangeOrTheTypeAreRefusedNeverWrapped) {
+    const auto json = nlohmann::json::parse(R"({"wrap32": 4294967296, "wrap64": 18446744073709551616, "neg": -1,
+        "half": 2.5, "text": "3", "big": 1e308, "ok": 4294967295})");
+    JsonReader r(json, "s.json", "sequence");
+    const auto error = [&](const char* key) { return errorOf([&] { r.integer(key, 1, 1, 1000000); }); };
+    EXPECT_EQ(error("wrap32"), "s.json: 'sequence.wrap32' must be an integer in [1, 1000000] (got 4294967296)");
+    EXPECT_EQ(error("wrap64"),
+              "s.json: 'sequence.wrap64' must be an integer in [1, 1000000] (got 1.8446744073709552e+19)");
+    EXPECT_EQ(error("neg"), "s.json: 'sequence.neg' must be an integer in [1, 1000000] (got -1)");
+    EXPECT_EQ(error("half"), "s.json: 'sequence.half' must be an integer in [1, 1000000] (got 2.5)");
+    EXPECT_EQ(error("text"), "s.json: 'sequence.text' must be an integer in [1, 1000000] (got a string)");
+    EXPECT_EQ(error("big"), "s.json: 'sequence.big' must be an integer in [1, 1000000] (got 1e+308)");
+    EXPECT_EQ(r.integer("ok", 0, 0, UINT32_MAX), 4294967295u);
+    EXPECT_EQ(errorOf([&] { r.integer("wrap64", 0, 0, UINT64_MAX); }),
+              "s.json: 'sequence.wrap64' must be an integer in [0, 18446744073709551615] (got 1.8446744073709552e+19)");
+}
+
+TEST(JsonReader, FloatValuesStayFinite) {
+    const auto json = nlohmann::json::parse(R"({"huge": 1e308, "x": 2})");
+    JsonReader r(json, "s.json");
+    EXPECT_EQ(r.numberF("x", 0.0f, 0.0f, 10.0f), 2.0f);
+    EXPECT_EQ(errorOf([&] { r.numberF("huge", 0.0f, 0.0f, 1e6f); }), "s.json: 'huge' must be between 0 and 1e+06 (got 1e+308)");
+}

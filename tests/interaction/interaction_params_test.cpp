@@ -57,7 +57,7 @@ TEST(Interaction, ParamsErrorsNameTheJsonPathInTheReadersWording) {
     EXPECT_EQ(errorOf(R"({"categories": []})"),
               "scene.json: 'interaction.categories' must be an array of 1 to 4 objects");
     EXPECT_EQ(errorOf(R"({"recovery": {"rest_ticks": -1}})"),
-              "scene.json: 'interaction.recovery.rest_ticks' must be a non-negative integer");
+              "scene.json: 'interaction.recovery.rest_ticks' must be an integer in [1, 1000000] (got -1)");
     EXPECT_EQ(errorOf(R"({"recovery": {"fell_bend": 2}})"),
               "scene.json: 'interaction.recovery.fell_bend' must be between 0 and 0.95 (got 2)");
     EXPECT_EQ(errorOf(R"({"recovery": 3})"), "scene.json: 'interaction.recovery' must be an object");

@@ -99,3 +99,17 @@ TEST(StateFile, CorruptTruncatedOrForeignFilesAreErrorsNamingTheFile) {
     EXPECT_THROW(world.restoreState((dir / "other.bin").string()), Error);
     EXPECT_EQ(world.tick(), 0u);
 }
+
+TEST(StateFile, AFileLongerThanAnyValidStateIsRefusedBeforeItIsRead) {
+    const std::string path = (tempDir() / "huge.bin").string();
+    { std::ofstream(path, std::ios::binary) << "SWARDST1"; }
+    // Sparse: 4 GiB on paper. Reading it would allocate 4 GiB; the length alone decides.
+    std::filesystem::resize_file(path, uint64_t(4) << 30);
+    try {
+        loadInteractionState(path);
+        ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), path + ": not a valid interaction state file: 4294967296 bytes, more than the "
+                                                "largest valid state (140582944 bytes)");
+    }
+}

@@ -1,0 +1,34 @@
+// Limits on the counts of a scene file that scale memory, time or id spaces (docs/scene-format.md, "Limits").
+// Each is checked while parsing, before anything is built, so an absurd scene gets one error naming the key instead
+// of std::bad_alloc, an hour of work or ground truth whose ids wrap.
+#pragma once
+
+#include "shared/gpu_layout.h"
+
+#include <cstdint>
+
+namespace sward {
+
+class JsonReader;
+struct Scene;
+
+// "objects": each object is one ground-truth instance id (gpu::kMaxObjectInstances would be the hard bound), a
+// model to load and a name compared with every other; 10,000 keeps parsing and loading within seconds.
+inline constexpr uint32_t kMaxSceneObjects = 10000;
+static_assert(kMaxSceneObjects <= gpu::kMaxObjectInstances, "object ids must stay within the instance-id space");
+// "vehicles": wheel collider ids 1000 * (v + 1) + w must stay below the free colliders' 100000.
+inline constexpr uint32_t kMaxVehicles = 99;
+// "colliders": ids 100000 + i must stay below the objects' colliders at 200000.
+inline constexpr uint32_t kMaxFreeColliders = 100000;
+// frames.jsonl lists every collider of every frame of the sequence (a few hundred bytes each, held in memory
+// while it is written): 'sequence.frames' times the colliders per frame is bounded.
+inline constexpr uint64_t kMaxColliderRecords = 2000000;
+
+// Throws "<source>: '<key>' has N entries, over the limit of M (<why>)" when the array under `key` is longer than
+// `limit`; checked before its elements are parsed.
+void checkArrayLength(JsonReader& reader, const char* key, uint64_t limit, const char* why);
+
+// Checks the parsed scene's cross-key limits (kMaxColliderRecords); throws sward::Error naming the keys.
+void checkSceneLimits(const Scene& scene);
+
+} // namespace sward
