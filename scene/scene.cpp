@@ -9,7 +9,6 @@
 
 #include <filesystem>
 
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <numbers>
