@@ -49,8 +49,8 @@ TEST(DatasetWriter, FrameFilesAreNamedByTheNamingTable) {
 
 TEST(DatasetWriter, WriteFrameWritesEveryListedFileAndTheClassBytes) {
     const std::string dir = freshDir();
-    const DatasetWriter writer(dir, true);
-    writer.prepare();
+    DatasetWriter writer(dir, true);
+    writer.begin({{"test", 1}}, false);
     EXPECT_FALSE(writer.frameComplete(3));
     Camera left;
     left.fx = 100;

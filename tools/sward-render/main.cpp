@@ -46,6 +46,8 @@ int main(int argc, char** argv) {
     app.add_flag("--quiet,-q", options.quiet, "No progress line");
     app.add_option("--time", options.time, "Time offset in seconds added to every frame's wind")->capture_default_str();
     app.add_flag("--no-vegetation", options.noVegetation, "Render the same scene without vegetation");
+    app.add_flag("--overwrite", options.overwrite,
+                 "Remove the dataset already in --out (sward's files only) and start over, e.g. after changing an option");
     app.add_flag("--validation", options.validation, "Enable Vulkan validation; any message fails the run");
     return sward::runTool(app, argc, argv, "sward-render", [&] {
         if (!resolution.empty()) options.resolution = resolution;
