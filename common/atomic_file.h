@@ -1,49 +1,41 @@
-// Atomic file writing: every file sward writes goes to "<path>.tmp" first and is renamed over <path> only when
-// complete, so an interrupted run never leaves a half-written file under a final name (a dataset re-run treats
-// any file that exists as complete).
+// The one way sward puts a file on disk: encode into memory, then write the bytes atomically, so a file under
+// its final name is always complete. A dataset re-run treats every file that exists as complete, and a process
+// killed at any instant (SIGKILL, power aside: nothing is fsync'ed) leaves either the old file or the new one.
+//
+// How: a new file is written as an unnamed O_TMPFILE and linked under its name only when complete (nothing is
+// ever visible before, and a killed process leaves nothing behind). A file that replaces another, or a folder
+// whose file system lacks O_TMPFILE, goes through a sward-owned temporary ".<name>.sward-<pid>.tmp" in the same
+// folder that is renamed over the name; removeStaleTemporaries() deletes those of dead processes, never any
+// other "*.tmp". Every write() and close() is checked: a full disk, a quota, an I/O error or a size limit give
+// one error "cannot write '<path>': no space left on device" (etc.) and leave no file under <path>.
 #pragma once
 
-#include "common/error.h"
-
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
+#include <cstddef>
 #include <string>
 #include <string_view>
 
 namespace sward {
 
-// Runs `write(tmpPath)`, then renames the temporary file over `path`; on any failure removes the temporary
-// file and throws sward::Error naming `path`.
-template <typename Write> void writeFileAtomically(const std::string& path, Write&& write) {
-    const std::string tmp = path + ".tmp";
-    try {
-        write(tmp);
-    } catch (const std::exception& e) {
-        std::remove(tmp.c_str());
-        const std::string what = e.what();
-        throw Error(what.rfind("cannot write '" + path + "'", 0) == 0 ? what : "cannot write '" + path + "': " + what);
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::remove(tmp.c_str());
-        throw Error("cannot write '" + path + "': " + ec.message());
-    }
-}
-
-inline void writeBytesAtomically(const std::string& path, const void* data, size_t size) {
-    writeFileAtomically(path, [&](const std::string& tmp) {
-        std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
-        require(bool(file), "cannot create '" + tmp + "'");
-        file.write(static_cast<const char*>(data), std::streamsize(size));
-        file.close();
-        require(!file.fail(), "write failed (disk full?)");
-    });
-}
-
+// Writes `size` bytes as the whole content of `path` (creating or replacing it); throws sward::Error naming
+// `path` and the reason on failure, leaving the previous file (if any) untouched.
+void writeBytesAtomically(const std::string& path, const void* data, size_t size);
 inline void writeTextAtomically(const std::string& path, std::string_view text) {
     writeBytesAtomically(path, text.data(), text.size());
 }
+
+// Creates `path` with `bytes` only if no file of that name exists, atomically (two processes racing for one
+// name: exactly one creates it, complete). Returns false, writing nothing, when `path` already exists.
+bool createFileExclusively(const std::string& path, std::string_view bytes);
+
+// The temporary name writeBytesAtomically uses for `path` in process `pid`: "<dir>/.<name>.sward-<pid>.tmp".
+std::string temporaryPathFor(const std::string& path, long pid);
+// Whether a file name (no folder) is one of sward's temporaries; sets `pid` to the process that made it.
+bool isSwardTemporary(std::string_view fileName, long& pid);
+// Removes the sward temporaries in `dir` (not recursive) whose process is gone; a live process's temporary
+// (a concurrent shard writing into the same folder) and every other file are left alone.
+void removeStaleTemporaries(const std::string& dir);
+
+// The reason for an errno value as sward's errors word it ("no space left on device"), lower case.
+std::string ioErrorReason(int errorNumber);
 
 } // namespace sward

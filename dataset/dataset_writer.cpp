@@ -3,6 +3,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/parse_number.h"
+#include "dataset/fingerprint.h"
 #include "dataset/naming.h"
 #include "io/disparity_files.h"
 #include "io/image_files.h"
@@ -14,6 +15,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
 
 namespace sward {
 
@@ -34,6 +41,53 @@ void parseShard(const std::string& text, uint32_t& index, uint32_t& count) {
     index = uint32_t(parseUnsigned(i, 0, count - 1, what + ": shard index I"));
 }
 
+namespace {
+
+// Every folder a dataset may have, whatever its rig: --overwrite clears them all.
+constexpr const char* kAllFolders[] = {kLeftFolder,    kRightFolder,   kDepthFolder,   kDisparityFolder,
+                                       kSemanticFolder, kInstanceFolder, kPreviewFolder, kPreviewRightFolder};
+
+bool isSwardTemporaryName(const std::string& name) {
+    long pid = 0;
+    return isSwardTemporary(name, pid);
+}
+
+// The files sward-render writes at the root of a dataset (temporaries aside).
+bool isRootDatasetFile(const std::string& name) {
+    static const std::regex shardManifest(R"(manifest\.shard-\d+-of-\d+\.json)");
+    return name == kDatasetFile || name == kManifestFile || name == kCalibFile || name == kFrameLogFile ||
+           std::regex_match(name, shardManifest);
+}
+
+// NNNNNN.exr / .png / .pfm: the per-frame files of a dataset folder.
+bool isFrameFileName(const fs::path& name) {
+    const std::string extension = name.extension().string();
+    return frameNumber(name.stem().string()) && (extension == ".exr" || extension == ".png" || extension == ".pfm");
+}
+
+// Relative paths of the sward dataset files under `root` (with sward temporaries when `withTemporaries`);
+// foreign files are never listed.
+std::vector<std::string> swardFilesIn(const std::string& root, bool withTemporaries) {
+    std::vector<std::string> files;
+    std::error_code ec;
+    auto scan = [&](const std::string& folder, bool rootLevel) {
+        const std::string dir = folder.empty() ? root : root + "/" + folder;
+        for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
+            const std::string name = entry.path().filename().string();
+            const bool ours = rootLevel ? isRootDatasetFile(name) : isFrameFileName(entry.path().filename());
+            if ((ours && !entry.is_directory(ec)) || (withTemporaries && isSwardTemporaryName(name)))
+                files.push_back(folder.empty() ? name : folder + "/" + name);
+        }
+    };
+    scan("", true);
+    for (const char* folder : kAllFolders) scan(folder, false);
+    return files;
+}
+
+constexpr const char* kUseOverwrite = "; use --overwrite to start over or choose another --out";
+
+} // namespace
+
 DatasetWriter::DatasetWriter(std::string root, bool stereo) : root_(std::move(root)), stereo_(stereo) {}
 
 std::vector<std::string> DatasetWriter::directories() const {
@@ -42,15 +96,97 @@ std::vector<std::string> DatasetWriter::directories() const {
     return dirs;
 }
 
-void DatasetWriter::prepare() const {
-    ensureWritableDirectory(root_);
-    for (const std::string& dir : directories()) {
-        ensureWritableDirectory(root_ + "/" + dir);
-        for (const fs::directory_entry& entry : fs::directory_iterator(root_ + "/" + dir))
-            if (entry.path().extension() == ".tmp") fs::remove(entry.path());
+void DatasetWriter::check(const nlohmann::json& fingerprint, bool overwrite, uint64_t bytesNeeded) const {
+    std::error_code ec;
+    fs::path existing = fs::absolute(root_, ec);
+    while (!fs::exists(existing, ec) && existing.has_relative_path()) existing = existing.parent_path();
+    if (!fs::is_directory(existing, ec))
+        throw Error("cannot create output folder '" + root_ + "': '" + existing.string() + "' is not a folder");
+    if (::access(existing.c_str(), W_OK | X_OK) != 0)
+        throw Error("cannot write to output folder '" + root_ + "': " + ioErrorReason(errno));
+    const std::string description = root_ + "/" + kDatasetFile;
+    if (!overwrite && fs::exists(description, ec)) {
+        const std::string difference = fingerprintDifference(readDatasetFingerprint(description), fingerprint);
+        if (!difference.empty()) throw Error("'" + root_ + "' " + difference + kUseOverwrite);
+    } else if (!overwrite && fs::is_directory(root_, ec) && !swardFilesIn(root_, false).empty()) {
+        throw Error("'" + root_ + "' holds dataset files but no " + kDatasetFile +
+                    " saying how they were rendered (made by an older sward?)" + kUseOverwrite);
     }
-    for (const fs::directory_entry& entry : fs::directory_iterator(root_))
-        if (entry.path().extension() == ".tmp") fs::remove(entry.path());
+    struct statvfs space;
+    if (::statvfs(existing.c_str(), &space) == 0 && uint64_t(space.f_bavail) * space.f_frsize < bytesNeeded)
+        throw Error("not enough space in '" + root_ + "' for one frame: it needs up to " +
+                    std::to_string(bytesNeeded) + " bytes, the file system has " +
+                    std::to_string(uint64_t(space.f_bavail) * space.f_frsize) + " free");
+}
+
+uint64_t DatasetWriter::frameBytesUpperBound(uint32_t width, uint32_t height) const {
+    // Raw bytes per pixel of each file: colour half RGBA, depth Y+Z, semantic, instance, preview RGB; stereo adds
+    // right colour, disparity EXR, PFM, KITTI 16-bit PNG and right preview. Deflate (EXR ZIP, PNG) can expand
+    // incompressible data by up to 1/8 (stb's fixed Huffman codes); each file gets a row byte per line and 4 KiB
+    // of headers and tables, and is rounded up to 4 KiB blocks plus one for the file system's own records.
+    std::vector<uint64_t> bytesPerPixel = {8, 8, 1, 4, 3};
+    if (stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {8, 4, 4, 2, 3});
+    constexpr uint64_t kBlock = 4096;
+    uint64_t total = 0;
+    for (uint64_t perPixel : bytesPerPixel) {
+        const uint64_t bytes = perPixel * width * height * 9 / 8 + height + kBlock;
+        total += (bytes + kBlock - 1) / kBlock * kBlock + kBlock;
+    }
+    return total;
+}
+
+void DatasetWriter::createFolder(const std::string& path) {
+    if (::mkdir(path.c_str(), 0777) == 0) {
+        createdFolders_.push_back(path);
+        return;
+    }
+    const int error = errno;
+    std::error_code ec;
+    if (error == EEXIST && fs::is_directory(path, ec)) return; // made earlier, or by a concurrent shard
+    throw Error("cannot create output folder '" + path + "': " + ioErrorReason(error));
+}
+
+void DatasetWriter::removeOldDataset() const {
+    std::error_code ec;
+    for (const std::string& file : swardFilesIn(root_, true)) fs::remove(root_ + "/" + file, ec);
+    for (const char* folder : kAllFolders) fs::remove(root_ + "/" + folder, ec); // only when left empty
+}
+
+void DatasetWriter::begin(const nlohmann::json& fingerprint, bool overwrite) {
+    std::error_code ec;
+    if (overwrite && fs::is_directory(root_, ec)) removeOldDataset();
+    std::vector<fs::path> missing; // the root and its missing parents, innermost first
+    for (fs::path p = fs::path(root_).lexically_normal(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+        missing.push_back(p);
+        if (p.parent_path() == p) break;
+    }
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it) createFolder(it->string());
+    for (const std::string& dir : directories()) createFolder(root_ + "/" + dir);
+    removeStaleTemporaries(root_);
+    for (const std::string& dir : directories()) removeStaleTemporaries(root_ + "/" + dir);
+
+    // Exclusive creation: of several shards starting together one writes it and the others compare.
+    const std::string description = root_ + "/" + kDatasetFile;
+    if (createFileExclusively(description, datasetFileText(fingerprint))) {
+        createdFiles_.push_back(description);
+        return;
+    }
+    const std::string difference = fingerprintDifference(readDatasetFingerprint(description), fingerprint);
+    require(difference.empty(), "'" + root_ + "' " + difference + kUseOverwrite);
+}
+
+void DatasetWriter::discardCreated() noexcept {
+    for (auto it = createdFiles_.rbegin(); it != createdFiles_.rend(); ++it) ::unlink(it->c_str());
+    for (auto it = createdFolders_.rbegin(); it != createdFolders_.rend(); ++it) ::rmdir(it->c_str());
+    createdFiles_.clear();
+    createdFolders_.clear();
+}
+
+std::string DatasetWriter::target(const std::string& relative) {
+    std::string path = root_ + "/" + relative;
+    struct stat info;
+    if (::lstat(path.c_str(), &info) != 0) createdFiles_.push_back(path);
+    return path;
 }
 
 std::vector<std::string> DatasetWriter::frameFiles(uint32_t frame) const {
@@ -78,12 +214,10 @@ bool DatasetWriter::frameComplete(uint32_t frame) const {
     return true;
 }
 
-void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline) const {
+void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline) {
     const uint32_t w = images.width, h = images.height;
     const size_t pixels = size_t(w) * h;
-    auto path = [&](const char* folder, const char* extension) {
-        return root_ + "/" + frameFile(folder, frame, extension);
-    };
+    auto path = [&](const char* folder, const char* extension) { return target(frameFile(folder, frame, extension)); };
 
     std::vector<uint8_t> semantic(pixels);
     std::vector<float> instance(pixels);
@@ -107,7 +241,9 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
     writePng8(path(kPreviewRightFolder, ".png"), w, h, 3, tonemapPreview(images.rightRgbaHalf, w, h));
 }
 
-void DatasetWriter::writeCalib(const Camera& left, double baseline, double minDepth) const {
+void DatasetWriter::writeCalib(const Camera& left, double baseline, double minDepth) {
+    std::error_code ec;
+    if (fs::exists(root_ + "/" + kCalibFile, ec)) return;
     // OpenCV / Middlebury put pixel centres at whole coordinates, sward (camera.h) at +0.5: shift by half a pixel.
     StereoCalib calib;
     calib.cam0 = {left.fx, 0, left.cx - 0.5, 0, left.fy, left.cy - 0.5, 0, 0, 1};
@@ -120,21 +256,28 @@ void DatasetWriter::writeCalib(const Camera& left, double baseline, double minDe
     calib.ndisp = std::max(16u, uint32_t(std::ceil(maxDisparity / 16.0)) * 16u);
     calib.vmin = 0.0;
     calib.vmax = maxDisparity;
-    writeMiddleburyCalib(root_ + "/" + kCalibFile, calib);
+    writeMiddleburyCalib(target(kCalibFile), calib);
 }
 
-void DatasetWriter::writeFrameLog(const std::vector<nlohmann::json>& records) const {
+void DatasetWriter::writeFrameLog(const std::vector<nlohmann::json>& records) {
+    std::error_code ec;
+    if (fs::exists(root_ + "/" + kFrameLogFile, ec)) return;
     std::string text;
     for (const nlohmann::json& record : records) text += record.dump() + "\n";
-    writeTextAtomically(root_ + "/" + kFrameLogFile, text);
+    writeTextAtomically(target(kFrameLogFile), text);
 }
 
 void DatasetWriter::writeManifest(const std::string& name, nlohmann::json info,
-                                  const std::vector<std::string>& files) const {
+                                  const std::vector<std::string>& files) {
     nlohmann::json hashes = nlohmann::json::object();
     for (const std::string& file : files) hashes[file] = sha256File(root_ + "/" + file);
     info["files"] = std::move(hashes);
-    writeTextAtomically(root_ + "/" + name, info.dump(2) + "\n");
+    const std::string text = info.dump(2) + "\n";
+    // An unchanged manifest is not rewritten: a re-run of a complete dataset writes nothing at all.
+    std::ifstream old(root_ + "/" + name, std::ios::binary);
+    const std::string oldText{std::istreambuf_iterator<char>(old), std::istreambuf_iterator<char>()};
+    if (old && oldText == text) return;
+    writeTextAtomically(target(name), text);
 }
 
 } // namespace sward

@@ -2,9 +2,13 @@
 //
 // Per frame NNNNNN: left/ right/ (HDR colour EXR), depth/ (planar metres, +inf sky), disparity/ (EXR, PFM, KITTI
 // PNG), semantic/ (uint8 class PNG), instance/ (float EXR ids), preview/ preview_right/ (tonemapped PNG).
-// Per dataset: calib.txt, frames.jsonl, manifest.json (or manifest.shard-I-of-N.json). Names: dataset/naming.h.
-// Every file is written atomically, so a file that exists is complete; a frame whose files all exist is
-// skipped by a re-run (resume), and an interrupted run leaves only "*.tmp" files, removed on the next run.
+// Per dataset: dataset.json (the fingerprint, dataset/fingerprint.h), calib.txt, frames.jsonl, manifest.json (or
+// manifest.shard-I-of-N.json). Names: dataset/naming.h.
+//
+// Life of a run: check() (writes nothing) -> begin() -> writes -> on failure discardCreated(). Every file is
+// written atomically (common/atomic_file.h), so a file that exists is complete; since a folder only ever holds
+// files of one fingerprint, a frame whose files all exist is skipped by a re-run (resume). A run that fails
+// removes what it created and keeps what earlier runs finished; a killed run leaves complete files only.
 #pragma once
 
 #include "dataset/frame_images.h"
@@ -28,8 +32,20 @@ class DatasetWriter {
 public:
     DatasetWriter(std::string root, bool stereo);
 
-    // Creates the folders (checking they are writable) and removes temporaries an interrupted run left.
-    void prepare() const;
+    // Checks, writing nothing, that the run can start: the output folder (or, when missing, its nearest existing
+    // parent) is a writable folder; a dataset already there has `fingerprint` (keys absent from it are not
+    // compared), unless `overwrite`; and its file system has `bytesNeeded` bytes free. Throws one clear error.
+    void check(const nlohmann::json& fingerprint, bool overwrite, uint64_t bytesNeeded) const;
+    // An upper bound of the bytes one frame's files take on disk at `width` x `height`, for the free-space check.
+    uint64_t frameBytesUpperBound(uint32_t width, uint32_t height) const;
+    // Starts writing: with `overwrite` first removes the old dataset's files (sward's files only, never foreign
+    // ones); creates the folders, removes sward temporaries that dead processes left, and creates dataset.json
+    // (a concurrent shard's must have the same fingerprint).
+    void begin(const nlohmann::json& fingerprint, bool overwrite);
+    // Removes every file and folder this writer created (after a failed run): the folder is left as it was found,
+    // apart from files an --overwrite removed. Never throws.
+    void discardCreated() noexcept;
+
     // Paths of a frame's files relative to the root, in a fixed order.
     std::vector<std::string> frameFiles(uint32_t frame) const;
     bool frameComplete(uint32_t frame) const;
@@ -38,19 +54,26 @@ public:
 
     // Writes every file of one rendered frame. `left` is the reference camera and `baseline` the rig's (metres),
     // for the disparity; `images.labels` hold (class << 24) | instance per pixel (gpu::kSemantic*).
-    void writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline) const;
+    void writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline);
 
+    // The per-dataset files are functions of the fingerprint, so each is written only when missing.
     // calib.txt (Middlebury 2014): the rig's intrinsics, baseline in millimetres, ndisp covering minDepth.
-    void writeCalib(const Camera& left, double baseline, double minDepth) const;
+    void writeCalib(const Camera& left, double baseline, double minDepth);
     // frames.jsonl: one record per line, in frame order.
-    void writeFrameLog(const std::vector<nlohmann::json>& records) const;
-    // The manifest: `info` plus "files": {relative path: sha256} of `files` (relative paths).
-    void writeManifest(const std::string& name, nlohmann::json info, const std::vector<std::string>& files) const;
+    void writeFrameLog(const std::vector<nlohmann::json>& records);
+    // The manifest: `info` plus "files": {relative path: sha256} of `files` (relative paths); rewritten only
+    // when its content changes.
+    void writeManifest(const std::string& name, nlohmann::json info, const std::vector<std::string>& files);
 
 private:
     std::vector<std::string> directories() const;
+    // The absolute path of `relative`, remembered as created by this run when no file of that name exists yet.
+    std::string target(const std::string& relative);
+    void createFolder(const std::string& path);
+    void removeOldDataset() const;
     std::string root_;
     bool stereo_;
+    std::vector<std::string> createdFiles_, createdFolders_;
 };
 
 } // namespace sward

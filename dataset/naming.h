@@ -24,6 +24,7 @@ inline constexpr const char* kPreviewRightFolder = "preview_right"; // tonemappe
 inline constexpr const char* kCalibFile = "calib.txt";
 inline constexpr const char* kFrameLogFile = "frames.jsonl";
 inline constexpr const char* kManifestFile = "manifest.json";
+inline constexpr const char* kDatasetFile = "dataset.json"; // the fingerprint (dataset/fingerprint.h)
 // "manifest.shard-I-of-N.json": the manifest a `--shard I/N` run writes instead of kManifestFile.
 std::string shardManifestName(uint32_t index, uint32_t count);
 

@@ -9,7 +9,7 @@
 // naming the file and the problem.
 #pragma once
 
-#include "common/atomic_file.h" // writeFileAtomically, writeTextAtomically
+#include "common/atomic_file.h" // writeTextAtomically
 
 #include <array>
 #include <cmath>

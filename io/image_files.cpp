@@ -5,6 +5,7 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfOutputFile.h>
 
 // Debian's libstb ships the stb implementations compiled (-lstb): include the header only.
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -31,23 +33,46 @@ struct ExrChannel {
     size_t xStride; // bytes
 };
 
+// An OpenEXR output stream into memory: OutputFile writes the header, a placeholder line-offset table and the
+// chunks, then seeks back to fill the table in, exactly as it does into a file, so the bytes are identical.
+class MemoryOStream final : public Imf::OStream {
+public:
+    explicit MemoryOStream(const std::string& name) : Imf::OStream(name.c_str()) {}
+    void write(const char c[], int n) override {
+        if (position_ + size_t(n) > bytes_.size()) bytes_.resize(position_ + size_t(n));
+        std::memcpy(bytes_.data() + position_, c, size_t(n));
+        position_ += size_t(n);
+    }
+    uint64_t tellp() override { return position_; }
+    void seekp(uint64_t pos) override { position_ = size_t(pos); }
+    const std::vector<char>& bytes() const { return bytes_; }
+
+private:
+    std::vector<char> bytes_;
+    size_t position_ = 0;
+};
+
 // The one place sward writes an OpenEXR file: single-part scanline, ZIP (lossless and deterministic, so identical
-// pixels give identical files), one thread, written atomically.
+// pixels give identical files), one thread, encoded in memory and written atomically (common/atomic_file.h).
 void writeExrChannels(const std::string& path, uint32_t width, uint32_t height, std::span<const ExrChannel> channels) {
-    writeFileAtomically(path, [&](const std::string& tmp) {
-        Imf::Header header{int(width), int(height)};
-        header.compression() = Imf::ZIP_COMPRESSION;
-        Imf::FrameBuffer frame;
-        for (const ExrChannel& c : channels) {
-            header.channels().insert(c.name, Imf::Channel(c.type));
-            // OpenEXR only reads the pixels when writing; its Slice takes a mutable pointer all the same.
-            char* base = const_cast<char*>(static_cast<const char*>(c.base));
-            frame.insert(c.name, Imf::Slice(c.type, base, c.xStride, c.xStride * width));
-        }
-        Imf::OutputFile file(tmp.c_str(), header, 1);
+    Imf::Header header{int(width), int(height)};
+    header.compression() = Imf::ZIP_COMPRESSION;
+    Imf::FrameBuffer frame;
+    for (const ExrChannel& c : channels) {
+        header.channels().insert(c.name, Imf::Channel(c.type));
+        // OpenEXR only reads the pixels when writing; its Slice takes a mutable pointer all the same.
+        char* base = const_cast<char*>(static_cast<const char*>(c.base));
+        frame.insert(c.name, Imf::Slice(c.type, base, c.xStride, c.xStride * width));
+    }
+    MemoryOStream stream(path);
+    try {
+        Imf::OutputFile file(stream, header, 1);
         file.setFrameBuffer(frame);
         file.writePixels(int(height));
-    });
+    } catch (const std::exception&) { // OpenEXR's own text names internals, not the problem
+        throw Error("cannot write '" + path + "': the OpenEXR encoder failed");
+    }
+    writeBytesAtomically(path, stream.bytes().data(), stream.bytes().size());
 }
 
 } // namespace
@@ -92,10 +117,16 @@ void writePng8(const std::string& path, uint32_t width, uint32_t height, uint32_
                std::span<const uint8_t> pixels) {
     require(channels >= 1 && channels <= 4 && pixels.size() == size_t(width) * height * channels,
             "PNG buffer size does not match the image");
-    writeFileAtomically(path, [&](const std::string& tmp) {
-        if (!stbi_write_png(tmp.c_str(), int(width), int(height), int(channels), pixels.data(), int(width * channels)))
-            throw std::runtime_error("PNG encoder failed");
-    });
+    // stb's encoder into memory: the same bytes stbi_write_png puts in a file, but every write is checked.
+    std::vector<uint8_t> bytes;
+    auto append = [](void* context, void* data, int size) {
+        auto* out = static_cast<std::vector<uint8_t>*>(context);
+        out->insert(out->end(), static_cast<const uint8_t*>(data), static_cast<const uint8_t*>(data) + size);
+    };
+    if (!stbi_write_png_to_func(append, &bytes, int(width), int(height), int(channels), pixels.data(),
+                                int(width * channels)))
+        throw Error("cannot write '" + path + "': the PNG encoder failed");
+    writeBytesAtomically(path, bytes.data(), bytes.size());
 }
 
 std::vector<uint8_t> tonemapPreview(std::span<const uint16_t> rgbaHalf, uint32_t width, uint32_t height,

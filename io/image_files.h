@@ -1,8 +1,9 @@
 // Writing image files: OpenEXR (HDR colour, float depth and ids) and PNG (previews, 8-bit masks). Reading is
 // io/image_io.h.
 //
-// Every writer is atomic: it writes "<path>.tmp" and renames it over <path>, so an interrupted or failed
-// run never leaves a half-written file behind. Errors throw sward::Error naming the file.
+// Every writer encodes the whole file in memory and writes it with writeBytesAtomically (common/atomic_file.h),
+// so an interrupted or failed run never leaves a half-written file under a final name. Errors (a full disk
+// included) throw one sward::Error naming the file.
 #pragma once
 
 #include <cstdint>

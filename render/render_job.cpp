@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <unistd.h>
 
@@ -109,23 +110,59 @@ std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, const JobP
     return sensor;
 }
 
-// calib.txt and frames.jsonl. frames.jsonl covers the scene's whole sequence, whatever this run renders: every
-// record is a pure function of the scene and the tick, so shards and resumed runs write the very same file.
-void writeSequenceFiles(const DatasetWriter& dataset, const SceneResources& r, const JobPlan& plan,
-                        const RigCameras& firstRig, double timeOffset) {
-    const RigParams& rig = r.scene.camera.rig;
-    if (rig.stereo()) dataset.writeCalib(firstRig.left, rig.baseline, rig.minDepth);
+// The frames.jsonl records. They cover the scene's whole sequence, whatever this run renders: every record is a
+// pure function of the scene and the tick, so shards and resumed runs write the very same file.
+std::vector<nlohmann::json> sequenceRecords(const SceneResources& r, const JobPlan& plan, double timeOffset) {
     std::vector<nlohmann::json> records;
     for (uint32_t frame = 0; frame < r.scene.sequence.frames; ++frame)
         records.push_back(frameRecord(r.scene, r.models, r.terrain, rigAt(r, plan, frame), frame, timeOffset,
                                       r.withVegetation()));
-    dataset.writeFrameLog(records);
+    return records;
+}
+
+// Everything that determines the dataset's bytes except the device (added once the device is open): see
+// dataset/fingerprint.h. The scene's assets are hashed by content, so a changed grass map is a different dataset.
+nlohmann::json jobFingerprint(const Scene& scene, const JobPlan& plan, const RenderJobOptions& options) {
+    nlohmann::json assets = nlohmann::json::object();
+    auto asset = [&](const std::string& key, const std::string& path) {
+        std::error_code ec;
+        if (!path.empty() && std::filesystem::is_regular_file(path, ec)) assets[key] = sha256File(path);
+    };
+    asset("grass_map", scene.grassMapPath);
+    asset("atlas.png", scene.atlasPngPath);
+    asset("atlas.json", scene.atlasJsonPath);
+    for (size_t k = 0; k < scene.objects.size(); ++k)
+        asset("objects[" + std::to_string(k) + "].model", scene.objects[k].model);
+    auto vec3 = [](const std::optional<glm::dvec3>& v) {
+        return v ? nlohmann::json{v->x, v->y, v->z} : nlohmann::json(nullptr);
+    };
+    return {{"scene_sha256", options.scenePath.empty() ? sha256Hex(std::string_view("<built-in>"))
+                                                       : sha256File(options.scenePath)},
+            {"assets", assets},
+            {"seed", scene.seed},
+            {"resolution", std::to_string(plan.width) + "x" + std::to_string(plan.height)},
+            {"samples", plan.samples},
+            {"no_vegetation", options.noVegetation},
+            {"time", options.time},
+            {"camera", vec3(options.cameraPosition)},
+            {"look_at", vec3(options.cameraLookAt)},
+            {"fov_y_deg", options.fovYDegrees ? nlohmann::json(*options.fovYDegrees) : nlohmann::json(nullptr)},
+            {"sward_revision", SWARD_REVISION}};
+}
+
+// The free space a run needs before it starts: one frame (an upper bound) and the per-dataset files.
+uint64_t bytesNeeded(const DatasetWriter& dataset, const JobPlan& plan, const std::vector<nlohmann::json>& records) {
+    uint64_t sequenceBytes = 0;
+    for (const nlohmann::json& record : records) sequenceBytes += record.dump().size() + 1;
+    const uint64_t manifestBytes = uint64_t(plan.endFrame - plan.firstFrame + 1) * 12 * 128;
+    constexpr uint64_t kSmallFiles = 4 * 8192; // calib.txt, dataset.json and the blocks of the two large ones
+    return dataset.frameBytesUpperBound(plan.width, plan.height) + sequenceBytes + manifestBytes + kSmallFiles;
 }
 
 // Renders and writes the frames of `todo` (in order). The simulation runs every tick from 0, so skipped frames
 // and other shards' frames still leave their tracks.
 void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const std::vector<uint32_t>& todo,
-                  const DatasetWriter& dataset, const std::optional<SensorModel>& sensor, const RenderJobOptions& options) {
+                  DatasetWriter& dataset, const std::optional<SensorModel>& sensor, const RenderJobOptions& options) {
     SceneGpu gpu = createSceneGpu(ctx, r, plan.samples, SimulationMode::WhenSceneHasColliders);
     const RigParams& rig = r.scene.camera.rig;
     OffscreenFrame target(ctx, plan.width, plan.height, plan.samples);
@@ -152,7 +189,7 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
 
 // The manifest: everything needed to reproduce and verify the files, and nothing that changes between two runs of
 // the same command (no dates, no timings), so identical datasets have identical manifests.
-void writeJobManifest(const DatasetWriter& dataset, const Scene& scene, const JobPlan& plan, const Device& device,
+void writeJobManifest(DatasetWriter& dataset, const Scene& scene, const JobPlan& plan, const nlohmann::json& fingerprint,
                       const RenderJobOptions& options) {
     std::vector<std::string> files = dataset.datasetFiles();
     for (uint32_t frame = plan.firstFrame; frame < plan.endFrame; ++frame)
@@ -162,18 +199,17 @@ void writeJobManifest(const DatasetWriter& dataset, const Scene& scene, const Jo
                                  {"no_vegetation", options.noVegetation},
                                  {"time", options.time}};
     if (options.cameraPosition || options.cameraLookAt || options.fovYDegrees) jobOptions["camera_override"] = true;
-    std::string sceneHash = options.scenePath.empty() ? sha256Hex(std::string_view("<built-in>"))
-                                                      : sha256File(options.scenePath);
     nlohmann::json info = {{"format", "sward-dataset-1"},
                            {"scene", options.scenePath.empty() ? "<built-in>" : options.scenePath},
-                           {"scene_sha256", sceneHash},
+                           {"scene_sha256", fingerprint["scene_sha256"]},
                            {"seed", scene.seed},
                            {"frames", {plan.firstFrame, plan.endFrame}},
                            {"shard", options.shard ? nlohmann::json(*options.shard) : nlohmann::json(nullptr)},
                            {"options", jobOptions},
                            {"sward_revision", SWARD_REVISION},
-                           {"device", device.name()},
-                           {"driver", device.driver()}};
+                           {"device", fingerprint["device"]},
+                           {"driver", fingerprint["driver"]},
+                           {"fingerprint", fingerprint}};
     std::string manifest = options.shard ? shardManifestName(plan.shardIndex, plan.shardCount) : kManifestFile;
     dataset.writeManifest(manifest, info, files);
 }
@@ -191,19 +227,34 @@ void runRenderJob(const RenderJobOptions& options) {
     const std::optional<SensorModel> sensor = checkRigAndSensor(resources, plan, firstRig);
     const bool stereo = resources.scene.camera.rig.stereo();
 
+    const std::vector<nlohmann::json> records = sequenceRecords(resources, plan, options.time);
     DatasetWriter dataset(options.outDir, stereo);
-    dataset.prepare();
-    writeSequenceFiles(dataset, resources, plan, firstRig, options.time);
     std::vector<uint32_t> todo; // resume: frames whose files all exist are complete
     for (uint32_t frame = plan.firstFrame; frame < plan.endFrame; ++frame)
-        if (!dataset.frameComplete(frame)) todo.push_back(frame);
+        if (options.overwrite || !dataset.frameComplete(frame)) todo.push_back(frame);
     const uint32_t skipped = (plan.endFrame - plan.firstFrame) - uint32_t(todo.size());
+    nlohmann::json fingerprint = jobFingerprint(resources.scene, plan, options);
+    const uint64_t needed = todo.empty() ? 0 : bytesNeeded(dataset, plan, records);
+    dataset.check(fingerprint, options.overwrite, needed); // before the device: a bad folder fails fast
 
     Context ctx(DeviceOptions{.deviceFilter = options.device, .validation = options.validation || DeviceOptions{}.validation});
-    renderFrames(ctx, resources, plan, todo, dataset, sensor, options);
-    uint32_t messages = ctx.device.validationMessageCount();
-    require(messages == 0, std::to_string(messages) + " Vulkan validation message(s) were reported (see above)");
-    writeJobManifest(dataset, resources.scene, plan, ctx.device, options);
+    fingerprint["device"] = ctx.device.name();
+    fingerprint["driver"] = ctx.device.driver();
+    dataset.check(fingerprint, options.overwrite, needed);
+    // From here on files are written; a failure removes what this run created (a kill leaves complete files only).
+    try {
+        dataset.begin(fingerprint, options.overwrite);
+        const RigParams& rig = resources.scene.camera.rig;
+        if (rig.stereo()) dataset.writeCalib(firstRig.left, rig.baseline, rig.minDepth);
+        dataset.writeFrameLog(records);
+        renderFrames(ctx, resources, plan, todo, dataset, sensor, options);
+        uint32_t messages = ctx.device.validationMessageCount();
+        require(messages == 0, std::to_string(messages) + " Vulkan validation message(s) were reported (see above)");
+        writeJobManifest(dataset, resources.scene, plan, fingerprint, options);
+    } catch (...) {
+        dataset.discardCreated();
+        throw;
+    }
 
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("sward-render: %s, frames %u:%u (%zu rendered, %u already complete), %ux%u, %ux MSAA, %s -> %s in %.2f s\n",

@@ -26,6 +26,7 @@ struct RenderJobOptions {
     std::optional<uint64_t> seed;           // overrides the scene's seed (terrain, placement, gusts, noise)
     std::vector<std::string> allowAssets;   // --allow-assets: folders outside the scene's the scene may read from
     bool quiet = false;                     // no progress line even on a terminal
+    bool overwrite = false;                 // --overwrite: remove the dataset already in outDir and start over
 };
 
 // Parses "A:B" (0 <= A < B <= kFrameLimit, digits only): frames A .. B-1. Throws a clear error otherwise.
@@ -35,6 +36,9 @@ void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end);
 // in docs/dataset-format.md (dataset_writer.h). Frame i shows simulation tick i (time i * sequence.time_step;
 // the wind sees options.time added). Frames whose files all exist already are skipped (resume); the interaction
 // simulation still runs every tick from 0, so any frame range or shard shows exactly what a full run shows.
+// Resume is safe: a folder holding a dataset of another fingerprint (dataset/fingerprint.h) is refused unless
+// options.overwrite. Every check (scene, plan, device, output folder, free space for one frame) runs before the
+// first byte is written, and a run that fails removes every file and folder it created.
 void runRenderJob(const RenderJobOptions& options);
 
 } // namespace sward

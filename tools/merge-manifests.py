@@ -8,7 +8,9 @@ folders copied together). Shard manifests are DIR/manifest.shard-I-of-N.json unl
 
 Checks, each reported on one line (exit status 1 if any fails):
   - every shard 0..N-1 of one N is present exactly once, and all agree on format, scene, scene hash, seed,
-    options and sward revision;
+    options, sward revision and the dataset fingerprint (everything that determines the bytes, see
+    dataset/fingerprint.h; its device and driver may differ between machines, with a warning), which must also
+    be the one in DIR/dataset.json when that file is there;
   - the shards' frame ranges [A, B) tile one range without gap or overlap;
   - no frame file (e.g. left/000012.exr) is listed by two shards or lies outside its shard's range, every
     frame of the range has every kind of frame file the dataset has (so a lost depth/000012.exr is found),
@@ -39,7 +41,8 @@ FRAME_FILE = re.compile(r"^(.+)/(\d{6})\.([A-Za-z0-9]+)$")
 SHARD_JSONL = re.compile(r"^(.+)\.shard-(\d+)-of-(\d+)\.jsonl$")
 # Keys every shard must agree on; device and driver may differ between machines (reported, kept as lists).
 SHARED_KEYS = ("format", "scene", "scene_sha256", "seed", "options", "sward_revision")
-REQUIRED_KEYS = SHARED_KEYS + ("frames", "shard", "device", "driver", "files")
+REQUIRED_KEYS = SHARED_KEYS + ("frames", "shard", "device", "driver", "fingerprint", "files")
+MACHINE_KEYS = ("device", "driver")  # fingerprint entries that may differ between the machines of shards
 
 
 class Problems:
@@ -80,6 +83,9 @@ def load_manifest(path, problems):
             and 0 <= frames[0] <= frames[1]):
         problems.add(f"{path}: 'frames' must be [A, B] with 0 <= A <= B")
         return None
+    if not isinstance(manifest["fingerprint"], dict):
+        problems.add(f"{path}: 'fingerprint' must be an object")
+        return None
     if not isinstance(manifest["files"], dict):
         problems.add(f"{path}: 'files' must be an object of path: sha256")
         return None
@@ -93,6 +99,34 @@ def parse_shard(manifest, path, problems):
         problems.add(f"{path}: 'shard' must be \"I/N\" with 0 <= I < N (got {shard!r})")
         return None
     return int(match.group(1)), int(match.group(2))
+
+
+def fingerprint_difference(a, b):
+    """The first fingerprint key (device and driver aside) on which a and b differ, or None."""
+    for key in sorted(set(a) | set(b)):
+        if key not in MACHINE_KEYS and a.get(key) != b.get(key):
+            return key
+    return None
+
+
+def check_fingerprints(dataset, shards, problems):
+    first_path, first = shards[0][1], shards[0][2]["fingerprint"]
+    for _, path, manifest in shards[1:]:
+        key = fingerprint_difference(first, manifest["fingerprint"])
+        if key is not None:
+            problems.add(f"{path}: fingerprint '{key}' differs from {first_path} "
+                         f"({manifest['fingerprint'].get(key)!r} vs {first.get(key)!r}): shards of different renders")
+    description = os.path.join(dataset, "dataset.json")
+    if os.path.exists(description):
+        try:
+            with open(description, encoding="utf-8") as f:
+                recorded = json.load(f)["fingerprint"]
+        except (OSError, ValueError, KeyError, TypeError):
+            problems.add(f"{description}: not a sward dataset description")
+            return
+        key = fingerprint_difference(recorded, first)
+        if key is not None:
+            problems.add(f"{first_path}: fingerprint '{key}' differs from {description}'s")
 
 
 def merge_jsonl(dataset, name, parts, problems):
@@ -122,7 +156,9 @@ def merge_jsonl(dataset, name, parts, problems):
 
 
 def write_atomically(path, data):
-    tmp = path + ".tmp"
+    # sward's temporary name (common/atomic_file.h), which sward-render cleans up and no user file has
+    folder, name = os.path.split(path)
+    tmp = os.path.join(folder, f".{name}.sward-{os.getpid()}.tmp")
     with open(tmp, "wb") as f:
         f.write(data)
         f.flush()
@@ -164,6 +200,7 @@ def merge(dataset, manifest_paths, problems):
         for key in SHARED_KEYS:
             if manifest[key] != first[key]:
                 problems.add(f"{path}: '{key}' differs from {first_path}")
+    check_fingerprints(dataset, shards, problems)
 
     ordered = sorted(shards, key=lambda s: (s[2]["frames"][0], s[2]["frames"][1]))
     start, end = ordered[0][2]["frames"][0], ordered[0][2]["frames"][0]
@@ -216,6 +253,7 @@ def merge(dataset, manifest_paths, problems):
             print(f"warning: shards ran with different {key}s; images may not be bitwise identical to a "
                   f"single-machine run", file=sys.stderr)
             result[key] = [json.loads(v) for v in values]
+            result["fingerprint"] = dict(result["fingerprint"], **{key: result[key]})
     parts = {part: digest for _, _, m in ordered for part, digest in m["files"].items() if SHARD_JSONL.match(part)}
     return result, jsonl_parts, parts
 

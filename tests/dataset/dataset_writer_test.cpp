@@ -1,6 +1,7 @@
 // The dataset writer: which files a frame has, and that writeFrame writes exactly those, named by dataset/naming.h.
 #include "dataset/dataset_writer.h"
 
+#include "common/error.h"
 #include "dataset/naming.h"
 #include "shared/gpu_layout.h"
 
@@ -10,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 
 using namespace sward;
 
@@ -49,8 +52,8 @@ TEST(DatasetWriter, FrameFilesAreNamedByTheNamingTable) {
 
 TEST(DatasetWriter, WriteFrameWritesEveryListedFileAndTheClassBytes) {
     const std::string dir = freshDir();
-    const DatasetWriter writer(dir, true);
-    writer.prepare();
+    DatasetWriter writer(dir, true);
+    writer.begin({{"test", 1}}, false);
     EXPECT_FALSE(writer.frameComplete(3));
     Camera left;
     left.fx = 100;
@@ -60,4 +63,136 @@ TEST(DatasetWriter, WriteFrameWritesEveryListedFileAndTheClassBytes) {
     ASSERT_EQ(semantic.type(), CV_8UC1);
     EXPECT_EQ(semantic.at<uint8_t>(0, 0), gpu::kSemanticGround);
     EXPECT_EQ(semantic.at<uint8_t>(0, 1), gpu::kSemanticSky);
+}
+
+namespace {
+
+const nlohmann::json kPrint = {{"resolution", "2x1"}, {"samples", 1}};
+
+std::vector<std::string> listing(const std::string& dir) {
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir))
+        names.push_back(std::filesystem::relative(entry.path(), dir).string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+void touch(const std::string& path) {
+    std::ofstream(path) << "user data";
+}
+
+std::string errorOf(const std::function<void()>& body) {
+    try {
+        body();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST(DatasetWriter, AnotherFingerprintIsRefusedBeforeAnythingIsWritten) {
+    const std::string dir = freshDir();
+    DatasetWriter first(dir, false);
+    first.begin(kPrint, false);
+    first.writeFrame(0, tinyFrame(false), Camera{}, 0.1);
+    const std::vector<std::string> before = listing(dir);
+    nlohmann::json other = kPrint;
+    other["resolution"] = "4x2";
+    DatasetWriter second(dir, false);
+    EXPECT_EQ(errorOf([&] { second.check(other, false, 0); }),
+              "'" + dir + "' was rendered with --resolution 2x1, this run asks for --resolution 4x2; use --overwrite "
+              "to start over or choose another --out");
+    EXPECT_EQ(listing(dir), before);
+    EXPECT_EQ(errorOf([&] { second.check(kPrint, false, 0); }), "") << "the same fingerprint resumes";
+    EXPECT_EQ(errorOf([&] { second.check(other, true, 0); }), "") << "--overwrite";
+}
+
+TEST(DatasetWriter, DatasetFilesWithoutAFingerprintAreRefused) {
+    const std::string dir = freshDir();
+    std::filesystem::create_directories(dir + "/left");
+    touch(dir + "/left/000000.exr");
+    EXPECT_NE(errorOf([&] { DatasetWriter(dir, false).check(kPrint, false, 0); }).find("no dataset.json"),
+              std::string::npos);
+}
+
+TEST(DatasetWriter, OverwriteRemovesSwardFilesOnlyAndKeepsForeignOnes) {
+    const std::string dir = freshDir();
+    DatasetWriter old(dir, true);
+    old.begin(kPrint, false);
+    old.writeFrame(0, tinyFrame(true), Camera{}, 0.1);
+    old.writeManifest("manifest.shard-0-of-2.json", nlohmann::json::object(), {});
+    touch(dir + "/notes.tmp");
+    touch(dir + "/left/mine.txt");
+    DatasetWriter fresh(dir, false); // mono now: the stereo folders go too
+    fresh.begin({{"resolution", "8x8"}}, true);
+    EXPECT_EQ(listing(dir), (std::vector<std::string>{"dataset.json", "depth", "instance", "left", "left/mine.txt",
+                                                      "notes.tmp", "preview", "semantic"}));
+}
+
+TEST(DatasetWriter, BeginKeepsTheUsersTmpFilesAndRemovesDeadSwardTemporaries) {
+    const std::string dir = freshDir();
+    std::filesystem::create_directories(dir + "/left");
+    touch(dir + "/keep.tmp");
+    touch(dir + "/left/000000.exr.tmp");
+    touch(dir + "/left/.000000.exr.sward-999999999.tmp"); // no such process
+    DatasetWriter writer(dir, false);
+    writer.begin(kPrint, false);
+    const std::vector<std::string> names = listing(dir);
+    EXPECT_NE(std::find(names.begin(), names.end(), "keep.tmp"), names.end());
+    EXPECT_NE(std::find(names.begin(), names.end(), "left/000000.exr.tmp"), names.end());
+    EXPECT_EQ(std::find(names.begin(), names.end(), "left/.000000.exr.sward-999999999.tmp"), names.end());
+}
+
+TEST(DatasetWriter, DiscardCreatedLeavesTheFolderAsFound) {
+    const std::string dir = freshDir();
+    DatasetWriter earlier(dir, true);
+    earlier.begin(kPrint, false);
+    earlier.writeFrame(0, tinyFrame(true), Camera{}, 0.1);
+    const std::vector<std::string> before = listing(dir);
+    DatasetWriter failing(dir, true);
+    failing.begin(kPrint, false);
+    failing.writeFrame(1, tinyFrame(true), Camera{}, 0.1);
+    failing.writeFrameLog({{{"frame", 0}}});
+    failing.discardCreated();
+    EXPECT_EQ(listing(dir), before);
+
+    const std::string missing = dir + "/new/nested";
+    DatasetWriter fromNothing(missing, false);
+    fromNothing.begin(kPrint, false);
+    fromNothing.writeFrame(0, tinyFrame(false), Camera{}, 0.1);
+    fromNothing.discardCreated();
+    EXPECT_FALSE(std::filesystem::exists(dir + "/new")) << "folders it created go too";
+}
+
+TEST(DatasetWriter, CheckRefusesAFolderWithoutRoomOrUnderAFile) {
+    const std::string dir = freshDir();
+    std::filesystem::create_directories(dir);
+    const std::string space = errorOf([&] { DatasetWriter(dir + "/out", true).check(kPrint, false, ~uint64_t(0) / 2); });
+    EXPECT_NE(space.find("not enough space in '" + dir + "/out' for one frame"), std::string::npos) << space;
+    touch(dir + "/file");
+    const std::string underFile = errorOf([&] { DatasetWriter(dir + "/file/out", true).check(kPrint, false, 0); });
+    EXPECT_NE(underFile.find("cannot create output folder '" + dir + "/file/out'"), std::string::npos) << underFile;
+    EXPECT_EQ(listing(dir), std::vector<std::string>{"file"});
+}
+
+TEST(DatasetWriter, FrameBoundCoversTheFilesWritten) {
+    const std::string dir = freshDir();
+    DatasetWriter writer(dir, true);
+    writer.begin(kPrint, false);
+    FrameImages images = tinyFrame(true);
+    writer.writeFrame(0, images, Camera{}, 0.1);
+    uint64_t written = 0;
+    for (const std::string& file : writer.frameFiles(0)) written += std::filesystem::file_size(dir + "/" + file);
+    EXPECT_GE(writer.frameBytesUpperBound(images.width, images.height), written);
+}
+
+TEST(DatasetWriter, ConcurrentShardsWithAnotherFingerprintAreRefusedAtBegin) {
+    const std::string dir = freshDir();
+    DatasetWriter first(dir, false);
+    first.begin(kPrint, false);
+    DatasetWriter second(dir, false);
+    EXPECT_NE(errorOf([&] { second.begin({{"resolution", "9x9"}}, false); }).find("--resolution 9x9"),
+              std::string::npos);
 }

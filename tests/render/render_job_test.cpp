@@ -223,12 +223,17 @@ TEST(Dataset, KilledRunResumesToIdenticalFilesAndManifest) {
     const std::string& full = referenceRun();
     std::string dir = tempDir("dataset-resume");
     // Kill the first run hard part-way (after some frames, or before any: both must resume correctly) and leave
-    // a stale temporary behind as a crash mid-write would.
+    // a stale sward temporary behind as a crash mid-write on a file system without O_TMPFILE would (process
+    // 999999999 does not exist). A user's own "*.tmp" file is not sward's to remove.
     RunResult killed = render(kScene + " --out " + dir, "timeout -s KILL 8");
-    std::ofstream(dir + "/left/000004.exr.tmp") << "half-written";
+    std::filesystem::create_directories(dir + "/left");
+    std::ofstream(dir + "/left/.000004.exr.sward-999999999.tmp") << "half-written";
+    std::ofstream(dir + "/left/000004.exr.tmp") << "the user's";
     RunResult resumed = render(kScene + " --out " + dir);
     ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
-    EXPECT_FALSE(std::filesystem::exists(dir + "/left/000004.exr.tmp"));
+    EXPECT_FALSE(std::filesystem::exists(dir + "/left/.000004.exr.sward-999999999.tmp"));
+    EXPECT_EQ(readFile(dir + "/left/000004.exr.tmp"), "the user's");
+    std::filesystem::remove(dir + "/left/000004.exr.tmp");
     EXPECT_EQ(readFile(full + "/manifest.json"), readFile(dir + "/manifest.json"))
         << "killed with exit " << killed.exitCode << ", then: " << resumed.out;
     // A third run has nothing left to do and changes nothing.

@@ -24,7 +24,10 @@ class Dataset:
         self.manifests = {}
         base = {"format": "sward-dataset-1", "scene": "examples/rover-track.json", "scene_sha256": sha(b"scene"),
                 "seed": 7, "options": {"resolution": [64, 48], "samples": 4, "no_vegetation": False},
-                "sward_revision": "0123abc", "device": "llvmpipe", "driver": "Mesa 22.3.6"}
+                "sward_revision": "0123abc", "device": "llvmpipe", "driver": "Mesa 22.3.6",
+                "fingerprint": {"scene_sha256": sha(b"scene"), "seed": 7, "resolution": "64x48", "samples": 4,
+                                "no_vegetation": False, "sward_revision": "0123abc", "device": "llvmpipe",
+                                "driver": "Mesa 22.3.6"}}
         for shard, (a, b) in enumerate([(0, 2), (2, 4)]):
             files = {"calib.txt": self.write("calib.txt", b"cam0=[50 0 32; 0 50 24; 0 0 1]\n")}
             lines = b"".join(b'{"frame": %d, "tick": %d}\n' % (f, 2 * f) for f in range(a, b))
@@ -32,7 +35,8 @@ class Dataset:
             for f in range(a, b):
                 for name in (f"left/{f:06d}.exr", f"depth/{f:06d}.exr", f"disparity/{f:06d}.png"):
                     files[name] = self.write(name, f"{name} content".encode())
-            self.manifests[shard] = dict(base, frames=[a, b], shard=f"{shard}/2", files=files)
+            self.manifests[shard] = dict(base, frames=[a, b], shard=f"{shard}/2", files=files,
+                                         fingerprint=dict(base["fingerprint"]))
         self.save()
 
     def write(self, name, data):
@@ -83,7 +87,8 @@ class MergeManifestsTest(unittest.TestCase):
                     if ".shard-" not in name}
         expected["frames.jsonl"] = sha(b"".join(b'{"frame": %d, "tick": %d}\n' % (n, 2 * n) for n in range(4)))
         self.assertEqual(merged["files"], expected)
-        for key in ("format", "scene", "scene_sha256", "seed", "options", "sward_revision", "device", "driver"):
+        for key in ("format", "scene", "scene_sha256", "seed", "options", "sward_revision", "device", "driver",
+                    "fingerprint"):
             self.assertEqual(merged[key], self.data.manifests[0][key], key)
         # The merged manifest verifies on its own (no shard manifests left).
         for shard in (0, 1):
@@ -127,6 +132,30 @@ class MergeManifestsTest(unittest.TestCase):
         self.data.manifests[1]["seed"] = 8
         self.data.save()
         self.assertFails("'seed' differs")
+
+    def test_shards_with_different_fingerprints(self):
+        self.data.manifests[1]["fingerprint"]["resolution"] = "200x150"
+        self.data.save()
+        self.assertFails("fingerprint 'resolution' differs")
+
+    def test_shard_without_a_fingerprint(self):
+        del self.data.manifests[1]["fingerprint"]
+        self.data.save()
+        self.assertFails("manifest lacks fingerprint")
+
+    def test_dataset_description_with_another_fingerprint(self):
+        other = dict(self.data.manifests[0]["fingerprint"], no_vegetation=True)
+        self.data.write("dataset.json", json.dumps({"format": "sward-dataset-1", "fingerprint": other}).encode())
+        self.assertFails("fingerprint 'no_vegetation' differs from")
+
+    def test_shards_from_machines_with_other_devices_merge_with_a_warning(self):
+        self.data.manifests[1]["device"] = self.data.manifests[1]["fingerprint"]["device"] = "RTX"
+        self.data.save()
+        code, output = self.data.merge()
+        self.assertEqual(code, 0, output)
+        self.assertIn("warning: shards ran with different devices", output)
+        self.assertEqual(self.data.merged()["fingerprint"]["device"], ["RTX", "llvmpipe"])
+        self.assertEqual([n for n in os.listdir(self.tmp.name) if n.endswith(".tmp")], [])
 
     def test_shared_file_with_different_content(self):
         self.data.manifests[1]["files"]["calib.txt"] = sha(b"another rig")

@@ -43,6 +43,8 @@ int main(int argc, char** argv) {
     app.add_flag("--quiet,-q", options.quiet, "No progress line");
     sward::addReal(app, "--time", options.time, 0.0, 1e9, "Time offset in seconds added to every frame's wind");
     app.add_flag("--no-vegetation", options.noVegetation, "Render the same scene without vegetation");
+    app.add_flag("--overwrite", options.overwrite,
+                 "Remove the dataset already in --out (sward's files only) and start over, e.g. after changing an option");
     app.add_flag("--validation", options.validation, "Enable Vulkan validation; any message fails the run");
     return sward::runTool(app, argc, argv, "sward-render", [&] {
         sward::runRenderJob(options);

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <sys/wait.h>
 #include <vector>
@@ -129,4 +130,85 @@ TEST(SwardRender, AGrassMapOutsideTheScenesFolderNeedsAllowAssets) {
         runRender(dir + "/scene/s.json --validation --allow-assets " + dir + "/maps --out " + dir + "/o");
     ASSERT_EQ(allowed.exitCode, 0) << allowed.err;
     EXPECT_TRUE(std::filesystem::exists(dir + "/o/preview/000000.png"));
+}
+
+namespace {
+
+// The scene of the resume tests (stereo, vegetation, a rover), small and with one sample: fast on lavapipe.
+const std::string kResumeScene = std::string(SWARD_TEST_DATA_DIR) + "/dataset_scene.json --samples 1 --quiet";
+
+// Every file under `dir` with its bytes, so "the folder is unchanged" is one comparison.
+std::map<std::string, std::string> snapshot(const std::string& dir) {
+    std::map<std::string, std::string> files;
+    if (!std::filesystem::exists(dir)) return files;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir))
+        files[std::filesystem::relative(entry.path(), dir).string()] =
+            entry.is_directory() ? "<folder>" : readFile(entry.path().string());
+    return files;
+}
+
+void expectSameFramesAs(const std::string& reference, const std::string& dir) {
+    std::map<std::string, std::string> a = snapshot(reference), b = snapshot(dir);
+    a.erase("manifest.json");
+    b.erase("manifest.json");
+    EXPECT_TRUE(a == b) << dir << " differs from a fresh run in " << reference;
+}
+
+} // namespace
+
+TEST(SwardRender, AResolutionChangeIsRefusedAndOverwriteRendersAFreshDataset) {
+    const std::string out = tempDir("cli-resume-res"), fresh = tempDir("cli-resume-res-fresh");
+    ASSERT_EQ(runRender(kResumeScene + " --frames 0:1 --resolution 32x24 --out " + out).exitCode, 0);
+    const auto before = snapshot(out);
+    RunResult r = runRender(kResumeScene + " --frames 0:1 --resolution 40x30 --out " + out);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(countLines(r.err, "error"), 1) << r.err;
+    EXPECT_NE(r.err.find("was rendered with --resolution 32x24, this run asks for --resolution 40x30; use "
+                         "--overwrite"), std::string::npos) << r.err;
+    EXPECT_TRUE(snapshot(out) == before) << "the refused run changed the folder";
+
+    ASSERT_EQ(runRender(kResumeScene + " --frames 0:1 --resolution 40x30 --overwrite --out " + out).exitCode, 0);
+    ASSERT_EQ(runRender(kResumeScene + " --frames 0:1 --resolution 40x30 --out " + fresh).exitCode, 0);
+    expectSameFramesAs(fresh, out);
+}
+
+TEST(SwardRender, NoVegetationAfterAVegetatedRunIsRefused) {
+    const std::string out = tempDir("cli-resume-veg"), fresh = tempDir("cli-resume-veg-fresh");
+    ASSERT_EQ(runRender(kResumeScene + " --frames 0:1 --resolution 32x24 --out " + out).exitCode, 0);
+    const auto before = snapshot(out);
+    RunResult r = runRender(kResumeScene + " --frames 0:1 --resolution 32x24 --no-vegetation --out " + out);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("was rendered with vegetation, this run asks for --no-vegetation"), std::string::npos)
+        << r.err;
+    EXPECT_TRUE(snapshot(out) == before) << "the refused run changed the folder";
+
+    ASSERT_EQ(runRender(kResumeScene + " --frames 0:1 --resolution 32x24 --no-vegetation --overwrite --out " + out)
+                  .exitCode, 0);
+    ASSERT_EQ(runRender(kResumeScene + " --frames 0:1 --resolution 32x24 --no-vegetation --out " + fresh).exitCode, 0);
+    expectSameFramesAs(fresh, out);
+}
+
+TEST(SwardRender, AnUnknownDeviceLeavesTheOutputFolderAsItWas) {
+    const std::string parent = tempDir("cli-dev-nothing");
+    RunResult missing = runRender(kResumeScene + " --device no-such-gpu --out " + parent + "/new");
+    EXPECT_EQ(missing.exitCode, 1);
+    EXPECT_FALSE(std::filesystem::exists(parent + "/new")) << "not even an empty folder";
+    std::ofstream(parent + "/user.tmp") << "mine";
+    RunResult existing = runRender(kResumeScene + " --device no-such-gpu --out " + parent);
+    EXPECT_EQ(existing.exitCode, 1);
+    EXPECT_EQ(snapshot(parent), (std::map<std::string, std::string>{{"user.tmp", "mine"}}));
+}
+
+TEST(SwardRender, AFailureMidRunLeavesTheFolderAsFound) {
+    const std::string out = tempDir("cli-mid-run");
+    ASSERT_EQ(runRender(kResumeScene + " --frames 0:1 --resolution 32x24 --out " + out).exitCode, 0);
+    // A folder where frame 2's colour file goes makes the run fail after frame 1 was written.
+    std::filesystem::create_directories(out + "/left/000002.exr");
+    std::ofstream(out + "/notes.tmp") << "user file";
+    const auto before = snapshot(out);
+    RunResult r = runRender(kResumeScene + " --frames 0:3 --resolution 32x24 --out " + out);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(countLines(r.err, "error"), 1) << r.err;
+    EXPECT_NE(r.err.find("cannot write '" + out + "/left/000002.exr'"), std::string::npos) << r.err;
+    EXPECT_TRUE(snapshot(out) == before) << "frame 1 and the manifest of the failed run must be gone";
 }

@@ -1,0 +1,24 @@
+// A dataset's fingerprint: everything that determines its bytes (scene and asset hashes, seed, every render
+// option, sward revision, device and driver), as one JSON object. sward-render records it in dataset.json before
+// the first frame and in the manifest, and refuses to add frames to a folder whose fingerprint differs, so a
+// resumed or sharded run never mixes files of two different renders. Which frames a run renders (--frames,
+// --shard) is not part of it: shards of one dataset share it.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace sward {
+
+// The content of dataset.json for `fingerprint`: {"format": "sward-dataset-1", "fingerprint": {...}}.
+std::string datasetFileText(const nlohmann::json& fingerprint);
+// The fingerprint recorded in the dataset.json at `path`; throws a clear error when it is not one sward wrote.
+nlohmann::json readDatasetFingerprint(const std::string& path);
+
+// "" when `recorded` agrees with `wanted`, else the first difference as "was rendered with X, this run asks for
+// Y", X and Y worded as the command line or scene gives them ("--resolution 160x120", "--no-vegetation"). Keys
+// absent from `wanted` are not compared (a check before the device is known leaves out "device" and "driver").
+std::string fingerprintDifference(const nlohmann::json& recorded, const nlohmann::json& wanted);
+
+} // namespace sward
