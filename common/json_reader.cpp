@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 namespace sward {
@@ -67,6 +68,16 @@ private:
         return join(top.path, top.lastKey);
     }
 
+public:
+    // The path of the value being read when the parser stopped (a number too large for a double, say).
+    std::string pendingPath() const {
+        if (frames_.empty()) return "";
+        const Frame& top = frames_.back();
+        if (top.array) return top.path + "[" + std::to_string(top.next) + "]";
+        return join(top.path, top.lastKey);
+    }
+
+private:
     const std::string& source_;
     std::vector<Frame> frames_;
 };
@@ -85,8 +96,14 @@ nlohmann::json parseJsonText(std::string_view text, const std::string& source, c
     if (text.size() > kMaxJsonFileBytes)
         throw Error(source + ": the " + what + " has " + std::to_string(text.size()) + " bytes, over the limit of " +
                     std::to_string(kMaxJsonFileBytes >> 20) + " MiB");
+    DuplicateKeyCheck check(source);
     try {
-        return nlohmann::json::parse(text.begin(), text.end(), DuplicateKeyCheck(source));
+        return nlohmann::json::parse(text.begin(), text.end(), std::ref(check));
+    } catch (const nlohmann::json::out_of_range&) {
+        // 1e400 and the like: the library names only the number; the key tells the user where it is.
+        const std::string path = check.pendingPath();
+        throw Error(source + ": " + (path.empty() ? "a number" : "'" + path + "'") +
+                    " is outside the range of a double");
     } catch (const nlohmann::json::parse_error& e) {
         // The library's message quotes the bytes it read; the position is all a user needs to find the mistake.
         const size_t at = std::min<size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());

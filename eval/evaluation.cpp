@@ -17,6 +17,8 @@
 #include <filesystem>
 #include <thread>
 
+#include <unistd.h>
+
 namespace fs = std::filesystem;
 
 namespace sward {
@@ -149,6 +151,63 @@ std::string summaryLine(const DatasetEvaluation& d) {
     return line;
 }
 
+// A report appears whole or not at all. Everything is written into a staging folder beside the report folder
+// and moved in only when the evaluation has succeeded: a dataset that fails half-way (a truncated PFM at frame
+// 40) leaves the report folder exactly as it was, and no half-made report or created parent folder behind.
+class StagedReportFolder {
+public:
+    explicit StagedReportFolder(const std::string& outDir) : final_(fs::absolute(outDir).lexically_normal()) {
+        if (final_.filename().empty()) final_ = final_.parent_path();
+        std::error_code ec;
+        require(!fs::exists(final_, ec) || fs::is_directory(final_, ec),
+                "cannot create report folder '" + outDir + "': a file of that name exists");
+        for (fs::path p = final_; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+            firstCreated_ = p;
+            if (p == p.parent_path()) break;
+        }
+        makeDirectory(final_.parent_path().string());
+        staging_ = final_.parent_path() / ("." + final_.filename().string() + ".sward-" + std::to_string(getpid()) +
+                                           ".tmp");
+        fs::remove_all(staging_, ec);
+        makeDirectory(staging_.string());
+    }
+    StagedReportFolder(const StagedReportFolder&) = delete;
+    StagedReportFolder& operator=(const StagedReportFolder&) = delete;
+    ~StagedReportFolder() {
+        std::error_code ec;
+        fs::remove_all(staging_, ec);
+        if (!committed_ && !firstCreated_.empty()) fs::remove_all(firstCreated_, ec);
+    }
+
+    std::string path() const { return staging_.string(); }
+
+    // Moves every staged file over its place in the report folder (replacing an earlier report's file).
+    void commit() {
+        makeDirectory(final_.string());
+        moveInto(staging_, final_);
+        committed_ = true;
+    }
+
+private:
+    static void moveInto(const fs::path& from, const fs::path& to) {
+        for (const fs::directory_entry& entry : fs::directory_iterator(from)) {
+            const fs::path target = to / entry.path().filename();
+            if (entry.is_directory()) {
+                makeDirectory(target.string());
+                moveInto(entry.path(), target);
+            } else {
+                std::error_code ec;
+                fs::rename(entry.path(), target, ec);
+                require(!ec, "cannot move '" + entry.path().string() + "' to '" + target.string() + "': " +
+                                 ec.message());
+            }
+        }
+    }
+
+    fs::path final_, staging_, firstCreated_;
+    bool committed_ = false;
+};
+
 } // namespace
 
 DatasetEvaluation evaluateDataset(const std::string& datasetDir, const std::string& disparitiesDir,
@@ -180,8 +239,9 @@ DatasetEvaluation evaluateDataset(const std::string& datasetDir, const std::stri
 EvaluationReport runEvaluation(const EvaluationOptions& options) {
     requireRunOptions(options);
     EvaluationReport report;
-    report.outDir = options.outDir.empty() ? options.datasetDir + "/eval" : options.outDir;
-    makeDirectory(report.outDir);
+    const std::string outDir = options.outDir.empty() ? options.datasetDir + "/eval" : options.outDir;
+    StagedReportFolder staged(outDir);
+    report.outDir = staged.path();
     auto log = [&](const std::string& line) {
         if (options.log) options.log(line);
     };
@@ -194,6 +254,8 @@ EvaluationReport runEvaluation(const EvaluationOptions& options) {
         log(summaryLine(*report.against));
     }
     writeReport(report);
+    staged.commit();
+    report.outDir = outDir;
     log("report written to " + report.outDir + "/report.md");
     return report;
 }

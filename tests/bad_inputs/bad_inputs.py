@@ -9,9 +9,8 @@ For each case (cases.py) the tool runs on a freshly made input in a case folder 
     "<tool>: error: " and matches the case's regex (it names the problem);
   - leave its output folder (--out, or the case's watched path) exactly as found: absent if it was absent,
     otherwise the same listing and bytes.
-The table (input | command | exit | error | nothing written) goes to TABLE.md. Cases marked expect_fixed_by wait
-for another change (named there): they are reported as PENDING and do not fail the run, but one that passes is
-reported as FIXED so its mark can go. Exit status 1 if any unmarked case fails. Python 3 standard library only.
+The table (input | command | exit | error | nothing written) goes to TABLE.md. Exit status 1 if any case fails.
+Python 3 standard library only.
 """
 
 import argparse
@@ -134,7 +133,7 @@ def main():
     ctx = Context(args.bin_dir, args.source_dir)
     selected = [c for c in case_table.CASES if re.search(args.only, c.name)]
     work = tempfile.mkdtemp(prefix="sward-bad-inputs-")
-    failed = pending = fixed = 0
+    failed = 0
     rows = []
     try:
         if any(c.needs_dataset for c in selected):
@@ -142,24 +141,15 @@ def main():
         for case in selected:
             r = run_case(case, ctx, work)
             rows.append(r)
-            if case.expect_fixed_by:
-                state = "FIXED" if not r["problems"] else "PENDING"
-                pending += state == "PENDING"
-                fixed += state == "FIXED"
-                note = f" (waits for {case.expect_fixed_by})"
-            else:
-                state = "FAIL" if r["problems"] else "ok"
-                failed += bool(r["problems"])
-                note = ""
+            failed += bool(r["problems"])
             detail = ": " + "; ".join(r["problems"]) if r["problems"] else ""
-            print(f"{state:7} {case.name}{note}{detail}")
+            print(f"{'FAIL' if r['problems'] else 'ok':7} {case.name}{detail}")
     finally:
         shutil.rmtree(work, ignore_errors=True)
     with open(args.table, "w", encoding="utf-8") as f:
         f.write("| input | command | exit | error | nothing written |\n|---|---|---|---|---|\n")
         f.write("\n".join(table_row(r) for r in rows) + "\n")
-    print(f"{len(rows)} cases: {len(rows) - failed - pending - fixed} ok, {failed} failed, {pending} pending, "
-          f"{fixed} fixed (remove their expect_fixed_by); table: {args.table}")
+    print(f"{len(rows)} cases: {len(rows) - failed} ok, {failed} failed; table: {args.table}")
     return 1 if failed else 0
 
 

@@ -40,6 +40,13 @@ TEST(JsonFile, TheSameKeyInDifferentObjectsIsFine) {
     EXPECT_EQ(json["k"], 5);
 }
 
+TEST(JsonFile, ANumberBeyondADoubleNamesItsKey) {
+    EXPECT_EQ(parseError(R"({"camera": {"fov_y_deg": 1e400}})"),
+              "s.json: 'camera.fov_y_deg' is outside the range of a double");
+    EXPECT_EQ(parseError(R"({"points": [[1, 2], [3, -1e999]]})"), "s.json: 'points[1][1]' is outside the range of a double");
+    EXPECT_EQ(parseError("1e400"), "s.json: a number is outside the range of a double");
+}
+
 TEST(JsonFile, InvalidJsonNamesTheLineAndColumnWithoutLibraryText) {
     EXPECT_EQ(parseError("{\n  \"a\": 1,\n  x\n}"), "s.json: the scene file is not valid JSON (line 3, column 3)");
     EXPECT_EQ(parseError(""), "s.json: the scene file is not valid JSON (line 1, column 1)");

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdlib>
+#include <filesystem>
 #include <sys/wait.h>
 
 using namespace sward;
@@ -189,6 +190,24 @@ TEST(Evaluation, MismatchedCalibrationIsOneClearError) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("calib.txt"), std::string::npos) << e.what();
     }
+}
+
+TEST(Evaluation, AFailedRunLeavesAnEarlierReportAsItWasAndNothingBeside) {
+    const std::string dir = tempDir();
+    writeSyntheticDataset(dir, SyntheticDataset{});
+    const std::string out = dir + "/report";
+    runEvaluation(quietOptions(dir, out));
+    const std::string before = readFile(out + "/metrics.json");
+    // The last frame's ground truth is cut short: the run fails after the first frames' pictures were made.
+    const std::string last = dir + "/disparity/000001.pfm";
+    std::filesystem::resize_file(last, std::filesystem::file_size(last) / 2);
+    EXPECT_THROW(runEvaluation(quietOptions(dir, out)), Error);
+    EXPECT_EQ(readFile(out + "/metrics.json"), before);
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+        EXPECT_EQ(entry.path().filename().string().find(".report.sward-"), std::string::npos) << entry.path();
+    // A report folder that did not exist is not created by a failed run.
+    EXPECT_THROW(runEvaluation(quietOptions(dir, dir + "/new/report")), Error);
+    EXPECT_FALSE(std::filesystem::exists(dir + "/new"));
 }
 
 TEST(Evaluation, AgainstNeedsEstimatesForBothDatasetsOrNeither) {
