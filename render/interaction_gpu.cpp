@@ -60,7 +60,7 @@ void InteractionGpu::record(VkCommandBuffer cmd, std::span<const gpu::PlantConta
     Slot& slot = slots_[slotIndex % gpu::kFrameDataSlots];
     uint64_t contactBytes = contacts.size_bytes(), rangeBytes = activeFields.size() * sizeof(glm::uvec2);
     reserve(slot, contactBytes, rangeBytes);
-    std::memcpy(slot.contacts.mapped(), contacts.data(), contactBytes);
+    if (contactBytes) std::memcpy(slot.contacts.mapped(), contacts.data(), contactBytes); // data() may be null when empty
     auto* ranges = reinterpret_cast<glm::uvec2*>(slot.ranges.mapped());
     uint32_t maxPlants = 0;
     for (size_t i = 0; i < activeFields.size(); ++i) {

@@ -34,8 +34,10 @@ VegetationBuffers::VegetationBuffers(Context& ctx, const VegetationTile& tile) :
              fieldAt = clusterAt + stats.clusterBytes;
     uint64_t s = staticAt, d = dynamicAt, c = clusterAt;
     for (const FieldVegetation& field : tile.fields) {
-        std::memcpy(out + s, field.staticRecords.data(), field.staticRecords.size() * sizeof(gpu::PlantStatic));
-        std::memcpy(out + d, field.dynamicRecords.data(), field.dynamicRecords.size() * sizeof(gpu::PlantDynamic));
+        if (!field.staticRecords.empty()) { // a plantless field's data() may be null: memcpy(null, 0) is undefined
+            std::memcpy(out + s, field.staticRecords.data(), field.staticRecords.size() * sizeof(gpu::PlantStatic));
+            std::memcpy(out + d, field.dynamicRecords.data(), field.dynamicRecords.size() * sizeof(gpu::PlantDynamic));
+        }
         std::memcpy(out + c, field.clusters.data(), field.clusters.size() * sizeof(gpu::PlantCluster));
         s += field.staticRecords.size() * sizeof(gpu::PlantStatic);
         d += field.dynamicRecords.size() * sizeof(gpu::PlantDynamic);

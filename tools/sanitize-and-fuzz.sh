@@ -62,12 +62,14 @@ for suite in $cpu_suites; do
     || { tail -n 60 "$build/sanitize-$suite.log"; fail "sward_${suite}_tests failed under ASan/UBSan ($build/sanitize-$suite.log)"; }
   echo "sanitize-and-fuzz: sward_${suite}_tests passed ($(grep -o '[0-9]* tests\? from [0-9]* test suites\? ran' "$build/sanitize-$suite.log"))"
 done
-"$build/bin/sward_gpu_tests" --gtest_brief=1 --gtest_filter="$gpu_filter" > "$build/sanitize-gpu.log" 2>&1 \
+# The driver stack stays loaded to exit so that its leaks can be attributed to it (tests/sanitize/keep_loaded.c).
+clang -shared -fPIC -O1 tests/sanitize/keep_loaded.c -o "$build/libkeep_loaded.so" || fail "cannot build keep_loaded.so"
+LD_PRELOAD="$root/$build/libkeep_loaded.so" "$build/bin/sward_gpu_tests" --gtest_brief=1 --gtest_filter="$gpu_filter" > "$build/sanitize-gpu.log" 2>&1 \
   || { tail -n 60 "$build/sanitize-gpu.log"; fail "the GPU smoke subset failed under ASan/UBSan ($build/sanitize-gpu.log)"; }
 echo "sanitize-and-fuzz: GPU smoke subset passed ($(grep -o '[0-9]* tests\? from [0-9]* test suites\? ran' "$build/sanitize-gpu.log"))"
 render_out="$build/sanitize-render"
 rm -rf "$render_out"
-"$build/bin/sward-render" examples/meadow.json --resolution 160x120 --samples 1 --out "$render_out" \
+LD_PRELOAD="$root/$build/libkeep_loaded.so" "$build/bin/sward-render" examples/meadow.json --resolution 160x120 --samples 1 --out "$render_out" \
   > "$build/sanitize-render.log" 2>&1 \
   || { tail -n 60 "$build/sanitize-render.log"; fail "sward-render failed under ASan/UBSan ($build/sanitize-render.log)"; }
 echo "sanitize-and-fuzz: sward-render meadow.json passed; sanitizer tests took $(seconds_since "$start") s"
