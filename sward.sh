@@ -62,5 +62,6 @@ case "$command" in
     ;;
   test)
     ctest --test-dir "$build_dir" -j "$(nproc)" --output-on-failure --timeout 600 "$@"
+    tools/sanitize-and-fuzz.sh # ASan + UBSan suites, GPU smoke on lavapipe, every fuzz target (docs/testing.md)
     ;;
 esac

@@ -6,6 +6,9 @@ set -euo pipefail
 packages=(
   # toolchain
   g++ cmake ninja-build pkg-config git python3
+  # the sanitizer + fuzzing build (tools/sanitize-and-fuzz.sh): clang, its ASan/UBSan/libFuzzer runtimes (only
+  # recommended by clang, so named here) and llvm-symbolizer (package llvm) for source lines in reports
+  clang libclang-rt-14-dev llvm
   # Vulkan: loader + headers, lavapipe (Mesa's CPU driver), validation layers, shader compiler, vulkaninfo
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools vulkan-tools
   # maths, windowing, assets, image formats

@@ -134,7 +134,9 @@ void placeCategory(const Ground& ground, const VegetationParams& p, const FieldF
             // Warp the stratified point through the density: column from the x marginal, row from the column's
             // conditional.
             auto [i, fx] = invertCdf(u * total, kDensityGrid, [&](uint32_t b) { return columns[b]; });
-            auto [j, fy] = invertCdf(v * columns[i], kDensityGrid, [&](uint32_t b) { return d[b * kDensityGrid + i]; });
+            // i = i: clang 14 cannot capture a structured binding by reference (C++20 allows it; clang 16 does).
+            auto [j, fy] =
+                invertCdf(v * columns[i], kDensityGrid, [&, i = i](uint32_t b) { return d[b * kDensityGrid + i]; });
             const double lx = double(cx) * p.clusterSize + (i + fx) * cell;
             const double ly = double(cy) * p.clusterSize + (j + fy) * cell;
             // Truncation is floor here (non-negative), without a libm call.
