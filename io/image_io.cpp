@@ -5,12 +5,18 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <stb_image.h>
 
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstring>
+#include <iterator>
+#include <stdexcept>
+#include <utility>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 
@@ -51,6 +57,22 @@ PngHeader readPngHeader(const std::string& path) {
     return {be32(16), be32(20), b[24], b[25]};
 }
 
+// A PNG's pixels are deflate-compressed, and deflate expands at most 1032:1 (a 258-byte match in 2 bits). A header
+// claiming more pixels than its file can hold is corrupt; refusing it up front keeps a 100-byte file from making
+// the decoder allocate gigabytes before it notices the data is missing.
+void requirePlausiblePngSize(const std::string& path, const PngHeader& header) {
+    static constexpr uint32_t kChannels[7] = {1, 0, 3, 1, 2, 0, 4}; // by PNG colour type; 0: invalid type
+    const uint32_t channels = header.colorType < 7 ? kChannels[header.colorType] : 0;
+    require(channels > 0, "image '" + path + "' has invalid PNG colour type " + std::to_string(header.colorType));
+    const uint64_t rowBytes = 1 + (uint64_t(header.width) * channels * header.bitDepth + 7) / 8; // + filter byte
+    const uint64_t rawBytes = rowBytes * header.height;
+    std::error_code ec;
+    const uint64_t fileBytes = std::filesystem::file_size(path, ec);
+    require(!ec && rawBytes <= fileBytes * 1032,
+            "image '" + path + "' claims " + std::to_string(header.width) + "x" + std::to_string(header.height) +
+                " pixels, more than its " + std::to_string(fileBytes) + " bytes can hold (truncated or corrupt PNG)");
+}
+
 // Built only on failure: stbi_failure_reason() may be null, and require() evaluates its message eagerly.
 std::string decodeFailure(const std::string& path) {
     const char* reason = stbi_failure_reason();
@@ -64,6 +86,7 @@ ImageData loadPng(const std::string& path) {
     require(palette || header.bitDepth == 8 || header.bitDepth == 16,
             "image '" + path + "' has unsupported bit depth " + std::to_string(header.bitDepth) +
                 " (PNG images must have 8 or 16 bits per sample)");
+    requirePlausiblePngSize(path, header);
     const bool wide = !palette && header.bitDepth == 16;
 
     int width = 0, height = 0, channels = 0;
@@ -87,49 +110,124 @@ ImageData loadPng(const std::string& path) {
     return image;
 }
 
-ImageData loadExr(const std::string& path) {
-    {
-        std::ifstream probe(path, std::ios::binary);
-        require(probe.good(), "cannot open image '" + path + "': file missing or unreadable");
-    }
-    try {
-        Imf::InputFile file(path.c_str());
-        const Imath::Box2i window = file.header().dataWindow();
-        const int64_t width = int64_t(window.max.x) - window.min.x + 1;
-        const int64_t height = int64_t(window.max.y) - window.min.y + 1;
-        requireEdges(path, uint64_t(std::max<int64_t>(width, 0)), uint64_t(std::max<int64_t>(height, 0)));
-
-        const Imf::ChannelList& list = file.header().channels();
-        std::vector<std::string> names;
-        if (list.findChannel("R") && list.findChannel("G") && list.findChannel("B")) {
-            names = {"R", "G", "B"};
-            if (list.findChannel("A")) names.push_back("A");
-        } else {
-            std::vector<std::string> all;
-            for (auto it = list.begin(); it != list.end(); ++it) all.emplace_back(it.name());
-            if (all.size() == 1)
-                names = all;
-            else if (list.findChannel("Y"))
-                names = {"Y"};
-            require(!names.empty(), "image '" + path + "' has " + std::to_string(all.size()) +
-                                        " EXR channels but neither R,G,B nor a single channel (or Y)");
-        }
-
-        ImageData image{.width = uint32_t(width),
-                    .height = uint32_t(height),
-                    .channels = uint32_t(names.size()),
-                    .bitDepth = 32,
-                    .source = path};
-        image.samples.resize(size_t(width) * height * names.size());
-        const size_t xStride = sizeof(float) * names.size(), yStride = xStride * size_t(width);
+// Reads the data window into `samples` (interleaved float channels) a strip of rows at a time, growing the buffer
+// only as rows arrive: a corrupt header can claim 32768x32768 pixels in a few hundred bytes, and OpenEXR throws
+// at the first chunk the file lacks, so memory stays in proportion to the data the file really holds.
+void readExrStrips(Imf::InputFile& file, const Imath::Box2i& window, const std::vector<std::string>& names,
+                   std::vector<float>& samples) {
+    const size_t width = size_t(int64_t(window.max.x) - window.min.x + 1);
+    const size_t rowFloats = width * names.size();
+    const int stripRows = int(std::max<size_t>(1, (size_t(1) << 18) / rowFloats)); // about 1 MiB a strip
+    const size_t xStride = sizeof(float) * names.size(), yStride = xStride * width;
+    for (int64_t y0 = window.min.y; y0 <= window.max.y; y0 += stripRows) {
+        const int64_t y1 = std::min<int64_t>(window.max.y, y0 + stripRows - 1);
+        samples.resize(size_t(y1 - window.min.y + 1) * rowFloats);
         // OpenEXR addresses the frame buffer with absolute data-window coordinates, hence the shifted base.
-        char* base = reinterpret_cast<char*>(image.samples.data()) - window.min.x * ptrdiff_t(xStride) -
+        char* base = reinterpret_cast<char*>(samples.data()) - window.min.x * ptrdiff_t(xStride) -
                      window.min.y * ptrdiff_t(yStride);
         Imf::FrameBuffer frame;
         for (size_t c = 0; c < names.size(); ++c)
             frame.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
         file.setFrameBuffer(frame);
-        file.readPixels(window.min.y, window.max.y);
+        file.readPixels(int(y0), int(y1));
+    }
+}
+
+// An OpenEXR input stream over the file's bytes, read once: the header walk below and OpenEXR see the same data.
+class MemoryIStream final : public Imf::IStream {
+public:
+    MemoryIStream(const std::string& name, std::vector<char> bytes)
+        : Imf::IStream(name.c_str()), bytes_(std::move(bytes)) {}
+    bool read(char c[], int n) override {
+        if (n < 0 || size_t(n) > bytes_.size() - std::min(position_, bytes_.size()))
+            throw std::runtime_error("unexpected end of file");
+        std::memcpy(c, bytes_.data() + position_, size_t(n));
+        position_ += size_t(n);
+        return position_ < bytes_.size();
+    }
+    uint64_t tellg() override { return position_; }
+    void seekg(uint64_t pos) override { position_ = size_t(std::min<uint64_t>(pos, bytes_.size())); }
+    const std::vector<char>& bytes() const { return bytes_; }
+
+private:
+    std::vector<char> bytes_;
+    size_t position_ = 0;
+};
+
+// OpenEXR allocates an unknown header attribute at the size the file states before reading it: a 300-byte file
+// can claim a 2 GiB attribute. Walking the headers first (name, type, size, value; an empty name ends a header, and
+// a multi-part file ends its headers with an empty one) refuses any size larger than the bytes that follow. The
+// walk is exact for every file that follows the specification; OpenEXR reads fixed-size types (box2i, chlist)
+// by their layout, not by the stated size, so on a corrupt file the two may part ways after a wrong size.
+void requireExrAttributesWithinFile(const std::string& path, const std::vector<char>& b) {
+    const std::string corrupt = "image '" + path + "' is not a valid OpenEXR file";
+    require(b.size() >= 8 && std::memcmp(b.data(), "\x76\x2f\x31\x01", 4) == 0, corrupt + " (bad magic number)");
+    const bool multiPart = (uint8_t(b[5]) & 0x10) != 0; // version field bit 12
+    size_t at = 8;
+    // Names end at a NUL within 256 bytes (OpenEXR reads no further, so a longer one would desynchronise us).
+    auto text = [&] {
+        const size_t end = std::find(b.begin() + ptrdiff_t(at), b.begin() + ptrdiff_t(std::min(b.size(), at + 256)),
+                                     '\0') - b.begin();
+        require(end < b.size() && end < at + 256, corrupt + " (header cut short or a name over 255 bytes)");
+        const size_t start = std::exchange(at, end + 1);
+        return end - start;
+    };
+    for (bool headerEmpty = false; !headerEmpty;) {
+        headerEmpty = true;
+        while (text() > 0) { // attribute name
+            headerEmpty = false;
+            text(); // type name
+            require(b.size() - at >= 4, corrupt + " (header cut short)");
+            uint32_t size = 0;
+            std::memcpy(&size, b.data() + at, 4); // little-endian, as on every platform sward builds for
+            at += 4;
+            require(size <= b.size() - at, corrupt + " (an attribute claims " + std::to_string(size) +
+                                               " bytes; " + std::to_string(b.size() - at) + " follow)");
+            at += size;
+        }
+        if (!multiPart) break;
+    }
+}
+
+// The channels sward reads: R,G,B(,A), or the only channel, or Y of several.
+std::vector<std::string> exrChannelsToRead(const std::string& path, const Imf::ChannelList& list) {
+    if (list.findChannel("R") && list.findChannel("G") && list.findChannel("B")) {
+        std::vector<std::string> names = {"R", "G", "B"};
+        if (list.findChannel("A")) names.push_back("A");
+        return names;
+    }
+    std::vector<std::string> all;
+    for (auto it = list.begin(); it != list.end(); ++it) all.emplace_back(it.name());
+    if (all.size() == 1) return all;
+    require(list.findChannel("Y"), "image '" + path + "' has " + std::to_string(all.size()) +
+                                       " EXR channels but neither R,G,B nor a single channel (or Y)");
+    return {"Y"};
+}
+
+std::vector<char> readFileBytes(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    require(file.good(), "cannot open image '" + path + "': file missing or unreadable");
+    std::vector<char> bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+    require(!file.bad(), "cannot read image '" + path + "'");
+    return bytes;
+}
+
+ImageData loadExr(const std::string& path) {
+    MemoryIStream stream(path, readFileBytes(path));
+    requireExrAttributesWithinFile(path, stream.bytes());
+    try {
+        Imf::InputFile file(stream);
+        const Imath::Box2i window = file.header().dataWindow();
+        const int64_t width = int64_t(window.max.x) - window.min.x + 1;
+        const int64_t height = int64_t(window.max.y) - window.min.y + 1;
+        requireEdges(path, uint64_t(std::max<int64_t>(width, 0)), uint64_t(std::max<int64_t>(height, 0)));
+        const std::vector<std::string> names = exrChannelsToRead(path, file.header().channels());
+        ImageData image{.width = uint32_t(width),
+                        .height = uint32_t(height),
+                        .channels = uint32_t(names.size()),
+                        .bitDepth = 32,
+                        .source = path};
+        readExrStrips(file, window, names, image.samples);
         return image;
     } catch (const Error&) {
         throw;

@@ -7,13 +7,16 @@
 # Any sanitizer report, crash, leak, timeout or test failure fails the script. Nothing is skipped: a missing clang
 # or libFuzzer is an error (tools/setup-deps.sh installs them).
 #
-# Environment: SANITIZE_BUILD_DIR (default build-sanitize), FUZZ_SECONDS (per target), FUZZ_TARGETS (names, default
-# all), JOBS (parallel build jobs and fuzz targets at a time, default nproc).
+# Environment: SANITIZE_BUILD_DIR (default build-sanitize), FUZZ_SECONDS (per target), FUZZ_RUNS (executions per
+# target instead of a time: the long run of docs/testing.md), FUZZ_TARGETS (names, default all), JOBS (parallel
+# build jobs and fuzz targets at a time, default nproc).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 build=${SANITIZE_BUILD_DIR:-build-sanitize}
 fuzz_seconds=${FUZZ_SECONDS:-30}
+fuzz_budget=(-max_total_time="$fuzz_seconds")
+[ -n "${FUZZ_RUNS:-}" ] && fuzz_budget=(-runs="$FUZZ_RUNS")
 jobs=${JOBS:-$(nproc)}
 all_targets="scene grass_map atlas gltf glb state_file pfm kitti_png exr calib"
 targets=${FUZZ_TARGETS:-$all_targets}
@@ -92,10 +95,10 @@ fuzz_one() {
   esac
   mkdir -p "$work/$name/corpus" "$work/$name/artifacts" "$root/fuzz/regressions/$name"
   # TMPDIR: fuzz_input.cpp writes each input to a file there; memory-backed keeps the fuzzer fast.
-  if TMPDIR=/dev/shm "$build/bin/fuzz_$name" -max_total_time="$fuzz_seconds" -timeout=10 -rss_limit_mb=2048 \
+  if TMPDIR=/dev/shm "$build/bin/fuzz_$name" "${fuzz_budget[@]}" -timeout=10 -rss_limit_mb=2048 \
       -print_final_stats=1 "${dict[@]}" -artifact_prefix="$work/$name/artifacts/" \
       "$work/$name/corpus" "$root/fuzz/corpus/$name" "$root/fuzz/regressions/$name" > "$work/$name.log" 2>&1; then
-    echo "sanitize-and-fuzz: fuzz_$name: $(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work/$name.log" | grep -o '[0-9]*$') executions, 0 crashes"
+    echo "sanitize-and-fuzz: fuzz_$name: $(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work/$name.log" | grep -o '[0-9]*$') executions in $(seconds_since "$2") s, 0 crashes"
   else
     tail -n 60 "$work/$name.log"
     echo "sanitize-and-fuzz: fuzz_$name FAILED; reproducer: $(ls "$work/$name/artifacts/"* 2>/dev/null | head -n 1)" \
@@ -110,7 +113,7 @@ for name in $targets; do
     wait "${pids[0]}" || failed+=("${names[0]}")
     pids=("${pids[@]:1}") names=("${names[@]:1}")
   fi
-  fuzz_one "$name" & pids+=($!) names+=("$name")
+  fuzz_one "$name" "$(date +%s)" & pids+=($!) names+=("$name")
 done
 for i in "${!pids[@]}"; do wait "${pids[$i]}" || failed+=("${names[$i]}"); done
 echo "sanitize-and-fuzz: fuzzing took $(seconds_since "$start") s"

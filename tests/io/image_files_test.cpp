@@ -10,7 +10,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 using namespace sward;
 
@@ -55,4 +59,50 @@ TEST(ExrFiles, FloatSamplesReadBackThroughLoadImageExactly) {
         EXPECT_EQ(image.samples, samples) << channels << " channel(s)";
         EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
     }
+}
+
+namespace {
+std::vector<char> readAll(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+void writeAll(const std::string& path, const std::vector<char>& bytes) {
+    std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+} // namespace
+
+TEST(ExrFiles, ImagesOfSeveralStripsReadBackExactly) {
+    // 1100 floats a row: loadImage reads 238 rows at a time, so 300 rows take two strips.
+    const std::string path = sward::test::tempDir().string() + "/wide.exr";
+    const uint32_t w = 1100, h = 300;
+    std::vector<float> samples(w * h);
+    for (size_t i = 0; i < samples.size(); ++i) samples[i] = float(i % 9973) * 0.5f;
+    writeExr(path, w, h, 1, samples);
+    EXPECT_EQ(loadImage(path).samples, samples);
+}
+
+TEST(ExrFiles, AnAttributeLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
+    const std::string path = sward::test::tempDir().string() + "/big-attribute.exr";
+    writeExr(path, 2, 2, 1, std::vector<float>(4, 1.0f));
+    std::vector<char> bytes = readAll(path);
+    const std::string key("channels\0chlist\0", 16);
+    const auto at = std::search(bytes.begin(), bytes.end(), key.begin(), key.end());
+    ASSERT_NE(at, bytes.end());
+    const uint32_t huge = 0x7fff0000u; // about 2 GiB: OpenEXR would allocate it, then find the file ends
+    std::memcpy(&*(at + 16), &huge, 4);
+    writeAll(path, bytes);
+    sward::test::expectError([&] { loadImage(path); }, {path, "an attribute claims 2147418112 bytes"});
+}
+
+TEST(PngFiles, AHeaderClaimingMorePixelsThanTheFileCanHoldIsRefused) {
+    const std::string path = sward::test::tempDir().string() + "/huge.png";
+    sward::test::writePng(path, 1, 1, 1, 8, {0.5f});
+    std::vector<char> bytes = readAll(path);
+    // IHDR width and height (big-endian) at bytes 16 and 20: 30000x30000 grey is 900 MB of deflate output,
+    // far beyond the 1032:1 that deflate can expand this file's few dozen bytes to.
+    for (size_t at : {16u, 20u}) {
+        bytes[at] = 0, bytes[at + 1] = 0, bytes[at + 2] = char(30000 >> 8), bytes[at + 3] = char(30000 & 0xff);
+    }
+    writeAll(path, bytes);
+    sward::test::expectError([&] { loadImage(path); }, {path, "claims 30000x30000 pixels", "truncated or corrupt PNG"});
 }
