@@ -91,7 +91,9 @@ def run_case(case, ctx, work):
         "case": case,
         "command": f"{tool} {shown}".strip(),
         "exit": code,
-        "error": lines[0] if len(lines) == 1 else " / ".join(lines) or "(none)",
+        # The case folder is a temporary name: shown as "." so that the table reads the same on every run.
+        "error": (lines[0] if len(lines) == 1 else " / ".join(lines) or "(none)").replace(folder, ".")
+                 .replace(os.path.dirname(folder), "..").replace(ctx.source, "<source>"),
         "untouched": before == after,
         "problems": problems,
     }
