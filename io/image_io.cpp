@@ -1,6 +1,7 @@
 #include "io/image_io.h"
 
 #include "common/error.h"
+#include "io/exr_header_check.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -154,41 +155,6 @@ private:
     size_t position_ = 0;
 };
 
-// OpenEXR allocates an unknown header attribute at the size the file states before reading it: a 300-byte file
-// can claim a 2 GiB attribute. Walking the headers first (name, type, size, value; an empty name ends a header, and
-// a multi-part file ends its headers with an empty one) refuses any size larger than the bytes that follow. The
-// walk is exact for every file that follows the specification; OpenEXR reads fixed-size types (box2i, chlist)
-// by their layout, not by the stated size, so on a corrupt file the two may part ways after a wrong size.
-void requireExrAttributesWithinFile(const std::string& path, const std::vector<char>& b) {
-    const std::string corrupt = "image '" + path + "' is not a valid OpenEXR file";
-    require(b.size() >= 8 && std::memcmp(b.data(), "\x76\x2f\x31\x01", 4) == 0, corrupt + " (bad magic number)");
-    const bool multiPart = (uint8_t(b[5]) & 0x10) != 0; // version field bit 12
-    size_t at = 8;
-    // Names end at a NUL within 256 bytes (OpenEXR reads no further, so a longer one would desynchronise us).
-    auto text = [&] {
-        const size_t end = std::find(b.begin() + ptrdiff_t(at), b.begin() + ptrdiff_t(std::min(b.size(), at + 256)),
-                                     '\0') - b.begin();
-        require(end < b.size() && end < at + 256, corrupt + " (header cut short or a name over 255 bytes)");
-        const size_t start = std::exchange(at, end + 1);
-        return end - start;
-    };
-    for (bool headerEmpty = false; !headerEmpty;) {
-        headerEmpty = true;
-        while (text() > 0) { // attribute name
-            headerEmpty = false;
-            text(); // type name
-            require(b.size() - at >= 4, corrupt + " (header cut short)");
-            uint32_t size = 0;
-            std::memcpy(&size, b.data() + at, 4); // little-endian, as on every platform sward builds for
-            at += 4;
-            require(size <= b.size() - at, corrupt + " (an attribute claims " + std::to_string(size) +
-                                               " bytes; " + std::to_string(b.size() - at) + " follow)");
-            at += size;
-        }
-        if (!multiPart) break;
-    }
-}
-
 // The channels sward reads: R,G,B(,A), or the only channel, or Y of several.
 std::vector<std::string> exrChannelsToRead(const std::string& path, const Imf::ChannelList& list) {
     if (list.findChannel("R") && list.findChannel("G") && list.findChannel("B")) {
@@ -214,7 +180,7 @@ std::vector<char> readFileBytes(const std::string& path) {
 
 ImageData loadExr(const std::string& path) {
     MemoryIStream stream(path, readFileBytes(path));
-    requireExrAttributesWithinFile(path, stream.bytes());
+    requireSafeExrHeaders(path, stream.bytes());
     try {
         Imf::InputFile file(stream);
         const Imath::Box2i window = file.header().dataWindow();

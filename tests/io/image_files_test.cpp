@@ -106,3 +106,17 @@ TEST(PngFiles, AHeaderClaimingMorePixelsThanTheFileCanHoldIsRefused) {
     writeAll(path, bytes);
     sward::test::expectError([&] { loadImage(path); }, {path, "claims 30000x30000 pixels", "truncated or corrupt PNG"});
 }
+
+TEST(ExrFiles, ADataWindowBeyondTheEdgeLimitIsRefusedBeforeOpenExrAllocatesItsTables) {
+    // OpenEXR sizes its line-offset table from the data window in its constructor: 2^30 lines are 8 GiB.
+    const std::string path = sward::test::tempDir().string() + "/tall.exr";
+    writeExr(path, 2, 2, 1, std::vector<float>(4, 1.0f));
+    std::vector<char> bytes = readAll(path);
+    const std::string key("dataWindow\0box2i\0", 17);
+    const auto at = std::search(bytes.begin(), bytes.end(), key.begin(), key.end());
+    ASSERT_NE(at, bytes.end());
+    const int32_t maxY = 1 << 30;
+    std::memcpy(&*(at + 17 + 4 + 12), &maxY, 4); // after the size: min x, min y, max x, max y
+    writeAll(path, bytes);
+    sward::test::expectError([&] { loadImage(path); }, {path, "has size 2x1073741825", "each edge must be 1..32768"});
+}
