@@ -1,4 +1,5 @@
 #include "io/disparity_files.h"
+#include "io/image_io.h"
 
 #include "common/error.h"
 
@@ -172,17 +173,16 @@ void writeKittiPng(const std::string& path, uint32_t width, uint32_t height, std
 }
 
 DisparityMap readKittiPng(const std::string& path) {
-    require(std::filesystem::exists(path), "cannot open '" + path + "': no such file");
-    cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
-    require(!image.empty(), path + ": cannot decode PNG");
-    require(image.type() == CV_16UC1, path + ": a KITTI disparity PNG must be 16-bit single-channel (found " +
-                                          std::to_string(image.elemSize1() * 8) + "-bit, " +
-                                          std::to_string(image.channels()) + " channel(s))");
-    DisparityMap map{uint32_t(image.cols), uint32_t(image.rows), std::vector<float>(image.total())};
-    for (int y = 0; y < image.rows; ++y) {
-        const uint16_t* row = image.ptr<uint16_t>(y);
-        for (int x = 0; x < image.cols; ++x) map.values[size_t(y) * image.cols + x] = float(row[x]) / 256.0f;
-    }
+    // Through sward's PNG reader, not cv::imread: OpenCV picks a decoder by content (a ".png" holding JPEG 2000
+    // would reach OpenJPEG), and the reader checks the header against the file before anything is allocated.
+    const ImageData image = loadImage(path);
+    require(image.bitDepth == 16 && image.channels == 1,
+            path + ": a KITTI disparity PNG must be 16-bit single-channel (found " + std::to_string(image.bitDepth) +
+                "-bit, " + std::to_string(image.channels) + " channel(s))");
+    DisparityMap map{image.width, image.height, std::vector<float>(image.samples.size())};
+    // Samples are v / 65535 in float; v is recovered exactly by rounding (24-bit mantissa, 16-bit values).
+    for (size_t i = 0; i < image.samples.size(); ++i)
+        map.values[i] = float(std::lround(image.samples[i] * 65535.0f)) / 256.0f;
     return map;
 }
 

@@ -39,39 +39,60 @@ void requireEdges(const std::string& path, uint64_t width, uint64_t height) {
                 "; each edge must be 1.." + std::to_string(kMaxImageEdge) + " pixels");
 }
 
+std::vector<char> readFileBytes(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    require(file.good(), "cannot open image '" + path + "': file missing or unreadable");
+    std::vector<char> bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+    require(!file.bad(), "cannot read image '" + path + "'");
+    return bytes;
+}
+
 // stb_image silently widens 1/2/4-bit grey images to 8 bits, so the true bit depth is read from the IHDR chunk,
 // which the PNG specification requires to come first: 8-byte signature, length, "IHDR", width, height, depth, type.
 struct PngHeader {
     uint32_t width, height, bitDepth, colorType;
 };
 
-PngHeader readPngHeader(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    require(file.good(), "cannot open image '" + path + "': file missing or unreadable");
+PngHeader readPngHeader(const std::string& path, const std::vector<char>& bytes) {
     std::array<unsigned char, 26> b{};
-    file.read(reinterpret_cast<char*>(b.data()), b.size());
+    std::copy_n(bytes.begin(), std::min(bytes.size(), b.size()), b.begin()); // (an empty file has no data())
     static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    require(file.gcount() == std::streamsize(b.size()) && std::equal(kSignature, kSignature + 8, b.begin()) &&
+    require(bytes.size() >= b.size() && std::equal(kSignature, kSignature + 8, b.begin()) &&
                 std::equal(b.begin() + 12, b.begin() + 16, "IHDR"),
             "image '" + path + "' is not a valid PNG file (bad signature or header)");
     auto be32 = [&](size_t o) { return uint32_t(b[o]) << 24 | uint32_t(b[o + 1]) << 16 | b[o + 2] << 8 | b[o + 3]; };
     return {be32(16), be32(20), b[24], b[25]};
 }
 
+// The bytes of all IDAT chunks. Every chunk (length, type, data, CRC) must fit the file: stb_image grows its
+// buffer to a chunk's stated length before reading it, so a 100-byte file could claim a 1 GiB chunk.
+uint64_t compressedPngBytes(const std::string& path, const std::vector<char>& bytes) {
+    uint64_t idat = 0;
+    for (size_t at = 8; at + 8 <= bytes.size();) {
+        const auto* c = reinterpret_cast<const unsigned char*>(bytes.data() + at);
+        const uint64_t length = uint64_t(c[0]) << 24 | uint64_t(c[1]) << 16 | uint64_t(c[2]) << 8 | c[3];
+        require(length + 12 <= bytes.size() - at, "image '" + path + "' has a PNG chunk of " +
+                                                       std::to_string(length) + " bytes past the end of the file "
+                                                       "(truncated or corrupt PNG)");
+        if (std::memcmp(c + 4, "IDAT", 4) == 0) idat += length;
+        if (std::memcmp(c + 4, "IEND", 4) == 0) break;
+        at += size_t(length) + 12;
+    }
+    return idat;
+}
+
 // A PNG's pixels are deflate-compressed, and deflate expands at most 1032:1 (a 258-byte match in 2 bits). A header
-// claiming more pixels than its file can hold is corrupt; refusing it up front keeps a 100-byte file from making
-// the decoder allocate gigabytes before it notices the data is missing.
-void requirePlausiblePngSize(const std::string& path, const PngHeader& header) {
+// claiming more pixels than its IDAT chunks can hold is corrupt; refusing it up front keeps a 100-byte file from
+// making the decoder allocate gigabytes before it notices the data is missing.
+void requirePlausiblePngSize(const std::string& path, const PngHeader& header, uint64_t compressedBytes) {
     static constexpr uint32_t kChannels[7] = {1, 0, 3, 1, 2, 0, 4}; // by PNG colour type; 0: invalid type
     const uint32_t channels = header.colorType < 7 ? kChannels[header.colorType] : 0;
     require(channels > 0, "image '" + path + "' has invalid PNG colour type " + std::to_string(header.colorType));
     const uint64_t rowBytes = 1 + (uint64_t(header.width) * channels * header.bitDepth + 7) / 8; // + filter byte
-    const uint64_t rawBytes = rowBytes * header.height;
-    std::error_code ec;
-    const uint64_t fileBytes = std::filesystem::file_size(path, ec);
-    require(!ec && rawBytes <= fileBytes * 1032,
+    require(rowBytes * header.height <= compressedBytes * 1032,
             "image '" + path + "' claims " + std::to_string(header.width) + "x" + std::to_string(header.height) +
-                " pixels, more than its " + std::to_string(fileBytes) + " bytes can hold (truncated or corrupt PNG)");
+                " pixels, more than its " + std::to_string(compressedBytes) +
+                " bytes of image data can hold (truncated or corrupt PNG)");
 }
 
 // Built only on failure: stbi_failure_reason() may be null, and require() evaluates its message eagerly.
@@ -81,26 +102,29 @@ std::string decodeFailure(const std::string& path) {
 }
 
 ImageData loadPng(const std::string& path) {
-    PngHeader header = readPngHeader(path);
+    const std::vector<char> bytes = readFileBytes(path);
+    PngHeader header = readPngHeader(path, bytes);
     requireEdges(path, header.width, header.height);
     const bool palette = header.colorType == 3;
     require(palette || header.bitDepth == 8 || header.bitDepth == 16,
             "image '" + path + "' has unsupported bit depth " + std::to_string(header.bitDepth) +
                 " (PNG images must have 8 or 16 bits per sample)");
-    requirePlausiblePngSize(path, header);
+    requirePlausiblePngSize(path, header, compressedPngBytes(path, bytes));
+    const auto* encoded = reinterpret_cast<const stbi_uc*>(bytes.data());
+    const int size = int(std::min<size_t>(bytes.size(), INT32_MAX));
     const bool wide = !palette && header.bitDepth == 16;
 
     int width = 0, height = 0, channels = 0;
     ImageData image{.bitDepth = wide ? 16u : 8u, .source = path};
     if (wide) {
-        std::unique_ptr<stbi_us, void (*)(void*)> data(stbi_load_16(path.c_str(), &width, &height, &channels, 0),
-                                                       stbi_image_free);
+        std::unique_ptr<stbi_us, void (*)(void*)> data(
+            stbi_load_16_from_memory(encoded, size, &width, &height, &channels, 0), stbi_image_free);
         if (!data) throw Error(decodeFailure(path));
         image.samples.resize(size_t(width) * height * channels);
         for (size_t i = 0; i < image.samples.size(); ++i) image.samples[i] = float(data.get()[i]) / 65535.0f;
     } else {
-        std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load(path.c_str(), &width, &height, &channels, 0),
-                                                       stbi_image_free);
+        std::unique_ptr<stbi_uc, void (*)(void*)> data(
+            stbi_load_from_memory(encoded, size, &width, &height, &channels, 0), stbi_image_free);
         if (!data) throw Error(decodeFailure(path));
         image.samples.resize(size_t(width) * height * channels);
         for (size_t i = 0; i < image.samples.size(); ++i) image.samples[i] = float(data.get()[i]) / 255.0f;
@@ -170,13 +194,6 @@ std::vector<std::string> exrChannelsToRead(const std::string& path, const Imf::C
     return {"Y"};
 }
 
-std::vector<char> readFileBytes(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    require(file.good(), "cannot open image '" + path + "': file missing or unreadable");
-    std::vector<char> bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-    require(!file.bad(), "cannot read image '" + path + "'");
-    return bytes;
-}
 
 ImageData loadExr(const std::string& path) {
     MemoryIStream stream(path, readFileBytes(path));
