@@ -147,12 +147,12 @@ void readExrStrips(Imf::InputFile& file, const Imath::Box2i& window, const std::
     for (int64_t y0 = window.min.y; y0 <= window.max.y; y0 += stripRows) {
         const int64_t y1 = std::min<int64_t>(window.max.y, y0 + stripRows - 1);
         samples.resize(size_t(y1 - window.min.y + 1) * rowFloats);
-        // OpenEXR addresses the frame buffer with absolute data-window coordinates, hence the shifted base.
-        char* base = reinterpret_cast<char*>(samples.data()) - window.min.x * ptrdiff_t(xStride) -
-                     window.min.y * ptrdiff_t(yStride);
+        // OpenEXR addresses the frame buffer with absolute data-window coordinates; Slice::Make shifts the base
+        // by the window's origin itself (in integers: a pointer moved outside its buffer would be undefined).
         Imf::FrameBuffer frame;
         for (size_t c = 0; c < names.size(); ++c)
-            frame.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+            frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, samples.data() + c, window.min, int64_t(width),
+                                                    y1 - window.min.y + 1, xStride, yStride));
         file.setFrameBuffer(frame);
         file.readPixels(int(y0), int(y1));
     }
