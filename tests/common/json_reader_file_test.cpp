@@ -10,16 +10,9 @@
 #include <functional>
 
 using namespace sward;
+using sward::test::errorOf;
 
 namespace {
-std::string errorOf(const std::function<void()>& read) {
-    try {
-        read();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
 std::string parseError(const std::string& text) {
     return errorOf([&] { parseJsonText(text, "s.json", "scene file"); });
 }

@@ -1,5 +1,6 @@
 // The one JSON reader: typed, range-checked values, unknown keys rejected, errors naming file and JSON path.
 #include "common/error.h"
+#include "test_files.h"
 #include "common/json_reader.h"
 
 #include <gtest/gtest.h>
@@ -7,17 +8,7 @@
 #include <functional>
 
 using namespace sward;
-
-namespace {
-std::string errorOf(const std::function<void()>& read) {
-    try {
-        read();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
-} // namespace
+using sward::test::errorOf;
 
 TEST(JsonReader, ReadsValuesAndKeepsDefaultsForAbsentKeys) {
     const auto json = nlohmann::json::parse(R"({"a": 0.5, "n": 18446744073709551615, "s": "x", "b": true})");

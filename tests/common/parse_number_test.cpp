@@ -1,23 +1,14 @@
 // The one strict parser of command-line numbers: digits only, overflow refused, ranges enforced, no wrap.
 #include "common/error.h"
 #include "common/parse_number.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 
 #include <functional>
 
 using namespace sward;
-
-namespace {
-std::string errorOf(const std::function<void()>& parse) {
-    try {
-        parse();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
-} // namespace
+using sward::test::errorOf;
 
 TEST(ParseNumber, UnsignedAcceptsDigitsWithinRange) {
     EXPECT_EQ(parseUnsigned("0", 0, 10, "--n"), 0u);

@@ -1,5 +1,6 @@
 // The dataset writer: which files a frame has, and that writeFrame writes exactly those, named by dataset/naming.h.
 #include "dataset/dataset_writer.h"
+#include "test_files.h"
 
 #include "common/error.h"
 #include "dataset/naming.h"
@@ -15,6 +16,7 @@
 #include <functional>
 
 using namespace sward;
+using sward::test::errorOf;
 
 namespace {
 
@@ -79,15 +81,6 @@ std::vector<std::string> listing(const std::string& dir) {
 
 void touch(const std::string& path) {
     std::ofstream(path) << "user data";
-}
-
-std::string errorOf(const std::function<void()>& body) {
-    try {
-        body();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 } // namespace

@@ -2,23 +2,16 @@
 #include "common/error.h"
 #include "scene/scene.h"
 #include "scene/scene_limits.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 
 #include <functional>
 
 using namespace sward;
+using sward::test::errorOf;
 
 namespace {
-
-std::string errorOf(const std::function<void()>& run) {
-    try {
-        run();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
 
 std::string parseError(const nlohmann::json& json) {
     return errorOf([&] { parseScene(json, "s.json"); });

@@ -109,6 +109,16 @@ inline void expectError(const std::function<void()>& f, std::initializer_list<st
     }
 }
 
+// The message of the sward::Error that f throws; "" when it throws none (so an assertion shows what was said).
+inline std::string errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
 inline std::string base64(const std::vector<uint8_t>& bytes) {
     static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 using namespace sward;
+using sward::test::errorOf;
 using namespace sward::test;
 
 namespace {
@@ -23,15 +24,6 @@ GrassMap uniformMap(float intensity) {
 const Ground& flat() {
     static const Ground ground(makeProceduralTerrain({.size = 100.0f, .spacing = 5.0f, .amplitude = 0.0f, .seed = 1}));
     return ground;
-}
-
-std::string errorOf(const std::function<void()>& run) {
-    try {
-        run();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 } // namespace
