@@ -173,6 +173,21 @@ std::string JsonReader::string(const char* key, std::string value) {
     return value;
 }
 
+std::vector<std::string> JsonReader::strings(const char* key, size_t maxCount) {
+    std::vector<std::string> values;
+    if (const nlohmann::json* v = find(key)) {
+        if (!v->is_array()) fail(name(key) + " must be an array of strings");
+        if (v->size() > maxCount)
+            fail(name(key) + " has " + std::to_string(v->size()) + " entries, over the limit of " +
+                 std::to_string(maxCount));
+        for (const nlohmann::json& s : *v) {
+            if (!s.is_string()) fail(name(key) + " must be an array of strings");
+            values.push_back(s.get<std::string>());
+        }
+    }
+    return values;
+}
+
 bool JsonReader::boolean(const char* key, bool value) {
     if (const nlohmann::json* v = find(key)) {
         if (!v->is_boolean()) fail(name(key) + " must be true or false");

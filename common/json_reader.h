@@ -46,6 +46,8 @@ public:
     // or one outside [lo, hi] gets "'<key>' must be an integer in [lo, hi] (got <value as written>)".
     uint64_t integer(const char* key, uint64_t value, uint64_t lo, uint64_t hi);
     std::string string(const char* key, std::string value);
+    // An array of at most maxCount strings; empty when absent.
+    std::vector<std::string> strings(const char* key, size_t maxCount);
     bool boolean(const char* key, bool value);
     template <int N> glm::vec<N, double> vector(const char* key, glm::vec<N, double> value, double lo, double hi);
     // Whole numbers (written as integers or as numbers like 640.0) in [lo, hi].

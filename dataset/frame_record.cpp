@@ -38,7 +38,7 @@ nlohmann::json colliderJson(const Collider& c) {
     return j;
 }
 
-nlohmann::json frameRecord(const Scene& scene, const std::vector<ObjectModel>& models, const Heightfield& terrain,
+nlohmann::json frameRecord(const Scene& scene, const std::vector<ObjectModel>& models, const Ground& terrain,
                            const RigCameras& rig, uint32_t frame, double windTimeOffset, bool withColliders) {
     const double time = double(frame) * scene.sequence.timeStep;
     nlohmann::json colliders = nlohmann::json::array();

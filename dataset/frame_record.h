@@ -13,7 +13,7 @@
 
 namespace sward {
 
-class Heightfield;
+class Ground;
 struct Scene;
 
 // Row-major 4x4.
@@ -25,7 +25,7 @@ nlohmann::json colliderJson(const Collider& collider);
 // The record of `frame` (tick `frame`, time frame * sequence.time_step): rig poses and intrinsics (OpenCV pixel
 // centres), wind (its clock offset by `windTimeOffset`), the colliders acting during the tick (when
 // `withColliders`: none act on bare ground), object poses and the sensor parameters.
-nlohmann::json frameRecord(const Scene& scene, const std::vector<ObjectModel>& models, const Heightfield& terrain,
+nlohmann::json frameRecord(const Scene& scene, const std::vector<ObjectModel>& models, const Ground& terrain,
                            const RigCameras& rig, uint32_t frame, double windTimeOffset, bool withColliders);
 
 } // namespace sward

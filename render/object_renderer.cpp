@@ -15,11 +15,11 @@ template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) 
 
 } // namespace
 
-ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain,
+ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Ground& terrain,
                                const VegetationPassFormats& formats)
     : ObjectRenderer(ctx, scene, terrain, formats, loadObjectModels(scene.objects, scene.source)) {}
 
-ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain,
+ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Ground& terrain,
                                const VegetationPassFormats& formats, std::vector<ObjectModel> models)
     : ctx_(ctx), terrain_(terrain), objects_(scene.objects), models_(std::move(models)) {
     require(models_.size() == objects_.size(), "ObjectRenderer: one model per scene object is required");

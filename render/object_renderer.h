@@ -9,7 +9,7 @@
 #pragma once
 
 #include "engine/context.h"
-#include "world/heightfield.h"
+#include "world/ground.h"
 #include "scene/objects.h"
 #include "engine/pipelines.h"
 #include "scene/scene.h"
@@ -21,9 +21,9 @@ class ObjectRenderer {
 public:
     // Loads the scene's models (errors name the JSON path) and uploads them. `terrain` must outlive the
     // renderer (update() places the objects on it). With no objects the renderer records nothing.
-    ObjectRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, const VegetationPassFormats& formats);
+    ObjectRenderer(Context& ctx, const Scene& scene, const Ground& terrain, const VegetationPassFormats& formats);
     // Same, with models already loaded by loadObjectModels(scene.objects, ...) (e.g. shared with the collision pass).
-    ObjectRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, const VegetationPassFormats& formats,
+    ObjectRenderer(Context& ctx, const Scene& scene, const Ground& terrain, const VegetationPassFormats& formats,
                    std::vector<ObjectModel> models);
     ~ObjectRenderer();
     ObjectRenderer(const ObjectRenderer&) = delete;
@@ -53,7 +53,7 @@ private:
     DescriptorBinding transformsBinding(uint32_t slot) const;
 
     Context& ctx_;
-    const Heightfield& terrain_;
+    const Ground& terrain_;
     std::vector<ObjectParams> objects_;
     std::vector<ObjectModel> models_;
     std::vector<uint32_t> firstTransform_; // per object: index of its first node's transform

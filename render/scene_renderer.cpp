@@ -2,6 +2,7 @@
 
 #include "engine/barriers.h"
 #include "engine/timestamps.h"
+#include "render/ground_mesh.h"
 #include "render/object_renderer.h"
 #include "render/vegetation_renderer.h"
 #include "shared/config.h"
@@ -40,47 +41,22 @@ RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height) {
 
 namespace {
 
-std::vector<gpu::TerrainVertex> terrainVertices(const Heightfield& terrain) {
-    std::vector<gpu::TerrainVertex> vertices;
-    vertices.reserve(size_t(terrain.columns()) * terrain.rows());
-    for (uint32_t j = 0; j < terrain.rows(); ++j)
-        for (uint32_t i = 0; i < terrain.columns(); ++i) {
-            glm::vec2 xy = terrain.origin() + glm::vec2(float(i), float(j)) * terrain.spacing();
-            vertices.push_back({glm::vec4(xy, terrain.sample(i, j), 1.0f), glm::vec4(terrain.vertexNormal(i, j), 0.0f)});
-        }
-    return vertices;
-}
-
-// Two counter-clockwise (seen from above) triangles per cell, split along the (i,j)-(i+1,j+1) diagonal
-// exactly as Heightfield::height() interpolates.
-std::vector<uint32_t> terrainIndices(const Heightfield& terrain) {
-    std::vector<uint32_t> indices;
-    indices.reserve(size_t(terrain.columns() - 1) * (terrain.rows() - 1) * 6);
-    for (uint32_t j = 0; j + 1 < terrain.rows(); ++j)
-        for (uint32_t i = 0; i + 1 < terrain.columns(); ++i) {
-            uint32_t p00 = j * terrain.columns() + i, p10 = p00 + 1, p01 = p00 + terrain.columns(), p11 = p01 + 1;
-            indices.insert(indices.end(), {p00, p10, p11, p00, p11, p01});
-        }
-    return indices;
-}
-
 template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) {
     return {reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(T)};
 }
 
 } // namespace
 
-SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, VkSampleCountFlagBits samples,
+SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& terrain, VkSampleCountFlagBits samples,
                              const VegetationTile* vegetation, const Atlas* atlas,
                              const std::vector<ObjectModel>* models)
     : ctx_(ctx), scene_(scene), samples_(samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1) {
     terrainMinHeight_ = terrain.minHeight();
     terrainMaxHeight_ = terrain.maxHeight();
-    auto vertices = terrainVertices(terrain);
-    auto indices = terrainIndices(terrain);
-    terrainVertices_ = createBufferWithData(ctx, bytesOf(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    terrainIndices_ = createBufferWithData(ctx, bytesOf(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-    terrainIndexCount_ = uint32_t(indices.size());
+    const GroundDrawMesh ground = groundDrawMesh(terrain);
+    terrainVertices_ = createBufferWithData(ctx, bytesOf(ground.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    terrainIndices_ = createBufferWithData(ctx, bytesOf(ground.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    terrainIndexCount_ = uint32_t(ground.indices.size());
 
     uint64_t align = ctx.device.properties().limits.minUniformBufferOffsetAlignment;
     constantsStride_ = (sizeof(gpu::FrameConstants) + align - 1) / align * align;
@@ -120,7 +96,8 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Heightfield
         .fragmentShader = "terrain.frag",
         .vertexBindings = {{0, sizeof(gpu::TerrainVertex), VK_VERTEX_INPUT_RATE_VERTEX}},
         .vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, positionHeight)},
-                             {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, normal)}},
+                             {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, normal)},
+                             {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, albedo)}},
         .cullMode = VK_CULL_MODE_BACK_BIT,
         .colorFormats = {mainDesc.colors[0].format},
         .depthFormat = mainDesc.depthFormat,

@@ -13,7 +13,7 @@
 #include "world/camera.h"
 #include "dataset/frame_images.h"
 #include "engine/context.h"
-#include "world/heightfield.h"
+#include "world/ground.h"
 #include "engine/pipelines.h"
 #include "engine/render_target.h"
 #include "scene/scene.h"
@@ -40,7 +40,7 @@ public:
     // vegetation / atlas may be null (bare terrain). The tile and atlas are uploaded; the CPU copies may go.
     // The scene's objects are drawn from `models` (loadObjectModels) or, when null, models loaded here.
     // `terrain` must outlive the renderer (objects are placed on it every frame).
-    SceneRenderer(Context& ctx, const Scene& scene, const Heightfield& terrain, VkSampleCountFlagBits samples,
+    SceneRenderer(Context& ctx, const Scene& scene, const Ground& terrain, VkSampleCountFlagBits samples,
                   const VegetationTile* vegetation = nullptr, const Atlas* atlas = nullptr,
                   const std::vector<ObjectModel>* models = nullptr);
     ~SceneRenderer();

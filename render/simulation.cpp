@@ -6,7 +6,7 @@
 
 namespace sward {
 
-Simulation::Simulation(Context& ctx, const Scene& scene, const Heightfield& terrain, const VegetationTile& tile,
+Simulation::Simulation(Context& ctx, const Scene& scene, const Ground& terrain, const VegetationTile& tile,
                        VegetationBuffers& buffers, uint32_t threads)
     : ctx_(ctx), scene_(scene), terrain_(terrain),
       world_(tile, scene.vegetation, scene.interaction, resolveThreadCount(threads)),

@@ -16,7 +16,7 @@ namespace sward {
 class Simulation {
 public:
     // `tile` must outlive the simulation (the collision pass reads its static records).
-    Simulation(Context& ctx, const Scene& scene, const Heightfield& terrain, const VegetationTile& tile,
+    Simulation(Context& ctx, const Scene& scene, const Ground& terrain, const VegetationTile& tile,
                VegetationBuffers& buffers, uint32_t threads = 0);
 
     uint64_t nextTick() const { return world_.tick(); }
@@ -39,7 +39,7 @@ public:
 private:
     Context& ctx_;
     const Scene& scene_;
-    const Heightfield& terrain_;
+    const Ground& terrain_;
     InteractionWorld world_;
     InteractionGpu gpu_;
     TickResult last_;

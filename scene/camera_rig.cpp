@@ -11,7 +11,7 @@ namespace sward {
 namespace {
 
 // Orientation and position of the rig centre: what the scene's camera description gives.
-Camera rigCentre(const Scene& scene, const Heightfield& terrain, const std::vector<ObjectModel>& models, uint32_t width,
+Camera rigCentre(const Scene& scene, const Ground& terrain, const std::vector<ObjectModel>& models, uint32_t width,
                  uint32_t height, double time) {
     const CameraParams& c = scene.camera;
     const RigParams& rig = c.rig;
@@ -32,7 +32,7 @@ Camera rigCentre(const Scene& scene, const Heightfield& terrain, const std::vect
 
 } // namespace
 
-RigCameras sceneRig(const Scene& scene, const Heightfield& terrain, const std::vector<ObjectModel>& models,
+RigCameras sceneRig(const Scene& scene, const Ground& terrain, const std::vector<ObjectModel>& models,
                     uint32_t width, uint32_t height, double time) {
     const RigParams& rig = scene.camera.rig;
     Camera centre = rigCentre(scene, terrain, models, width, height, time);

@@ -16,7 +16,7 @@
 
 namespace sward {
 
-class Heightfield;
+class Ground;
 struct Scene;
 
 struct RigParams {
@@ -40,7 +40,7 @@ struct RigCameras {
 
 // The rig at simulation time `time` for images of width x height pixels. `models` are the scene objects' models
 // (loadObjectModels), needed only for a mounted rig.
-RigCameras sceneRig(const Scene& scene, const Heightfield& terrain, const std::vector<ObjectModel>& models,
+RigCameras sceneRig(const Scene& scene, const Ground& terrain, const std::vector<ObjectModel>& models,
                     uint32_t width, uint32_t height, double time);
 
 // Disparity in pixels of planar depth z (0 where z is not finite or not positive): f * B / z.

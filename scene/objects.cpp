@@ -2,7 +2,7 @@
 
 #include "common/error.h"
 #include "common/json_reader.h"
-#include "world/heightfield.h"
+#include "world/ground.h"
 
 #include <cmath>
 #include <numbers>
@@ -122,7 +122,7 @@ std::vector<ObjectModel> loadObjectModels(const std::vector<ObjectParams>& objec
     return models;
 }
 
-ObjectPose objectPose(const ObjectParams& object, const ObjectModel& model, const Heightfield& terrain, double time) {
+ObjectPose objectPose(const ObjectParams& object, const ObjectModel& model, const Ground& terrain, double time) {
     const PathPose travel = pathPose(object.path, terrain, time);
     ObjectPose pose;
     pose.distance = travel.distance;
@@ -164,14 +164,14 @@ ObjectPose objectPose(const ObjectParams& object, const ObjectModel& model, cons
 }
 
 glm::dmat4 objectNodeToWorld(const ObjectParams& object, const ObjectModel& model, const std::string& node,
-                             const Heightfield& terrain, double time) {
+                             const Ground& terrain, double time) {
     const int index = model.findNode(node);
     require(index >= 0, "object '" + object.name + "': model '" + model.path + "' has no node named '" + node + "'");
     return objectPose(object, model, terrain, time).worldFromModel * model.nodes[size_t(index)].modelFromNode;
 }
 
 std::vector<glm::dmat4> objectNodeTransforms(const ObjectParams& object, const ObjectModel& model,
-                                             const Heightfield& terrain, double time) {
+                                             const Ground& terrain, double time) {
     const glm::dmat4 world = objectPose(object, model, terrain, time).worldFromModel;
     std::vector<glm::dmat4> transforms;
     transforms.reserve(model.nodes.size());
@@ -180,7 +180,7 @@ std::vector<glm::dmat4> objectNodeTransforms(const ObjectParams& object, const O
 }
 
 std::vector<Collider> objectColliders(const std::vector<ObjectParams>& objects, const std::vector<ObjectModel>& models,
-                                      const Heightfield& terrain, double time) {
+                                      const Ground& terrain, double time) {
     std::vector<Collider> colliders;
     for (size_t k = 0; k < objects.size(); ++k) {
         const ObjectParams& object = objects[k];

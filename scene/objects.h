@@ -21,7 +21,7 @@
 
 namespace sward {
 
-class Heightfield;
+class Ground;
 class JsonReader;
 
 // A collider attached to a node of the object's model. Sizes and offsets are metres in the node's frame
@@ -84,17 +84,17 @@ struct ObjectPose {
 // height_above_ground), model front (-y) along the direction of travel; with alignToTerrain its up axis is the
 // normal of the plane fitted to the terrain heights under the four corners of the model's footprint (and the
 // origin sits on that plane), else world +z.
-ObjectPose objectPose(const ObjectParams& object, const ObjectModel& model, const Heightfield& terrain, double time);
+ObjectPose objectPose(const ObjectParams& object, const ObjectModel& model, const Ground& terrain, double time);
 // World-from-node transform of the node named `node` at time `time`; throws sward::Error if there is none.
 glm::dmat4 objectNodeToWorld(const ObjectParams& object, const ObjectModel& model, const std::string& node,
-                             const Heightfield& terrain, double time);
+                             const Ground& terrain, double time);
 // World-from-node transforms of every node of the model (ObjectModel::nodes order).
 std::vector<glm::dmat4> objectNodeTransforms(const ObjectParams& object, const ObjectModel& model,
-                                             const Heightfield& terrain, double time);
+                                             const Ground& terrain, double time);
 
 // Every object collider at time `time`, object by object, collider by collider, with the stable id
 // 200000 + 100 * object + collider. `models` as returned by loadObjectModels. Append these to actorColliders().
 std::vector<Collider> objectColliders(const std::vector<ObjectParams>& objects, const std::vector<ObjectModel>& models,
-                                      const Heightfield& terrain, double time);
+                                      const Ground& terrain, double time);
 
 } // namespace sward

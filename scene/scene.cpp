@@ -38,13 +38,52 @@ std::string assetPath(JsonReader& r, const char* key, const Scene& scene) {
     return path.empty() ? path : scene.assets.resolve(path, sceneFolder(scene.source), r.source() + ": " + r.name(key));
 }
 
-void readTerrain(JsonReader r, ProceduralTerrainParams& t) {
+void readProceduralTerrain(JsonReader& r, ProceduralTerrainParams& t) {
     t.size = r.numberF("size", t.size, 10.0, 4000.0);
     t.spacing = r.numberF("spacing", t.spacing, 0.1, 50.0);
     t.amplitude = r.numberF("amplitude", t.amplitude, 0.0, 1000.0);
     t.featureSize = r.numberF("feature_size", t.featureSize, 1.0, 10000.0);
     t.octaves = uint32_t(r.integer("octaves", t.octaves, 1, 8));
     if (t.size / t.spacing > 8192.0f) r.fail(r.name("size") + " / " + r.name("spacing") + " exceeds 8192 cells");
+}
+
+void readHeightmap(JsonReader r, const Scene& scene, HeightmapParams& h) {
+    h.path = assetPath(r, "file", scene);
+    if (h.path.empty()) r.fail(r.name("file") + " is required (the heightmap raster)");
+    h.metresPerPixel = r.number("metres_per_pixel", h.metresPerPixel, 0.0, 1e4);
+    h.heightScale = r.number("height_scale", h.heightScale, -1e5, 1e5);
+    h.heightOffset = r.number("height_offset", h.heightOffset, -1e5, 1e5);
+    h.origin = r.vector<2>("origin", h.origin, -1e6, 1e6);
+    r.finish();
+}
+
+void readGroundMesh(JsonReader r, const Scene& scene, TerrainParams& t) {
+    t.meshPath = assetPath(r, "file", scene);
+    if (t.meshPath.empty()) r.fail(r.name("file") + " is required (the glTF / GLB ground mesh)");
+    t.selection.materials = r.strings("vegetation_materials", 1024);
+    r.finish();
+}
+
+// "terrain": procedural keys, or one of "heightmap" / "mesh" (then the procedural keys do not apply).
+void readTerrain(JsonReader r, Scene& scene) {
+    TerrainParams& t = scene.terrain;
+    const bool heightmap = r.has("heightmap"), mesh = r.has("mesh");
+    if (heightmap && mesh) r.fail("'terrain' takes either 'heightmap' or 'mesh', not both");
+    if (heightmap || mesh)
+        for (const char* key : {"size", "spacing", "amplitude", "feature_size", "octaves"})
+            if (r.has(key))
+                r.fail(r.name(key) + " applies to the procedural terrain only, not to 'terrain." +
+                       (heightmap ? "heightmap'" : "mesh'"));
+    if (heightmap) {
+        t.source = TerrainParams::Source::Heightmap;
+        readHeightmap(r.child("heightmap"), scene, t.heightmap);
+    } else if (mesh) {
+        t.source = TerrainParams::Source::Mesh;
+        readGroundMesh(r.child("mesh"), scene, t);
+    } else {
+        readProceduralTerrain(r, t.procedural);
+    }
+    t.selection.maxSlopeDegrees = r.number("max_slope_deg", t.selection.maxSlopeDegrees, 1.0, 90.0);
     r.finish();
 }
 
@@ -165,9 +204,12 @@ void readVegetation(JsonReader& root, Scene& scene) {
     const nlohmann::json* vegetation = root.raw("vegetation");
     if (vegetation) scene.vegetation = parseVegetationParams(*vegetation, source);
     if (!vegetation || !vegetation->contains("seed")) scene.vegetation.seed = scene.seed;
-    // The vegetation tile covers the terrain unless told otherwise.
-    if (!vegetation || !vegetation->contains("tile_size")) {
-        scene.vegetation.tileSize = scene.terrain.size;
+    scene.vegetationTileSet = vegetation && vegetation->contains("tile_size");
+    scene.vegetationOriginSet = vegetation && vegetation->contains("world_origin");
+    // The vegetation tile covers the terrain unless told otherwise (a loaded ground's extent: vegetationOn).
+    const bool procedural = scene.terrain.source == TerrainParams::Source::Procedural;
+    if (procedural && !scene.vegetationTileSet) {
+        scene.vegetation.tileSize = scene.terrain.procedural.size;
         validateVegetationParams(scene.vegetation, source + " (vegetation.tile_size = terrain.size)");
     }
     if (const nlohmann::json* enabled = root.raw("vegetation_enabled"); enabled && enabled->is_boolean())
@@ -175,9 +217,9 @@ void readVegetation(JsonReader& root, Scene& scene) {
     else
         scene.vegetationEnabled = root.number("vegetation_enabled", 1.0, 0.0, 1.0) != 0.0;
     scene.grassMapPath = assetPath(root, "grass_map", scene);
-    if (scene.vegetation.tileSize > scene.terrain.size + 1e-3f)
+    if (procedural && scene.vegetation.tileSize > scene.terrain.procedural.size + 1e-3f)
         root.fail("'vegetation.tile_size' (" + std::to_string(scene.vegetation.tileSize) +
-                  " m) must not exceed 'terrain.size' (" + std::to_string(scene.terrain.size) + " m)");
+                  " m) must not exceed 'terrain.size' (" + std::to_string(scene.terrain.procedural.size) + " m)");
 }
 
 } // namespace
@@ -194,8 +236,8 @@ Scene parseScene(const nlohmann::json& json, const std::string& source, const As
     JsonReader root(json, source);
     scene.name = root.string("name", scene.name);
     scene.seed = root.integer("seed", scene.seed, 0, UINT64_MAX);
-    readTerrain(root.child("terrain"), scene.terrain);
-    scene.terrain.seed = scene.seed;
+    readTerrain(root.child("terrain"), scene);
+    scene.terrain.procedural.seed = scene.seed;
     readSun(root.child("sun"), scene.sun);
     readSky(root.child("sky"), scene.sky);
     readCamera(root.child("camera"), scene.camera);
@@ -222,10 +264,6 @@ Scene loadScene(const std::string& path, std::optional<uint64_t> seed,
                       AssetPolicy::confinedTo(std::filesystem::path(path).parent_path().string(), allowedAssetDirs));
 }
 
-Heightfield buildTerrain(const Scene& scene) {
-    return makeProceduralTerrain(scene.terrain);
-}
-
 Atlas buildAtlas(const Scene& scene) {
     Atlas atlas = scene.atlasPngPath.empty() ? generateAtlas(AtlasGenParams{.seed = 7})
                                              : loadAtlas(scene.atlasPngPath, scene.atlasJsonPath);
@@ -233,16 +271,17 @@ Atlas buildAtlas(const Scene& scene) {
     return atlas;
 }
 
-GrassMap buildGrassMap(const Scene& scene) {
+GrassMap buildGrassMap(const Scene& scene, float tileSize) {
     if (!scene.grassMapPath.empty()) return loadGrassMap(scene.grassMapPath);
-    return makeMeadowGrassMap({.tileSize = scene.vegetation.tileSize, .seed = scene.seed});
+    return makeMeadowGrassMap({.tileSize = tileSize, .seed = scene.seed});
 }
 
-VegetationTile buildVegetation(const Scene& scene, const Heightfield& terrain, uint32_t threads) {
-    return generateTile(Ground(terrain), buildGrassMap(scene), scene.vegetation, TileCoord{0, 0}, threads);
+VegetationTile buildVegetation(const Scene& scene, const Ground& terrain, uint32_t threads) {
+    const VegetationParams params = vegetationOn(scene, terrain);
+    return generateTile(terrain, buildGrassMap(scene, params.tileSize), params, TileCoord{0, 0}, threads);
 }
 
-Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t width, uint32_t height, double time) {
+Camera sceneCamera(const Scene& scene, const Ground& terrain, uint32_t width, uint32_t height, double time) {
     const CameraParams& c = scene.camera;
     if (c.hasPath) {
         glm::dvec3 position = pathPose(c.path, terrain, time).position;
@@ -257,7 +296,7 @@ Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t widt
 }
 
 std::vector<Collider> sceneColliders(const Scene& scene, const std::vector<ObjectModel>& models,
-                                     const Heightfield& terrain, uint64_t tick) {
+                                     const Ground& terrain, uint64_t tick) {
     const double time = double(tick) * scene.sequence.timeStep;
     std::vector<Collider> colliders = actorColliders(scene.actors, terrain, time, tick, float(scene.sequence.timeStep));
     if (!models.empty()) {

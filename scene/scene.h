@@ -9,10 +9,11 @@
 #include "world/camera.h"
 #include "scene/camera_rig.h"
 #include "vegetation/grass_map.h"
-#include "world/heightfield.h"
+#include "world/ground.h"
 #include "interaction/collision.h"
 #include "world/path.h"
 #include "scene/objects.h"
+#include "scene/terrain.h"
 #include "scene/vehicles.h"
 #include "vegetation/vegetation_params.h"
 #include "vegetation/vegetation_tile.h"
@@ -25,6 +26,26 @@
 #include <string>
 
 namespace sward {
+
+// A heightmap raster as the ground (terrain.heightmap). Samples sit on a regular grid, north up: the raster's top
+// row is the northern edge, its bottom-left sample lies at `origin`.
+struct HeightmapParams {
+    std::string path;           // "file": 16-bit PNG, float EXR, or any single-band raster GDAL reads (GeoTIFF, ...)
+    double metresPerPixel = 0;  // sample spacing; 0 = the file's own georeferencing (GDAL rasters only)
+    double heightScale = 1.0;   // PNG: metres at the full-scale value 65535; other formats: metres per unit
+    double heightOffset = 0.0;  // metres added to every height
+    glm::dvec2 origin{0.0};     // world xy of the south-west sample
+};
+
+// "terrain": the ground plants stand on — the procedural heightfield (default), a heightmap or a glTF mesh.
+struct TerrainParams {
+    enum class Source { Procedural, Heightmap, Mesh };
+    Source source = Source::Procedural;
+    ProceduralTerrainParams procedural; // size, spacing, amplitude, feature_size, octaves (procedural only)
+    HeightmapParams heightmap;
+    std::string meshPath;       // terrain.mesh.file: .gltf / .glb, Y-up as exporters write it
+    GroundSelection selection;  // terrain.mesh.vegetation_materials, terrain.max_slope_deg
+};
 
 struct SunParams {
     double azimuthDegrees = 135.0;        // clockwise from north (+y) towards east (+x)
@@ -73,7 +94,7 @@ struct Scene {
     std::string source = "<built-in>"; // file the scene came from, for messages
     std::string name = "default";
     uint64_t seed = 1;
-    ProceduralTerrainParams terrain;
+    TerrainParams terrain;
     SunParams sun;
     SkyParams sky;
     CameraParams camera;
@@ -82,6 +103,7 @@ struct Scene {
     LodParams lod;
     WindParams wind;
     VegetationParams vegetation;   // "vegetation" object, see vegetation_params.h
+    bool vegetationTileSet = false, vegetationOriginSet = false; // tile_size / world_origin given in the file
     InteractionParams interaction; // "interaction" object, see collision.h (recovery time step = sequence's)
     ActorParams actors;            // "vehicles", "colliders", "gusts"
     std::vector<ObjectParams> objects; // "objects": glTF models on paths (vegetation/objects.h), object k = index k
@@ -103,19 +125,19 @@ Scene loadScene(const std::string& path, std::optional<uint64_t> seed = {},
                 const std::vector<std::string>& allowedAssetDirs = {});
 // The scene's atlas with its coverage-preserving mip chain: the files it names, or the built-in procedural one.
 Atlas buildAtlas(const Scene& scene);
-// Builds the scene's terrain.
-Heightfield buildTerrain(const Scene& scene);
-// The scene's grass map: the file it names, or the procedural meadow (seeded by the scene seed).
-GrassMap buildGrassMap(const Scene& scene);
-// Places the scene's vegetation on its terrain (threads: 0 = all cores). Checks the memory budget first.
-VegetationTile buildVegetation(const Scene& scene, const Heightfield& terrain, uint32_t threads = 0);
+// The scene's grass map over a tile of `tileSize` metres: the file it names, or the procedural meadow (seeded by
+// the scene seed).
+GrassMap buildGrassMap(const Scene& scene, float tileSize);
+// Places the scene's vegetation on its terrain (buildTerrain, vegetationOn; threads: 0 = all cores). Checks the
+// memory budget first.
+VegetationTile buildVegetation(const Scene& scene, const Ground& terrain, uint32_t threads = 0);
 // The scene camera at the given resolution and simulation time, resolved against the terrain.
-Camera sceneCamera(const Scene& scene, const Heightfield& terrain, uint32_t width, uint32_t height, double time = 0.0);
+Camera sceneCamera(const Scene& scene, const Ground& terrain, uint32_t width, uint32_t height, double time = 0.0);
 
 // Every collider acting on the vegetation during tick `tick` (at time tick * sequence.time_step): the scene's
 // vehicles, free colliders and gusts (actorColliders) followed by the objects' node colliders (objectColliders).
 std::vector<Collider> sceneColliders(const Scene& scene, const std::vector<ObjectModel>& models,
-                                     const Heightfield& terrain, uint64_t tick);
+                                     const Ground& terrain, uint64_t tick);
 // True when anything in the scene can touch the vegetation (the interaction simulation must run).
 bool sceneHasColliders(const Scene& scene);
 

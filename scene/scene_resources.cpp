@@ -1,6 +1,7 @@
 #include "scene/scene_resources.h"
 
 #include "common/error.h"
+#include "scene/terrain.h"
 
 namespace sward {
 

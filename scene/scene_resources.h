@@ -7,7 +7,7 @@
 #include "scene/scene.h"
 #include "vegetation/atlas.h"
 #include "vegetation/vegetation_tile.h"
-#include "world/heightfield.h"
+#include "world/ground.h"
 
 #include <optional>
 #include <vector>
@@ -16,7 +16,7 @@ namespace sward {
 
 struct SceneResources {
     Scene scene;
-    Heightfield terrain;
+    Ground terrain;
     std::vector<ObjectModel> models;   // object k of scene.objects
     std::optional<VegetationTile> tile; // CPU copies, present when the vegetation is drawn; createSceneGpu
     std::optional<Atlas> atlas;         // releases them once uploaded, unless the simulation reads the tile

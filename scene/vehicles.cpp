@@ -2,18 +2,18 @@
 
 #include "common/json_reader.h"
 #include "scene/scene_limits.h"
-#include "world/heightfield.h"
+#include "world/ground.h"
 
 #include <cmath>
 
 namespace sward {
 
-std::vector<WheelPose> vehicleWheels(const VehicleParams& v, const Heightfield& terrain, double time) {
+std::vector<WheelPose> vehicleWheels(const VehicleParams& v, const Ground& terrain, double time) {
     PathPose pose = pathPose(v.path, terrain, time);
     return vehicleWheelsAt(v, terrain, glm::dvec2(pose.position), pose.heading);
 }
 
-std::vector<WheelPose> vehicleWheelsAt(const VehicleParams& v, const Heightfield& terrain, glm::dvec2 position,
+std::vector<WheelPose> vehicleWheelsAt(const VehicleParams& v, const Ground& terrain, glm::dvec2 position,
                                        glm::dvec2 heading) {
     glm::dvec2 forward = heading, left(-forward.y, forward.x);
     std::vector<WheelPose> wheels;
@@ -37,7 +37,7 @@ std::vector<Collider> wheelColliders(const VehicleParams& vehicle, const std::ve
     return colliders;
 }
 
-std::vector<Collider> actorColliders(const ActorParams& actors, const Heightfield& terrain, double time, uint64_t tick,
+std::vector<Collider> actorColliders(const ActorParams& actors, const Ground& terrain, double time, uint64_t tick,
                                      float timeStep) {
     std::vector<Collider> colliders;
     for (size_t v = 0; v < actors.vehicles.size(); ++v) {
@@ -55,7 +55,7 @@ std::vector<Collider> actorColliders(const ActorParams& actors, const Heightfiel
         colliders.push_back(c);
     }
     if (actors.gusts.count > 0) {
-        glm::vec2 lo = terrain.origin(), hi = lo + terrain.extent();
+        glm::vec2 lo = terrain.boundsMin(), hi = terrain.boundsMax();
         Aabb area{glm::vec3(lo, terrain.minHeight()), glm::vec3(hi, terrain.maxHeight() + actors.gusts.height)};
         auto gusts = makeGusts(actors.gusts.seed, actors.gusts.count, area, tick, timeStep);
         colliders.insert(colliders.end(), gusts.begin(), gusts.end());

@@ -11,7 +11,7 @@
 
 namespace sward {
 
-class Heightfield;
+class Ground;
 class JsonReader;
 
 struct VehicleParams {
@@ -48,17 +48,17 @@ struct WheelPose {
     glm::vec3 centre;
     glm::vec3 axle; // unit, pointing to the vehicle's left
 };
-std::vector<WheelPose> vehicleWheels(const VehicleParams& vehicle, const Heightfield& terrain, double time);
+std::vector<WheelPose> vehicleWheels(const VehicleParams& vehicle, const Ground& terrain, double time);
 // The same wheels for the vehicle centre at `position` heading along the unit xy vector `heading` (a pose not
 // given by a path, e.g. a vehicle driven from the keyboard in sward-view).
-std::vector<WheelPose> vehicleWheelsAt(const VehicleParams& vehicle, const Heightfield& terrain, glm::dvec2 position,
+std::vector<WheelPose> vehicleWheelsAt(const VehicleParams& vehicle, const Ground& terrain, glm::dvec2 position,
                                        glm::dvec2 heading);
 // One capsule collider per wheel (along the axle), ids 1000 * (index + 1) + w: what actorColliders uses.
 std::vector<Collider> wheelColliders(const VehicleParams& vehicle, const std::vector<WheelPose>& wheels, uint32_t index);
 
 // Every collider of the scene's actors at simulation time `time` (tick = time / timeStep for gusts), with
 // stable ids: vehicle v wheel w -> 1000 * (v + 1) + w, free collider i -> 100000 + i, gusts from 0x80000000.
-std::vector<Collider> actorColliders(const ActorParams& actors, const Heightfield& terrain, double time, uint64_t tick,
+std::vector<Collider> actorColliders(const ActorParams& actors, const Ground& terrain, double time, uint64_t tick,
                                      float timeStep);
 
 // Reads the "vehicles", "colliders" and "gusts" keys (each optional) of the scene object `scene`; the gusts'

@@ -1,22 +1,25 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Terrain: a static triangle mesh of the heightfield, positions already in world space.
+// Terrain: the static ground mesh (heightfield grid or the scene's glTF ground), positions already in world space.
 #include "shared/frame.glsl"
 
 layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain, kPassTruth or kPassShadow
 
 layout(location = 0) in vec4 inPosition;
 layout(location = 1) in vec4 inNormal;
+layout(location = 2) in vec4 inAlbedo;
 
 layout(location = 0) out vec3 outWorld;
 layout(location = 1) out vec3 outNormal;
 layout(location = 2) out float outViewDepth;
+layout(location = 3) out vec4 outAlbedo;
 
 void main() {
     vec4 world = vec4(inPosition.xyz, 1.0);
     gl_Position = (PASS == kPassShadow ? frame.shadowViewProj : frame.viewProj) * world;
     outWorld = world.xyz;
     outNormal = inNormal.xyz;
+    outAlbedo = inAlbedo;
     // Planar depth along the optical axis: view space uses OpenCV camera axes (z forward).
     outViewDepth = (frame.view * world).z;
 }

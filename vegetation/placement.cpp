@@ -144,7 +144,8 @@ void placeCategory(const Ground& ground, const VegetationParams& p, const FieldF
             const uint32_t qy = std::min(uint32_t(ly * frame.stepsPerMetre), 65535u);
             const glm::vec2 xy = decodePlanarPosition(qx, qy, frame.origin, frame.step);
             const std::optional<SurfacePoint> ground_ = ground.surface(xy);
-            if (!ground_) continue; // no ground here: the plant does not exist
+            // No ground here, or ground the scene keeps bare (material, slope): the plant does not exist.
+            if (!ground_ || !ground_->plantable) continue;
             const glm::vec3 blended = worldUp + (ground_->normal - worldUp) * p.upNormalBlend;
             const double sizeScale = 1.0 + category.heightVariation * (2.0 * unitDouble(g) - 1.0);
             const uint32_t size = std::clamp(uint32_t(sizeScale * gpu::kPlantSizeDivisor + 0.5), 1u, 255u);

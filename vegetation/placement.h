@@ -38,7 +38,8 @@ void checkMemoryBudget(const GrassMap& map, const VegetationParams& params);
 void checkPlantIdSpace(uint64_t plants, const std::string& what);
 
 // Generates one field alone. Requires valid params (validateVegetationParams) and coord < fieldsPerTile; throws
-// sward::Error if this field alone exceeds the memory budget. Plants where the ground has no surface are dropped.
+// sward::Error if this field alone exceeds the memory budget. Plants where the ground has no surface, or one
+// its GroundSelection keeps bare, are dropped.
 FieldVegetation generateField(const Ground& ground, const GrassMap& map, const VegetationParams& params, TileCoord tile,
                               FieldCoord coord);
 

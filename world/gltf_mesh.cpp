@@ -204,6 +204,17 @@ struct GltfReader {
         return n;
     }
 
+    // A material's linear RGBA base colour factor (glTF's default material: white).
+    glm::vec4 baseColor(int material) const {
+        if (material < 0) return glm::vec4(1.0f);
+        if (size_t(material) >= model.materials.size()) fail("a primitive refers to a missing material");
+        const std::vector<double>& f = model.materials[size_t(material)].pbrMetallicRoughness.baseColorFactor;
+        if (f.size() != 4) fail("baseColorFactor must have 4 components");
+        for (double v : f)
+            if (!(v >= 0.0 && v <= 1.0)) fail("baseColorFactor components must lie in [0, 1]");
+        return glm::vec4(float(f[0]), float(f[1]), float(f[2]), float(f[3]));
+    }
+
     // The default scene's root nodes, or none when the file has no scene.
     std::vector<int> rootNodes() const {
         if (model.scenes.empty()) return {};
@@ -311,18 +322,41 @@ tinygltf::Model readFile(const std::string& path, const char* kind, const AssetP
     return model;
 }
 
-// Ground: every primitive flattened into one world-space mesh.
+// Ground: every primitive flattened into one world-space mesh, with its material per triangle and its normals
+// (when every primitive has them).
 struct MeshBuilder {
     const GltfReader& reader;
     TriangleMesh mesh;
+    std::vector<int> materialOf;     // glTF material index + 1 (0: the default material) -> mesh.materials index
+    bool normalsEverywhere = true;   // every primitive so far had NORMAL
+
+    uint32_t material(int gltfMaterial) {
+        const glm::vec4 color = reader.baseColor(gltfMaterial);
+        if (materialOf.empty()) materialOf.assign(reader.model.materials.size() + 1, -1);
+        int& index = materialOf[size_t(gltfMaterial + 1)];
+        if (index < 0) {
+            index = int(mesh.materials.size());
+            mesh.materials.push_back({gltfMaterial < 0 ? "" : reader.model.materials[size_t(gltfMaterial)].name, color});
+        }
+        return uint32_t(index);
+    }
 
     void addPrimitive(const tinygltf::Primitive& prim, const glm::dmat4& transform) {
         RawPrimitive raw;
-        if (!reader.readPrimitive(prim, false, raw)) return;
+        if (!reader.readPrimitive(prim, true, raw)) return;
         const uint32_t base = uint32_t(mesh.positions.size());
         for (const glm::vec3& v : raw.positions)
             mesh.positions.push_back(glm::vec3(toZUp(glm::dvec3(transform * glm::dvec4(glm::dvec3(v), 1.0)))));
         for (uint32_t index : raw.indices) mesh.indices.push_back(base + index);
+        mesh.triangleMaterial.insert(mesh.triangleMaterial.end(), raw.indices.size() / 3, material(prim.material));
+        normalsEverywhere = normalsEverywhere && !raw.normals.empty();
+        // Normals transform with the inverse transpose; a degenerate one falls back to up.
+        const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(kZUpFromYUp * transform)));
+        for (const glm::vec3& n : raw.normals) {
+            const glm::dvec3 w = normalMatrix * glm::dvec3(n);
+            const double length = glm::length(w);
+            mesh.normals.push_back(length > 0.0 ? glm::vec3(w / length) : glm::vec3(0, 0, 1));
+        }
     }
 
     void addNode(int index, const glm::dmat4& parent, int depth) {
@@ -334,6 +368,11 @@ struct MeshBuilder {
                 addPrimitive(prim, transform);
         for (int child : node.children) addNode(child, transform, depth + 1);
     }
+
+    TriangleMesh finish() {
+        if (!normalsEverywhere) mesh.normals.clear(); // flat shading for all rather than mixed
+        return std::move(mesh);
+    }
 };
 
 // Objects: the node tree kept, each mesh in its node's own frame.
@@ -341,21 +380,13 @@ struct ModelBuilder {
     const GltfReader& reader;
     ObjectModel result;
 
-    glm::vec4 baseColor(int material) const {
-        if (material < 0) return glm::vec4(1.0f);
-        if (size_t(material) >= reader.model.materials.size()) reader.fail("a primitive refers to a missing material");
-        const std::vector<double>& f = reader.model.materials[size_t(material)].pbrMetallicRoughness.baseColorFactor;
-        if (f.size() != 4) reader.fail("baseColorFactor must have 4 components");
-        return glm::vec4(float(f[0]), float(f[1]), float(f[2]), float(f[3]));
-    }
-
     // `mirrored`: the node's transform flips handedness, so the winding is reversed to keep fronts outside.
     void addMesh(int mesh, ModelNode& target, bool mirrored) {
         for (const tinygltf::Primitive& prim : reader.model.meshes[size_t(mesh)].primitives) {
             RawPrimitive raw;
             if (!reader.readPrimitive(prim, true, raw) || raw.indices.empty()) continue;
             ModelPrimitive out;
-            out.baseColor = baseColor(prim.material);
+            out.baseColor = reader.baseColor(prim.material);
             if (mirrored)
                 for (size_t t = 0; t < raw.indices.size(); t += 3) std::swap(raw.indices[t + 1], raw.indices[t + 2]);
             if (raw.normals.empty()) {
@@ -415,7 +446,7 @@ TriangleMesh loadGltfMesh(const std::string& path, const AssetPolicy& assets) {
             for (const tinygltf::Primitive& prim : mesh.primitives) builder.addPrimitive(prim, glm::dmat4(1.0));
     }
     if (builder.mesh.indices.empty()) reader.fail("the file contains no triangles");
-    return std::move(builder.mesh);
+    return builder.finish();
 }
 
 int ObjectModel::findNode(const std::string& name) const {

@@ -16,7 +16,9 @@
 namespace sward {
 
 // Loads every triangle primitive reachable from the default scene of a .gltf (embedded or external buffers) or
-// .glb file, with node transforms applied and glTF's Y-up converted to sward's Z-up: (x, y, z) -> (x, -z, y).
+// .glb file, with node transforms applied and glTF's Y-up converted to sward's Z-up: (x, y, z) -> (x, -z, y); each
+// triangle keeps its material (name and base colour factor; glTF's default material is named ""), and the mesh
+// keeps the files' normals when every primitive has them.
 // Throws sward::Error naming the file for a missing or malformed file, out-of-range accessors or indices, strip/fan
 // primitives, sparse accessors, an extension in extensionsRequired (e.g. Draco compression), a non-finite node
 // transform or vertex, a composed node transform with an entry beyond 1e8 or a vertex beyond 1e8 m, or a file

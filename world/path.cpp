@@ -2,7 +2,7 @@
 
 #include "common/error.h"
 #include "common/json_reader.h"
-#include "world/heightfield.h"
+#include "world/ground.h"
 
 #include <cmath>
 
@@ -38,14 +38,14 @@ std::pair<glm::dvec2, glm::dvec2> pointAt(const PathParams& path, double s) {
 
 } // namespace
 
-PathPose pathPose(const PathParams& path, const Heightfield& terrain, double time) {
+PathPose pathPose(const PathParams& path, const Ground& terrain, double time) {
     double s = std::max(time - path.startTime, 0.0) * path.speed;
     auto [xy, heading] = pointAt(path, s);
     double z = double(terrain.height(glm::vec2(xy))) + path.heightAboveGround;
     return {glm::dvec3(xy, z), heading, s};
 }
 
-glm::dvec3 pathPointAhead(const PathParams& path, const Heightfield& terrain, double time, double ahead) {
+glm::dvec3 pathPointAhead(const PathParams& path, const Ground& terrain, double time, double ahead) {
     double s = std::max(time - path.startTime, 0.0) * path.speed + ahead;
     auto [xy, heading] = pointAt(path, s);
     if (!path.loop && s > pathLength(path)) xy += heading * (s - pathLength(path)); // look beyond the end

@@ -12,7 +12,7 @@
 
 namespace sward {
 
-class Heightfield;
+class Ground;
 
 struct PathParams {
     std::vector<glm::dvec2> points;  // world xy waypoints, metres; at least 2 for motion
@@ -29,9 +29,9 @@ struct PathPose {
 };
 
 // Pose at simulation time `time`. Requires at least one point.
-PathPose pathPose(const PathParams& path, const Heightfield& terrain, double time);
+PathPose pathPose(const PathParams& path, const Ground& terrain, double time);
 // Point `ahead` metres further along the path from the pose at `time` (clamped to the end unless looping).
-glm::dvec3 pathPointAhead(const PathParams& path, const Heightfield& terrain, double time, double ahead);
+glm::dvec3 pathPointAhead(const PathParams& path, const Ground& terrain, double time, double ahead);
 // Total polyline length in metres.
 double pathLength(const PathParams& path);
 

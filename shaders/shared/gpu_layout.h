@@ -74,6 +74,8 @@ struct DebugLineVertex {
 struct TerrainVertex {
     vec4 positionHeight; // xyz world position, w unused
     vec4 normal;         // xyz smooth normal, w unused
+    vec4 albedo;         // rgb: linear base colour of a mesh ground's material; a = 1 draws it, a = 0 the
+                         // procedural soil / turf of heightfield grounds
 };
 
 // Vegetation expansion: the three levels of detail of paper Figure 3.
@@ -176,7 +178,7 @@ static_assert(sizeof(PlantContact) == 16);
 static_assert(sizeof(RecoveryConstants) == 48);
 static_assert(sizeof(ScanConstants) == 8);
 static_assert(sizeof(BakeConstants) == 16);
-static_assert(sizeof(TerrainVertex) == 32);
+static_assert(sizeof(TerrainVertex) == 48);
 } // namespace sward::gpu
 #endif
 #undef SWARD_CONST

@@ -38,7 +38,7 @@ template <typename T> std::vector<T> readAll(Context& ctx, const Buffer& buffer,
 
 struct SceneSetup {
     Scene scene;
-    Heightfield terrain;
+    Ground terrain;
     VegetationTile tile;
     Atlas atlas;
     explicit SceneSetup(const nlohmann::json& json)

@@ -30,7 +30,7 @@ bool sameBytes(const std::vector<gpu::PlantDynamic>& a, const std::vector<gpu::P
 
 // Colliders of tick t in the world-driven tests: a sphere rolling through field 0 (x, y in [0, 25)) for the first
 // `rolling` ticks, sitting on the terrain.
-std::vector<Collider> rollingSphere(const Heightfield& terrain, uint64_t t, uint64_t rolling) {
+std::vector<Collider> rollingSphere(const Ground& terrain, uint64_t t, uint64_t rolling) {
     if (t >= rolling) return {};
     glm::vec2 xy(4.0f + 0.4f * float(t), 12.0f);
     return {makeSphere(7, {xy, terrain.height(xy) + 0.3f}, 0.6f, 0.4f)};
@@ -127,7 +127,7 @@ TEST_F(GpuTest, IdleFieldsAreNeverDispatched) {
 // the field has recovered it turns inactive, its plants are back at rest and no tick records GPU work any more.
 TEST_F(GpuTest, WorldLoopDispatchesOnlyTouchedFieldsAndStopsAfterRecovery) {
     Scene scene = smallScene();
-    Heightfield terrain = buildTerrain(scene);
+    Ground terrain = buildTerrain(scene);
     VegetationTile tile = buildVegetation(scene, terrain, 2);
     ASSERT_EQ(tile.fields.size(), 4u);
     VegetationBuffers buffers(*ctx, tile);
@@ -181,7 +181,7 @@ TEST_F(GpuTest, WorldLoopDispatchesOnlyTouchedFieldsAndStopsAfterRecovery) {
 // Save -> restore -> continue with the GPU holding the dynamic state: bitwise identical to an uninterrupted run.
 TEST_F(GpuTest, SaveRestoreContinueOnTheGpuIsBitwiseIdentical) {
     Scene scene = smallScene();
-    Heightfield terrain = buildTerrain(scene);
+    Ground terrain = buildTerrain(scene);
     VegetationTile tile = buildVegetation(scene, terrain, 2);
     const InteractionParams params;
     const std::string path = sward::test::tempDir("recovery-state") + "/state.bin";

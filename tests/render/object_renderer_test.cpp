@@ -180,7 +180,7 @@ protected:
     }
 
     std::string dir;
-    Heightfield terrain{51, 51, 2.0f, glm::vec2(0.0f), std::vector<float>(51 * 51, kGround)};
+    Ground terrain{Heightfield{51, 51, 2.0f, glm::vec2(0.0f), std::vector<float>(51 * 51, kGround)}};
     Camera camera = Camera::lookAt({50.0, 47.5, 2.0}, {50.0, 50.0, 1.2}, {0, 0, 1}, 50.0, kWidth, kHeight);
 };
 

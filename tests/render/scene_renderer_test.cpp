@@ -37,7 +37,7 @@ protected:
         return renderFrame(*ctx, renderer, camera);
     }
     Scene scene = testScene();
-    Heightfield terrain = buildTerrain(scene);
+    Ground terrain = buildTerrain(scene);
     Camera camera = sceneCamera(scene, terrain, kWidth, kHeight);
 };
 

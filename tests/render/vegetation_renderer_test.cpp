@@ -49,7 +49,7 @@ protected:
     }
 
     Scene scene = smallMeadow();
-    Heightfield terrain = buildTerrain(scene);
+    Ground terrain = buildTerrain(scene);
     Camera camera = sceneCamera(scene, terrain, kWidth, kHeight);
     VegetationTile tile;
     Atlas atlas;

@@ -19,12 +19,12 @@ using sward::test::tempDir;
 namespace {
 
 // A plane z = c + gx * x + gy * y sampled on a grid: the rendered triangulation is exactly that plane.
-Heightfield planeTerrain(float gx, float gy, float c = 5.0f) {
+Ground planeTerrain(float gx, float gy, float c = 5.0f) {
     const uint32_t n = 51;
     std::vector<float> heights;
     for (uint32_t j = 0; j < n; ++j)
         for (uint32_t i = 0; i < n; ++i) heights.push_back(c + gx * float(i) * 2.0f + gy * float(j) * 2.0f);
-    return Heightfield(n, n, 2.0f, glm::vec2(0.0f), std::move(heights));
+    return Ground(Heightfield(n, n, 2.0f, glm::vec2(0.0f), std::move(heights)));
 }
 
 std::string writeRover() {
@@ -122,7 +122,7 @@ TEST(Rover, ModelHasNamedNodesSizeAndFewTriangles) {
 }
 
 TEST(Objects, NodeTransformsFollowTheHeadingOnFlatGround) {
-    const Heightfield flat = planeTerrain(0.0f, 0.0f, 2.0f);
+    const Ground flat = planeTerrain(0.0f, 0.0f, 2.0f);
     const std::string model = writeRover();
     const ObjectModel rover = loadGltfModel(model);
     // Driving east (+x): left is north (+y).
@@ -159,7 +159,7 @@ TEST(Objects, NodeTransformsFollowTheHeadingOnFlatGround) {
 
 TEST(Objects, FollowsThePathAndRestsOnSlopedTerrain) {
     // Uphill towards +x (10 %) and +y (5 %): the fitted plane is the terrain itself.
-    const Heightfield slope = planeTerrain(0.1f, 0.05f);
+    const Ground slope = planeTerrain(0.1f, 0.05f);
     const std::string model = writeRover();
     const ObjectModel rover = loadGltfModel(model);
     const ObjectParams object = roverObject(model, {{"points", {{20, 20}, {60, 60}}}, {"speed", 1.5}});
@@ -188,7 +188,7 @@ TEST(Objects, FollowsThePathAndRestsOnSlopedTerrain) {
 }
 
 TEST(Objects, CollidersRideOnTheirNodes) {
-    const Heightfield terrain = makeProceduralTerrain({.size = 100.0f, .spacing = 2.0f, .amplitude = 6.0f});
+    const Ground terrain(makeProceduralTerrain({.size = 100.0f, .spacing = 2.0f, .amplitude = 6.0f}));
     const std::string model = writeRover();
     const nlohmann::json json = nlohmann::json::parse(R"([
         {"name": "a", "model": ")" + model + R"(", "path": {"points": [[30, 30], [70, 40]], "speed": 1}},

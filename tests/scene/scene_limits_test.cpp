@@ -51,7 +51,7 @@ TEST(SceneLimits, ObjectCountIsCheckedBeforeAnyObjectIsParsed) {
 TEST(SceneLimits, TheIssuesDenseMeadowIsRefusedBeforePlacingItsPlants) {
     // density_multiplier 12 on the default meadow predicts ~33 M plants: classes and instance ids wrapped before.
     const Scene scene = parseScene({{"vegetation", {{"density_multiplier", 12}}}}, "s.json");
-    const Heightfield terrain = buildTerrain(scene);
+    const Ground terrain = buildTerrain(scene);
     const std::string error = errorOf([&] { buildVegetation(scene, terrain, 1); });
     EXPECT_NE(error.find("its densities predict"), std::string::npos) << error;
     EXPECT_NE(error.find("plants per tile, over the limit of 15999999"), std::string::npos) << error;

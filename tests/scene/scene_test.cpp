@@ -27,7 +27,7 @@ std::string errorOf(const char* json) {
 TEST(Scene, DefaultsAreValid) {
     Scene scene = parseScene(nlohmann::json::object(), "empty");
     EXPECT_EQ(scene.render.samples, 4u);
-    EXPECT_GT(scene.terrain.size, 0.0f);
+    EXPECT_GT(scene.terrain.procedural.size, 0.0f);
 }
 
 TEST(Scene, RejectsBadValuesNamingFileAndKey) {
@@ -95,7 +95,7 @@ TEST(Scene, StereoRigKeysAreReadAndChecked) {
         R"({"camera": {"baseline": 0.3, "min_depth": 2, "focal_length_px": 500, "principal_point": [300, 200]}})"), "s.json");
     EXPECT_DOUBLE_EQ(scene.camera.rig.baseline, 0.3);
     EXPECT_DOUBLE_EQ(scene.camera.rig.minDepth, 2.0);
-    Heightfield terrain = buildTerrain(scene);
+    Ground terrain = buildTerrain(scene);
     RigCameras rig = sceneRig(scene, terrain, {}, 640, 480, 0.0);
     EXPECT_DOUBLE_EQ(rig.left.fx, 500.0);
     EXPECT_DOUBLE_EQ(rig.left.cx, 300.0);

@@ -2,6 +2,7 @@
 // scene vehicles.
 #include "world/heightfield.h"
 #include "scene/vehicles.h"
+#include "world/ground.h"
 
 #include <gtest/gtest.h>
 
@@ -9,18 +10,18 @@
 
 namespace {
 
-sward::Heightfield hills() {
+sward::Ground hills() {
     sward::ProceduralTerrainParams p;
     p.size = 60.0f;
     p.spacing = 2.0f;
     p.amplitude = 6.0f;
-    return sward::makeProceduralTerrain(p);
+    return sward::Ground(sward::makeProceduralTerrain(p));
 }
 
 } // namespace
 
 TEST(VehiclePose, WheelsAtAPoseMatchThePathDrivenWheels) {
-    sward::Heightfield terrain = hills();
+    sward::Ground terrain = hills();
     sward::VehicleParams v;
     v.path.points = {{10.0, 12.0}, {40.0, 31.0}};
     v.path.speed = 2.0;
@@ -36,7 +37,7 @@ TEST(VehiclePose, WheelsAtAPoseMatchThePathDrivenWheels) {
 }
 
 TEST(VehiclePose, WheelCollidersAreAxleCapsulesWithStableIds) {
-    sward::Heightfield terrain = hills();
+    sward::Ground terrain = hills();
     sward::VehicleParams v;
     v.wheelWidth = 0.5f; // wider than the wheel's diameter: a capsule with a real segment
     auto wheels = sward::vehicleWheelsAt(v, terrain, {20.0, 20.0}, {0.0, 1.0});

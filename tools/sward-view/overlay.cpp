@@ -1,6 +1,6 @@
 #include "overlay.h"
 
-#include "world/heightfield.h"
+#include "world/ground.h"
 #include "vegetation/vegetation_tile.h"
 
 #include <cmath>
@@ -46,7 +46,7 @@ void Overlay::box(glm::vec3 lo, glm::vec3 hi, glm::vec3 color) {
     for (auto& e : edges) line(c[e[0]], c[e[1]], color);
 }
 
-void Overlay::fields(const VegetationTile& tile, const Heightfield& terrain, const std::vector<uint8_t>& active,
+void Overlay::fields(const VegetationTile& tile, const Ground& terrain, const std::vector<uint8_t>& active,
                      glm::vec3 eye, float radius, float lift) {
     const glm::vec3 activeColor(6.0f, 1.6f, 0.1f), idleColor(0.3f, 0.6f, 2.0f);
     const int steps = std::max(1, int(tile.fieldSize / 2.5f)); // drape the edges over the terrain every ~2.5 m

@@ -17,7 +17,7 @@
 
 namespace sward {
 
-class Heightfield;
+class Ground;
 struct VegetationTile;
 
 class Overlay {
@@ -32,7 +32,7 @@ public:
     void box(glm::vec3 lo, glm::vec3 hi, glm::vec3 color);
     // Field outlines draped over the terrain `lift` metres up, within `radius` of `eye`: active fields bright
     // orange, the others dim blue.
-    void fields(const VegetationTile& tile, const Heightfield& terrain, const std::vector<uint8_t>& active,
+    void fields(const VegetationTile& tile, const Ground& terrain, const std::vector<uint8_t>& active,
                 glm::vec3 eye, float radius, float lift);
     // Bounding boxes of the non-empty clusters within `radius` of `eye`.
     void clusters(const VegetationTile& tile, glm::vec3 eye, float radius);

@@ -3,7 +3,7 @@
 #include "fly_camera.h"
 #include "overlay.h"
 #include "render/object_renderer.h"
-#include "world/heightfield.h"
+#include "world/ground.h"
 
 #include <GLFW/glfw3.h>
 
@@ -23,7 +23,7 @@ void Rover::step(double throttle, double steer, double autodrive, double dt) {
     position += direction() * (speed * dt);
 }
 
-void RoverControl::spawn(const FlyCamera& camera, const Heightfield& terrain) {
+void RoverControl::spawn(const FlyCamera& camera, const Ground& terrain) {
     glm::dvec3 eye = camera.position(), forward = camera.forward();
     glm::dvec2 flat = glm::length(glm::dvec2(forward)) > 1e-6 ? glm::normalize(glm::dvec2(forward)) : glm::dvec2(1, 0);
     std::optional<double> hit = terrain.raycast(eye, forward, 300.0);
@@ -39,7 +39,7 @@ void RoverControl::step(GLFWwindow* window, bool keyboard, double autodrive, dou
     rover_.step(throttle, steer, autodrive, dt);
 }
 
-std::vector<Collider> RoverControl::wheelColliders(const Heightfield& terrain, uint32_t index) const {
+std::vector<Collider> RoverControl::wheelColliders(const Ground& terrain, uint32_t index) const {
     return sward::wheelColliders(vehicle_, vehicleWheelsAt(vehicle_, terrain, rover_.position, rover_.direction()),
                                  index);
 }
@@ -49,7 +49,7 @@ bool RoverControl::isWheel(const Collider& c, uint32_t index) {
     return c.id >= first && c.id < first + 4;
 }
 
-Camera RoverControl::followCamera(const Heightfield& terrain, double fovYDegrees, uint32_t width,
+Camera RoverControl::followCamera(const Ground& terrain, double fovYDegrees, uint32_t width,
                                   uint32_t height) const {
     glm::dvec2 back = glm::dvec2(rover_.position) - rover_.direction() * 6.0;
     glm::dvec3 eye(back, terrain.height(glm::vec2(back)) + 3.5);
@@ -57,7 +57,7 @@ Camera RoverControl::followCamera(const Heightfield& terrain, double fovYDegrees
     return Camera::lookAt(eye, target, glm::dvec3(0, 0, 1), fovYDegrees, width, height);
 }
 
-void RoverControl::show(ObjectRenderer* objects, std::optional<size_t> model, const Heightfield& terrain,
+void RoverControl::show(ObjectRenderer* objects, std::optional<size_t> model, const Ground& terrain,
                         Overlay& overlay) const {
     if (objects && model) {
         objects->setVisible(*model, active_);
@@ -67,7 +67,7 @@ void RoverControl::show(ObjectRenderer* objects, std::optional<size_t> model, co
     }
 }
 
-void RoverControl::outline(const Heightfield& terrain, Overlay& overlay) const {
+void RoverControl::outline(const Ground& terrain, Overlay& overlay) const {
     // No rover model installed: a box over its wheels, so it can be seen while it drives.
     glm::dvec2 f = rover_.direction(), l(-f.y, f.x);
     float z = terrain.height(glm::vec2(rover_.position)) + 2.0f * vehicle_.wheelRadius;

@@ -19,7 +19,7 @@ struct GLFWwindow;
 namespace sward {
 
 class FlyCamera;
-class Heightfield;
+class Ground;
 class ObjectRenderer;
 class Overlay;
 
@@ -39,24 +39,24 @@ public:
     void setVehicle(const VehicleParams& vehicle) { vehicle_ = vehicle; }
     // Places the rover where `camera` looks (on the ground within 300 m), else 6 m ahead, heading the way it
     // looks; from then on it is active (collides and is drawn).
-    void spawn(const FlyCamera& camera, const Heightfield& terrain);
+    void spawn(const FlyCamera& camera, const Ground& terrain);
     void deactivate() { active_ = false; }
     bool active() const { return active_; }
 
     // One simulation tick: arrow keys of `window` drive it when `keyboard` (else no throttle, no steering).
     void step(GLFWwindow* window, bool keyboard, double autodrive, double dt);
     // The wheel colliders on `terrain`, numbered as vehicle `index` (wheelColliders' ids).
-    std::vector<Collider> wheelColliders(const Heightfield& terrain, uint32_t index) const;
+    std::vector<Collider> wheelColliders(const Ground& terrain, uint32_t index) const;
     // True for the ids wheelColliders(terrain, index) gives.
     static bool isWheel(const Collider& c, uint32_t index);
     // Behind and above the rover, looking just over it.
-    Camera followCamera(const Heightfield& terrain, double fovYDegrees, uint32_t width, uint32_t height) const;
+    Camera followCamera(const Ground& terrain, double fovYDegrees, uint32_t width, uint32_t height) const;
     // Shows the rover as model `model` of `objects` (hidden while inactive), or without a model as an outline
     // box in `overlay`.
-    void show(ObjectRenderer* objects, std::optional<size_t> model, const Heightfield& terrain, Overlay& overlay) const;
+    void show(ObjectRenderer* objects, std::optional<size_t> model, const Ground& terrain, Overlay& overlay) const;
 
 private:
-    void outline(const Heightfield& terrain, Overlay& overlay) const;
+    void outline(const Ground& terrain, Overlay& overlay) const;
 
     Rover rover_;
     VehicleParams vehicle_;
