@@ -23,7 +23,12 @@ Heightfield loadHeightmap(const Scene& scene) {
 
 Ground meshGround(const Scene& scene) {
     const TerrainParams& t = scene.terrain;
-    TriangleMesh mesh = loadGltfMesh(t.meshPath, scene.assets);
+    TriangleMesh mesh;
+    try {
+        mesh = loadGltfMesh(t.meshPath, scene.assets);
+    } catch (const Error& e) {
+        throw Error(scene.source + ": 'terrain.mesh': " + e.what());
+    }
     try {
         Ground ground(std::move(mesh), t.selection);
         if (ground.plantableTriangles() == 0)

@@ -127,6 +127,23 @@ def with_object(model_name, model_data):
     return edit
 
 
+def ground_mesh(model_data, **mesh_keys):
+    """The tiny scene on a glTF ground `model_data` (dict: glTF JSON; None: no file) with terrain.mesh keys."""
+    def edit(scene, env):
+        if model_data is not None:
+            env.write("ground.gltf", json.dumps(model_data))
+        scene["terrain"] = {"mesh": {"file": "ground.gltf", **mesh_keys}}
+    return edit
+
+
+def tilted(gltf):
+    """The one triangle lying 45 degrees steep (glTF y is up)."""
+    positions = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, -1)
+    data = positions + struct.pack("<3H", 0, 1, 2) + b"\0\0"
+    gltf["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(data).decode()
+    gltf["accessors"][0]["min"], gltf["accessors"][0]["max"] = [0, 0, -1], [1, 1, 0]
+
+
 def gltf_case(name, exit, error, **changes):
     return Case(name, "sward-render", scene_with(with_object("model.gltf", triangle_gltf(**changes))), exit, error)
 
@@ -290,6 +307,31 @@ CASES = [
         set_key(["camera", "fov_y_deg"], "HUGE")(s, env), json.dumps(s).replace('"HUGE"', "1e400"))[1]), 1,
         r"'camera\.fov_y_deg' is outside the range"),
     Case("duplicate scene key", "sward-render", duplicate_seed, 1, r"seed"),
+    # Ground: heightmaps and glTF meshes.
+    Case("missing ground mesh file", "sward-render", scene_with(ground_mesh(None)), 1, r"ground\.gltf"),
+    Case("ground mesh seen only edge-on", "sward-render", scene_with(ground_mesh(triangle_gltf())), 1,
+         r"terrain\.mesh.*visible from above"),
+    Case("ground mesh material not in the file", "sward-render",
+         scene_with(ground_mesh(triangle_gltf(t=tilted), vegetation_materials=["grass"])), 1,
+         r"terrain\.mesh.*material 'grass' is not in the ground mesh"),
+    Case("ground mesh with no surface for plants", "sward-render",
+         scene_with(lambda s, env: (ground_mesh(triangle_gltf(t=tilted))(s, env),
+                                    s["terrain"].update(max_slope_deg=30), s)[-1]), 1,
+         r"terrain\.mesh.*no surface of it may carry vegetation"),
+    Case("terrain with both heightmap and mesh", "sward-render",
+         scene_with(set_key(["terrain"], {"mesh": {"file": "a.gltf"}, "heightmap": {"file": "b.png"}})), 1,
+         r"either 'heightmap' or 'mesh'"),
+    Case("procedural key beside a ground mesh", "sward-render",
+         scene_with(lambda s, env: (ground_mesh(triangle_gltf(t=tilted))(s, env),
+                                    s["terrain"].update(amplitude=3), s)[-1]), 1,
+         r"'terrain\.amplitude' applies to the procedural terrain only"),
+    Case("missing heightmap file", "sward-render",
+         scene_with(set_key(["terrain"], {"heightmap": {"file": "none.png", "metres_per_pixel": 1}})), 1,
+         r"terrain\.heightmap.*none\.png"),
+    Case("heightmap 8-bit PNG", "sward-render",
+         scene_with(lambda s, env: (env.write("dem.png", png_bytes()),
+                                    s.update(terrain={"heightmap": {"file": "dem.png", "metres_per_pixel": 1}}), s)[-1]),
+         1, r"dem\.png.*8-bit"),
     # Grass maps.
     Case("missing grass_map file", "sward-render", scene_with(set_key(["grass_map"], "none.png")), 1,
          r"none\.png"),
