@@ -9,6 +9,7 @@
 #include "world/camera.h"
 #include "scene/camera_rig.h"
 #include "vegetation/grass_map.h"
+#include "vegetation/land_cover.h"
 #include "world/heightfield.h"
 #include "interaction/collision.h"
 #include "world/path.h"
@@ -87,13 +88,14 @@ struct Scene {
     std::vector<ObjectParams> objects; // "objects": glTF models on paths (vegetation/objects.h), object k = index k
     bool vegetationEnabled = true; // false: bare ground (paired studies, --no-vegetation)
     std::string grassMapPath;      // "grass_map", resolved against the scene's folder; empty = procedural meadow
+    LandCoverParams landCover;     // "land_cover" (scene/land_cover_params.h): file resolved likewise; empty = none
     std::string atlasPngPath, atlasJsonPath; // "atlas": {"png", "json"}; empty = the built-in procedural atlas
     AssetPolicy assets; // where the files it names may be read from (loadScene: the scene file's folder)
 };
 
 // Parses and validates a scene; `source` names it in error messages, and relative file paths are taken against
-// its folder. Every file the scene names (objects' models and their buffers, grass_map, atlas) must pass `assets`
-// (default: unconfined); the check runs here, so a refused path fails before anything is loaded.
+// its folder. Every file the scene names (objects' models and their buffers, grass_map, land_cover.file, atlas) must
+// pass `assets` (default: unconfined); the check runs here, so a refused path fails before anything is loaded.
 Scene parseScene(const nlohmann::json& json, const std::string& source, const AssetPolicy& assets = {});
 // Reads and parses a scene file ("" = the built-in default scene); throws sward::Error naming the file for missing
 // files and bad JSON. `seed`, when set, replaces the scene's seed before parsing, so every seed derived from it
@@ -105,7 +107,8 @@ Scene loadScene(const std::string& path, std::optional<uint64_t> seed = {},
 Atlas buildAtlas(const Scene& scene);
 // Builds the scene's terrain.
 Heightfield buildTerrain(const Scene& scene);
-// The scene's grass map: the file it names, or the procedural meadow (seeded by the scene seed).
+// The scene's grass map: the file it names, the one made from its land cover, or the procedural meadow (seeded by the
+// scene seed).
 GrassMap buildGrassMap(const Scene& scene);
 // Places the scene's vegetation on its terrain (threads: 0 = all cores). Checks the memory budget first.
 VegetationTile buildVegetation(const Scene& scene, const Heightfield& terrain, uint32_t threads = 0);
