@@ -129,6 +129,7 @@ nlohmann::json jobFingerprint(const Scene& scene, const JobPlan& plan, const Ren
         if (!path.empty() && std::filesystem::is_regular_file(path, ec)) assets[key] = sha256File(path);
     };
     asset("grass_map", scene.grassMapPath);
+    asset("land_cover.file", scene.landCover.file);
     asset("atlas.png", scene.atlasPngPath);
     asset("atlas.json", scene.atlasJsonPath);
     for (size_t k = 0; k < scene.objects.size(); ++k)

@@ -3,6 +3,7 @@
 #include "common/error.h"
 #include "common/json_reader.h"
 #include "common/parse_number.h"
+#include "scene/land_cover_params.h"
 #include "scene/scene_limits.h"
 #include "world/ground.h"
 #include "vegetation/placement.h"
@@ -198,7 +199,17 @@ void readActors(JsonReader& root, Scene& scene) {
     scene.objects = parseObjects(root, sceneFolder(scene.source), scene.assets);
 }
 
-// "vegetation", "vegetation_enabled" and "grass_map". Needs the terrain (the tile covers it by default).
+// "land_cover": a grass map made from a land-cover raster instead of "grass_map"; its file is an asset like grass_map's.
+void readLandCover(JsonReader& root, Scene& scene) {
+    if (root.has("grass_map")) root.fail("'grass_map' and 'land_cover' both give the grass map; keep one of them");
+    JsonReader r = root.child("land_cover");
+    scene.landCover = parseLandCoverParams(r);
+    r.required("file", "the raster of land-cover class codes");
+    scene.landCover.file = assetPath(r, "file", scene);
+    r.finish();
+}
+
+// "vegetation", "vegetation_enabled", "grass_map" and "land_cover". Needs the terrain (the tile covers it by default).
 void readVegetation(JsonReader& root, Scene& scene) {
     const std::string& source = scene.source;
     const nlohmann::json* vegetation = root.raw("vegetation");
@@ -217,6 +228,7 @@ void readVegetation(JsonReader& root, Scene& scene) {
     else
         scene.vegetationEnabled = root.number("vegetation_enabled", 1.0, 0.0, 1.0) != 0.0;
     scene.grassMapPath = assetPath(root, "grass_map", scene);
+    if (root.has("land_cover")) readLandCover(root, scene);
     if (procedural && scene.vegetation.tileSize > scene.terrain.procedural.size + 1e-3f)
         root.fail("'vegetation.tile_size' (" + std::to_string(scene.vegetation.tileSize) +
                   " m) must not exceed 'terrain.size' (" + std::to_string(scene.terrain.procedural.size) + " m)");
@@ -273,6 +285,8 @@ Atlas buildAtlas(const Scene& scene) {
 
 GrassMap buildGrassMap(const Scene& scene, float tileSize) {
     if (!scene.grassMapPath.empty()) return loadGrassMap(scene.grassMapPath);
+    if (!scene.landCover.file.empty())
+        return loadLandCoverGrassMap(scene.landCover, tileSize, scene.source + ": 'land_cover'");
     return makeMeadowGrassMap({.tileSize = tileSize, .seed = scene.seed});
 }
 

@@ -10,6 +10,7 @@
 #include "scene/camera_rig.h"
 #include "vegetation/grass_map.h"
 #include "world/ground.h"
+#include "vegetation/land_cover.h"
 #include "interaction/collision.h"
 #include "world/path.h"
 #include "scene/objects.h"
@@ -109,13 +110,14 @@ struct Scene {
     std::vector<ObjectParams> objects; // "objects": glTF models on paths (vegetation/objects.h), object k = index k
     bool vegetationEnabled = true; // false: bare ground (paired studies, --no-vegetation)
     std::string grassMapPath;      // "grass_map", resolved against the scene's folder; empty = procedural meadow
+    LandCoverParams landCover;     // "land_cover" (scene/land_cover_params.h): file resolved likewise; empty = none
     std::string atlasPngPath, atlasJsonPath; // "atlas": {"png", "json"}; empty = the built-in procedural atlas
     AssetPolicy assets; // where the files it names may be read from (loadScene: the scene file's folder)
 };
 
 // Parses and validates a scene; `source` names it in error messages, and relative file paths are taken against
-// its folder. Every file the scene names (objects' models and their buffers, grass_map, atlas) must pass `assets`
-// (default: unconfined); the check runs here, so a refused path fails before anything is loaded.
+// its folder. Every file the scene names (objects' models and their buffers, grass_map, land_cover.file, atlas) must
+// pass `assets` (default: unconfined); the check runs here, so a refused path fails before anything is loaded.
 Scene parseScene(const nlohmann::json& json, const std::string& source, const AssetPolicy& assets = {});
 // Reads and parses a scene file ("" = the built-in default scene); throws sward::Error naming the file for missing
 // files and bad JSON. `seed`, when set, replaces the scene's seed before parsing, so every seed derived from it
@@ -125,8 +127,8 @@ Scene loadScene(const std::string& path, std::optional<uint64_t> seed = {},
                 const std::vector<std::string>& allowedAssetDirs = {});
 // The scene's atlas with its coverage-preserving mip chain: the files it names, or the built-in procedural one.
 Atlas buildAtlas(const Scene& scene);
-// The scene's grass map over a tile of `tileSize` metres: the file it names, or the procedural meadow (seeded by
-// the scene seed).
+// The scene's grass map over a tile of `tileSize` metres: the file it names, the one made from its land cover, or
+// the procedural meadow (seeded by the scene seed).
 GrassMap buildGrassMap(const Scene& scene, float tileSize);
 // Places the scene's vegetation on its terrain (buildTerrain, vegetationOn; threads: 0 = all cores). Checks the
 // memory budget first.

@@ -224,21 +224,39 @@ def corrupt_shard(env):
     return [env.watched]
 
 
-def png_bytes():
-    """A valid 1x1 8-bit RGB PNG (zlib stored block), for grass maps and atlases."""
+def png_row(colour_type, samples):
+    """A valid one-row 8-bit PNG (colour type 0 grey, 2 RGB) of the given sample bytes."""
     import zlib
 
     def chunk(kind, body):
         return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xffffffff)
-    raw = zlib.compress(b"\0\x10\x80\x10")
-    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 1, 1, 8, 2, 0, 0, 0)) + \
-        chunk(b"IDAT", raw) + chunk(b"IEND", b"")
+    width = len(samples) // (3 if colour_type == 2 else 1)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, 1, 8, colour_type, 0, 0, 0)) + \
+        chunk(b"IDAT", zlib.compress(b"\0" + bytes(samples))) + chunk(b"IEND", b"")
+
+
+def png_bytes():
+    """A valid 1x1 8-bit RGB PNG, for grass maps and atlases."""
+    return png_row(2, [0x10, 0x80, 0x10])
 
 
 def grass_map(data):
     def edit(scene, env):
         env.write("map.png", data)
         scene["grass_map"] = "map.png"
+    return edit
+
+
+def grey_png(values):
+    """A one-row 8-bit grey PNG holding `values` (land-cover class codes)."""
+    return png_row(0, values)
+
+
+def land_cover(data):
+    def edit(scene, env):
+        if data is not None:
+            env.write("cover.png", data)
+        scene["land_cover"] = {"file": "cover.png", "preset": "esa_worldcover"}
     return edit
 
 
@@ -340,6 +358,16 @@ CASES = [
     Case("grass_map outside the scene folder", "sward-render",
          scene_with(lambda s, env: (env.write("../outside.png", png_bytes()), s.update(grass_map="../outside.png"), s)[-1]),
          1, r"grass_map"),
+    # Land cover (a grass map made from a raster of class codes).
+    Case("missing land_cover file", "sward-render", scene_with(land_cover(None)), 1,
+         r"'land_cover': cannot open raster '.*cover\.png': file missing"),
+    Case("land_cover file not a raster", "sward-render", scene_with(land_cover("hello\n")), 1,
+         r"'land_cover': raster '.*cover\.png' is not a raster file"),
+    Case("land_cover code not in the table", "sward-render", scene_with(land_cover(grey_png([30, 7, 30]))), 1,
+         r"'land_cover': class code 7 of raster .*cover\.png' \(first at pixel \(1, 0\)\) is not in the table"),
+    Case("both grass_map and land_cover", "sward-render",
+         scene_with(lambda s, env: (grass_map(png_bytes())(s, env), land_cover(grey_png([30]))(s, env), s)[-1]), 1,
+         r"'grass_map' and 'land_cover' both give the grass map"),
     # Atlases.
     Case("atlas with png only", "sward-render", scene_with(atlas(png_bytes(), None)), 1, r"needs both"),
     Case("atlas json not JSON", "sward-render", scene_with(atlas(png_bytes(), "{ nope")), 1, r"atlas\.json"),

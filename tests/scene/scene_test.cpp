@@ -125,6 +125,7 @@ struct AssetFolders {
     }
     // The three ways out of the folder for `file` of outside/: `..`, an absolute path, a symlink in the folder.
     std::vector<std::string> waysOut(const std::string& file) const {
+        fs::remove(scene / ("link-" + file)); // (asked for again by another key naming the same file)
         fs::create_symlink(outside / file, scene / ("link-" + file));
         return {"../outside/" + file, (outside / file).string(), "link-" + file};
     }
@@ -134,10 +135,12 @@ struct AssetFolders {
     }
 };
 
-// A scene naming `path` under `key`: "model" (objects[0].model), "grass_map" or "atlas" (atlas.png).
+// A scene naming `path` under `key`: "model" (objects[0].model), "grass_map", "land_cover" (land_cover.file) or
+// "atlas" (atlas.png).
 nlohmann::json sceneNaming(const std::string& key, const std::string& path) {
     if (key == "model") return {{"objects", {{{"model", path}, {"path", {{"points", {{10, 10}}}}}}}}};
     if (key == "atlas") return {{"atlas", {{"png", path}, {"json", "atlas.json"}}}};
+    if (key == "land_cover") return {{"land_cover", {{"file", path}, {"preset", "esa_worldcover"}}}};
     return {{key, path}};
 }
 
@@ -146,7 +149,8 @@ nlohmann::json sceneNaming(const std::string& key, const std::string& path) {
 TEST(SceneAssets, PathsLeavingTheSceneFolderAreRefusedWithoutAllowAssets) {
     AssetFolders f;
     const std::vector<std::pair<std::string, std::string>> keys = {
-        {"model", "'objects[0].model'"}, {"grass_map", "'grass_map'"}, {"atlas", "'atlas.png'"}};
+        {"model", "'objects[0].model'"}, {"grass_map", "'grass_map'"}, {"land_cover", "'land_cover.file'"},
+        {"atlas", "'atlas.png'"}};
     for (const auto& [key, name] : keys) {
         const std::string file = key == "model" ? "m.gltf" : key == "atlas" ? "atlas.png" : "map.png";
         for (const std::string& path : f.waysOut(file)) {
@@ -167,9 +171,12 @@ TEST(SceneAssets, AllowAssetsAcceptsTheSameFiles) {
         EXPECT_EQ(scene.objects.at(0).model, (f.outside / "m.gltf").string());
         EXPECT_GT(loadObjectModels(scene.objects, scene.source).at(0).triangleCount(), 0u);
     }
-    for (const std::string& path : f.waysOut("map.png"))
+    for (const std::string& path : f.waysOut("map.png")) {
         EXPECT_EQ(loadScene(f.write(sceneNaming("grass_map", path)), {}, allow).grassMapPath,
                   (f.outside / "map.png").string());
+        EXPECT_EQ(loadScene(f.write(sceneNaming("land_cover", path)), {}, allow).landCover.file,
+                  (f.outside / "map.png").string());
+    }
     for (const std::string& path : f.waysOut("atlas.png"))
         EXPECT_EQ(loadScene(f.write(sceneNaming("atlas", path)), {}, allow).atlasPngPath,
                   (f.outside / "atlas.png").string());

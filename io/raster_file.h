@@ -1,0 +1,62 @@
+// Reading one band of a raster file through GDAL: GeoTIFF, PNG, Esri ASCII grid and the other local file formats
+// listed in kRasterDrivers (land-cover maps, heightmaps). Images sward writes itself go through io/image_files.h;
+// grass maps and 16-bit PNG / EXR heightfields through io/image_io.h.
+//
+// Only local files are read: a path starting with /vsi (GDAL's virtual file systems, /vsicurl/ among them) or one
+// that is not a regular file is refused before GDAL sees it, and GDAL may only pick a driver of kRasterDrivers, none
+// of which reaches the network or names other datasets (no VRT, WMS, ...). GDAL's own messages never reach stderr:
+// they become part of the one sward::Error, which names the file.
+#pragma once
+
+#include "io/image_io.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sward {
+
+// The GDAL drivers readRasterBand may use: file formats of gridded values that read nothing but local files.
+inline constexpr const char* kRasterDrivers[] = {"GTiff",          "PNG",  "JPEG",  "GIF",  "BMP", "PNM",     "AAIGrid",
+                                                 "GRASSASCIIGrid", "XYZ",  "EHdr",  "ENVI", "HFA", "USGSDEM", "SRTMHGT",
+                                                 "GSAG",           "GSBG", "GS7BG", "ISG",  "RST", "BT"};
+
+// Largest raster read: each edge at most kMaxRasterEdge pixels and at most kMaxRasterPixels pixels in all (2 GiB
+// of doubles), checked before any pixel is read, so a corrupt header cannot ask for more.
+inline constexpr uint32_t kMaxRasterEdge = kMaxImageEdge;
+inline constexpr uint64_t kMaxRasterPixels = uint64_t(1) << 28;
+
+// A north-up georeferencing: world x = originX + (column + 0.5) * pixelWidth at a pixel centre, world y = originY -
+// (row + 0.5) * pixelHeight (rows go south). Units are those of the file's coordinate system (metres in a projected
+// one such as UTM, degrees in a geographic one).
+struct RasterGeoTransform {
+    double originX = 0.0, originY = 0.0;        // top-left corner of the top-left pixel
+    double pixelWidth = 1.0, pixelHeight = 1.0; // > 0
+};
+
+struct RasterBand {
+    uint32_t width = 0, height = 0;
+    std::vector<double> values;   // width * height, row-major, top row first, as stored (no scale / offset)
+    std::optional<double> nodata; // the band's nodata value, if it has one (may be NaN)
+    std::optional<RasterGeoTransform> geoTransform; // absent when the file has no georeferencing
+    std::string source;                             // the file name, for messages
+
+    double at(uint32_t x, uint32_t y) const { return values[size_t(y) * width + x]; }
+    // True for the band's nodata value (a NaN nodata matches every NaN).
+    bool isNodata(double value) const;
+};
+
+struct RasterReadOptions {
+    uint32_t band = 1;          // from 1, as GDAL counts
+    bool requireFinite = false; // a NaN or infinite value that is not the nodata value is an error
+};
+
+// Reads one band as doubles. Throws one sward::Error naming the file for: a /vsi path, a missing file or one that is
+// not a regular file, a file no driver of kRasterDrivers reads, a raster without bands, a band out of range, a
+// complex band, an edge over kMaxRasterEdge or more than kMaxRasterPixels pixels, a rotated, sheared or south-up
+// geotransform, a read error, and (requireFinite) a non-finite value, naming its pixel. Safe to call from one
+// thread at a time.
+RasterBand readRasterBand(const std::string& path, const RasterReadOptions& options = {});
+
+} // namespace sward

@@ -1,0 +1,223 @@
+// Rasters read through GDAL: files written here with GDAL's own API (GTiff, PNG through the MEM driver and
+// CreateCopy, an ASCII grid as text), read back value for value, and every refusal as one clear error.
+#include "io/raster_file.h"
+
+#include "test_files.h"
+
+#include <gdal.h>
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <optional>
+
+using namespace sward;
+using namespace sward::test;
+
+namespace {
+
+struct TiffSpec {
+    uint32_t width = 3, height = 2, bands = 1;
+    GDALDataType type = GDT_Float32;
+    std::vector<double> values;                        // every band: values + band index * 100
+    std::optional<std::array<double, 6>> geoTransform; // GDAL order
+    std::optional<double> nodata;
+    std::vector<std::string> options; // creation options
+};
+
+// Writes a GeoTIFF with GDAL's API (the way a GIS writes one).
+void writeTiff(const std::string& path, const TiffSpec& s) {
+    GDALAllRegister();
+    std::vector<const char*> options;
+    for (const std::string& o : s.options) options.push_back(o.c_str());
+    options.push_back(nullptr);
+    GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), int(s.width), int(s.height), int(s.bands),
+                                 s.type, const_cast<char**>(options.data()));
+    ASSERT_NE(ds, nullptr);
+    if (s.geoTransform) {
+        std::array<double, 6> gt = *s.geoTransform;
+        GDALSetGeoTransform(ds, gt.data());
+    }
+    for (uint32_t b = 1; b <= s.bands; ++b) {
+        GDALRasterBandH band = GDALGetRasterBand(ds, int(b));
+        if (s.nodata) GDALSetRasterNoDataValue(band, *s.nodata);
+        if (s.values.empty()) continue;
+        std::vector<double> v = s.values;
+        for (double& x : v) x += (b - 1) * 100.0;
+        EXPECT_EQ(GDALRasterIO(band, GF_Write, 0, 0, int(s.width), int(s.height), v.data(), int(s.width), int(s.height),
+                               GDT_Float64, 0, 0),
+                  CE_None);
+    }
+    GDALClose(ds);
+}
+
+// A file of another format made from an in-memory raster (MEM driver + CreateCopy).
+void writeCopy(const std::string& driver, const std::string& path, uint32_t width, uint32_t height, GDALDataType type,
+               std::vector<double> values) {
+    GDALAllRegister();
+    GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", int(width), int(height), 1, type, nullptr);
+    ASSERT_NE(mem, nullptr);
+    EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(mem, 1), GF_Write, 0, 0, int(width), int(height), values.data(),
+                           int(width), int(height), GDT_Float64, 0, 0),
+              CE_None);
+    GDALDatasetH copy =
+        GDALCreateCopy(GDALGetDriverByName(driver.c_str()), path.c_str(), mem, FALSE, nullptr, nullptr, nullptr);
+    ASSERT_NE(copy, nullptr);
+    GDALClose(copy);
+    GDALClose(mem);
+}
+
+const std::array<double, 6> kUtm = {500000.0, 10.0, 0.0, 4100000.0, 0.0, -10.0};
+
+} // namespace
+
+TEST(RasterFile, GeoTiffValuesNodataAndGeoTransformReadBack) {
+    const std::string path = (tempDir() / "cover.tif").string();
+    writeTiff(path, {.values = {10, 20, 30, 40, -9999, 95.5}, .geoTransform = kUtm, .nodata = -9999.0});
+    const RasterBand r = readRasterBand(path);
+    EXPECT_EQ(r.width, 3u);
+    EXPECT_EQ(r.height, 2u);
+    EXPECT_EQ(r.values, (std::vector<double>{10, 20, 30, 40, -9999, 95.5})); // top row first
+    EXPECT_EQ(r.at(2, 1), 95.5);
+    ASSERT_TRUE(r.nodata);
+    EXPECT_EQ(*r.nodata, -9999.0);
+    EXPECT_TRUE(r.isNodata(r.at(1, 1)));
+    EXPECT_FALSE(r.isNodata(r.at(0, 0)));
+    ASSERT_TRUE(r.geoTransform);
+    EXPECT_EQ(r.geoTransform->originX, 500000.0);
+    EXPECT_EQ(r.geoTransform->originY, 4100000.0);
+    EXPECT_EQ(r.geoTransform->pixelWidth, 10.0);
+    EXPECT_EQ(r.geoTransform->pixelHeight, 10.0);
+    EXPECT_EQ(r.source, path);
+}
+
+TEST(RasterFile, ReadsTheBandAskedFor) {
+    const std::string path = (tempDir() / "bands.tif").string();
+    writeTiff(path, {.bands = 3, .values = {1, 2, 3, 4, 5, 6}});
+    EXPECT_EQ(readRasterBand(path, {.band = 3}).values, (std::vector<double>{201, 202, 203, 204, 205, 206}));
+    EXPECT_FALSE(readRasterBand(path).nodata);
+}
+
+TEST(RasterFile, LargeIntegerCodesAreExact) {
+    const std::string path = (tempDir() / "codes.tif").string();
+    writeTiff(path, {.width = 2, .height = 1, .type = GDT_UInt32, .values = {4294967295.0, 16777217.0}});
+    EXPECT_EQ(readRasterBand(path).values, (std::vector<double>{4294967295.0, 16777217.0})); // 2^24 + 1: not a float
+}
+
+TEST(RasterFile, SixteenBitPngWithoutGeoreferencing) {
+    const std::string path = (tempDir() / "heights.png").string();
+    writeCopy("PNG", path, 2, 2, GDT_UInt16, {0, 1000, 65535, 7});
+    const RasterBand r = readRasterBand(path);
+    EXPECT_EQ(r.values, (std::vector<double>{0, 1000, 65535, 7})); // raw samples, not normalised
+    EXPECT_FALSE(r.geoTransform);
+    EXPECT_FALSE(r.nodata);
+}
+
+TEST(RasterFile, EightBitGreyPngHoldsClassCodes) {
+    const auto path = tempDir() / "codes.png";
+    writePng(path, 2, 1, 1, 8, {10.0f / 255.0f, 30.0f / 255.0f});
+    EXPECT_EQ(readRasterBand(path.string()).values, (std::vector<double>{10, 30}));
+}
+
+TEST(RasterFile, AsciiGridWithNodataAndCorner) {
+    const auto path = tempDir() / "grid.asc";
+    std::ofstream(path) << "ncols 2\nnrows 2\nxllcorner 100\nyllcorner 200\ncellsize 5\nNODATA_value -1\n"
+                           "1.5 -1\n3 4\n";
+    const RasterBand r = readRasterBand(path.string());
+    EXPECT_EQ(r.values, (std::vector<double>{1.5, -1, 3, 4}));
+    EXPECT_EQ(r.nodata, -1.0);
+    ASSERT_TRUE(r.geoTransform);
+    EXPECT_EQ(r.geoTransform->originX, 100.0);
+    EXPECT_EQ(r.geoTransform->originY, 210.0); // lower-left corner + 2 rows of 5 m
+}
+
+TEST(RasterFile, NanNodataIsNotANonFiniteValue) {
+    const std::string path = (tempDir() / "nan.tif").string();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    writeTiff(path, {.width = 2, .height = 1, .values = {nan, 1.0}, .nodata = nan});
+    const RasterBand r = readRasterBand(path, {.requireFinite = true});
+    EXPECT_TRUE(r.isNodata(r.at(0, 0)));
+    EXPECT_EQ(r.at(1, 0), 1.0);
+}
+
+TEST(RasterFile, GdalPrintsNothing) {
+    const auto dir = tempDir();
+    std::ofstream(dir / "text.tif") << "not a tiff\n";
+    ::testing::internal::CaptureStderr();
+    EXPECT_NE(errorOf([&] { readRasterBand((dir / "text.tif").string()); }), "");
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+}
+
+TEST(RasterFileErrors, MissingFileNamesTheFile) {
+    const std::string path = (tempDir() / "absent.tif").string();
+    expectError([&] { readRasterBand(path); }, {path, "missing"});
+}
+
+TEST(RasterFileErrors, FolderIsNotARegularFile) {
+    const std::string path = tempDir().string();
+    expectError([&] { readRasterBand(path); }, {path, "not a regular file"});
+}
+
+TEST(RasterFileErrors, VirtualFileSystemsAreRefusedBeforeGdal) {
+    for (const std::string path :
+         {"/vsicurl/https://example.com/cover.tif", "/VSIS3/bucket/cover.tif", "/vsimem/cover.tif"})
+        expectError([&] { readRasterBand(path); }, {path, "/vsi", "local file"});
+}
+
+TEST(RasterFileErrors, TextIsNotARasterAndGdalSaysWhy) {
+    const auto path = tempDir() / "notes.tif";
+    std::ofstream(path) << "hello\n";
+    expectError([&] { readRasterBand(path.string()); }, {path.string(), "not a raster file", "GTiff", "GDAL: "});
+}
+
+TEST(RasterFileErrors, TruncatedGeoTiffNamesTheFile) {
+    const auto path = tempDir() / "cut.tif";
+    writeTiff(
+        path.string(),
+        {.width = 64, .height = 64, .values = std::vector<double>(64 * 64, 7.0), .options = {"COMPRESS=DEFLATE"}});
+    std::filesystem::resize_file(path, std::filesystem::file_size(path) - 40);
+    const std::string message = errorOf([&] { readRasterBand(path.string()); });
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+}
+
+TEST(RasterFileErrors, BandOutOfRangeSaysHowManyThereAre) {
+    const std::string path = (tempDir() / "two.tif").string();
+    writeTiff(path, {.bands = 2, .values = {1, 2, 3, 4, 5, 6}});
+    expectError([&] { readRasterBand(path, {.band = 3}); }, {path, "2 band(s)", "band 3 does not exist"});
+    expectError([&] { readRasterBand(path, {.band = 0}); }, {path, "band 0 does not exist", "from 1"});
+}
+
+TEST(RasterFileErrors, RotatedGeoTransformIsRefused) {
+    const std::string path = (tempDir() / "rotated.tif").string();
+    writeTiff(path, {.values = {1, 2, 3, 4, 5, 6}, .geoTransform = std::array<double, 6>{0, 10, 2, 0, 2, -10}});
+    expectError([&] { readRasterBand(path); }, {path, "rotated or sheared", "north-up"});
+}
+
+TEST(RasterFileErrors, SouthUpGeoTransformIsRefused) {
+    const std::string path = (tempDir() / "south.tif").string();
+    writeTiff(path, {.values = {1, 2, 3, 4, 5, 6}, .geoTransform = std::array<double, 6>{0, 10, 0, 0, 0, 10}});
+    expectError([&] { readRasterBand(path); }, {path, "not north up"});
+}
+
+TEST(RasterFileErrors, EdgeOverTheLimitIsRefusedBeforeReading) {
+    const std::string path = (tempDir() / "wide.tif").string();
+    writeTiff(path, {.width = kMaxRasterEdge + 1, .height = 1, .type = GDT_Byte, .options = {"SPARSE_OK=TRUE"}});
+    expectError([&] { readRasterBand(path); }, {path, "32769x1", "each edge must be 1..32768"});
+}
+
+TEST(RasterFileErrors, PixelCountOverTheLimitIsRefusedBeforeReading) {
+    const std::string path = (tempDir() / "huge.tif").string();
+    writeTiff(path, {.width = 20000, .height = 20000, .type = GDT_Byte, .options = {"SPARSE_OK=TRUE"}});
+    expectError([&] { readRasterBand(path); }, {path, "20000x20000", "268435456 pixels"});
+}
+
+TEST(RasterFileErrors, NonFiniteValueNamesThePixelWhenFiniteIsRequired) {
+    const std::string path = (tempDir() / "inf.tif").string();
+    writeTiff(path, {.values = {0, 1, 2, 3, std::numeric_limits<double>::infinity(), 5}, .nodata = -1.0});
+    EXPECT_TRUE(std::isinf(readRasterBand(path).at(1, 1)));
+    expectError([&] { readRasterBand(path, {.requireFinite = true}); }, {path, "inf", "pixel (1, 1)"});
+}
