@@ -4,6 +4,7 @@
 
 #include <cpl_error.h>
 #include <gdal.h>
+#include <ogr_srs_api.h>
 
 #include <cctype>
 #include <cmath>
@@ -111,7 +112,12 @@ std::optional<RasterGeoTransform> readGeoTransform(GDALDatasetH dataset, const s
                                               "; only north-up rasters are read (warp it first, e.g. gdalwarp)");
     require(gt[1] > 0.0 && gt[5] < 0.0,
             "raster '" + path + "' is not north up (geotransform " + text() + "); warp it first, e.g. gdalwarp");
-    return RasterGeoTransform{.originX = gt[0], .originY = gt[3], .pixelWidth = gt[1], .pixelHeight = -gt[5]};
+    // Only a projected system has linear units; degrees of a geographic one are no distance on the ground.
+    double metresPerUnit = 0.0;
+    if (OGRSpatialReferenceH srs = GDALGetSpatialRef(dataset); srs && OSRIsProjected(srs))
+        metresPerUnit = OSRGetLinearUnits(srs, nullptr);
+    return RasterGeoTransform{
+        .originX = gt[0], .originY = gt[3], .pixelWidth = gt[1], .pixelHeight = -gt[5], .metresPerUnit = metresPerUnit};
 }
 
 std::optional<double> readNodata(GDALRasterBandH band) {

@@ -33,6 +33,7 @@ inline constexpr uint64_t kMaxRasterPixels = uint64_t(1) << 28;
 struct RasterGeoTransform {
     double originX = 0.0, originY = 0.0;        // top-left corner of the top-left pixel
     double pixelWidth = 1.0, pixelHeight = 1.0; // > 0
+    double metresPerUnit = 0.0; // a projected coordinate system's linear unit in metres; 0: geographic or unknown
 };
 
 struct RasterBand {

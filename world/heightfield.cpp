@@ -3,10 +3,14 @@
 #include "common/error.h"
 #include "common/hash.h"
 #include "io/image_io.h"
+#include "io/raster_file.h"
 #include "common/noise.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <limits>
 
 namespace sward {
 
@@ -113,28 +117,80 @@ Heightfield makeProceduralTerrain(const ProceduralTerrainParams& p) {
     return Heightfield(n, n, p.spacing, glm::vec2(0.0f), std::move(heights));
 }
 
+namespace {
+
+bool hasExtension(const std::string& path, std::initializer_list<const char*> extensions) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    for (const char* e : extensions)
+        if (ext == e) return true;
+    return false;
+}
+
+// Raster rows run north to south; grid rows south to north. height(i, row) -> heights[(rows - 1 - row) * columns + i].
+template <typename Sample>
+std::vector<float> gridHeights(const std::string& path, uint32_t width, uint32_t height, Sample sample,
+                               float verticalScale, float heightOffset) {
+    require(width >= 2 && height >= 2, "heightfield '" + path + "' must be at least 2x2 pixels");
+    std::vector<float> heights(size_t(width) * height);
+    for (uint32_t row = 0; row < height; ++row)
+        for (uint32_t i = 0; i < width; ++i) {
+            const double value = sample(i, row);
+            if (!std::isfinite(value)) // not require(): its message would be built for every pixel
+                throw Error("heightfield '" + path + "' has a non-finite or nodata sample at pixel (" +
+                            std::to_string(i) + ", " + std::to_string(row) + ")");
+            const float h = float(value) * verticalScale + heightOffset;
+            if (!(std::abs(h) <= 1e6f))
+                throw Error("heightfield '" + path + "' has a height beyond 1e6 m at pixel (" + std::to_string(i) +
+                            ", " + std::to_string(row) + ")");
+            heights[size_t(height - 1 - row) * width + i] = h;
+        }
+    return heights;
+}
+
+// The sample spacing of a GDAL raster: `spacing` when given, else its square pixels in metres.
+float rasterSpacing(const RasterBand& raster, float spacing) {
+    if (spacing > 0.0f) return spacing;
+    const std::string& path = raster.source;
+    require(raster.geoTransform.has_value(),
+            "heightfield '" + path + "' has no georeferencing: give its metres per pixel");
+    const RasterGeoTransform& g = *raster.geoTransform;
+    require(g.metresPerUnit > 0.0, "heightfield '" + path + "' is not in a projected coordinate system (metres): "
+                                   "give its metres per pixel, or reproject it (gdalwarp -t_srs EPSG:<UTM zone>)");
+    require(std::abs(g.pixelWidth - g.pixelHeight) <= 1e-9 * g.pixelWidth,
+            "heightfield '" + path + "' has non-square pixels; resample it (gdalwarp -tr) or give its metres per pixel");
+    return float(g.pixelWidth * g.metresPerUnit);
+}
+
+} // namespace
+
 Heightfield loadHeightfield(const std::string& path, float verticalScale, float spacing, glm::vec2 origin,
                             float heightOffset) {
-    require(spacing > 0.0f && std::isfinite(spacing), "heightfield '" + path + "': spacing must be positive");
+    require(spacing >= 0.0f && std::isfinite(spacing), "heightfield '" + path + "': spacing must not be negative");
     require(std::isfinite(verticalScale) && std::isfinite(heightOffset),
             "heightfield '" + path + "': vertical scale and offset must be finite");
+    if (!hasExtension(path, {".png", ".exr"})) {
+        RasterReadOptions options;
+        const RasterBand raster = readRasterBand(path, options);
+        const float step = rasterSpacing(raster, spacing);
+        std::vector<float> heights = gridHeights(
+            path, raster.width, raster.height,
+            [&](uint32_t i, uint32_t row) {
+                const double v = raster.at(i, row);
+                return raster.isNodata(v) ? std::numeric_limits<double>::quiet_NaN() : v;
+            },
+            verticalScale, heightOffset);
+        return Heightfield(raster.width, raster.height, step, origin, std::move(heights));
+    }
+    require(spacing > 0.0f, "heightfield '" + path + "' is a PNG / EXR without georeferencing: give its metres per pixel");
     ImageData image = loadImage(path);
     require(image.bitDepth != 8,
             "heightfield '" + path + "' is an 8-bit PNG; use a 16-bit PNG or a float EXR (8 bits give terraces)");
     require(image.channels == 1, "heightfield '" + path + "' has " + std::to_string(image.channels) +
                                      " channels; it must have exactly one (grey PNG, or a single/Y EXR channel)");
-    require(image.width >= 2 && image.height >= 2, "heightfield '" + path + "' must be at least 2x2 pixels");
-    std::vector<float> heights(size_t(image.width) * image.height);
-    for (uint32_t row = 0; row < image.height; ++row) {
-        const uint32_t j = image.height - 1 - row; // top image row = north = largest y
-        for (uint32_t i = 0; i < image.width; ++i) {
-            float value = image.at(i, row, 0);
-            if (!std::isfinite(value)) // not require(): its message would be built for every pixel
-                throw Error("heightfield '" + path + "' has a non-finite sample at pixel (" + std::to_string(i) + ", " +
-                            std::to_string(row) + ")");
-            heights[size_t(j) * image.width + i] = value * verticalScale + heightOffset;
-        }
-    }
+    std::vector<float> heights = gridHeights(
+        path, image.width, image.height, [&](uint32_t i, uint32_t row) { return double(image.at(i, row, 0)); },
+        verticalScale, heightOffset);
     return Heightfield(image.width, image.height, spacing, origin, std::move(heights));
 }
 

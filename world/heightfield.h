@@ -63,11 +63,13 @@ struct ProceduralTerrainParams {
 // the heights are bitwise identical on every x86-64 machine and compiler.
 Heightfield makeProceduralTerrain(const ProceduralTerrainParams& params);
 
-// Loads a heightfield from a single-channel 16-bit PNG (height = sample / 65535 * verticalScale + heightOffset)
-// or float OpenEXR (height = value * verticalScale + heightOffset). The image is a top-down map with north (+y)
-// up: its top row is the grid's last row (largest y). Throws sward::Error naming the file for a missing file,
-// an unsupported format, an 8-bit PNG (too coarse: visible terraces), more than one channel, or a non-finite
-// height. Requires spacing > 0 and a finite verticalScale.
+// Loads a heightfield from a single-channel 16-bit PNG (height = sample / 65535 * verticalScale + heightOffset), a
+// float OpenEXR or any single-band raster GDAL reads (io/raster_file.h; height = value * verticalScale +
+// heightOffset). The image is a top-down map with north (+y) up: its top row is the grid's last row (largest y),
+// and pixel (i, row) is the vertex at origin + spacing * (i, height - 1 - row). spacing 0 takes a GDAL raster's
+// georeferencing (square pixels of a projected coordinate system, in metres). Throws sward::Error naming the file
+// for a missing file, an unsupported format, an 8-bit PNG (too coarse: visible terraces), more than one channel,
+// a non-finite or nodata height, a height beyond 1e6 m, and spacing 0 without usable georeferencing.
 Heightfield loadHeightfield(const std::string& path, float verticalScale, float spacing,
                             glm::vec2 origin = glm::vec2(0.0f), float heightOffset = 0.0f);
 

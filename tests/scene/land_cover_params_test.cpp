@@ -103,7 +103,7 @@ TEST(LandCoverScene, BuildsTheGrassMapFromTheRasterOverTheTile) {
     const Scene scene = loadScene((dir / "s.json").string());
     EXPECT_EQ(scene.landCover.file, (dir / "cover.png").string());
     EXPECT_TRUE(scene.grassMapPath.empty());
-    const GrassMap map = buildGrassMap(scene);
+    const GrassMap map = buildGrassMap(scene, scene.vegetation.tileSize);
     ASSERT_EQ(map.width(), 2u);
     // 50 m pixels, a 20 m border: each pixel's box reaches 10 m past its centre, not into the other pixel.
     EXPECT_EQ(map.values(), (std::vector<float>{0.05f, 1.0f, 0.3f, 0.0f, 0.0f, 0.5f}));
@@ -114,6 +114,6 @@ TEST(LandCoverScene, CodeMissingFromTheTableNamesTheSceneKey) {
     writePng(dir / "cover.png", 2, 1, 1, 8, {30.0f / 255.0f, 7.0f / 255.0f});
     std::ofstream(dir / "s.json") << R"({"land_cover": {"file": "cover.png", "preset": "esa_worldcover"}})";
     const Scene scene = loadScene((dir / "s.json").string());
-    expectError([&] { buildGrassMap(scene); }, {(dir / "s.json").string() + ": 'land_cover': class code 7 of raster '" +
+    expectError([&] { buildGrassMap(scene, scene.vegetation.tileSize); }, {(dir / "s.json").string() + ": 'land_cover': class code 7 of raster '" +
                                                 (dir / "cover.png").string() + "' (first at pixel (1, 0))"});
 }
