@@ -97,7 +97,7 @@ def write_hills(path):
             {"attributes": {"POSITION": pos, "NORMAL": nor}, "indices": idx_rock, "material": 1}]}],
         "materials": [
             {"name": "meadow", "pbrMetallicRoughness": {"baseColorFactor": [0.16, 0.2, 0.07, 1.0], "roughnessFactor": 1.0}},
-            {"name": "rock", "pbrMetallicRoughness": {"baseColorFactor": [0.33, 0.31, 0.29, 1.0], "roughnessFactor": 0.9}},
+            {"name": "rock", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.18, 0.16, 1.0], "roughnessFactor": 0.9}},
         ],
         "accessors": accessors,
         "bufferViews": views,

@@ -13,8 +13,8 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools vulkan-tools
   # maths, windowing, assets, image formats
   libglm-dev libglfw3-dev libtinygltf-dev libstb-dev libopenexr-dev libpng-dev
-  # GIS rasters: GDAL reads land-cover maps (io/raster_file); gdal-bin's gdal_translate / gdalinfo / gdalwarp make
-  # and inspect them
+  # GIS rasters: GDAL reads land-cover maps and heightmaps (io/raster_file); the build writes the example worlds'
+  # GeoTIFFs with gdal-bin's gdal_translate (tools/make-example-data.py)
   libgdal-dev gdal-bin
   # OpenCV modules used by tests and sward-eval (the per-module packages avoid 40+ unrelated ones)
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-calib3d-dev
