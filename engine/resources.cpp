@@ -3,6 +3,7 @@
 #include "engine/barriers.h"
 #include "engine/context.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace sward {
@@ -119,6 +120,48 @@ Buffer createBufferWithData(Context& ctx, std::span<const uint8_t> data, VkBuffe
     Buffer buffer = createBuffer(ctx, data.size(), usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::DeviceLocal);
     uploadToBuffer(ctx, buffer, 0, data);
     return buffer;
+}
+
+Image createImageWithData(Context& ctx, ImageDesc desc, std::span<const std::span<const uint8_t>> levels) {
+    require(levels.size() == desc.mipLevels, "one data span per mip level");
+    desc.usage |= VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    Image image = createImage(ctx, desc);
+    uint64_t total = 0;
+    for (std::span<const uint8_t> level : levels) total += level.size();
+    Buffer staging = createBuffer(ctx, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload);
+    std::vector<VkBufferImageCopy> regions;
+    uint64_t offset = 0;
+    for (uint32_t level = 0; level < desc.mipLevels; ++level) {
+        std::memcpy(staging.mapped() + offset, levels[level].data(), levels[level].size());
+        regions.push_back({.bufferOffset = offset,
+                           .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1},
+                           .imageExtent = {std::max(desc.width >> level, 1u), std::max(desc.height >> level, 1u), 1}});
+        offset += levels[level].size();
+    }
+    ctx.submitter.immediate([&](VkCommandBuffer cmd) {
+        discardToCopyDstBarrier(cmd, image.handle, VK_IMAGE_ASPECT_COLOR_BIT);
+        vkCmdCopyBufferToImage(cmd, staging.handle, image.handle, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               uint32_t(regions.size()), regions.data());
+        copyToFragmentSampledBarrier(cmd, image.handle, VK_IMAGE_ASPECT_COLOR_BIT);
+    });
+    destroyBuffer(ctx, staging);
+    return image;
+}
+
+VkSampler createLinearSampler(Context& ctx, uint32_t mipLevels) {
+    VkSamplerCreateInfo info{
+        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+        .magFilter = VK_FILTER_LINEAR,
+        .minFilter = VK_FILTER_LINEAR,
+        .mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR,
+        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .maxLod = float(mipLevels),
+    };
+    VkSampler sampler = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateSampler(ctx.vk(), &info, nullptr, &sampler));
+    return sampler;
 }
 
 std::vector<uint8_t> readBuffer(Context& ctx, const Buffer& src, uint64_t offset, uint64_t size) {

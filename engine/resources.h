@@ -52,6 +52,11 @@ void retireImage(Context& ctx, Image& image);
 
 // Copies `data` into a device-local buffer through a temporary staging buffer, and waits. For load-time data.
 Buffer createBufferWithData(Context& ctx, std::span<const uint8_t> data, VkBufferUsageFlags usage);
+// Creates a sampled image (desc.usage gains SAMPLED | TRANSFER_DST) and fills mip level i from levels[i] through
+// one staging buffer, and waits; the image ends in SHADER_READ_ONLY_OPTIMAL, visible to fragment shaders.
+Image createImageWithData(Context& ctx, ImageDesc desc, std::span<const std::span<const uint8_t>> levels);
+// A trilinear sampler clamped to the edge over `mipLevels` levels (the caller destroys it).
+VkSampler createLinearSampler(Context& ctx, uint32_t mipLevels);
 // Writes `data` at `offset` of `dst` through a staging buffer (one submission, waits).
 void uploadToBuffer(Context& ctx, const Buffer& dst, uint64_t offset, std::span<const uint8_t> data);
 // Reads `size` bytes of a buffer back to the host (one submission, waits).

@@ -11,8 +11,10 @@ SceneGpu createSceneGpu(Context& ctx, SceneResources& resources, uint32_t sample
     VegetationTile* tile = resources.tile ? &*resources.tile : nullptr;
     gpu.renderer = std::make_unique<SceneRenderer>(ctx, resources.scene, resources.terrain,
                                                    samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT, tile,
-                                                   resources.atlas ? &*resources.atlas : nullptr, &resources.models);
-    resources.atlas.reset(); // uploaded: nothing reads the CPU copy again
+                                                   resources.atlas ? &*resources.atlas : nullptr, &resources.models,
+                                                   resources.cover ? &*resources.cover : nullptr);
+    resources.atlas.reset(); // uploaded: nothing reads the CPU copies again
+    resources.cover.reset();
     const bool simulate = mode == SimulationMode::Always ||
                           (mode == SimulationMode::WhenSceneHasColliders && sceneHasColliders(resources.scene));
     if (tile && gpu.renderer->vegetation() && simulate) {

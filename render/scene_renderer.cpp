@@ -7,6 +7,7 @@
 #include "render/vegetation_renderer.h"
 #include "shared/config.h"
 #include "shared/gpu_layout.h"
+#include "common/half_float.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -49,7 +50,7 @@ template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) 
 
 SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& terrain, VkSampleCountFlagBits samples,
                              const VegetationTile* vegetation, const Atlas* atlas,
-                             const std::vector<ObjectModel>* models)
+                             const std::vector<ObjectModel>* models, const CoverMap* cover)
     : ctx_(ctx), scene_(scene), samples_(samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1) {
     terrainMinHeight_ = terrain.minHeight();
     terrainMaxHeight_ = terrain.maxHeight();
@@ -71,6 +72,10 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& ter
     PipelineLayoutDesc shadedLayout = layout; // + the sun shadow map
     shadedLayout.bindings.push_back(
         layoutBinding(gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
+    PipelineLayoutDesc terrainLayout = shadedLayout; // + the far cover
+    terrainLayout.bindings.push_back(
+        layoutBinding(gpu::kBindingCoverMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
+    uploadCoverMap(cover);
 
     // Sun shadow map: always present (1x1 and disabled when shadow_map_size is 0) so bindings stay valid.
     uint32_t shadowSize = std::max(scene.render.shadowMapSize, 1u);
@@ -103,7 +108,7 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& ter
         .depthFormat = mainDesc.depthFormat,
         .samples = mainDesc.samples,
     };
-    terrainPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, shadedLayout);
+    terrainPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, terrainLayout);
     // Same vertices and rasterisation, ground-truth outputs, one sample per pixel.
     terrainDesc.fragmentShader = "truth.frag";
     terrainDesc.colorFormats = {truthDesc.colors[0].format, truthDesc.colors[1].format};
@@ -147,6 +152,8 @@ SceneRenderer::~SceneRenderer() {
     objects_.reset();
     shadowMap_.reset();
     vkDestroySampler(ctx_.vk(), shadowSampler_, nullptr);
+    destroyImage(ctx_, coverImage_);
+    vkDestroySampler(ctx_.vk(), coverSampler_, nullptr);
     destroyPipeline(ctx_.device, terrainPipeline_);
     destroyPipeline(ctx_.device, terrainTruthPipeline_);
     destroyPipeline(ctx_.device, terrainShadowPipeline_);
@@ -198,6 +205,8 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Ca
     const bool shadows = scene_.render.shadowMapSize > 0;
     c.shadowParams = glm::vec4(shadows ? 1.0f : 0.0f, float(0.05 / (2.0 * reach)), 1.0f / size, 0.0f);
     c.debug = glm::uvec4(debugFlags_, 0u, 0u, 0u);
+    c.coverRect = coverRect_;
+    c.coverBand = glm::vec4(scene_.lod.farLimit, scene_.lod.band, 0.0f, 0.0f);
     std::memcpy(constants_.mapped() + slot * constantsStride_, &c, sizeof c);
 }
 
@@ -205,6 +214,21 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline,
                                 std::initializer_list<DescriptorBinding> bindings) {
     drawIndexedMesh(ctx_.device, cmd, pipeline, bindings, terrainVertices_.handle, terrainIndices_.handle,
                     terrainIndexCount_);
+}
+
+// Half floats: linear filtering of 16-bit float textures is mandatory in Vulkan, of 32-bit ones is not.
+void SceneRenderer::uploadCoverMap(const CoverMap* cover) {
+    const bool present = cover && !cover->texels.empty();
+    const uint32_t width = present ? cover->width : 1, height = present ? cover->height : 1;
+    std::vector<uint16_t> texels(size_t(width) * height * 4, 0);
+    if (present)
+        for (size_t i = 0; i < cover->texels.size(); ++i)
+            for (int k = 0; k < 4; ++k) texels[4 * i + size_t(k)] = floatToHalfBits(cover->texels[i][k]);
+    const std::span<const uint8_t> bytes(reinterpret_cast<const uint8_t*>(texels.data()), texels.size() * 2);
+    coverImage_ = createImageWithData(
+        ctx_, {.format = VK_FORMAT_R16G16B16A16_SFLOAT, .width = width, .height = height, .mipLevels = 1}, {&bytes, 1});
+    coverRect_ = present ? glm::vec4(cover->origin, 1.0f / cover->size, 0.0f) : glm::vec4(0.0f);
+    coverSampler_ = createLinearSampler(ctx_, 1);
 }
 
 DescriptorBinding SceneRenderer::frameBinding(uint32_t slot) const {
@@ -221,7 +245,8 @@ void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint
     DescriptorBinding frame = frameBinding(frameSlot), shadow = shadowBinding();
     if (timers) timers->begin(cmd, "main");
     main.begin(cmd);
-    drawTerrain(cmd, terrainPipeline_, {frame, shadow});
+    drawTerrain(cmd, terrainPipeline_,
+                {frame, shadow, sampledImage(gpu::kBindingCoverMap, coverImage_.view, coverSampler_)});
     if (objects_) objects_->recordMain(cmd, frame, shadow, slot);
     if (vegetation_ && baked) vegetation_->drawBaked(cmd, *baked, frame, shadow, slot);
     else if (vegetation_) vegetation_->draw(cmd, PlantPass::Main, frame, shadow, slot);

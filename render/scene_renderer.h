@@ -10,6 +10,7 @@
 #pragma once
 
 #include "vegetation/atlas.h"
+#include "vegetation/cover_map.h"
 #include "world/camera.h"
 #include "dataset/frame_images.h"
 #include "engine/context.h"
@@ -40,9 +41,10 @@ public:
     // vegetation / atlas may be null (bare terrain). The tile and atlas are uploaded; the CPU copies may go.
     // The scene's objects are drawn from `models` (loadObjectModels) or, when null, models loaded here.
     // `terrain` must outlive the renderer (objects are placed on it every frame).
+    // `cover` (makeCoverMap) shades the ground beyond the far LOD limit with the vegetation's look; null: bare.
     SceneRenderer(Context& ctx, const Scene& scene, const Ground& terrain, VkSampleCountFlagBits samples,
                   const VegetationTile* vegetation = nullptr, const Atlas* atlas = nullptr,
-                  const std::vector<ObjectModel>* models = nullptr);
+                  const std::vector<ObjectModel>* models = nullptr, const CoverMap* cover = nullptr);
     ~SceneRenderer();
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
@@ -91,6 +93,7 @@ private:
                         const BakedPlants* baked);
     DescriptorBinding frameBinding(uint32_t slot) const;
     DescriptorBinding shadowBinding() const;
+    void uploadCoverMap(const CoverMap* cover);
 
     Context& ctx_;
     Scene scene_;
@@ -103,6 +106,9 @@ private:
     Pipeline terrainPipeline_, terrainTruthPipeline_, terrainShadowPipeline_, skyPipeline_;
     std::unique_ptr<RenderTarget> shadowMap_;
     VkSampler shadowSampler_ = VK_NULL_HANDLE;
+    Image coverImage_; // the far cover (1x1 "nothing" without vegetation, so the binding is always valid)
+    VkSampler coverSampler_ = VK_NULL_HANDLE;
+    glm::vec4 coverRect_{0.0f};
     std::unique_ptr<VegetationRenderer> vegetation_;
     std::unique_ptr<ObjectRenderer> objects_;
     uint32_t debugFlags_ = 0;

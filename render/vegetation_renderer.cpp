@@ -134,44 +134,15 @@ void VegetationRenderer::uploadAtlas(const Atlas& atlas) {
         ctx_, {reinterpret_cast<const uint8_t*>(cells.data()), cells.size() * sizeof(gpu::AtlasCellGpu)},
         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
-    uint32_t levels = uint32_t(atlas.mips.size());
-    atlasImage_ = createImage(ctx_, {.format = VK_FORMAT_R8G8B8A8_SRGB,
-                                     .width = atlas.mips[0].width,
-                                     .height = atlas.mips[0].height,
-                                     .mipLevels = levels,
-                                     .usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
-    uint64_t total = 0;
-    for (const AtlasMip& mip : atlas.mips) total += mip.rgba.size();
-    Buffer staging = createBuffer(ctx_, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryIntent::Upload);
-    std::vector<VkBufferImageCopy> regions;
-    uint64_t offset = 0;
-    for (uint32_t level = 0; level < levels; ++level) {
-        const AtlasMip& mip = atlas.mips[level];
-        std::memcpy(staging.mapped() + offset, mip.rgba.data(), mip.rgba.size());
-        regions.push_back({.bufferOffset = offset,
-                           .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1},
-                           .imageExtent = {mip.width, mip.height, 1}});
-        offset += mip.rgba.size();
-    }
-    ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
-        discardToCopyDstBarrier(cmd, atlasImage_.handle, VK_IMAGE_ASPECT_COLOR_BIT);
-        vkCmdCopyBufferToImage(cmd, staging.handle, atlasImage_.handle, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                               uint32_t(regions.size()), regions.data());
-        copyToFragmentSampledBarrier(cmd, atlasImage_.handle, VK_IMAGE_ASPECT_COLOR_BIT);
-    });
-    destroyBuffer(ctx_, staging);
+    const uint32_t levels = uint32_t(atlas.mips.size());
+    std::vector<std::span<const uint8_t>> data;
+    for (const AtlasMip& mip : atlas.mips) data.push_back(mip.rgba);
+    atlasImage_ = createImageWithData(
+        ctx_, {.format = VK_FORMAT_R8G8B8A8_SRGB, .width = atlas.mips[0].width, .height = atlas.mips[0].height,
+               .mipLevels = levels},
+        data);
 
-    VkSamplerCreateInfo sampler{
-        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-        .magFilter = VK_FILTER_LINEAR,
-        .minFilter = VK_FILTER_LINEAR,
-        .mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR,
-        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-        .maxLod = float(levels),
-    };
-    VK_CHECK(vkCreateSampler(ctx_.vk(), &sampler, nullptr, &atlasSampler_));
+    atlasSampler_ = createLinearSampler(ctx_, levels);
 }
 
 DescriptorBinding VegetationRenderer::atlasCellsBinding() const {

@@ -290,9 +290,12 @@ GrassMap buildGrassMap(const Scene& scene, float tileSize) {
     return makeMeadowGrassMap({.tileSize = tileSize, .seed = scene.seed});
 }
 
+VegetationTile buildVegetation(const Scene& scene, const Ground& terrain, const GrassMap& map, uint32_t threads) {
+    return generateTile(terrain, map, vegetationOn(scene, terrain), TileCoord{0, 0}, threads);
+}
+
 VegetationTile buildVegetation(const Scene& scene, const Ground& terrain, uint32_t threads) {
-    const VegetationParams params = vegetationOn(scene, terrain);
-    return generateTile(terrain, buildGrassMap(scene, params.tileSize), params, TileCoord{0, 0}, threads);
+    return buildVegetation(scene, terrain, buildGrassMap(scene, vegetationOn(scene, terrain).tileSize), threads);
 }
 
 Camera sceneCamera(const Scene& scene, const Ground& terrain, uint32_t width, uint32_t height, double time) {

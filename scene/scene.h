@@ -133,6 +133,8 @@ GrassMap buildGrassMap(const Scene& scene, float tileSize);
 // Places the scene's vegetation on its terrain (buildTerrain, vegetationOn; threads: 0 = all cores). Checks the
 // memory budget first.
 VegetationTile buildVegetation(const Scene& scene, const Ground& terrain, uint32_t threads = 0);
+// The same on a grass map already built (buildGrassMap over vegetationOn's tile).
+VegetationTile buildVegetation(const Scene& scene, const Ground& terrain, const GrassMap& map, uint32_t threads);
 // The scene camera at the given resolution and simulation time, resolved against the terrain.
 Camera sceneCamera(const Scene& scene, const Ground& terrain, uint32_t width, uint32_t height, double time = 0.0);
 

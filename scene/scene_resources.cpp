@@ -10,13 +10,16 @@ SceneResources buildSceneResources(Scene scene, bool withVegetation, uint32_t th
     r.terrain = buildTerrain(r.scene);
     r.models = loadObjectModels(r.scene.objects, r.scene.source);
     if (!withVegetation || !r.scene.vegetationEnabled) return r;
-    r.tile = buildVegetation(r.scene, r.terrain, threads);
+    const VegetationParams params = vegetationOn(r.scene, r.terrain);
+    const GrassMap map = buildGrassMap(r.scene, params.tileSize);
+    r.tile = buildVegetation(r.scene, r.terrain, map, threads);
     r.atlas = buildAtlas(r.scene);
     r.vegetation = true;
     require(r.atlas->desc.rows.size() >= r.scene.vegetation.categoryCount,
             r.scene.source + ": the atlas has " + std::to_string(r.atlas->desc.rows.size()) +
                 " rows but 'vegetation' has " + std::to_string(r.scene.vegetation.categoryCount) +
                 " categories (one row per category)");
+    r.cover = makeCoverMap(map, *r.atlas, params);
     return r;
 }
 

@@ -6,6 +6,7 @@
 #include "scene/objects.h"
 #include "scene/scene.h"
 #include "vegetation/atlas.h"
+#include "vegetation/cover_map.h"
 #include "vegetation/vegetation_tile.h"
 #include "world/ground.h"
 
@@ -20,6 +21,7 @@ struct SceneResources {
     std::vector<ObjectModel> models;   // object k of scene.objects
     std::optional<VegetationTile> tile; // CPU copies, present when the vegetation is drawn; createSceneGpu
     std::optional<Atlas> atlas;         // releases them once uploaded, unless the simulation reads the tile
+    std::optional<CoverMap> cover;      // the vegetation seen from beyond the far LOD limit (with the tile)
     bool vegetation = false;            // the vegetation is drawn (stays true after the copies are released)
 
     bool withVegetation() const { return vegetation; }

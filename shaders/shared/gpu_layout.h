@@ -58,6 +58,8 @@ struct FrameConstants {
     mat4 shadowViewProj; // world -> sun shadow map clip space (orthographic, reversed Z)
     vec4 shadowParams;   // x enabled (0/1), y depth bias, z 1/shadow map size, w unused
     uvec4 debug;         // x kDebug* flags (sward-view overlays; 0 for renders), yzw unused
+    vec4 coverRect;      // the cover map's tile: xy world south-west corner, z 1 / edge (0: no cover), w unused
+    vec4 coverBand;      // x lod.far, y lod.band (the plants' dissolve band around it), zw unused
 };
 
 // FrameConstants::debug.x flags: viewer visualisations drawn by the main-pass shaders.
@@ -167,7 +169,7 @@ struct ExpansionStats {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameConstants) == 4 * 64 + 10 * 16);
+static_assert(sizeof(FrameConstants) == 4 * 64 + 12 * 16);
 static_assert(sizeof(DebugLineVertex) == 32);
 static_assert(sizeof(VegetationConstants) == 12 * 16);
 static_assert(sizeof(ExpandedPlant) == 32);
