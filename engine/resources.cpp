@@ -57,7 +57,7 @@ Image createImage(Context& ctx, const ImageDesc& desc) {
         .format = desc.format,
         .extent = {desc.width, desc.height, 1},
         .mipLevels = desc.mipLevels,
-        .arrayLayers = 1,
+        .arrayLayers = std::max(desc.layers, 1u),
         .samples = desc.samples,
         .tiling = VK_IMAGE_TILING_OPTIMAL,
         .usage = desc.usage,
@@ -79,9 +79,9 @@ Image createImage(Context& ctx, const ImageDesc& desc) {
     VkImageViewCreateInfo viewInfo{
         .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
         .image = image.handle,
-        .viewType = VK_IMAGE_VIEW_TYPE_2D,
+        .viewType = desc.layers > 0 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
         .format = desc.format,
-        .subresourceRange = {image.aspect, 0, desc.mipLevels, 0, 1},
+        .subresourceRange = {image.aspect, 0, desc.mipLevels, 0, std::max(desc.layers, 1u)},
     };
     VK_CHECK(vkCreateImageView(ctx.vk(), &viewInfo, nullptr, &image.view));
     return image;
@@ -134,7 +134,7 @@ Image createImageWithData(Context& ctx, ImageDesc desc, std::span<const std::spa
     for (uint32_t level = 0; level < desc.mipLevels; ++level) {
         std::memcpy(staging.mapped() + offset, levels[level].data(), levels[level].size());
         regions.push_back({.bufferOffset = offset,
-                           .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1},
+                           .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, std::max(desc.layers, 1u)},
                            .imageExtent = {std::max(desc.width >> level, 1u), std::max(desc.height >> level, 1u), 1}});
         offset += levels[level].size();
     }
@@ -148,15 +148,15 @@ Image createImageWithData(Context& ctx, ImageDesc desc, std::span<const std::spa
     return image;
 }
 
-VkSampler createLinearSampler(Context& ctx, uint32_t mipLevels) {
+VkSampler createLinearSampler(Context& ctx, uint32_t mipLevels, VkSamplerAddressMode address) {
     VkSamplerCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
         .magFilter = VK_FILTER_LINEAR,
         .minFilter = VK_FILTER_LINEAR,
         .mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR,
-        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
-        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeU = address,
+        .addressModeV = address,
+        .addressModeW = address,
         .maxLod = float(mipLevels),
     };
     VkSampler sampler = VK_NULL_HANDLE;

@@ -45,6 +45,7 @@ struct ImageDesc {
     uint32_t mipLevels = 1;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     VkImageUsageFlags usage = 0;
+    uint32_t layers = 0; // 0: a plain 2D image; n >= 1: a 2D array image of n layers with a 2D_ARRAY view
 };
 Image createImage(Context& ctx, const ImageDesc& desc);
 void destroyImage(Context& ctx, Image& image);
@@ -52,11 +53,13 @@ void retireImage(Context& ctx, Image& image);
 
 // Copies `data` into a device-local buffer through a temporary staging buffer, and waits. For load-time data.
 Buffer createBufferWithData(Context& ctx, std::span<const uint8_t> data, VkBufferUsageFlags usage);
-// Creates a sampled image (desc.usage gains SAMPLED | TRANSFER_DST) and fills mip level i from levels[i] through
-// one staging buffer, and waits; the image ends in SHADER_READ_ONLY_OPTIMAL, visible to fragment shaders.
+// Creates a sampled image (desc.usage gains SAMPLED | TRANSFER_DST) and fills mip level i from levels[i] (an array
+// image: every layer of that level, one after the other) through one staging buffer, and waits; the image ends in
+// SHADER_READ_ONLY_OPTIMAL, visible to fragment shaders.
 Image createImageWithData(Context& ctx, ImageDesc desc, std::span<const std::span<const uint8_t>> levels);
-// A trilinear sampler clamped to the edge over `mipLevels` levels (the caller destroys it).
-VkSampler createLinearSampler(Context& ctx, uint32_t mipLevels);
+// A trilinear sampler over `mipLevels` levels, clamped to the edge or repeating (the caller destroys it).
+VkSampler createLinearSampler(Context& ctx, uint32_t mipLevels,
+                              VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
 // Writes `data` at `offset` of `dst` through a staging buffer (one submission, waits).
 void uploadToBuffer(Context& ctx, const Buffer& dst, uint64_t offset, std::span<const uint8_t> data);
 // Reads `size` bytes of a buffer back to the host (one submission, waits).

@@ -101,8 +101,9 @@ std::string decodeFailure(const std::string& path) {
     return "cannot decode PNG '" + path + "': " + (reason ? reason : "corrupt or truncated data");
 }
 
-ImageData loadPng(const std::string& path) {
-    const std::vector<char> bytes = readFileBytes(path);
+} // namespace
+
+ImageData decodePng(const std::string& path, const std::vector<char>& bytes) {
     PngHeader header = readPngHeader(path, bytes);
     requireEdges(path, header.width, header.height);
     const bool palette = header.colorType == 3;
@@ -133,6 +134,12 @@ ImageData loadPng(const std::string& path) {
     image.height = uint32_t(height);
     image.channels = uint32_t(channels);
     return image;
+}
+
+namespace {
+
+ImageData loadPng(const std::string& path) {
+    return decodePng(path, readFileBytes(path));
 }
 
 // Reads the data window into `samples` (interleaved float channels) a strip of rows at a time, growing the buffer

@@ -26,5 +26,7 @@ inline constexpr uint32_t kMaxImageEdge = 32768;
 // float; channels R,G,B[,A], or a single channel such as Y or Z). Throws sward::Error naming the file and the
 // problem for a missing file, an unknown extension, a bit depth below 8, or a corrupt file.
 ImageData loadImage(const std::string& path);
+// Decodes a PNG held in memory with the same checks; `path` names it in errors (e.g. "'ground.glb' image 2").
+ImageData decodePng(const std::string& path, const std::vector<char>& bytes);
 
 } // namespace sward

@@ -20,4 +20,18 @@ struct GroundDrawMesh {
 
 GroundDrawMesh groundDrawMesh(const Ground& ground);
 
+// A mesh ground's base-colour textures as one array image: every texture resampled (bilinear, in linear light)
+// to size x size texels, sRGB RGBA8, with a box-filtered mip chain. Without textures: one white 1x1 layer, so
+// the binding is always valid.
+struct GroundTextureArray {
+    uint32_t size = 1, layers = 1, mipLevels = 1;
+    std::vector<std::vector<uint8_t>> levels; // per mip level: every layer's texels, layer after layer
+};
+
+// Largest edge of a ground texture layer: textures are scaled to the next power of two of the largest one, at most
+// this (GPU memory: 4 MiB per layer at 1024, plus a third for the mips).
+inline constexpr uint32_t kMaxGroundTextureLayerSize = 1024;
+
+GroundTextureArray groundTextureArray(const Ground& ground);
+
 } // namespace sward

@@ -73,9 +73,11 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& ter
     shadedLayout.bindings.push_back(
         layoutBinding(gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
     PipelineLayoutDesc terrainLayout = shadedLayout; // + the far cover
-    terrainLayout.bindings.push_back(
-        layoutBinding(gpu::kBindingCoverMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
+    for (uint32_t binding : {gpu::kBindingCoverMap, gpu::kBindingGroundTextures})
+        terrainLayout.bindings.push_back(
+            layoutBinding(binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
     uploadCoverMap(cover);
+    uploadGroundTextures(terrain);
 
     // Sun shadow map: always present (1x1 and disabled when shadow_map_size is 0) so bindings stay valid.
     uint32_t shadowSize = std::max(scene.render.shadowMapSize, 1u);
@@ -102,7 +104,8 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& ter
         .vertexBindings = {{0, sizeof(gpu::TerrainVertex), VK_VERTEX_INPUT_RATE_VERTEX}},
         .vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, positionHeight)},
                              {1, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, normal)},
-                             {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, albedo)}},
+                             {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, albedo)},
+                             {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(gpu::TerrainVertex, uvLayer)}},
         .cullMode = VK_CULL_MODE_BACK_BIT,
         .colorFormats = {mainDesc.colors[0].format},
         .depthFormat = mainDesc.depthFormat,
@@ -154,6 +157,8 @@ SceneRenderer::~SceneRenderer() {
     vkDestroySampler(ctx_.vk(), shadowSampler_, nullptr);
     destroyImage(ctx_, coverImage_);
     vkDestroySampler(ctx_.vk(), coverSampler_, nullptr);
+    destroyImage(ctx_, groundTextures_);
+    vkDestroySampler(ctx_.vk(), groundSampler_, nullptr);
     destroyPipeline(ctx_.device, terrainPipeline_);
     destroyPipeline(ctx_.device, terrainTruthPipeline_);
     destroyPipeline(ctx_.device, terrainShadowPipeline_);
@@ -231,6 +236,20 @@ void SceneRenderer::uploadCoverMap(const CoverMap* cover) {
     coverSampler_ = createLinearSampler(ctx_, 1);
 }
 
+// glTF's default wrap mode is repeat; per-texture samplers are not read (one sampler for the whole array).
+void SceneRenderer::uploadGroundTextures(const Ground& terrain) {
+    const GroundTextureArray textures = groundTextureArray(terrain);
+    std::vector<std::span<const uint8_t>> levels(textures.levels.begin(), textures.levels.end());
+    groundTextures_ = createImageWithData(ctx_,
+                                          {.format = VK_FORMAT_R8G8B8A8_SRGB,
+                                           .width = textures.size,
+                                           .height = textures.size,
+                                           .mipLevels = textures.mipLevels,
+                                           .layers = textures.layers},
+                                          levels);
+    groundSampler_ = createLinearSampler(ctx_, textures.mipLevels, VK_SAMPLER_ADDRESS_MODE_REPEAT);
+}
+
 DescriptorBinding SceneRenderer::frameBinding(uint32_t slot) const {
     return uniformBuffer(gpu::kBindingFrame, constants_.handle, slot * constantsStride_, sizeof(gpu::FrameConstants));
 }
@@ -246,7 +265,8 @@ void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint
     if (timers) timers->begin(cmd, "main");
     main.begin(cmd);
     drawTerrain(cmd, terrainPipeline_,
-                {frame, shadow, sampledImage(gpu::kBindingCoverMap, coverImage_.view, coverSampler_)});
+                {frame, shadow, sampledImage(gpu::kBindingCoverMap, coverImage_.view, coverSampler_),
+                 sampledImage(gpu::kBindingGroundTextures, groundTextures_.view, groundSampler_)});
     if (objects_) objects_->recordMain(cmd, frame, shadow, slot);
     if (vegetation_ && baked) vegetation_->drawBaked(cmd, *baked, frame, shadow, slot);
     else if (vegetation_) vegetation_->draw(cmd, PlantPass::Main, frame, shadow, slot);

@@ -94,6 +94,7 @@ private:
     DescriptorBinding frameBinding(uint32_t slot) const;
     DescriptorBinding shadowBinding() const;
     void uploadCoverMap(const CoverMap* cover);
+    void uploadGroundTextures(const Ground& terrain);
 
     Context& ctx_;
     Scene scene_;
@@ -109,6 +110,8 @@ private:
     Image coverImage_; // the far cover (1x1 "nothing" without vegetation, so the binding is always valid)
     VkSampler coverSampler_ = VK_NULL_HANDLE;
     glm::vec4 coverRect_{0.0f};
+    Image groundTextures_; // a mesh ground's base-colour textures (one white layer without any)
+    VkSampler groundSampler_ = VK_NULL_HANDLE;
     std::unique_ptr<VegetationRenderer> vegetation_;
     std::unique_ptr<ObjectRenderer> objects_;
     uint32_t debugFlags_ = 0;

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Terrain shading: a mesh ground's material colour, or soil / dry-grass albedo varied by slope and height, sun
+// Terrain shading: a mesh ground's material colour and texture, or soil / dry-grass albedo varied by slope and height, sun
 // (Lambert) + hemispherical ambient. Beyond the far LOD limit, where the plants have dissolved, the ground takes
 // the vegetation's look from the cover map (vegetation/cover_map.h), lit as the plants are, so the meadow goes on
 // in colour instead of ending in a bare band.
@@ -8,11 +8,13 @@
 #include "shared/shadow.glsl"
 
 layout(set = 0, binding = kBindingCoverMap) uniform sampler2D coverMap;
+layout(set = 0, binding = kBindingGroundTextures) uniform sampler2DArray groundTextures;
 
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in float inViewDepth;
 layout(location = 3) in vec4 inAlbedo;
+layout(location = 4) in vec3 inUvLayer; // flat in practice: the layer is constant per triangle
 
 layout(location = 0) out vec4 outColor;
 
@@ -53,8 +55,9 @@ void main() {
     // Low-frequency variation from position only (no texture): keeps large flat areas from looking uniform.
     float variation = 0.5 + 0.5 * sin(inWorld.x * 0.071 + 1.3 * sin(inWorld.y * 0.053));
     vec3 albedo = mix(turf, soil, clamp(slope * 4.0 + 0.25 * variation, 0.0, 1.0));
-    // A mesh ground is drawn with its materials' base colours.
+    // A mesh ground is drawn with its materials' base colours, times their textures.
     if (inAlbedo.a > 0.0) albedo = inAlbedo.rgb;
+    if (inUvLayer.z >= 0.0) albedo *= texture(groundTextures, vec3(inUvLayer.xy, round(inUvLayer.z))).rgb;
     float shadow = sunShadow(inWorld);
     float sun = max(dot(n, frame.sunDirection.xyz), 0.0) * shadow;
     vec3 color = albedo * (frame.sunRadiance.rgb * sun + ambientLight(n));

@@ -8,11 +8,13 @@ layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain, kPassTruth or
 layout(location = 0) in vec4 inPosition;
 layout(location = 1) in vec4 inNormal;
 layout(location = 2) in vec4 inAlbedo;
+layout(location = 3) in vec4 inUvLayer;
 
 layout(location = 0) out vec3 outWorld;
 layout(location = 1) out vec3 outNormal;
 layout(location = 2) out float outViewDepth;
 layout(location = 3) out vec4 outAlbedo;
+layout(location = 4) out vec3 outUvLayer;
 
 void main() {
     vec4 world = vec4(inPosition.xyz, 1.0);
@@ -20,6 +22,7 @@ void main() {
     outWorld = world.xyz;
     outNormal = inNormal.xyz;
     outAlbedo = inAlbedo;
+    outUvLayer = inUvLayer.xyz;
     // Planar depth along the optical axis: view space uses OpenCV camera axes (z forward).
     outViewDepth = (frame.view * world).z;
 }

@@ -2,8 +2,9 @@
 """Generates the data files of sward's example worlds (docs/scene-format.md, "terrain"):
 
   hills/hills.gltf    a hilly ground mesh as a glTF exporter writes it: Y up, two nested nodes with rotation,
-                      non-uniform scale and translation, NORMAL per vertex, two materials ("meadow" and "rock",
-                      the rock being a knoll kept bare of plants by the scene)
+                      non-uniform scale and translation, NORMAL and TEXCOORD_0 per vertex, two materials ("meadow"
+                      and "rock", the rock being a knoll kept bare of plants by the scene, with a base-colour
+                      texture hills/rock.png repeated every 8 m)
   gis/dem.tif         a GeoTIFF heightmap (UTM 33N, 2 m pixels, float32 metres) of a known analytic surface
   gis/landcover.tif   a GeoTIFF of ESA WorldCover class codes over the scene's 500 m vegetation tile, whose
                       south-west corner is the DEM's south-west sample (4 m pixels, byte)
@@ -19,6 +20,7 @@ import struct
 import subprocess
 import sys
 import tempfile
+import zlib
 
 # --- hills.gltf ------------------------------------------------------------------------------------------------
 HILLS_CELLS = 48        # grid cells per side
@@ -40,6 +42,28 @@ def hills_normal(x, z):
     n = (-dx, 1.0, -dz)
     length = math.sqrt(sum(c * c for c in n))
     return tuple(c / length for c in n)
+
+
+def write_png_rgb(path, width, height, pixel):
+    """An 8-bit RGB PNG; pixel(x, y) -> (r, g, b) bytes."""
+    rows = b"".join(b"\0" + bytes(c for x in range(width) for c in pixel(x, y)) for y in range(height))
+
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xffffffff)
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
+
+
+def rock_pixel(x, y):
+    """Grey granite: a hashed speckle on two scales (deterministic, no random module)."""
+    def hashed(i, j, salt):
+        h = (i * 73856093 ^ j * 19349663 ^ salt * 83492791) & 0xffffffff
+        h = (h ^ (h >> 13)) * 0x5bd1e995 & 0xffffffff
+        return ((h ^ (h >> 15)) & 0xff) / 255.0
+    v = 0.55 * hashed(x // 8, y // 8, 1) + 0.45 * hashed(x, y, 2)
+    grey = 150 + int(90 * (v - 0.5))
+    return (grey, grey - 6, grey - 12)
 
 
 def write_hills(path):
@@ -68,16 +92,19 @@ def write_hills(path):
         while len(blob) % 4:
             blob.append(0)
         views.append({"buffer": 0, "byteOffset": offset, "byteLength": struct.calcsize("<" + fmt * count)})
-        accessor = {"bufferView": len(views) - 1, "componentType": component, "count": count // {"VEC3": 3, "SCALAR": 1}[kind], "type": kind}
+        per = {"VEC3": 3, "VEC2": 2, "SCALAR": 1}[kind]
+        accessor = {"bufferView": len(views) - 1, "componentType": component, "count": count // per, "type": kind}
         accessor.update(extra or {})
         accessors.append(accessor)
         return len(accessors) - 1
 
+    uvs = [(p[0] / 8.0, p[2] / 8.0) for p in positions]  # repeats every 8 m of the mesh frame
     flat_p = [c for p in positions for c in p]
     lo = [min(p[k] for p in positions) for k in range(3)]
     hi = [max(p[k] for p in positions) for k in range(3)]
     pos = add(flat_p, "f", len(flat_p), "VEC3", 5126, {"min": lo, "max": hi})
     nor = add([c for v in normals for c in v], "f", len(normals) * 3, "VEC3", 5126)
+    tex = add([c for v in uvs for c in v], "f", len(uvs) * 2, "VEC2", 5126)
     idx_meadow = add(meadow, "I", len(meadow), "SCALAR", 5125)
     idx_rock = add(rock, "I", len(rock), "SCALAR", 5125)
     gltf = {
@@ -93,12 +120,15 @@ def write_hills(path):
              "rotation": [0.0, math.sin(math.radians(7.5)), 0.0, math.cos(math.radians(7.5))]},
         ],
         "meshes": [{"name": "hills", "primitives": [
-            {"attributes": {"POSITION": pos, "NORMAL": nor}, "indices": idx_meadow, "material": 0},
-            {"attributes": {"POSITION": pos, "NORMAL": nor}, "indices": idx_rock, "material": 1}]}],
+            {"attributes": {"POSITION": pos, "NORMAL": nor, "TEXCOORD_0": tex}, "indices": idx_meadow, "material": 0},
+            {"attributes": {"POSITION": pos, "NORMAL": nor, "TEXCOORD_0": tex}, "indices": idx_rock, "material": 1}]}],
         "materials": [
             {"name": "meadow", "pbrMetallicRoughness": {"baseColorFactor": [0.16, 0.2, 0.07, 1.0], "roughnessFactor": 1.0}},
-            {"name": "rock", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.18, 0.16, 1.0], "roughnessFactor": 0.9}},
+            {"name": "rock", "pbrMetallicRoughness": {"baseColorFactor": [0.45, 0.42, 0.4, 1.0], "roughnessFactor": 0.9,
+                                                      "baseColorTexture": {"index": 0}}},
         ],
+        "textures": [{"source": 0}],
+        "images": [{"uri": "rock.png"}],
         "accessors": accessors,
         "bufferViews": views,
         "buffers": [{"byteLength": len(blob),
@@ -106,6 +136,7 @@ def write_hills(path):
     }
     with open(path, "w") as f:
         json.dump(gltf, f, separators=(",", ":"))
+    write_png_rgb(os.path.join(os.path.dirname(path), "rock.png"), 64, 64, rock_pixel)
 
 
 # --- gis/dem.tif and gis/landcover.tif --------------------------------------------------------------------------

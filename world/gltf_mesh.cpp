@@ -8,6 +8,7 @@
 #include "world/gltf_mesh.h"
 
 #include "common/error.h"
+#include "world/gltf_textures.h"
 
 #include <cmath>
 #include <cstring>
@@ -22,7 +23,7 @@ namespace sward {
 
 namespace {
 
-// Ground meshes and object models need no textures: skip decoding images entirely.
+// Object models need no textures: skip decoding their images entirely.
 bool ignoreImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
     return true;
 }
@@ -41,6 +42,7 @@ const glm::dmat4 kZUpFromYUp(glm::dvec4(1, 0, 0, 0), glm::dvec4(0, 0, 1, 0), glm
 // One triangle primitive as stored in the file (glTF frame): positions, optional normals, a triangle list.
 struct RawPrimitive {
     std::vector<glm::vec3> positions, normals;
+    std::vector<glm::vec2> uvs; // TEXCOORD_0, ground meshes only
     std::vector<uint32_t> indices;
 };
 
@@ -98,6 +100,35 @@ struct GltfReader {
                 if (!std::isfinite(out[i][c]) || (position && std::abs(out[i][c]) > kMaxCoordinate))
                     fail("accessor " + std::to_string(accessor) + " (" + what + "): element " + std::to_string(i) +
                          (position ? " is not finite or beyond 1e8 m" : " is not finite"));
+        }
+        return out;
+    }
+
+    // TEXCOORD_n: float, or unsigned byte / short normalised to [0, 1] (glTF allows all three); finite.
+    std::vector<glm::vec2> texCoords(int accessor) const {
+        if (accessor < 0 || size_t(accessor) >= model.accessors.size()) fail("accessor index out of range");
+        const tinygltf::Accessor& a = model.accessors[size_t(accessor)];
+        const int type = a.componentType;
+        const size_t component = type == TINYGLTF_COMPONENT_TYPE_FLOAT            ? 4
+                                 : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                                 : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE  ? 1
+                                                                                  : 0;
+        if (component == 0 || (component < 4 && !a.normalized))
+            fail("TEXCOORD must be float or normalised unsigned byte / short");
+        const View values = view(accessor, TINYGLTF_TYPE_VEC2, 2 * component);
+        std::vector<glm::vec2> out(values.count);
+        for (size_t i = 0; i < values.count; ++i) {
+            const unsigned char* at = values.data + i * values.stride;
+            for (int c = 0; c < 2; ++c) {
+                const unsigned char* v = at + size_t(c) * component;
+                uint16_t u16 = 0;
+                float f = 0.0f;
+                if (component == 4) std::memcpy(&f, v, 4);
+                else if (component == 2) std::memcpy(&u16, v, 2), f = float(u16) / 65535.0f;
+                else f = float(*v) / 255.0f;
+                if (!(std::abs(f) <= 1e6f)) fail("accessor " + std::to_string(accessor) + " (TEXCOORD) is not finite");
+                out[i][c] = f;
+            }
         }
         return out;
     }
@@ -290,7 +321,8 @@ std::string oneLine(std::string text) {
     return text.empty() ? "unknown error" : text;
 }
 
-tinygltf::Model readFile(const std::string& path, const char* kind, const AssetPolicy& assets) {
+// `decodeImages`: ground meshes draw their base-colour textures; object models use factors only.
+tinygltf::Model readFile(const std::string& path, const char* kind, const AssetPolicy& assets, bool decodeImages) {
     const std::string what = std::string(kind) + " '" + path + "'";
     const size_t slash = path.find_last_of("/\\"); // tinygltf's own split (GetBaseDir)
     BufferFiles files{.assets = assets,
@@ -300,7 +332,8 @@ tinygltf::Model readFile(const std::string& path, const char* kind, const AssetP
                       .refused = {},
                       .lastUri = {}};
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(ignoreImage, nullptr);
+    if (decodeImages) loader.SetImageLoader(decodeGltfImage, const_cast<std::string*>(&path));
+    else loader.SetImageLoader(ignoreImage, nullptr);
     loader.SetFsCallbacks({.FileExists = bufferFileExists,
                            .ExpandFilePath = keepPath,
                            .ReadWholeFile = readBufferFile,
@@ -326,17 +359,40 @@ tinygltf::Model readFile(const std::string& path, const char* kind, const AssetP
 // (when every primitive has them).
 struct MeshBuilder {
     const GltfReader& reader;
+    const AssetPolicy& assets; // external texture images are read only where it allows
     TriangleMesh mesh;
     std::vector<int> materialOf;     // glTF material index + 1 (0: the default material) -> mesh.materials index
+    std::vector<int> textureOf;      // glTF texture index -> mesh.textures index
     bool normalsEverywhere = true;   // every primitive so far had NORMAL
+    bool uvsEverywhere = true;       // every primitive so far had TEXCOORD_0
+
+    int texture(int gltfTexture) {
+        if (textureOf.empty()) textureOf.assign(reader.model.textures.size(), -1);
+        if (gltfTexture < 0 || size_t(gltfTexture) >= textureOf.size())
+            reader.fail("a material's baseColorTexture refers to a missing texture");
+        int& index = textureOf[size_t(gltfTexture)];
+        if (index < 0) {
+            index = int(mesh.textures.size());
+            mesh.textures.push_back(groundTexture(reader.model, gltfTexture,
+                                                  std::string(reader.kind) + " '" + reader.path + "'", assets,
+                                                  std::filesystem::path(reader.path).parent_path().string()));
+        }
+        return index;
+    }
 
     uint32_t material(int gltfMaterial) {
         const glm::vec4 color = reader.baseColor(gltfMaterial);
         if (materialOf.empty()) materialOf.assign(reader.model.materials.size() + 1, -1);
         int& index = materialOf[size_t(gltfMaterial + 1)];
         if (index < 0) {
+            GroundMaterial m{gltfMaterial < 0 ? "" : reader.model.materials[size_t(gltfMaterial)].name, color};
+            if (gltfMaterial >= 0) {
+                const tinygltf::TextureInfo& t = reader.model.materials[size_t(gltfMaterial)].pbrMetallicRoughness.baseColorTexture;
+                if (t.index >= 0 && t.texCoord != 0) reader.fail("baseColorTexture uses TEXCOORD_" + std::to_string(t.texCoord) + "; only TEXCOORD_0 is read");
+                if (t.index >= 0) m.texture = texture(t.index);
+            }
             index = int(mesh.materials.size());
-            mesh.materials.push_back({gltfMaterial < 0 ? "" : reader.model.materials[size_t(gltfMaterial)].name, color});
+            mesh.materials.push_back(std::move(m));
         }
         return uint32_t(index);
     }
@@ -344,12 +400,18 @@ struct MeshBuilder {
     void addPrimitive(const tinygltf::Primitive& prim, const glm::dmat4& transform) {
         RawPrimitive raw;
         if (!reader.readPrimitive(prim, true, raw)) return;
+        if (auto uv = prim.attributes.find("TEXCOORD_0"); uv != prim.attributes.end()) {
+            raw.uvs = reader.texCoords(uv->second);
+            if (raw.uvs.size() != raw.positions.size()) reader.fail("TEXCOORD_0 and POSITION counts differ");
+        }
         const uint32_t base = uint32_t(mesh.positions.size());
         for (const glm::vec3& v : raw.positions)
             mesh.positions.push_back(glm::vec3(toZUp(glm::dvec3(transform * glm::dvec4(glm::dvec3(v), 1.0)))));
         for (uint32_t index : raw.indices) mesh.indices.push_back(base + index);
         mesh.triangleMaterial.insert(mesh.triangleMaterial.end(), raw.indices.size() / 3, material(prim.material));
         normalsEverywhere = normalsEverywhere && !raw.normals.empty();
+        uvsEverywhere = uvsEverywhere && !raw.uvs.empty();
+        mesh.uvs.insert(mesh.uvs.end(), raw.uvs.begin(), raw.uvs.end());
         // Normals transform with the inverse transpose; a degenerate one falls back to up.
         const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(kZUpFromYUp * transform)));
         for (const glm::vec3& n : raw.normals) {
@@ -371,6 +433,10 @@ struct MeshBuilder {
 
     TriangleMesh finish() {
         if (!normalsEverywhere) mesh.normals.clear(); // flat shading for all rather than mixed
+        if (!uvsEverywhere) mesh.uvs.clear();
+        for (const GroundMaterial& m : mesh.materials)
+            if (m.texture >= 0 && mesh.uvs.empty())
+                reader.fail("material '" + m.name + "' has a baseColorTexture but not every primitive has TEXCOORD_0");
         return std::move(mesh);
     }
 };
@@ -435,9 +501,9 @@ struct ModelBuilder {
 } // namespace
 
 TriangleMesh loadGltfMesh(const std::string& path, const AssetPolicy& assets) {
-    const tinygltf::Model model = readFile(path, "glTF ground", assets);
+    const tinygltf::Model model = readFile(path, "glTF ground", assets, true);
     GltfReader reader{path, model, "glTF ground"};
-    MeshBuilder builder{reader, {}};
+    MeshBuilder builder{reader, assets, {}};
     if (!model.scenes.empty()) {
         for (int node : reader.rootNodes()) builder.addNode(node, glm::dmat4(1.0), 0);
     } else {
@@ -463,7 +529,7 @@ size_t ObjectModel::triangleCount() const {
 }
 
 ObjectModel loadGltfModel(const std::string& path, const AssetPolicy& assets) {
-    const tinygltf::Model model = readFile(path, "glTF model", assets);
+    const tinygltf::Model model = readFile(path, "glTF model", assets, false);
     GltfReader reader{path, model, "glTF model"};
     ModelBuilder builder{reader, {}};
     builder.result.path = path;

@@ -63,6 +63,9 @@ Ground::Ground(TriangleMesh mesh, GroundSelection selection, float cellSize) : m
         if (!std::isfinite(v.x + v.y + v.z)) throw Error("ground mesh has a non-finite vertex");
     const uint32_t triangles = uint32_t(idx.size() / 3);
     require(mesh_.normals.empty() || mesh_.normals.size() == p.size(), "ground mesh needs one normal per vertex");
+    require(mesh_.uvs.empty() || mesh_.uvs.size() == p.size(), "ground mesh needs one uv per vertex");
+    for (const GroundMaterial& m : mesh_.materials)
+        require(m.texture < int(mesh_.textures.size()), "ground mesh material texture out of range");
     require(mesh_.triangleMaterial.empty() || mesh_.triangleMaterial.size() == triangles,
             "ground mesh needs one material per triangle");
     for (uint32_t m : mesh_.triangleMaterial)

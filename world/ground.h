@@ -23,10 +23,17 @@ struct SurfacePoint {
     bool plantable = true; // vegetation may grow here (GroundSelection)
 };
 
+// A base-colour texture of a ground mesh: 8-bit sRGB RGBA, top row first (glTF: uv (0, 0) is the top left).
+struct GroundTexture {
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba;
+};
+
 // A ground mesh's material: what the scene selects vegetation by, and what the ground is drawn with.
 struct GroundMaterial {
     std::string name;          // glTF material name; may be empty
     glm::vec4 baseColor{1.0f}; // linear RGBA base colour factor
+    int texture = -1;          // index into TriangleMesh::textures (multiplies baseColor), or -1
 };
 
 // Indexed triangle list in sward's world frame (metres, Z up).
@@ -34,8 +41,10 @@ struct TriangleMesh {
     std::vector<glm::vec3> positions;
     std::vector<uint32_t> indices;          // 3 per triangle
     std::vector<glm::vec3> normals;         // optional: one unit shading normal per position (empty = flat)
+    std::vector<glm::vec2> uvs;             // optional: one texture coordinate per position (empty = none)
     std::vector<uint32_t> triangleMaterial; // optional: one index into materials per triangle
     std::vector<GroundMaterial> materials;
+    std::vector<GroundTexture> textures;
 };
 
 // Where vegetation may grow on a ground: the surfaces of the named materials (empty = every material), and only

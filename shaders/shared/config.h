@@ -53,6 +53,7 @@ SWARD_CONST(uint, kBindingShadowMap, 5u);        // sun shadow map (shadow.glsl)
 SWARD_CONST(uint, kBindingInstancePlants, 6u);   // plant index per instance (plant.vert, ground-truth ids)
 SWARD_CONST(uint, kBindingBakedVertices, 4u);    // BakedVertex[] written by plant_bake.comp (it has no atlas)
 SWARD_CONST(uint, kBindingCoverMap, 7u);         // the vegetation's far cover (terrain.frag), main pass only
+SWARD_CONST(uint, kBindingGroundTextures, 8u);   // a mesh ground's base-colour textures (terrain.frag), main pass
 
 // Vegetation expansion (vegetation_expand.comp), besides its constants at kBindingVegetation.
 SWARD_CONST(uint, kExpandBindingStatics, 0u);

@@ -78,6 +78,7 @@ struct TerrainVertex {
     vec4 normal;         // xyz smooth normal, w unused
     vec4 albedo;         // rgb: linear base colour of a mesh ground's material; a = 1 draws it, a = 0 the
                          // procedural soil / turf of heightfield grounds
+    vec4 uvLayer;        // xy: the material texture's coordinate; z: its layer in the ground textures, -1: none
 };
 
 // Vegetation expansion: the three levels of detail of paper Figure 3.
@@ -180,7 +181,7 @@ static_assert(sizeof(PlantContact) == 16);
 static_assert(sizeof(RecoveryConstants) == 48);
 static_assert(sizeof(ScanConstants) == 8);
 static_assert(sizeof(BakeConstants) == 16);
-static_assert(sizeof(TerrainVertex) == 48);
+static_assert(sizeof(TerrainVertex) == 64);
 } // namespace sward::gpu
 #endif
 #undef SWARD_CONST

@@ -1,0 +1,99 @@
+#include "world/gltf_textures.h"
+
+#include "common/error.h"
+#include "io/image_io.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cctype>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+namespace sward {
+
+namespace {
+
+bool isPng(const unsigned char* bytes, int size) {
+    static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    return size >= 8 && std::memcmp(bytes, signature, 8) == 0;
+}
+
+// glTF uris are percent-encoded (RFC 3986): "my%20grass.png".
+std::string percentDecoded(const std::string& uri) {
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit((unsigned char)uri[i + 1]) &&
+            std::isxdigit((unsigned char)uri[i + 2])) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+// Any PNG layout (grey, grey + alpha, RGB, RGBA; 8 or 16 bits) as 8-bit RGBA.
+std::vector<unsigned char> toRgba8(const ImageData& png) {
+    std::vector<unsigned char> rgba(size_t(png.width) * png.height * 4);
+    for (size_t p = 0; p < size_t(png.width) * png.height; ++p) {
+        const float* s = &png.samples[p * png.channels];
+        const float grey = s[0];
+        const float rgbaf[4] = {png.channels >= 3 ? s[0] : grey, png.channels >= 3 ? s[1] : grey,
+                                png.channels >= 3 ? s[2] : grey,
+                                png.channels == 4 ? s[3] : png.channels == 2 ? s[1] : 1.0f};
+        for (int c = 0; c < 4; ++c) rgba[4 * p + size_t(c)] = (unsigned char)std::lround(rgbaf[c] * 255.0f);
+    }
+    return rgba;
+}
+
+} // namespace
+
+bool decodeGltfImage(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
+                     const unsigned char* bytes, int size, void* user) {
+    if (!isPng(bytes, size)) return true; // refused later, and only if a ground material uses it
+    const std::string name = "'" + *static_cast<const std::string*>(user) + "' image " + std::to_string(index);
+    try {
+        const ImageData png = decodePng(name, std::vector<char>(bytes, bytes + size));
+        require(png.width <= kMaxGroundTextureEdge && png.height <= kMaxGroundTextureEdge,
+                "image " + name + " is larger than " + std::to_string(kMaxGroundTextureEdge) + " pixels per edge");
+        image->image = toRgba8(png);
+        image->width = int(png.width);
+        image->height = int(png.height);
+        image->component = 4;
+        image->bits = 8;
+        return true;
+    } catch (const Error& e) {
+        if (err) *err += e.what();
+        return false;
+    }
+}
+
+GroundTexture groundTexture(const tinygltf::Model& model, int textureIndex, const std::string& what,
+                            const AssetPolicy& assets, const std::string& folder) {
+    require(textureIndex >= 0 && size_t(textureIndex) < model.textures.size(),
+            what + ": a material's baseColorTexture refers to a missing texture");
+    const int source = model.textures[size_t(textureIndex)].source;
+    require(source >= 0 && size_t(source) < model.images.size(),
+            what + ": texture " + std::to_string(textureIndex) + " has no image");
+    const tinygltf::Image& image = model.images[size_t(source)];
+    const std::string notPng = what + ": image " + std::to_string(source) +
+                               " is not a PNG (ground textures are read from PNG only; export PNG images)";
+    if (!image.image.empty()) return GroundTexture{uint32_t(image.width), uint32_t(image.height), image.image};
+    require(!image.uri.empty() && image.uri.rfind("data:", 0) != 0, notPng);
+    const std::string path =
+        assets.resolve(percentDecoded(image.uri), folder, what + ": image " + std::to_string(source) + " uri");
+    const std::ifstream file(path, std::ios::binary);
+    std::vector<char> bytes((std::istreambuf_iterator<char>(file.rdbuf())), std::istreambuf_iterator<char>());
+    require(file.good() || !bytes.empty(), what + ": cannot read image " + std::to_string(source) + " '" + image.uri + "'");
+    require(isPng(reinterpret_cast<const unsigned char*>(bytes.data()), int(std::min<size_t>(bytes.size(), 8))), notPng);
+    const ImageData png = decodePng(path, bytes);
+    require(png.width <= kMaxGroundTextureEdge && png.height <= kMaxGroundTextureEdge,
+            "image '" + path + "' is larger than " + std::to_string(kMaxGroundTextureEdge) + " pixels per edge");
+    return GroundTexture{png.width, png.height, toRgba8(png)};
+}
+
+} // namespace sward

@@ -1,0 +1,32 @@
+// glTF base-colour textures of ground meshes (world/gltf_mesh.cpp): images decoded with sward's own PNG reader
+// (io/image_io.h: sizes checked against the data before anything is allocated), never by stb_image directly.
+#pragma once
+
+#include "world/asset_policy.h"
+#include "world/ground.h"
+
+#include <string>
+
+namespace tinygltf {
+struct Image;
+class Model;
+} // namespace tinygltf
+
+namespace sward {
+
+// Largest ground texture edge, in pixels.
+inline constexpr uint32_t kMaxGroundTextureEdge = 8192;
+
+// tinygltf's image callback for grounds (embedded images: data uris and buffer views; tinygltf is built without
+// external image loading): `user` is the glTF's file name (const std::string*). PNG bytes become 8-bit RGBA in
+// image->image; any other format is left undecoded (an error only if a ground material uses it).
+bool decodeGltfImage(tinygltf::Image* image, int index, std::string* err, std::string* warn, int requestedWidth,
+                     int requestedHeight, const unsigned char* bytes, int size, void* user);
+
+// The image of texture `textureIndex` as a GroundTexture: embedded images were decoded by decodeGltfImage; an
+// external one (uri) is read here, relative to `folder` and only where `assets` allows. Throws sward::Error naming
+// `what` for an index out of range, an image that is missing, refused or not a PNG.
+GroundTexture groundTexture(const tinygltf::Model& model, int textureIndex, const std::string& what,
+                            const AssetPolicy& assets, const std::string& folder);
+
+} // namespace sward
