@@ -9,12 +9,15 @@
 #include <cmath>
 #include <cctype>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
 namespace sward {
 
 namespace {
+
+constexpr uintmax_t kMaxGroundImageBytes = uintmax_t(256) << 20;
 
 bool isPng(const unsigned char* bytes, int size) {
     static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -86,9 +89,17 @@ GroundTexture groundTexture(const tinygltf::Model& model, int textureIndex, cons
     require(!image.uri.empty() && image.uri.rfind("data:", 0) != 0, notPng);
     const std::string path =
         assets.resolve(percentDecoded(image.uri), folder, what + ": image " + std::to_string(source) + " uri");
-    const std::ifstream file(path, std::ios::binary);
-    std::vector<char> bytes((std::istreambuf_iterator<char>(file.rdbuf())), std::istreambuf_iterator<char>());
-    require(file.good() || !bytes.empty(), what + ": cannot read image " + std::to_string(source) + " '" + image.uri + "'");
+    // A regular file of bounded size: a uri naming a device (/dev/zero) or a pipe would never end.
+    std::error_code error;
+    const bool regular = std::filesystem::is_regular_file(path, error);
+    const uintmax_t size = regular ? std::filesystem::file_size(path, error) : 0;
+    require(regular && !error && size <= kMaxGroundImageBytes,
+            what + ": image " + std::to_string(source) + " '" + image.uri +
+                "' is not a readable file of at most 256 MiB");
+    std::ifstream file(path, std::ios::binary);
+    std::vector<char> bytes(size);
+    file.read(bytes.data(), std::streamsize(size));
+    require(file.good() && !bytes.empty(), what + ": cannot read image " + std::to_string(source) + " '" + image.uri + "'");
     require(isPng(reinterpret_cast<const unsigned char*>(bytes.data()), int(std::min<size_t>(bytes.size(), 8))), notPng);
     const ImageData png = decodePng(path, bytes);
     require(png.width <= kMaxGroundTextureEdge && png.height <= kMaxGroundTextureEdge,
