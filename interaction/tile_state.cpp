@@ -48,8 +48,7 @@ TileInteractionState captureTouchedFields(const VegetationTile& tile) {
     return state;
 }
 
-void restoreTouchedFields(VegetationTile& tile, const TileInteractionState& state, const std::string& what) {
-    // Check everything first, so a state of another world leaves the tile as it was.
+void checkTouchedFields(const VegetationTile& tile, const TileInteractionState& state, const std::string& what) {
     for (size_t k = 0; k < state.fields.size(); ++k) {
         const TouchedField& f = state.fields[k];
         require(k == 0 || state.fields[k - 1].field < f.field, what + ": its fields are not in ascending order");
@@ -61,6 +60,11 @@ void restoreTouchedFields(VegetationTile& tile, const TileInteractionState& stat
                     " plants in the state but " + std::to_string(plants) +
                     " in the tile (another seed, density or world)");
     }
+}
+
+void restoreTouchedFields(VegetationTile& tile, const TileInteractionState& state, const std::string& what) {
+    // Check everything first, so a state of another world leaves the tile as it was.
+    checkTouchedFields(tile, state, what);
     size_t next = 0;
     for (uint32_t i = 0; i < tile.fields.size(); ++i) {
         FieldVegetation& field = tile.fields[i];

@@ -32,9 +32,12 @@ bool fieldTouched(const FieldVegetation& field);
 // The touched fields of `tile`.
 TileInteractionState captureTouchedFields(const VegetationTile& tile);
 
-// Makes `tile` hold exactly `state`: its fields written back, every other touched field reset to rest. Throws
-// sward::Error starting with `what` if a field index lies outside the tile or a field's plant count differs (the
-// state belongs to another world, seed or density); the tile is unchanged then.
+// Throws sward::Error starting with `what` unless `state` fits `tile`: field indices ascending and inside the tile, each
+// field's plant count the tile's (else the state belongs to another world, seed or density).
+void checkTouchedFields(const VegetationTile& tile, const TileInteractionState& state, const std::string& what);
+
+// Makes `tile` hold exactly `state`: its fields written back, every other touched field reset to rest. Checks
+// first (checkTouchedFields): on an error the tile is unchanged.
 void restoreTouchedFields(VegetationTile& tile, const TileInteractionState& state, const std::string& what);
 
 } // namespace sward

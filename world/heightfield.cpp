@@ -98,7 +98,7 @@ namespace {
 
 // Index of the world-wide lattice point at `origin` (one axis): origin must be a whole multiple of spacing.
 int64_t latticeIndex(double origin, float spacing) {
-    require(std::abs(origin) <= 1e7, "procedural terrain origin must lie within +-1e7 m");
+    require(std::abs(origin) <= 1e8, "procedural terrain origin must lie within +-1e8 m");
     const double k = std::floor(origin / double(spacing) + 0.5);
     require(std::abs(k * double(spacing) - origin) <= 1e-6 * std::max(1.0, std::abs(origin)),
             "procedural terrain origin must be a whole multiple of the grid spacing");

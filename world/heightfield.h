@@ -65,7 +65,7 @@ struct ProceduralTerrainParams {
 // Rolling hills from hashed value noise (fBm), a pure function of the lattice point: vertex (i, j) lies at
 // origin + spacing * (i, j) and its height depends on nothing else. Uses only + - * and floor, never libm
 // transcendentals, so the heights are bitwise identical on every x86-64 machine and compiler. Throws sward::Error
-// for an origin that is not a whole multiple of spacing (within 1e-6 relative) or beyond +-1e7 m.
+// for an origin that is not a whole multiple of spacing (within 1e-6 relative) or beyond +-1e8 m.
 Heightfield makeProceduralTerrain(const ProceduralTerrainParams& params);
 
 // Loads a heightfield from a single-channel 16-bit PNG (height = sample / 65535 * verticalScale + heightOffset), a
