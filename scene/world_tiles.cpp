@@ -81,10 +81,11 @@ WorldTiles::Plan WorldTiles::plan(std::span<const glm::dvec2> points) const {
     for (const glm::dvec2& p : points) {
         require(std::isfinite(p.x) && std::isfinite(p.y), "world: an interest point is not finite");
         const glm::dvec2 lo = glm::floor((p - w.loadRadius - origin) / s), hi = glm::floor((p + w.loadRadius - origin) / s);
-        const int64_t x0 = std::max<int64_t>(0, int64_t(std::max(lo.x, -1.0)));
-        const int64_t y0 = std::max<int64_t>(0, int64_t(std::max(lo.y, -1.0)));
-        const int64_t x1 = int64_t(std::min(hi.x, double(w.tilesX) - 1.0));
-        const int64_t y1 = int64_t(std::min(hi.y, double(w.tilesY) - 1.0));
+        // Clamped in double first: a point far outside the world must not overflow the conversion.
+        const int64_t x0 = int64_t(std::clamp(lo.x, 0.0, double(w.tilesX)));
+        const int64_t y0 = int64_t(std::clamp(lo.y, 0.0, double(w.tilesY)));
+        const int64_t x1 = int64_t(std::clamp(hi.x, -1.0, double(w.tilesX) - 1.0));
+        const int64_t y1 = int64_t(std::clamp(hi.y, -1.0, double(w.tilesY) - 1.0));
         for (int64_t y = y0; y <= y1; ++y)
             for (int64_t x = x0; x <= x1; ++x)
                 if (const double d = distanceToTile(scene_, int32_t(x), int32_t(y), p); d <= w.loadRadius) {

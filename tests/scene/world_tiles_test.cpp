@@ -247,3 +247,18 @@ TEST(WorldTiles, ResidentMemoryDependsOnTheResidentTilesNotOnTheWorldSize) {
     EXPECT_EQ(small.residentTiles(), large.residentTiles());
     EXPECT_EQ(small.residentBytes(), large.residentBytes());
 }
+
+TEST(WorldTiles, TheExampleWorldLoadsAlongItsFlight) {
+    Scene scene = loadScene(std::string(SWARD_SOURCE_DIR) + "/examples/world.json");
+    EXPECT_EQ(scene.world.tilesX * scene.vegetation.tileSize, 8000.0f); // 8 x 8 km
+    const Ground flat(Heightfield(2, 2, 1e4f, glm::vec2(0.0f), std::vector<float>(4, 0.0f)));
+    const PathParams& path = scene.camera.path;
+    const double duration = scene.sequence.frames * scene.sequence.timeStep;
+    const glm::dvec2 start(pathPose(path, flat, 0.0).position), end(pathPose(path, flat, duration).position);
+    EXPECT_NEAR(glm::distance(start, end), 2000.0, 1e-6); // a 2 km flight
+    scene.vegetation.densityMultiplier = 0.002f;           // the tiles, not the plants, are under test here
+    WorldTiles world(std::move(scene));
+    world.waitFor(std::span(&start, 1));
+    EXPECT_GE(world.residentCount(), 4u);
+    EXPECT_LE(world.residentCount(), 9u);
+}
