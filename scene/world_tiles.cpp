@@ -212,21 +212,34 @@ void WorldTiles::waitFor(std::span<const glm::dvec2> points) {
     lastPoints_.assign(points.begin(), points.end());
 }
 
-void WorldTiles::request(std::span<const glm::dvec2> points) {
-    absorbFinished(points);
-    Plan p = plan(points);
-    std::lock_guard lock(mutex_);
-    // Tiles the worker holds already are neither queued again nor counted twice.
-    std::erase_if(p.load, [&](const Key& key) {
+// Under mutex_: drops from `load` the tiles the worker holds (in progress or finished), so none is made twice.
+void WorldTiles::dropHeld(std::vector<Key>& load) const {
+    std::erase_if(load, [&](const Key& key) {
         return key == inFlight_ || std::any_of(finished_.begin(), finished_.end(), [&](const WorldTile& t) {
                    return Key(t.coord.y, t.coord.x) == key;
                });
     });
-    fitBudget(p, points, (finished_.size() + (inFlight_ ? 1 : 0)) * predictedTileBytes_);
+}
+
+void WorldTiles::request(std::span<const glm::dvec2> points) {
+    absorbFinished(points);
+    Plan p = plan(points);
+    uint64_t pendingBytes = 0;
+    {
+        std::lock_guard lock(mutex_);
+        dropHeld(p.load);
+        pendingBytes = (finished_.size() + (inFlight_ ? 1 : 0)) * predictedTileBytes_;
+    }
+    // Not under the lock: the eviction hook may read back GPU buffers or ask this object about its tiles.
+    fitBudget(p, points, pendingBytes);
     evictAllBut(p.keep);
-    queue_.assign(p.load.rbegin(), p.load.rend()); // nearest at the back
     lastPoints_.assign(points.begin(), points.end());
-    if (!worker_.joinable() && !queue_.empty()) worker_ = std::thread([this] { workerLoop(); });
+    {
+        std::lock_guard lock(mutex_);
+        dropHeld(p.load); // the worker may have finished one meanwhile
+        queue_.assign(p.load.rbegin(), p.load.rend()); // nearest at the back
+        if (!worker_.joinable() && !queue_.empty()) worker_ = std::thread([this] { workerLoop(); });
+    }
     wake_.notify_all();
 }
 

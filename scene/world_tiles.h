@@ -57,7 +57,7 @@ class WorldTiles {
 public:
     // Requires scene.world.enabled; checks the memory budget (checkWorldScene). threads: per tile (0 = all cores).
     explicit WorldTiles(Scene scene, uint32_t threads = 0);
-    ~WorldTiles(); // stops the worker; a tile it is generating is discarded
+    ~WorldTiles(); // stops the worker once the tile it is generating (discarded) is done
     WorldTiles(const WorldTiles&) = delete;
     WorldTiles& operator=(const WorldTiles&) = delete;
 
@@ -104,6 +104,7 @@ private:
     void fitBudget(Plan& plan, std::span<const glm::dvec2> points, uint64_t pendingBytes);
     void makeResident(WorldTile tile);
     uint32_t absorbFinished(std::span<const glm::dvec2> points);
+    void dropHeld(std::vector<Key>& load) const;
     bool wantedNear(const Key& key, std::span<const glm::dvec2> points) const;
     void workerLoop();
     void stopWorker();

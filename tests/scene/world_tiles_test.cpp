@@ -262,3 +262,16 @@ TEST(WorldTiles, TheExampleWorldLoadsAlongItsFlight) {
     EXPECT_GE(world.residentCount(), 4u);
     EXPECT_LE(world.residentCount(), 9u);
 }
+
+TEST(WorldTiles, InterestPointsFarApartBeyondTheBudgetAreAnErrorThatChangesNothing) {
+    WorldTiles world(worldScene({{"memory_budget_mib", 5}}));
+    const glm::dvec2 one(250.0, 250.0);
+    world.waitFor(std::span(&one, 1));
+    const std::vector<TileCoord> before = world.residentTiles();
+    const std::vector<glm::dvec2> six = {{250, 250}, {850, 250}, {1450, 250}, {250, 850}, {850, 850}, {1450, 850}};
+    const std::string error = errorOf([&] { world.waitFor(six); });
+    EXPECT_NE(error.find("of 6 interest points need"), std::string::npos) << error;
+    EXPECT_NE(error.find("over 'world.memory_budget_mib' (5 MiB)"), std::string::npos) << error;
+    EXPECT_EQ(world.residentTiles(), before);
+    EXPECT_EQ(world.stats().evicted, 0u);
+}
