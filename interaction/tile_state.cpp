@@ -55,10 +55,10 @@ void checkTouchedFields(const VegetationTile& tile, const TileInteractionState& 
         require(f.field < tile.fields.size(), what + ": field " + std::to_string(f.field) + " is outside the tile (" +
                                                   std::to_string(tile.fields.size()) + " fields)");
         const uint32_t plants = tile.fields[f.field].plantCount();
-        require(f.dynamics.size() == plants,
-                what + ": field " + std::to_string(f.field) + " holds " + std::to_string(f.dynamics.size()) +
-                    " plants in the state but " + std::to_string(plants) +
-                    " in the tile (another seed, density or world)");
+        require(f.dynamics.size() == plants, what + ": field " + std::to_string(f.field) + " holds " +
+                                                 std::to_string(f.dynamics.size()) + " plants in the state but " +
+                                                 std::to_string(plants) +
+                                                 " in the tile (another seed, density or world)");
     }
 }
 

@@ -50,9 +50,12 @@ nlohmann::json generationFigures(const Scene& scene, uint32_t count, uint32_t th
         plants.push_back(double(countVegetation(tile.vegetation).plants));
     }
     const double ms = medianOf(wall), plantsPerTile = medianOf(plants);
-    return {{"tiles", count},           {"ms_per_tile", ms},
-            {"cpu_ms_per_tile", medianOf(cpu)}, {"plants_per_tile", plantsPerTile},
-            {"plants_per_second", plantsPerTile / (ms / 1000.0)}, {"runs_ms", wall}};
+    return {{"tiles", count},
+            {"ms_per_tile", ms},
+            {"cpu_ms_per_tile", medianOf(cpu)},
+            {"plants_per_tile", plantsPerTile},
+            {"plants_per_second", plantsPerTile / (ms / 1000.0)},
+            {"runs_ms", wall}};
 }
 
 // Resident bytes with n tiles resident: one interest point at the centre of each tile of the k x k block at the

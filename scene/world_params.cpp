@@ -56,15 +56,17 @@ void checkWorldScene(const Scene& scene) {
              (scene.terrain.source == TerrainParams::Source::Mesh ? "mesh'" : "heightmap'") + " is not supported yet");
     if (!scene.grassMapPath.empty() || !scene.landCover.file.empty())
         fail(std::string("'world' grows the procedural meadow on every tile: '") +
-             (scene.grassMapPath.empty() ? "land_cover" : "grass_map") + "' (one tile's map) is not supported in a world");
+             (scene.grassMapPath.empty() ? "land_cover" : "grass_map") +
+             "' (one tile's map) is not supported in a world");
     const ProceduralTerrainParams& t = scene.terrain.procedural;
     const VegetationParams& v = scene.vegetation;
     if (std::abs(double(v.tileSize) - t.size) > 1e-3)
         fail("in a world every tile has its own terrain: 'vegetation.tile_size' (" + formatNumber(v.tileSize) +
              " m) must equal 'terrain.size' (" + formatNumber(t.size) + " m)");
     if (!wholeMultiple(t.size, t.spacing))
-        fail("in a world 'terrain.size' (" + formatNumber(t.size) + " m) must be a whole number of 'terrain.spacing' (" +
-             formatNumber(t.spacing) + " m), so the tiles' terrain grids meet");
+        fail("in a world 'terrain.size' (" + formatNumber(t.size) +
+             " m) must be a whole number of 'terrain.spacing' (" + formatNumber(t.spacing) +
+             " m), so the tiles' terrain grids meet");
     if (!wholeMultiple(v.worldOrigin.x, t.spacing) || !wholeMultiple(v.worldOrigin.y, t.spacing))
         fail("in a world 'vegetation.world_origin' must be a whole multiple of 'terrain.spacing' (" +
              formatNumber(t.spacing) + " m), so the tiles' terrain grids lie on one lattice");

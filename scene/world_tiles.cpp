@@ -80,7 +80,8 @@ WorldTiles::Plan WorldTiles::plan(std::span<const glm::dvec2> points) const {
     std::map<Key, double> wanted; // tile -> distance to the nearest point
     for (const glm::dvec2& p : points) {
         require(std::isfinite(p.x) && std::isfinite(p.y), "world: an interest point is not finite");
-        const glm::dvec2 lo = glm::floor((p - w.loadRadius - origin) / s), hi = glm::floor((p + w.loadRadius - origin) / s);
+        const glm::dvec2 lo = glm::floor((p - w.loadRadius - origin) / s),
+                         hi = glm::floor((p + w.loadRadius - origin) / s);
         // Clamped in double first: a point far outside the world must not overflow the conversion.
         const int64_t x0 = int64_t(std::clamp(lo.x, 0.0, double(w.tilesX)));
         const int64_t y0 = int64_t(std::clamp(lo.y, 0.0, double(w.tilesY)));
@@ -128,11 +129,11 @@ void WorldTiles::fitBudget(Plan& p, std::span<const glm::dvec2> points, uint64_t
         bytes -= resident_.at(key).bytes;
         p.keep.erase(std::find(p.keep.begin(), p.keep.end(), key));
     }
-    require(bytes <= w.memoryBudgetBytes,
-            scene_.source + ": the tiles within 'world.load_radius' (" + formatNumber(w.loadRadius) + " m) of " +
-                std::to_string(points.size()) + " interest points need " + mib(bytes) +
-                ", over 'world.memory_budget_mib' (" + mib(w.memoryBudgetBytes) +
-                "); raise the budget or keep the cameras and colliders closer together");
+    require(bytes <= w.memoryBudgetBytes, scene_.source + ": the tiles within 'world.load_radius' (" +
+                                              formatNumber(w.loadRadius) + " m) of " + std::to_string(points.size()) +
+                                              " interest points need " + mib(bytes) +
+                                              ", over 'world.memory_budget_mib' (" + mib(w.memoryBudgetBytes) +
+                                              "); raise the budget or keep the cameras and colliders closer together");
 }
 
 void WorldTiles::evictAllBut(const std::vector<Key>& keep) {
@@ -215,9 +216,8 @@ void WorldTiles::waitFor(std::span<const glm::dvec2> points) {
 // Under mutex_: drops from `load` the tiles the worker holds (in progress or finished), so none is made twice.
 void WorldTiles::dropHeld(std::vector<Key>& load) const {
     std::erase_if(load, [&](const Key& key) {
-        return key == inFlight_ || std::any_of(finished_.begin(), finished_.end(), [&](const WorldTile& t) {
-                   return Key(t.coord.y, t.coord.x) == key;
-               });
+        return key == inFlight_ || std::any_of(finished_.begin(), finished_.end(),
+                                               [&](const WorldTile& t) { return Key(t.coord.y, t.coord.x) == key; });
     });
 }
 
@@ -236,7 +236,7 @@ void WorldTiles::request(std::span<const glm::dvec2> points) {
     lastPoints_.assign(points.begin(), points.end());
     {
         std::lock_guard lock(mutex_);
-        dropHeld(p.load); // the worker may have finished one meanwhile
+        dropHeld(p.load);                              // the worker may have finished one meanwhile
         queue_.assign(p.load.rbegin(), p.load.rend()); // nearest at the back
         if (!worker_.joinable() && !queue_.empty()) worker_ = std::thread([this] { workerLoop(); });
     }

@@ -73,7 +73,7 @@ public:
     uint32_t poll();
 
     const WorldTile* find(TileCoord coord) const;
-    WorldTile* find(TileCoord coord); // its vegetation's dynamic records and activity may be written
+    WorldTile* find(TileCoord coord);             // its vegetation's dynamic records and activity may be written
     std::vector<TileCoord> residentTiles() const; // ascending (y, x)
     uint32_t residentCount() const { return uint32_t(resident_.size()); }
     uint64_t residentBytes() const;

@@ -48,20 +48,22 @@ TEST(WorldParams, BadWorldsAreErrorsNamingTheKey) {
         json.merge_patch(patch);
         return json;
     };
-    EXPECT_NE(parseError(with({{"world", {{"evict_radius", 200}}}})).find("'world.evict_radius' (200 m) must be larger "
-                                                                       "than 'world.load_radius' (300 m)"),
+    EXPECT_NE(parseError(with({{"world", {{"evict_radius", 200}}}}))
+                  .find("'world.evict_radius' (200 m) must be larger "
+                        "than 'world.load_radius' (300 m)"),
               std::string::npos);
     EXPECT_NE(parseError(with({{"world", {{"tiles", {0, 4}}}}})).find("'world.tiles'"), std::string::npos);
     EXPECT_NE(parseError(with({{"world", {{"tiles", {80, 4}}}}})).find("'world.tiles' times 'vegetation.tile_size'"),
               std::string::npos);
     EXPECT_NE(parseError(with({{"world", {{"radius", 4}}}})).find("unknown key 'world.radius'"), std::string::npos);
-    EXPECT_NE(parseError(with({{"terrain", {{"size", nullptr}, {"heightmap", {{"file", "dem.png"},
-                                                                               {"metres_per_pixel", 1}}}}}}))
+    EXPECT_NE(parseError(with({{"terrain",
+                                {{"size", nullptr}, {"heightmap", {{"file", "dem.png"}, {"metres_per_pixel", 1}}}}}}))
                   .find("'world' needs the procedural terrain: a world of 'terrain.heightmap'"),
               std::string::npos);
     EXPECT_NE(parseError(with({{"grass_map", "map.png"}})).find("'grass_map'"), std::string::npos);
-    EXPECT_NE(parseError(with({{"vegetation", {{"tile_size", 250}}}})).find("'vegetation.tile_size' (250 m) must equal "
-                                                                         "'terrain.size' (500 m)"),
+    EXPECT_NE(parseError(with({{"vegetation", {{"tile_size", 250}}}}))
+                  .find("'vegetation.tile_size' (250 m) must equal "
+                        "'terrain.size' (500 m)"),
               std::string::npos);
     EXPECT_NE(parseError(with({{"terrain", {{"size", 125}, {"spacing", 2}}}})).find("'terrain.spacing'"),
               std::string::npos);

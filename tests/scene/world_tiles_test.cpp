@@ -95,8 +95,7 @@ TEST(WorldTiles, TilesWithinTheLoadRadiusComeAndThoseBeyondTheEvictRadiusGo) {
     WorldTiles world(worldScene());
     glm::dvec2 p(250.0, 250.0); // centre of tile (2, 2): 60 m reaches its four neighbours, not the corners (71 m)
     world.waitFor(std::span(&p, 1));
-    EXPECT_EQ(world.residentTiles(),
-              (std::vector<TileCoord>{{2, 1}, {1, 2}, {2, 2}, {3, 2}, {2, 3}}));
+    EXPECT_EQ(world.residentTiles(), (std::vector<TileCoord>{{2, 1}, {1, 2}, {2, 2}, {3, 2}, {2, 3}}));
     p.x += 50.0; // (3, 1) and (3, 3) come; (1, 2) lies 100 m away, inside the evict radius: kept
     world.waitFor(std::span(&p, 1));
     EXPECT_NE(world.find({1, 2}), nullptr);
@@ -134,8 +133,8 @@ TEST(WorldTiles, ATrackSurvivesEvictionAndReload) {
     const WorldTile fresh = generateWorldTile(world.scene(), a, 0);
     for (size_t f = 0; f < fresh.vegetation.fields.size(); ++f) {
         if (f == 5) continue;
-        EXPECT_TRUE(sameBytes(fresh.vegetation.fields[f].dynamicRecords,
-                              world.find(a)->vegetation.fields[f].dynamicRecords));
+        EXPECT_TRUE(
+            sameBytes(fresh.vegetation.fields[f].dynamicRecords, world.find(a)->vegetation.fields[f].dynamicRecords));
     }
 }
 
@@ -197,8 +196,8 @@ TEST(WorldTiles, SeamsBetweenTilesHaveNoGapAndNoDoublePlants) {
     for (TileCoord t : {TileCoord{3, 5}, TileCoord{4, 5}}) {
         for (const FieldVegetation& f : world.find(t)->vegetation.fields)
             for (const gpu::PlantStatic& r : f.staticRecords) {
-                const glm::vec2 xy = decodePlanarPosition(r.position & 0xffffu, r.position >> 16, f.origin,
-                                                          f.positionStep);
+                const glm::vec2 xy =
+                    decodePlanarPosition(r.position & 0xffffu, r.position >> 16, f.origin, f.positionStep);
                 // Every plant lies in its own tile's square: none is placed twice across the border.
                 ASSERT_EQ(xy.x < 400.0f, t.x == 3) << xy.x;
                 if (xy.x < 396.0f || xy.x >= 404.0f) continue;
@@ -220,11 +219,11 @@ TEST(WorldTiles, SeamsBetweenTilesHaveNoGapAndNoDoublePlants) {
 
 TEST(WorldTiles, MemoryStaysUnderTheBudgetOverA2kmFlight) {
     // 16 x 16 tiles of 125 m (a 2 x 2 km world), flown straight across along y = 1000 m in 25 m steps.
-    nlohmann::json json = {{"seed", 5},
-                           {"terrain", {{"size", 125}, {"spacing", 5}}},
-                           {"vegetation", {{"density_multiplier", 0.02}}},
-                           {"world", {{"tiles", {16, 16}}, {"load_radius", 100}, {"evict_radius", 150},
-                                      {"memory_budget_mib", 4}}}};
+    nlohmann::json json = {
+        {"seed", 5},
+        {"terrain", {{"size", 125}, {"spacing", 5}}},
+        {"vegetation", {{"density_multiplier", 0.02}}},
+        {"world", {{"tiles", {16, 16}}, {"load_radius", 100}, {"evict_radius", 150}, {"memory_budget_mib", 4}}}};
     WorldTiles world(parseScene(json, "<flight>"));
     const uint64_t budget = world.scene().world.memoryBudgetBytes;
     uint64_t most = 0;
@@ -256,7 +255,7 @@ TEST(WorldTiles, TheExampleWorldLoadsAlongItsFlight) {
     const double duration = scene.sequence.frames * scene.sequence.timeStep;
     const glm::dvec2 start(pathPose(path, flat, 0.0).position), end(pathPose(path, flat, duration).position);
     EXPECT_NEAR(glm::distance(start, end), 2000.0, 1e-6); // a 2 km flight
-    scene.vegetation.densityMultiplier = 0.002f;           // the tiles, not the plants, are under test here
+    scene.vegetation.densityMultiplier = 0.002f;          // the tiles, not the plants, are under test here
     WorldTiles world(std::move(scene));
     world.waitFor(std::span(&start, 1));
     EXPECT_GE(world.residentCount(), 4u);
