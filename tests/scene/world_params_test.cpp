@@ -80,6 +80,7 @@ TEST(WorldParams, ABudgetTooSmallForTheTilesAroundOneCameraIsRefusedUpFront) {
               std::string::npos)
         << error;
     EXPECT_NE(error.find("'world.load_radius'"), std::string::npos);
+    EXPECT_NE(error.find("each up to 108 MiB"), std::string::npos) << error; // docs/scene-format.md quotes it
     // A lower density fits.
     json["vegetation"]["density_multiplier"] = 0.25;
     EXPECT_NO_THROW(parseScene(json, "w.json"));
