@@ -1,4 +1,5 @@
-// Interaction state files through loadInteractionState. The harness rewrites the trailing FNV-1a checksum to match
+// Interaction state files through loadInteractionState and world state files through loadWorldState (one family:
+// the same conventions, seeds of both in corpus/state_file/). The harness rewrites the trailing FNV-1a checksum to match
 // the bytes before it: otherwise almost every mutation stops at the checksum and the parser behind it is never
 // reached (the mismatch itself is covered by tests/interaction/state_file_test.cpp).
 #include "fuzz/fuzz_input.h"
@@ -14,5 +15,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         std::memcpy(bytes.data() + bytes.size() - 8, &sum, 8); // little-endian host, as the file layout
     }
     const std::string path = sward::fuzz::inputFile(bytes.data(), bytes.size(), "state.bin");
-    return sward::fuzz::expectOnlyErrors([&] { sward::loadInteractionState(path); });
+    sward::fuzz::expectOnlyErrors([&] { sward::loadInteractionState(path); });
+    return sward::fuzz::expectOnlyErrors([&] { sward::loadWorldState(path); });
 }

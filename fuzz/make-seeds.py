@@ -77,6 +77,18 @@ def state_file(fields, plants, tick=7):
     return out + struct.pack("<Q", fnv1a64(out))
 
 
+def world_state(tiles, tick=7, size=(4, 4)):
+    """tiles: [((x, y), [(field, active, last, [(bend, state), ...]), ...]), ...]"""
+    out = b"SWARDWS1" + struct.pack("<IIQII", 1, len(tiles), tick, *size)
+    for (x, y), fields in tiles:
+        out += struct.pack("<iiI", x, y, len(fields))
+        for field, active, last, plants in fields:
+            out += struct.pack("<IIQI", field, active, last, len(plants))
+            for bend, state in plants:
+                out += struct.pack("<II", bend, state)
+    return out + struct.pack("<Q", fnv1a64(out))
+
+
 def pfm(width, height, values, little=True):
     header = f"Pf\n{width} {height}\n{-1.0 if little else 1.0}\n".encode()
     return header + struct.pack(("<" if little else ">") + f"{len(values)}f", *values)
@@ -144,6 +156,8 @@ def main():
 
     put("state_file", "two_fields.bin", state_file([(1, 5), (0, 0)], [(0x3c003c00, 1), (0, 0), (7, 2)]))
     put("state_file", "empty.bin", state_file([], [], tick=0))
+    put("state_file", "world.bin", world_state([((1, 0), [(0, 1, 5, [(0x3c003c00, 1), (7, 2)]), (3, 0, 0, [])]),
+                                                ((0, 2), [(2, 0, 9, [(0, 0)])])]))
 
     put("pfm", "little.pfm", pfm(3, 2, [1.5, 2.0, float("inf"), 0.0, 4.25, 8.0]))
     put("pfm", "big.pfm", pfm(2, 1, [3.0, -1.0], little=False))

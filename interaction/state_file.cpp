@@ -42,6 +42,43 @@ template <class T> T get(const std::vector<uint8_t>& in, size_t at) {
     return value;
 }
 
+void putDynamics(std::vector<uint8_t>& out, std::span<const gpu::PlantDynamic> dynamics) {
+    const size_t at = out.size();
+    out.resize(at + dynamics.size_bytes());
+    if (!dynamics.empty()) std::memcpy(out.data() + at, dynamics.data(), dynamics.size_bytes());
+}
+
+// The whole file, refused from its length when longer than `maxBytes` (before it is read into memory).
+std::vector<uint8_t> readStateBytes(const std::string& path, uint64_t maxBytes, const std::string& noun) {
+    std::ifstream in(path, std::ios::binary);
+    require(bool(in), path + ": cannot open the " + noun);
+    std::error_code ec;
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    require(!ec, path + ": cannot read the " + noun);
+    require(size <= maxBytes, path + ": not a valid " + noun + ": " + std::to_string(size) +
+                                  " bytes, more than the largest valid state (" + std::to_string(maxBytes) + " bytes)");
+    return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// Magic, a header and checksum's length, and the version (the uint32 after the magic) of a state file.
+void requireHeader(const std::vector<uint8_t>& bytes, const char (&magic)[8], size_t headerBytes, uint32_t version,
+                   const std::string& what) {
+    require(bytes.size() >= 8 && std::memcmp(bytes.data(), magic, 8) == 0,
+            what + "wrong magic (expected " + std::string(magic, 8) + ")");
+    require(bytes.size() >= headerBytes + kChecksumBytes,
+            what + "truncated (" + std::to_string(bytes.size()) + " bytes)");
+    const uint32_t stored = get<uint32_t>(bytes, 8);
+    require(stored == version, what + "unsupported version " + std::to_string(stored) + " (expected " +
+                                   std::to_string(version) + ")");
+}
+
+// The last 8 bytes are the FNV-1a 64 of all before them. Requires bytes.size() >= kChecksumBytes.
+void requireChecksum(const std::vector<uint8_t>& bytes, const std::string& what) {
+    const uint64_t stored = get<uint64_t>(bytes, bytes.size() - kChecksumBytes);
+    require(stored == fnv1a64(std::span(bytes.data(), bytes.size() - kChecksumBytes)),
+            what + "checksum mismatch (the file is corrupt)");
+}
+
 } // namespace
 
 uint64_t fnv1a64(std::span<const uint8_t> bytes) {
@@ -64,32 +101,16 @@ void saveInteractionState(const std::string& path, const InteractionState& state
         put(bytes, uint32_t(state.fieldActive[f] ? 1u : 0u));
         put(bytes, state.lastContactTick[f]);
     }
-    const size_t at = bytes.size();
-    bytes.resize(at + state.dynamics.size() * sizeof(gpu::PlantDynamic));
-    if (!state.dynamics.empty())
-        std::memcpy(bytes.data() + at, state.dynamics.data(), state.dynamics.size() * sizeof(gpu::PlantDynamic));
+    putDynamics(bytes, state.dynamics);
     put(bytes, fnv1a64(bytes));
 
     writeBytesAtomically(path, bytes.data(), bytes.size());
 }
 
 InteractionState loadInteractionState(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    require(bool(in), path + ": cannot open the interaction state file");
-    std::error_code ec;
-    const uint64_t size = std::filesystem::file_size(path, ec);
-    require(!ec, path + ": cannot read the interaction state file");
-    require(size <= kMaxStateBytes, path + ": not a valid interaction state file: " + std::to_string(size) +
-                                               " bytes, more than the largest valid state (" +
-                                               std::to_string(kMaxStateBytes) + " bytes)");
-    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::vector<uint8_t> bytes = readStateBytes(path, kMaxStateBytes, "interaction state file");
     const std::string what = path + ": not a valid interaction state file: ";
-    require(bytes.size() >= 8 && std::memcmp(bytes.data(), kMagic, 8) == 0, what + "wrong magic (expected SWARDST1)");
-    require(bytes.size() >= kHeaderBytes + kChecksumBytes,
-            what + "truncated (" + std::to_string(bytes.size()) + " bytes)");
-    const uint32_t version = get<uint32_t>(bytes, 8);
-    require(version == kStateFileVersion, what + "unsupported version " + std::to_string(version) + " (expected " +
-                                              std::to_string(kStateFileVersion) + ")");
+    requireHeader(bytes, kMagic, kHeaderBytes, kStateFileVersion, what);
     const uint32_t fields = get<uint32_t>(bytes, 12);
     const uint64_t tick = get<uint64_t>(bytes, 16);
     const uint64_t plants = get<uint64_t>(bytes, 24);
@@ -105,9 +126,7 @@ InteractionState loadInteractionState(const std::string& path) {
     require(expected == bytes.size(), what + "size " + std::to_string(bytes.size()) + " bytes, expected " +
                                           std::to_string(expected) + " for " + std::to_string(fields) + " fields and " +
                                           std::to_string(plants) + " plants");
-    const uint64_t stored = get<uint64_t>(bytes, bytes.size() - kChecksumBytes);
-    require(stored == fnv1a64(std::span(bytes.data(), bytes.size() - kChecksumBytes)),
-            what + "checksum mismatch (the file is corrupt)");
+    requireChecksum(bytes, what);
 
     InteractionState state;
     state.tick = tick;
@@ -122,6 +141,124 @@ InteractionState loadInteractionState(const std::string& path) {
     }
     state.dynamics.resize(plants);
     if (plants > 0) std::memcpy(state.dynamics.data(), bytes.data() + at, plants * sizeof(gpu::PlantDynamic));
+    return state;
+}
+
+namespace {
+
+constexpr char kWorldMagic[8] = {'S', 'W', 'A', 'R', 'D', 'W', 'S', '1'};
+constexpr size_t kWorldHeaderBytes = 8 + 4 + 4 + 8 + 4 + 4;
+constexpr size_t kWorldTileBytes = 4 + 4 + 4;
+constexpr size_t kWorldFieldBytes = 4 + 4 + 8 + 4;
+// Far beyond any touched world a machine can hold; a longer file is refused from its length alone.
+constexpr uint64_t kMaxWorldStateBytes = uint64_t(1) << 36;
+
+// Reads the world state's body in order; every count is checked against the bytes left before it is used.
+class WorldStateReader {
+public:
+    WorldStateReader(const std::vector<uint8_t>& bytes, std::string what)
+        : bytes_(bytes), end_(bytes.size() - kChecksumBytes), what_(std::move(what)) {}
+    template <class T> T take() {
+        need(sizeof(T), "");
+        const T value = get<T>(bytes_, at_);
+        at_ += sizeof(T);
+        return value;
+    }
+    void need(uint64_t n, const std::string& what) const {
+        require(n <= end_ - at_, what_ + "truncated (" + std::to_string(bytes_.size()) + " bytes" + what + ")");
+    }
+    void skip(size_t n) { at_ += n; }
+    const uint8_t* data() const { return bytes_.data() + at_; }
+    bool done() const { return at_ == end_; }
+    const std::string& what() const { return what_; }
+
+private:
+    const std::vector<uint8_t>& bytes_;
+    size_t at_ = kWorldHeaderBytes, end_;
+    std::string what_;
+};
+
+TouchedField readTouchedField(WorldStateReader& r, const std::string& where) {
+    TouchedField f;
+    f.field = r.take<uint32_t>();
+    const uint32_t active = r.take<uint32_t>();
+    require(active <= 1, r.what() + where + " field " + std::to_string(f.field) + " has active flag " +
+                             std::to_string(active));
+    f.active = active != 0;
+    f.lastContactTick = r.take<uint64_t>();
+    const uint32_t plants = r.take<uint32_t>();
+    r.need(uint64_t(plants) * sizeof(gpu::PlantDynamic), " for " + std::to_string(plants) + " plants");
+    f.dynamics.resize(plants);
+    if (plants > 0) std::memcpy(f.dynamics.data(), r.data(), plants * sizeof(gpu::PlantDynamic));
+    r.skip(plants * sizeof(gpu::PlantDynamic));
+    return f;
+}
+
+TileInteractionState readTileState(WorldStateReader& r, const WorldInteractionState& world,
+                                   const TileInteractionState* previous) {
+    TileInteractionState tile;
+    tile.coord = {r.take<int32_t>(), r.take<int32_t>()};
+    const std::string where = "tile (" + std::to_string(tile.coord.x) + ", " + std::to_string(tile.coord.y) + ")";
+    require(tile.coord.x >= 0 && tile.coord.y >= 0 && uint32_t(tile.coord.x) < world.tilesX &&
+                uint32_t(tile.coord.y) < world.tilesY,
+            r.what() + where + " is outside the world of " + std::to_string(world.tilesX) + " x " +
+                std::to_string(world.tilesY) + " tiles");
+    require(!previous || std::pair(previous->coord.y, previous->coord.x) < std::pair(tile.coord.y, tile.coord.x),
+            r.what() + where + " is out of order (tiles ascend by y, then x)");
+    const uint32_t fields = r.take<uint32_t>();
+    r.need(uint64_t(fields) * kWorldFieldBytes, " for " + std::to_string(fields) + " fields");
+    tile.fields.reserve(fields);
+    for (uint32_t k = 0; k < fields; ++k) {
+        tile.fields.push_back(readTouchedField(r, where));
+        require(k == 0 || tile.fields[k - 1].field < tile.fields[k].field,
+                r.what() + where + " has its fields out of order");
+    }
+    return tile;
+}
+
+} // namespace
+
+void saveWorldState(const std::string& path, const WorldInteractionState& state) {
+    std::vector<uint8_t> bytes(std::begin(kWorldMagic), std::end(kWorldMagic));
+    put(bytes, kWorldStateFileVersion);
+    put(bytes, uint32_t(state.tiles.size()));
+    put(bytes, state.tick);
+    put(bytes, state.tilesX);
+    put(bytes, state.tilesY);
+    for (const TileInteractionState& tile : state.tiles) {
+        assert(uint32_t(tile.coord.x) < state.tilesX && uint32_t(tile.coord.y) < state.tilesY);
+        put(bytes, tile.coord.x);
+        put(bytes, tile.coord.y);
+        put(bytes, uint32_t(tile.fields.size()));
+        for (const TouchedField& f : tile.fields) {
+            put(bytes, f.field);
+            put(bytes, uint32_t(f.active ? 1u : 0u));
+            put(bytes, f.lastContactTick);
+            put(bytes, uint32_t(f.dynamics.size()));
+            putDynamics(bytes, f.dynamics);
+        }
+    }
+    put(bytes, fnv1a64(bytes));
+    writeBytesAtomically(path, bytes.data(), bytes.size());
+}
+
+WorldInteractionState loadWorldState(const std::string& path) {
+    const std::vector<uint8_t> bytes = readStateBytes(path, kMaxWorldStateBytes, "world state file");
+    const std::string what = path + ": not a valid world state file: ";
+    requireHeader(bytes, kWorldMagic, kWorldHeaderBytes, kWorldStateFileVersion, what);
+    // The checksum first: a corrupt count is then reported as corruption, not as a truncated file.
+    requireChecksum(bytes, what);
+    WorldInteractionState state;
+    const uint32_t tiles = get<uint32_t>(bytes, 12);
+    state.tick = get<uint64_t>(bytes, 16);
+    state.tilesX = get<uint32_t>(bytes, 24);
+    state.tilesY = get<uint32_t>(bytes, 28);
+    WorldStateReader r(bytes, what);
+    r.need(uint64_t(tiles) * kWorldTileBytes, " for " + std::to_string(tiles) + " tiles");
+    state.tiles.reserve(tiles);
+    for (uint32_t t = 0; t < tiles; ++t)
+        state.tiles.push_back(readTileState(r, state, t == 0 ? nullptr : &state.tiles.back()));
+    require(r.done(), what + "bytes left after the last tile");
     return state;
 }
 

@@ -8,7 +8,19 @@
 //   per plant: gpu::PlantDynamic (uint32 bend, uint32 state), in the tile's record-buffer order
 //   uint64 FNV-1a 64 of every byte before it
 // Written to "<path>.tmp" and renamed over path, so a crash never leaves a half-written state behind.
+//
+// The world state (a world of many tiles, scene/world_tiles.h) keeps only the touched fields of each tile
+// (interaction/tile_state.h), resident or evicted:
+//   "SWARDWS1"                      8-byte magic
+//   uint32 version (kWorldStateFileVersion), uint32 tile count, uint64 tick, uint32 tiles x, uint32 tiles y
+//   per tile, ascending (y, x): int32 x, int32 y, uint32 field count
+//     per field, ascending index: uint32 field, uint32 active (0 or 1), uint64 last contact tick,
+//                                 uint32 plant count, that many gpu::PlantDynamic
+//   uint64 FNV-1a 64 of every byte before it
+// written and checked like the tile state file.
 #pragma once
+
+#include "interaction/tile_state.h"
 
 #include "shared/plant_layout.h"
 
@@ -38,5 +50,22 @@ void saveInteractionState(const std::string& path, const InteractionState& state
 // Reads a state file; throws sward::Error naming the file and the problem (missing, wrong magic, unsupported
 // version, truncated or oversized, bad active flag, checksum mismatch).
 InteractionState loadInteractionState(const std::string& path);
+
+inline constexpr uint32_t kWorldStateFileVersion = 1;
+
+struct WorldInteractionState {
+    uint64_t tick = 0;                       // the next tick to simulate
+    uint32_t tilesX = 0, tilesY = 0;         // the world's size in tiles
+    std::vector<TileInteractionState> tiles; // tiles with touched fields, ascending (y, x)
+};
+
+// Writes a world state atomically. Requires tiles inside the world, ascending (y, x), each field list ascending.
+// Throws sward::Error naming the file when it cannot be written.
+void saveWorldState(const std::string& path, const WorldInteractionState& state);
+
+// Reads a world state file; throws sward::Error naming the file and the problem (missing, wrong magic, version,
+// truncated or oversized, a tile outside the world or out of order, a bad active flag, checksum mismatch). Sizes
+// are checked against the file's length before anything is allocated.
+WorldInteractionState loadWorldState(const std::string& path);
 
 } // namespace sward

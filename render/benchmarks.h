@@ -63,4 +63,23 @@ nlohmann::json benchCollide(const CollideBenchOptions& options);
 // The per-case figures of benchCollide's result as an aligned text table.
 std::string collideTable(const nlohmann::json& result);
 
+struct WorldBenchOptions {
+    std::string scenePath;                // empty: examples/world.json of this source tree; needs a "world"
+    std::vector<std::string> allowAssets; // --allow-assets
+    float densityMultiplier = 0.0f;       // > 0: replaces vegetation.density_multiplier (faster runs)
+    uint32_t threads = 0;                 // per tile generation, 0 = all cores
+    uint32_t tiles = 4;                   // tiles generated one by one for the generation figures
+    std::vector<uint32_t> resident = {1, 4, 9, 16, 25}; // resident-tile counts of the memory figures
+};
+
+// The CPU side of a world of many tiles (scene/world_tiles.h). Keys: generation (per tile: ms wall and CPU (process,
+// all threads), plants, plants_per_second; medians), tile_bytes (resident bytes of one tile), predicted_tile_bytes
+// (the budget's upper bound), memory (per world size "4x4" / "16x16": per resident count n: resident_tiles,
+// resident_bytes, bytes_per_tile, ratio_to_n_times_one (resident_bytes / (n * bytes of one tile)), wait_ms),
+// same_radius (one camera at the scene's load radius in a 4x4 and a 16x16 world: resident tiles and bytes of each),
+// threads, density_multiplier, tile_size, scene.
+nlohmann::json benchWorld(const WorldBenchOptions& options);
+// The memory figures of benchWorld's result as an aligned text table.
+std::string worldTable(const nlohmann::json& result);
+
 } // namespace sward

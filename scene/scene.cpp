@@ -260,8 +260,10 @@ Scene parseScene(const nlohmann::json& json, const std::string& source, const As
     readActors(root, scene);
     readAtlas(root.child("atlas"), scene);
     readVegetation(root, scene);
+    if (root.has("world")) scene.world = parseWorldParams(root.child("world"));
     root.finish();
     checkSceneLimits(scene);
+    if (scene.world.enabled) checkWorldScene(scene);
     return scene;
 }
 
@@ -283,11 +285,11 @@ Atlas buildAtlas(const Scene& scene) {
     return atlas;
 }
 
-GrassMap buildGrassMap(const Scene& scene, float tileSize) {
+GrassMap buildGrassMap(const Scene& scene, float tileSize, glm::dvec2 origin) {
     if (!scene.grassMapPath.empty()) return loadGrassMap(scene.grassMapPath);
     if (!scene.landCover.file.empty())
         return loadLandCoverGrassMap(scene.landCover, tileSize, scene.source + ": 'land_cover'");
-    return makeMeadowGrassMap({.tileSize = tileSize, .seed = scene.seed});
+    return makeMeadowGrassMap({.tileSize = tileSize, .seed = scene.seed, .origin = origin});
 }
 
 VegetationTile buildVegetation(const Scene& scene, const Ground& terrain, const GrassMap& map, uint32_t threads) {

@@ -16,6 +16,7 @@
 #include "scene/objects.h"
 #include "scene/terrain.h"
 #include "scene/vehicles.h"
+#include "scene/world_params.h"
 #include "vegetation/vegetation_params.h"
 #include "vegetation/vegetation_tile.h"
 #include "world/asset_policy.h"
@@ -113,6 +114,7 @@ struct Scene {
     LandCoverParams landCover;     // "land_cover" (scene/land_cover_params.h): file resolved likewise; empty = none
     std::string atlasPngPath, atlasJsonPath; // "atlas": {"png", "json"}; empty = the built-in procedural atlas
     AssetPolicy assets; // where the files it names may be read from (loadScene: the scene file's folder)
+    WorldParams world;  // "world": many tiles around interest points (scene/world_tiles.h); off = one tile
 };
 
 // Parses and validates a scene; `source` names it in error messages, and relative file paths are taken against
@@ -128,8 +130,8 @@ Scene loadScene(const std::string& path, std::optional<uint64_t> seed = {},
 // The scene's atlas with its coverage-preserving mip chain: the files it names, or the built-in procedural one.
 Atlas buildAtlas(const Scene& scene);
 // The scene's grass map over a tile of `tileSize` metres: the file it names, the one made from its land cover, or
-// the procedural meadow (seeded by the scene seed).
-GrassMap buildGrassMap(const Scene& scene, float tileSize);
+// the procedural meadow (seeded by the scene seed) over the tile whose south-west corner is `origin`.
+GrassMap buildGrassMap(const Scene& scene, float tileSize, glm::dvec2 origin = glm::dvec2(0.0));
 // Places the scene's vegetation on its terrain (buildTerrain, vegetationOn; threads: 0 = all cores). Checks the
 // memory budget first.
 VegetationTile buildVegetation(const Scene& scene, const Ground& terrain, uint32_t threads = 0);

@@ -88,8 +88,8 @@ GrassMap makeMeadowGrassMap(const MeadowMapParams& p) {
     std::vector<float> values(size_t(n) * n * 3);
     for (uint32_t row = 0; row < n; ++row) {
         for (uint32_t i = 0; i < n; ++i) {
-            // World-relative metres of the pixel centre (row 0 is north).
-            const double x = (i + 0.5) / n * p.tileSize, y = (n - row - 0.5) / n * p.tileSize;
+            // World xy of the pixel centre (row 0 is north); origin 0 adds exactly nothing.
+            const double x = p.origin.x + (i + 0.5) / n * p.tileSize, y = p.origin.y + (n - row - 0.5) / n * p.tileSize;
             // Ferns: large soft patches covering roughly a fifth of the meadow.
             const double fern = smoothstep(0.2, 0.45, fbm(p.seed, 0, x, y, 60.0, 3));
             // Shrubs and flowers: small clusters, a few metres across, scattered everywhere but in fern patches.

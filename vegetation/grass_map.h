@@ -49,10 +49,12 @@ struct MeadowMapParams {
     uint32_t resolution = 512; // pixels per edge
     float tileSize = 500.0f;   // metres covered, sets the feature scale
     uint64_t seed = 1;
+    glm::dvec2 origin{0.0};    // world xy of the tile's south-west corner (a world's tiles: one meadow across them)
 };
 
 // Procedural default map of the demo scene: a varied meadow that is mostly grass (G), with patches of ferns (R)
-// where the grass thins, and small clusters of shrubs and flowers (B). Deterministic in seed.
+// where the grass thins, and small clusters of shrubs and flowers (B). A pure function of seed and world xy, so the
+// maps of neighbouring tiles continue each other. Every intensity lies in [0, 1].
 GrassMap makeMeadowGrassMap(const MeadowMapParams& params);
 
 } // namespace sward

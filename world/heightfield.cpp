@@ -94,16 +94,32 @@ std::optional<double> Heightfield::raycast(glm::dvec3 origin, glm::dvec3 directi
     return std::nullopt;
 }
 
+namespace {
+
+// Index of the world-wide lattice point at `origin` (one axis): origin must be a whole multiple of spacing.
+int64_t latticeIndex(double origin, float spacing) {
+    require(std::abs(origin) <= 1e8, "procedural terrain origin must lie within +-1e8 m");
+    const double k = std::floor(origin / double(spacing) + 0.5);
+    require(std::abs(k * double(spacing) - origin) <= 1e-6 * std::max(1.0, std::abs(origin)),
+            "procedural terrain origin must be a whole multiple of the grid spacing");
+    return int64_t(k);
+}
+
+} // namespace
+
 Heightfield makeProceduralTerrain(const ProceduralTerrainParams& p) {
     require(p.size > 0.0f && p.spacing > 0.0f && p.size / p.spacing <= 8192.0f,
             "terrain size / spacing must be positive and give at most 8192 cells per side");
     require(p.featureSize > 0.0f && std::isfinite(p.amplitude), "terrain feature size must be positive");
     uint32_t cells = uint32_t(std::lround(p.size / p.spacing));
     uint32_t n = cells + 1;
+    // xy come from the lattice index alone (origin 0: exactly the single-tile terrain's x = i * spacing), so a
+    // vertex on the edge of two tiles is evaluated at bitwise the same point by both.
+    const int64_t firstX = latticeIndex(p.origin.x, p.spacing), firstY = latticeIndex(p.origin.y, p.spacing);
     std::vector<float> heights(size_t(n) * n);
     for (uint32_t j = 0; j < n; ++j) {
         for (uint32_t i = 0; i < n; ++i) {
-            double x = double(i) * p.spacing, y = double(j) * p.spacing;
+            double x = double(firstX + i) * p.spacing, y = double(firstY + j) * p.spacing;
             double sum = 0.0, weight = 1.0, frequency = 1.0 / p.featureSize, norm = 0.0;
             for (uint32_t o = 0; o < p.octaves; ++o) {
                 sum += weight * valueNoise(p.seed, o, x * frequency, y * frequency);
@@ -114,7 +130,7 @@ Heightfield makeProceduralTerrain(const ProceduralTerrainParams& p) {
             heights[size_t(j) * n + i] = float(0.5 * p.amplitude * sum / norm);
         }
     }
-    return Heightfield(n, n, p.spacing, glm::vec2(0.0f), std::move(heights));
+    return Heightfield(n, n, p.spacing, glm::vec2(p.origin), std::move(heights));
 }
 
 namespace {

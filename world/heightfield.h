@@ -57,10 +57,15 @@ struct ProceduralTerrainParams {
     float featureSize = 160.0f; // wavelength of the largest hills, metres
     uint32_t octaves = 4;
     uint64_t seed = 1;
+    // World xy of the south-west vertex, a whole multiple of spacing: every tile of a world is a window on one
+    // world-wide lattice, so neighbouring tiles share bitwise identical heights along their common edge.
+    glm::dvec2 origin{0.0};
 };
 
-// Rolling hills from hashed value noise (fBm). Uses only + - * and floor, never libm transcendentals, so
-// the heights are bitwise identical on every x86-64 machine and compiler.
+// Rolling hills from hashed value noise (fBm), a pure function of the lattice point: vertex (i, j) lies at
+// origin + spacing * (i, j) and its height depends on nothing else. Uses only + - * and floor, never libm
+// transcendentals, so the heights are bitwise identical on every x86-64 machine and compiler. Throws sward::Error
+// for an origin that is not a whole multiple of spacing (within 1e-6 relative) or beyond +-1e8 m.
 Heightfield makeProceduralTerrain(const ProceduralTerrainParams& params);
 
 // Loads a heightfield from a single-channel 16-bit PNG (height = sample / 65535 * verticalScale + heightOffset), a

@@ -1,11 +1,14 @@
 #include "world/heightfield.h"
 #include "io/image_files.h"
 #include "io/image_io.h"
+#include "common/error.h"
+#include "common/noise.h"
 
 #include "test_files.h"
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 
 using namespace sward;
@@ -74,4 +77,55 @@ TEST(HeightfieldErrors, NanHeightNamesFileAndPixel) {
     const auto path = (tempDir() / "nan.exr").string();
     writeExr(path, 2, 2, 1, {0, 0, 0, std::numeric_limits<float>::quiet_NaN()});
     expectError([&] { loadHeightfield(path, 1.0f, 1.0f); }, {path, "non-finite", "(1, 1)"});
+}
+
+TEST(Heightfield, NeighbouringProceduralTilesShareTheirEdgeBitwise) {
+    const ProceduralTerrainParams base{.size = 100.0f, .spacing = 2.0f, .amplitude = 20.0f, .seed = 9};
+    ProceduralTerrainParams east = base, north = base;
+    east.origin = {100.0, 0.0};
+    north.origin = {0.0, 100.0};
+    const Heightfield a = makeProceduralTerrain(base), b = makeProceduralTerrain(east), c = makeProceduralTerrain(north);
+    ASSERT_EQ(a.columns(), 51u);
+    EXPECT_EQ(b.origin(), glm::vec2(100.0f, 0.0f));
+    for (uint32_t k = 0; k < a.columns(); ++k) {
+        EXPECT_EQ(std::bit_cast<uint32_t>(a.sample(a.columns() - 1, k)), std::bit_cast<uint32_t>(b.sample(0, k)));
+        EXPECT_EQ(std::bit_cast<uint32_t>(a.sample(k, a.rows() - 1)), std::bit_cast<uint32_t>(c.sample(k, 0)));
+    }
+}
+
+TEST(Heightfield, AProceduralTileIsAWindowOnTheWorldTerrain) {
+    const ProceduralTerrainParams world{.size = 200.0f, .spacing = 2.0f, .amplitude = 20.0f, .seed = 4};
+    ProceduralTerrainParams tile = world;
+    tile.size = 100.0f;
+    tile.origin = {100.0, 60.0};
+    const Heightfield w = makeProceduralTerrain(world), t = makeProceduralTerrain(tile);
+    for (uint32_t j = 0; j < t.rows(); ++j)
+        for (uint32_t i = 0; i < t.columns(); ++i)
+            ASSERT_EQ(std::bit_cast<uint32_t>(t.sample(i, j)), std::bit_cast<uint32_t>(w.sample(i + 50, j + 30)));
+}
+
+TEST(Heightfield, ProceduralTerrainAtOriginZeroIsTheSingleTileTerrain) {
+    // The single-tile terrain evaluates vertex (i, j) at x = i * spacing, y = j * spacing: a world's origin must
+    // not change one bit of it.
+    const ProceduralTerrainParams p{.size = 40.0f, .spacing = 0.5f, .amplitude = 7.0f, .featureSize = 30.0f,
+                                    .octaves = 3, .seed = 11};
+    const Heightfield h = makeProceduralTerrain(p);
+    for (uint32_t j = 0; j < h.rows(); j += 7)
+        for (uint32_t i = 0; i < h.columns(); i += 5) {
+            const double x = double(i) * p.spacing, y = double(j) * p.spacing;
+            double sum = 0.0, weight = 1.0, frequency = 1.0 / p.featureSize, norm = 0.0;
+            for (uint32_t o = 0; o < p.octaves; ++o) {
+                sum += weight * valueNoise(p.seed, o, x * frequency, y * frequency);
+                norm += weight;
+                weight *= 0.45;
+                frequency *= 2.0;
+            }
+            ASSERT_EQ(std::bit_cast<uint32_t>(h.sample(i, j)), std::bit_cast<uint32_t>(float(0.5 * p.amplitude * sum / norm)));
+        }
+}
+
+TEST(Heightfield, ProceduralOriginOffTheLatticeIsRefused) {
+    ProceduralTerrainParams p{.size = 100.0f, .spacing = 2.0f};
+    p.origin = {101.0, 0.0};
+    EXPECT_THROW(makeProceduralTerrain(p), Error);
 }

@@ -78,9 +78,27 @@ int main(int argc, char** argv) {
     col->add_flag("!--no-gpu", collide.gpu, "CPU collision only: no Vulkan device, no upload or GPU figures");
     col->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
+    sward::WorldBenchOptions world;
+    CLI::App* wld = app.add_subcommand(
+        "world", "World of many tiles, CPU side: tile generation time, resident memory against resident tiles in a "
+                 "4 x 4 and a 16 x 16 world");
+    wld->add_option("scene", world.scenePath, "Scene JSON with a 'world' (default: examples/world.json)");
+    wld->add_option("--allow-assets", world.allowAssets, "Also read the scene's assets from this folder (repeatable)");
+    sward::addReal(*wld, "--density-multiplier", world.densityMultiplier, 0.0001, 100.0,
+                   "Replaces vegetation.density_multiplier (default: the scene's)");
+    sward::addUnsigned(*wld, "--threads", world.threads, 0, sward::kMaxThreadsOption,
+                       "Threads per tile generation (0 = all cores)");
+    sward::addUnsigned(*wld, "--tiles", world.tiles, 1, 256, "Tiles generated one by one for the generation figures");
+    wld->add_option("--json", json, "Also write the figures as a JSON object to this file");
+
     return sward::runTool(app, argc, argv, "sward-bench", [&] {
         if (gen->parsed()) emit(sward::benchGenerate(generate), json);
         if (frm->parsed()) emit(sward::benchFrame(frame), json);
+        if (wld->parsed()) {
+            nlohmann::json result = sward::benchWorld(world);
+            std::fputs(sward::worldTable(result).c_str(), stdout);
+            emit(result, json, "memory");
+        }
         if (col->parsed()) {
             nlohmann::json result = sward::benchCollide(collide);
             std::fputs(sward::collideTable(result).c_str(), stdout);

@@ -1,0 +1,136 @@
+#include "scene/world_params.h"
+
+#include "common/error.h"
+#include "common/json_reader.h"
+#include "scene/scene.h"
+#include "vegetation/placement.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sward {
+
+namespace {
+
+std::string mib(double bytes) {
+    return formatNumber(std::ceil(bytes / 1048576.0)) + " MiB";
+}
+
+// value / step is a whole number (within float rounding of the scene's numbers).
+bool wholeMultiple(double value, double step) {
+    const double k = std::floor(value / step + 0.5);
+    return std::abs(k * step - value) <= 1e-6 * std::max(1.0, std::abs(value));
+}
+
+// Tiles of one row (dy from the centre's row band) touched by the disc: those whose span [i s, (i+1) s] lies within
+// w = sqrt(r^2 - dy^2) of cx.
+uint32_t tilesInRow(double cx, double halfWidth, double s) {
+    const double first = std::ceil((cx - halfWidth) / s - 1.0), last = std::floor((cx + halfWidth) / s);
+    return last >= first ? uint32_t(last - first + 1.0) : 0u;
+}
+
+} // namespace
+
+WorldParams parseWorldParams(JsonReader r) {
+    WorldParams w;
+    w.enabled = true;
+    const glm::uvec2 tiles = r.wholeVector<2>("tiles", glm::uvec2(w.tilesX, w.tilesY), 1, kMaxWorldTilesPerSide);
+    w.tilesX = tiles.x;
+    w.tilesY = tiles.y;
+    w.loadRadius = r.number("load_radius", w.loadRadius, 1.0, kMaxLoadRadius);
+    w.evictRadius = r.number("evict_radius", w.loadRadius + 100.0, 1.0, kMaxEvictRadius);
+    if (!(w.evictRadius > w.loadRadius))
+        r.fail(r.name("evict_radius") + " (" + formatNumber(w.evictRadius) + " m) must be larger than " +
+               r.name("load_radius") + " (" + formatNumber(w.loadRadius) + " m)");
+    if (r.has("memory_budget_mib"))
+        w.memoryBudgetBytes = uint64_t(r.number("memory_budget_mib", 0.0, 1.0, 1048576.0) * 1048576.0);
+    r.finish();
+    return w;
+}
+
+void checkWorldScene(const Scene& scene) {
+    const std::string& source = scene.source;
+    auto fail = [&](const std::string& message) { throw Error(source + ": " + message); };
+    if (scene.terrain.source != TerrainParams::Source::Procedural)
+        fail(std::string("'world' needs the procedural terrain: a world of 'terrain.") +
+             (scene.terrain.source == TerrainParams::Source::Mesh ? "mesh'" : "heightmap'") + " is not supported yet");
+    if (!scene.grassMapPath.empty() || !scene.landCover.file.empty())
+        fail(std::string("'world' grows the procedural meadow on every tile: '") +
+             (scene.grassMapPath.empty() ? "land_cover" : "grass_map") +
+             "' (one tile's map) is not supported in a world");
+    const ProceduralTerrainParams& t = scene.terrain.procedural;
+    const VegetationParams& v = scene.vegetation;
+    if (std::abs(double(v.tileSize) - t.size) > 1e-3)
+        fail("in a world every tile has its own terrain: 'vegetation.tile_size' (" + formatNumber(v.tileSize) +
+             " m) must equal 'terrain.size' (" + formatNumber(t.size) + " m)");
+    if (!wholeMultiple(t.size, t.spacing))
+        fail("in a world 'terrain.size' (" + formatNumber(t.size) +
+             " m) must be a whole number of 'terrain.spacing' (" + formatNumber(t.spacing) +
+             " m), so the tiles' terrain grids meet");
+    if (!wholeMultiple(v.worldOrigin.x, t.spacing) || !wholeMultiple(v.worldOrigin.y, t.spacing))
+        fail("in a world 'vegetation.world_origin' must be a whole multiple of 'terrain.spacing' (" +
+             formatNumber(t.spacing) + " m), so the tiles' terrain grids lie on one lattice");
+    const WorldParams& w = scene.world;
+    const double extent = double(std::max(w.tilesX, w.tilesY)) * v.tileSize;
+    if (extent > kMaxWorldExtent)
+        fail("'world.tiles' times 'vegetation.tile_size' is " + formatNumber(extent) + " m, over the " +
+             formatNumber(kMaxWorldExtent) + " m a world may span (plant positions are floats)");
+    checkWorldBudget(scene);
+}
+
+uint64_t predictedTileBytes(const Scene& scene) {
+    const VegetationParams& v = scene.vegetation;
+    const ProceduralTerrainParams& t = scene.terrain.procedural;
+    const double vertices = std::pow(std::round(double(v.tileSize) / t.spacing) + 1.0, 2.0);
+    const double fields = double(v.fieldsPerTile()) * v.fieldsPerTile();
+    const double clusters = fields * v.clustersPerField() * v.clustersPerField();
+    double plants = 0.0;
+    if (scene.vegetationEnabled) {
+        // The meadow's intensities never exceed 1, and rounding adds at most one plant per cluster and category.
+        static const GrassMap full(1, 1, 3, {1.0f, 1.0f, 1.0f}, "full intensity");
+        plants = predictPlantCount(full, v) + clusters * v.categoryCount;
+    }
+    const double bytes = vertices * sizeof(float) +
+                         plants * double(sizeof(gpu::PlantStatic) + sizeof(gpu::PlantDynamic)) +
+                         clusters * double(sizeof(gpu::PlantCluster)) + fields * double(sizeof(FieldVegetation));
+    return uint64_t(std::min(std::ceil(bytes), 1e18));
+}
+
+uint32_t maxTilesWithin(double radius, double tileSize, uint32_t tilesX, uint32_t tilesY) {
+    constexpr uint32_t kSamples = 64;
+    const double s = tileSize, r = radius + s / kSamples; // any centre lies within s / 64 of a sample
+    uint64_t most = 0;
+    for (uint32_t sy = 0; sy <= kSamples; ++sy) {
+        for (uint32_t sx = 0; sx <= kSamples; ++sx) {
+            const double cx = s * sx / kSamples, cy = s * sy / kSamples;
+            uint64_t count = 0, rows = 0;
+            // Rows below, in and above the centre's: row j spans [j s, (j + 1) s].
+            const int64_t lo = int64_t(std::floor((cy - r) / s)), hi = int64_t(std::floor((cy + r) / s));
+            for (int64_t j = lo; j <= hi && rows < tilesY; ++j) {
+                const double dy = std::max({0.0, double(j) * s - cy, cy - double(j + 1) * s});
+                if (dy > r) continue;
+                count += std::min(tilesInRow(cx, std::sqrt(r * r - dy * dy), s), tilesX);
+                ++rows;
+            }
+            most = std::max(most, count);
+        }
+    }
+    return uint32_t(std::min<uint64_t>(most, uint64_t(tilesX) * tilesY));
+}
+
+void checkWorldBudget(const Scene& scene) {
+    const WorldParams& w = scene.world;
+    const uint32_t tiles = maxTilesWithin(w.evictRadius, scene.vegetation.tileSize, w.tilesX, w.tilesY);
+    const uint64_t perTile = predictedTileBytes(scene);
+    const double bytes = double(tiles) * double(perTile);
+    require(bytes <= double(w.memoryBudgetBytes),
+            scene.source + ": 'world.memory_budget_mib' (" + mib(double(w.memoryBudgetBytes)) +
+                ") cannot hold the tiles around one camera: up to " + std::to_string(tiles) + " tiles of " +
+                formatNumber(scene.vegetation.tileSize) + " m lie within 'world.evict_radius' (" +
+                formatNumber(w.evictRadius) + " m; 'world.load_radius' " + formatNumber(w.loadRadius) +
+                " m) of a point, each up to " + mib(double(perTile)) +
+                " of terrain and plant records; raise 'world.memory_budget_mib' or lower 'world.load_radius' / "
+                "'world.evict_radius' or 'vegetation.density_multiplier'");
+}
+
+} // namespace sward

@@ -1,0 +1,52 @@
+// The scene's "world" object (docs/scene-format.md): a world of N x M scene tiles of procedural terrain and plants,
+// generated around interest points under a memory budget (scene/world_tiles.h), and the bound that budget is checked
+// against before anything is generated.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+
+namespace sward {
+
+class JsonReader;
+struct Scene;
+
+// Tiles per world side at most, and the world's extent per side: plant positions and field origins are floats, so
+// 32 km keeps their error under 2 mm at the far edge.
+inline constexpr uint32_t kMaxWorldTilesPerSide = 256;
+inline constexpr double kMaxWorldExtent = 32768.0;
+inline constexpr double kMaxLoadRadius = 10000.0, kMaxEvictRadius = 20000.0;
+
+struct WorldParams {
+    bool enabled = false;                              // the scene has a "world" object
+    uint32_t tilesX = 1, tilesY = 1;                   // "tiles": [N, M], tile (x, y) for x < N, y < M
+    double loadRadius = 300.0;                         // metres: tiles within it of an interest point are made resident
+    double evictRadius = 400.0;                        // metres, > loadRadius (default loadRadius + 100): tiles
+                                                       // beyond it of every point are evicted
+    uint64_t memoryBudgetBytes = uint64_t(2048) << 20; // "memory_budget_mib": resident tiles at most
+};
+
+// Reads "tiles", "load_radius", "evict_radius" and "memory_budget_mib"; errors name the file and the JSON path.
+WorldParams parseWorldParams(JsonReader r);
+
+// The world's requirements on the rest of the scene, checked once terrain and vegetation are parsed: the procedural
+// terrain (not 'terrain.heightmap' / 'terrain.mesh'), the procedural meadow (not 'grass_map' / 'land_cover'),
+// 'vegetation.tile_size' = 'terrain.size', a whole number of 'terrain.spacing' per tile and in
+// 'vegetation.world_origin', the extent, and checkWorldBudget. Throws sward::Error naming the keys.
+void checkWorldScene(const Scene& scene);
+
+// Upper bound of one tile's resident bytes, the same parts WorldTile::bytes counts: terrain heights, plant records
+// (static + dynamic) at full grass-map intensity plus one per cluster and category (count rounding), cluster records
+// and field headers.
+uint64_t predictedTileBytes(const Scene& scene);
+
+// The most tiles of side tileSize a disc of `radius` metres can touch, wherever its centre lies (an upper bound: the
+// centre is sampled on a 64 x 64 grid per tile and the radius widened by the sampling step), at most tilesX * tilesY.
+uint32_t maxTilesWithin(double radius, double tileSize, uint32_t tilesX, uint32_t tilesY);
+
+// Throws sward::Error naming 'world.memory_budget_mib', 'world.load_radius' and 'world.evict_radius' when the tiles
+// that can be resident around ONE interest point (those within evict_radius of it) can exceed the budget.
+void checkWorldBudget(const Scene& scene);
+
+} // namespace sward

@@ -1,0 +1,352 @@
+#include "scene/world_tiles.h"
+
+#include "common/error.h"
+#include "common/json_reader.h"
+#include "interaction/state_file.h"
+#include "vegetation/placement.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace sward {
+
+namespace {
+
+std::string tileName(int32_t x, int32_t y) {
+    return "tile (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+}
+
+// South-west corner of tile (x, y), in double as placement computes it.
+glm::dvec2 tileOrigin(const Scene& scene, int32_t x, int32_t y) {
+    const VegetationParams& v = scene.vegetation;
+    return {double(v.worldOrigin.x) + double(x) * v.tileSize, double(v.worldOrigin.y) + double(y) * v.tileSize};
+}
+
+double distanceToTile(const Scene& scene, int32_t x, int32_t y, glm::dvec2 point) {
+    const glm::dvec2 lo = tileOrigin(scene, x, y), hi = lo + double(scene.vegetation.tileSize);
+    const double dx = std::max({0.0, lo.x - point.x, point.x - hi.x});
+    const double dy = std::max({0.0, lo.y - point.y, point.y - hi.y});
+    return std::sqrt(dx * dx + dy * dy);
+}
+
+// The same parts predictedTileBytes bounds.
+uint64_t tileBytes(const WorldTile& tile) {
+    return tile.ground.heightfield()->heights().size() * sizeof(float) + countVegetation(tile.vegetation).totalBytes() +
+           tile.vegetation.fields.size() * sizeof(FieldVegetation);
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string mib(uint64_t bytes) {
+    return formatNumber(std::ceil(double(bytes) / 1048576.0)) + " MiB";
+}
+
+} // namespace
+
+WorldTile generateWorldTile(const Scene& scene, TileCoord coord, uint32_t threads) {
+    const WorldParams& w = scene.world;
+    require(w.enabled && coord.x >= 0 && coord.y >= 0 && uint32_t(coord.x) < w.tilesX && uint32_t(coord.y) < w.tilesY,
+            "generateWorldTile: " + tileName(coord.x, coord.y) + " is not a tile of the scene's world");
+    const glm::dvec2 origin = tileOrigin(scene, coord.x, coord.y);
+    ProceduralTerrainParams terrain = scene.terrain.procedural;
+    terrain.size = scene.vegetation.tileSize;
+    terrain.origin = origin;
+    WorldTile tile{.coord = coord, .ground = Ground(makeProceduralTerrain(terrain), scene.terrain.selection)};
+    tile.vegetation.coord = coord;
+    if (scene.vegetationEnabled)
+        tile.vegetation = generateTile(tile.ground, buildGrassMap(scene, scene.vegetation.tileSize, origin),
+                                       scene.vegetation, coord, threads);
+    tile.bytes = tileBytes(tile);
+    return tile;
+}
+
+WorldTiles::WorldTiles(Scene scene, uint32_t threads) : scene_(std::move(scene)), threads_(threads) {
+    require(scene_.world.enabled, scene_.source + ": the scene has no 'world'");
+    checkWorldScene(scene_);
+    predictedTileBytes_ = predictedTileBytes(scene_);
+}
+
+WorldTiles::~WorldTiles() {
+    stopWorker();
+}
+
+WorldTiles::Plan WorldTiles::plan(std::span<const glm::dvec2> points) const {
+    const WorldParams& w = scene_.world;
+    const double s = scene_.vegetation.tileSize;
+    const glm::dvec2 origin = tileOrigin(scene_, 0, 0);
+    std::map<Key, double> wanted; // tile -> distance to the nearest point
+    for (const glm::dvec2& p : points) {
+        require(std::isfinite(p.x) && std::isfinite(p.y), "world: an interest point is not finite");
+        const glm::dvec2 lo = glm::floor((p - w.loadRadius - origin) / s),
+                         hi = glm::floor((p + w.loadRadius - origin) / s);
+        // Clamped in double first: a point far outside the world must not overflow the conversion.
+        const int64_t x0 = int64_t(std::clamp(lo.x, 0.0, double(w.tilesX)));
+        const int64_t y0 = int64_t(std::clamp(lo.y, 0.0, double(w.tilesY)));
+        const int64_t x1 = int64_t(std::clamp(hi.x, -1.0, double(w.tilesX) - 1.0));
+        const int64_t y1 = int64_t(std::clamp(hi.y, -1.0, double(w.tilesY) - 1.0));
+        for (int64_t y = y0; y <= y1; ++y)
+            for (int64_t x = x0; x <= x1; ++x)
+                if (const double d = distanceToTile(scene_, int32_t(x), int32_t(y), p); d <= w.loadRadius) {
+                    auto [it, added] = wanted.emplace(Key(int32_t(y), int32_t(x)), d);
+                    if (!added) it->second = std::min(it->second, d);
+                }
+    }
+    Plan result;
+    std::vector<std::pair<double, Key>> missing;
+    for (const auto& [key, distance] : wanted)
+        if (!resident_.contains(key)) missing.emplace_back(distance, key);
+    std::sort(missing.begin(), missing.end());
+    for (const auto& [distance, key] : missing) result.load.push_back(key);
+    for (const auto& [key, tile] : resident_)
+        for (const glm::dvec2& p : points)
+            if (distanceToTile(scene_, key.second, key.first, p) <= w.evictRadius) {
+                result.keep.push_back(key);
+                break;
+            }
+    return result;
+}
+
+// Several points far apart may want more than the budget holds: first the tiles only the hysteresis band keeps go,
+// farthest first; if the tiles within load_radius still do not fit, nothing changes and the error says so.
+void WorldTiles::fitBudget(Plan& p, std::span<const glm::dvec2> points, uint64_t pendingBytes) {
+    const WorldParams& w = scene_.world;
+    uint64_t bytes = pendingBytes + p.load.size() * predictedTileBytes_;
+    std::vector<std::pair<double, Key>> band; // (distance to the nearest point, tile) beyond load_radius
+    for (const Key& key : p.keep) {
+        bytes += resident_.at(key).bytes;
+        double nearest = INFINITY;
+        for (const glm::dvec2& point : points)
+            nearest = std::min(nearest, distanceToTile(scene_, key.second, key.first, point));
+        if (nearest > w.loadRadius) band.emplace_back(nearest, key);
+    }
+    std::sort(band.begin(), band.end());
+    while (bytes > w.memoryBudgetBytes && !band.empty()) {
+        const Key key = band.back().second;
+        band.pop_back();
+        bytes -= resident_.at(key).bytes;
+        p.keep.erase(std::find(p.keep.begin(), p.keep.end(), key));
+    }
+    require(bytes <= w.memoryBudgetBytes, scene_.source + ": the tiles within 'world.load_radius' (" +
+                                              formatNumber(w.loadRadius) + " m) of " + std::to_string(points.size()) +
+                                              " interest points need " + mib(bytes) +
+                                              ", over 'world.memory_budget_mib' (" + mib(w.memoryBudgetBytes) +
+                                              "); raise the budget or keep the cameras and colliders closer together");
+}
+
+void WorldTiles::evictAllBut(const std::vector<Key>& keep) {
+    for (auto it = resident_.begin(); it != resident_.end();) {
+        if (std::find(keep.begin(), keep.end(), it->first) != keep.end()) {
+            ++it;
+            continue;
+        }
+        if (beforeEvict_) beforeEvict_(it->second);
+        TileInteractionState state = captureTouchedFields(it->second.vegetation);
+        if (state.fields.empty())
+            kept_.erase(it->first);
+        else
+            kept_[it->first] = std::move(state);
+        ++stats_.evicted;
+        it = resident_.erase(it);
+    }
+}
+
+void WorldTiles::makeResident(WorldTile tile) {
+    const Key key(tile.coord.y, tile.coord.x);
+    if (auto kept = kept_.find(key); kept != kept_.end()) {
+        restoreTouchedFields(tile.vegetation, kept->second,
+                             scene_.source + ": the kept interaction state of " + tileName(key.second, key.first));
+        kept_.erase(kept);
+        ++stats_.restored;
+    }
+    ++stats_.generated;
+    for (const FieldVegetation& f : tile.vegetation.fields) stats_.plantsGenerated += f.plantCount();
+    resident_.insert_or_assign(key, std::move(tile));
+}
+
+bool WorldTiles::wantedNear(const Key& key, std::span<const glm::dvec2> points) const {
+    for (const glm::dvec2& p : points)
+        if (distanceToTile(scene_, key.second, key.first, p) <= scene_.world.evictRadius) return true;
+    return false;
+}
+
+// Finished tiles near the points become resident, the others (requests overtaken by a move) are dropped.
+uint32_t WorldTiles::absorbFinished(std::span<const glm::dvec2> points) {
+    std::vector<WorldTile> finished;
+    {
+        std::lock_guard lock(mutex_);
+        if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+        finished.swap(finished_);
+        stats_.generationSeconds += std::exchange(workerSeconds_, 0.0);
+    }
+    uint32_t count = 0;
+    for (WorldTile& tile : finished) {
+        const Key key(tile.coord.y, tile.coord.x);
+        if (resident_.contains(key) || !wantedNear(key, points)) continue;
+        makeResident(std::move(tile));
+        ++count;
+    }
+    return count;
+}
+
+void WorldTiles::waitFor(std::span<const glm::dvec2> points) {
+    {
+        // Whatever the viewer asked for before: drop the queue and let the tile in progress finish.
+        std::unique_lock lock(mutex_);
+        queue_.clear();
+        wake_.wait(lock, [&] { return !inFlight_; });
+    }
+    absorbFinished(points);
+    Plan p = plan(points);
+    fitBudget(p, points, 0);
+    evictAllBut(p.keep);
+    // (y, x) order: the offline renderer's log and timings are the same on every run (the tiles are anyway).
+    std::sort(p.load.begin(), p.load.end());
+    for (const Key& key : p.load) {
+        const auto start = std::chrono::steady_clock::now();
+        WorldTile tile = generateWorldTile(scene_, TileCoord{key.second, key.first}, threads_);
+        stats_.generationSeconds += secondsSince(start);
+        makeResident(std::move(tile));
+    }
+    lastPoints_.assign(points.begin(), points.end());
+}
+
+// Under mutex_: drops from `load` the tiles the worker holds (in progress or finished), so none is made twice.
+void WorldTiles::dropHeld(std::vector<Key>& load) const {
+    std::erase_if(load, [&](const Key& key) {
+        return key == inFlight_ || std::any_of(finished_.begin(), finished_.end(),
+                                               [&](const WorldTile& t) { return Key(t.coord.y, t.coord.x) == key; });
+    });
+}
+
+void WorldTiles::request(std::span<const glm::dvec2> points) {
+    absorbFinished(points);
+    Plan p = plan(points);
+    uint64_t pendingBytes = 0;
+    {
+        std::lock_guard lock(mutex_);
+        dropHeld(p.load);
+        pendingBytes = (finished_.size() + (inFlight_ ? 1 : 0)) * predictedTileBytes_;
+    }
+    // Not under the lock: the eviction hook may read back GPU buffers or ask this object about its tiles.
+    fitBudget(p, points, pendingBytes);
+    evictAllBut(p.keep);
+    lastPoints_.assign(points.begin(), points.end());
+    {
+        std::lock_guard lock(mutex_);
+        dropHeld(p.load);                              // the worker may have finished one meanwhile
+        queue_.assign(p.load.rbegin(), p.load.rend()); // nearest at the back
+        if (!worker_.joinable() && !queue_.empty()) worker_ = std::thread([this] { workerLoop(); });
+    }
+    wake_.notify_all();
+}
+
+uint32_t WorldTiles::poll() {
+    return absorbFinished(lastPoints_);
+}
+
+void WorldTiles::workerLoop() {
+    std::unique_lock lock(mutex_);
+    for (;;) {
+        wake_.wait(lock, [&] { return stop_ || !queue_.empty(); });
+        if (stop_) return;
+        const Key key = queue_.back();
+        queue_.pop_back();
+        inFlight_ = key;
+        lock.unlock();
+        const auto start = std::chrono::steady_clock::now();
+        std::optional<WorldTile> tile;
+        std::exception_ptr error;
+        try {
+            tile = generateWorldTile(scene_, TileCoord{key.second, key.first}, threads_);
+        } catch (...) {
+            error = std::current_exception();
+        }
+        lock.lock();
+        workerSeconds_ += secondsSince(start);
+        inFlight_.reset();
+        if (tile) finished_.push_back(std::move(*tile));
+        if (error && !error_) error_ = error;
+        wake_.notify_all();
+    }
+}
+
+void WorldTiles::stopWorker() {
+    {
+        std::lock_guard lock(mutex_);
+        stop_ = true;
+    }
+    wake_.notify_all();
+    if (worker_.joinable()) worker_.join();
+}
+
+const WorldTile* WorldTiles::find(TileCoord coord) const {
+    const auto it = resident_.find(Key(coord.y, coord.x));
+    return it == resident_.end() ? nullptr : &it->second;
+}
+
+WorldTile* WorldTiles::find(TileCoord coord) {
+    const auto it = resident_.find(Key(coord.y, coord.x));
+    return it == resident_.end() ? nullptr : &it->second;
+}
+
+std::vector<TileCoord> WorldTiles::residentTiles() const {
+    std::vector<TileCoord> tiles;
+    for (const auto& [key, tile] : resident_) tiles.push_back(tile.coord);
+    return tiles;
+}
+
+uint64_t WorldTiles::residentBytes() const {
+    uint64_t bytes = 0;
+    for (const auto& [key, tile] : resident_) bytes += tile.bytes;
+    return bytes;
+}
+
+uint64_t WorldTiles::keptStateBytes() const {
+    uint64_t bytes = 0;
+    for (const auto& [key, state] : kept_) bytes += state.bytes();
+    return bytes;
+}
+
+uint32_t WorldTiles::pendingTiles() const {
+    std::lock_guard lock(mutex_);
+    return uint32_t(queue_.size() + finished_.size() + (inFlight_ ? 1 : 0));
+}
+
+void WorldTiles::saveState(const std::string& path, uint64_t tick) const {
+    std::map<Key, TileInteractionState> tiles(kept_.begin(), kept_.end());
+    for (const auto& [key, tile] : resident_)
+        if (TileInteractionState state = captureTouchedFields(tile.vegetation); !state.fields.empty())
+            tiles.emplace(key, std::move(state));
+    WorldInteractionState world{.tick = tick, .tilesX = scene_.world.tilesX, .tilesY = scene_.world.tilesY};
+    for (auto& [key, state] : tiles) world.tiles.push_back(std::move(state));
+    saveWorldState(path, world);
+}
+
+uint64_t WorldTiles::restoreState(const std::string& path) {
+    WorldInteractionState world = loadWorldState(path);
+    const WorldParams& w = scene_.world;
+    require(world.tilesX == w.tilesX && world.tilesY == w.tilesY,
+            path + ": the world state belongs to a world of " + std::to_string(world.tilesX) + " x " +
+                std::to_string(world.tilesY) + " tiles; this one has " + std::to_string(w.tilesX) + " x " +
+                std::to_string(w.tilesY));
+    std::map<Key, TileInteractionState> tiles;
+    for (TileInteractionState& state : world.tiles) tiles.emplace(Key(state.coord.y, state.coord.x), std::move(state));
+    // Check every resident tile before changing any, so a foreign file leaves the world as it was.
+    const TileInteractionState untouched;
+    auto stateOf = [&](const Key& key) -> const TileInteractionState& {
+        const auto it = tiles.find(key);
+        return it == tiles.end() ? untouched : it->second;
+    };
+    for (const auto& [key, tile] : resident_)
+        checkTouchedFields(tile.vegetation, stateOf(key), path + ": " + tileName(key.second, key.first));
+    for (auto& [key, tile] : resident_) restoreTouchedFields(tile.vegetation, stateOf(key), path);
+    kept_.clear();
+    for (auto& [key, state] : tiles)
+        if (!resident_.contains(key)) kept_.emplace(key, std::move(state));
+    return world.tick;
+}
+
+} // namespace sward
