@@ -6,6 +6,13 @@
 namespace sward {
 
 SceneResources buildSceneResources(Scene scene, bool withVegetation, uint32_t threads) {
+    // One tile is what the renderers draw; a world of many is streamed (WorldTiles) but not drawn yet. Refusing it
+    // beats a dataset of tile (0, 0) alone under a camera that flies away from it.
+    if (scene.world.enabled && scene.world.tilesX * scene.world.tilesY > 1)
+        throw Error(scene.source + ": 'world' (" + std::to_string(scene.world.tilesX) + " x " +
+                    std::to_string(scene.world.tilesY) +
+                    " tiles) is streamed by scene/world_tiles (sward-bench world) but not drawn yet: the renderers "
+                    "and sward-view draw a one-tile scene");
     SceneResources r{.scene = std::move(scene)};
     r.terrain = buildTerrain(r.scene);
     r.models = loadObjectModels(r.scene.objects, r.scene.source);

@@ -28,7 +28,8 @@ struct SceneResources {
 };
 
 // Builds the scene's terrain, object models and, when `withVegetation` and the scene enables it, its vegetation
-// tile (threads: 0 = all cores) and atlas. Checks that the atlas has a row per vegetation category.
+// tile (threads: 0 = all cores) and atlas. Checks that the atlas has a row per vegetation category, and refuses a
+// "world" of more than one tile (streamed by scene/world_tiles.h, not drawn yet).
 SceneResources buildSceneResources(Scene scene, bool withVegetation = true, uint32_t threads = 0);
 
 } // namespace sward

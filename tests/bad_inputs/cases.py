@@ -381,6 +381,8 @@ CASES = [
                                     s.update(terrain={"heightmap": {"file": "dem.png", "metres_per_pixel": 1}},
                                              world={"tiles": [4, 4]}), s)[-1]),
          1, r"'world' needs the procedural terrain: a world of 'terrain\.heightmap'"),
+    Case("world of many tiles given to the renderer", "sward-render",
+         scene_with(set_key(["world"], {"tiles": [2, 2]})), 1, r"'world' \(2 x 2 tiles\) is streamed .* not drawn yet"),
     Case("world with a grass_map", "sward-render",
          scene_with(lambda s, env: (grass_map(png_bytes())(s, env), s.update(world={"tiles": [4, 4]}), s)[-1]), 1,
          r"'grass_map' \(one tile's map\) is not supported in a world"),
