@@ -191,7 +191,7 @@ TEST(WorldTiles, SeamsBetweenTilesHaveNoGapAndNoDoublePlants) {
     ASSERT_NE(world.find({3, 5}), nullptr);
     ASSERT_NE(world.find({4, 5}), nullptr);
     // Plants near x = 400 in half-metre strips, by tile.
-    std::array<uint32_t, 8> strips{}; // [396, 396.5), ..., [399.5, 400), [400, 400.5), ... [403.5, 404)
+    std::array<uint32_t, 8> strips{}; // [398, 398.5), ..., [399.5, 400), [400, 400.5), ... [401.5, 402)
     std::vector<glm::vec2> west, east;
     for (TileCoord t : {TileCoord{3, 5}, TileCoord{4, 5}}) {
         for (const FieldVegetation& f : world.find(t)->vegetation.fields)
@@ -200,8 +200,8 @@ TEST(WorldTiles, SeamsBetweenTilesHaveNoGapAndNoDoublePlants) {
                     decodePlanarPosition(r.position & 0xffffu, r.position >> 16, f.origin, f.positionStep);
                 // Every plant lies in its own tile's square: none is placed twice across the border.
                 ASSERT_EQ(xy.x < 400.0f, t.x == 3) << xy.x;
-                if (xy.x < 396.0f || xy.x >= 404.0f) continue;
-                ++strips[size_t((xy.x - 396.0f) * 2.0f)];
+                if (xy.x < 398.0f || xy.x >= 402.0f) continue;
+                ++strips.at(size_t((xy.x - 398.0f) * 2.0f));
                 (t.x == 3 ? west : east).push_back(xy);
             }
     }
