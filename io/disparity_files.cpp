@@ -187,11 +187,10 @@ DisparityMap readKittiPng(const std::string& path) {
 }
 
 DisparityMap readDisparity(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (ext == ".pfm") return readPfm(path);
-    if (ext == ".png") return readKittiPng(path);
-    throw Error(path + ": unknown disparity format '" + ext + "' (expected .pfm or KITTI .png)");
+    const std::string ext = lowerExtension(path);
+    if (ext == "pfm") return readPfm(path);
+    if (ext == "png") return readKittiPng(path);
+    throw Error(path + ": unknown disparity format '" + (ext.empty() ? "" : "." + ext) + "' (expected .pfm or KITTI .png)");
 }
 
 void writeMiddleburyCalib(const std::string& path, const StereoCalib& calib) {

@@ -14,37 +14,21 @@
 #include <array>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <iterator>
 #include <stdexcept>
 #include <utility>
-#include <filesystem>
-#include <fstream>
 #include <memory>
 
 namespace sward {
 
 namespace {
 
-std::string lowerExtension(const std::string& path) {
-    size_t dot = path.find_last_of('.');
-    if (dot == std::string::npos || path.find_first_of("/\\", dot) != std::string::npos) return "";
-    std::string ext = path.substr(dot + 1);
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
 void requireEdges(const std::string& path, uint64_t width, uint64_t height) {
     require(width > 0 && height > 0 && width <= kMaxImageEdge && height <= kMaxImageEdge,
             "image '" + path + "' has size " + std::to_string(width) + "x" + std::to_string(height) +
                 "; each edge must be 1.." + std::to_string(kMaxImageEdge) + " pixels");
-}
-
-std::vector<char> readFileBytes(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    require(file.good(), "cannot open image '" + path + "': file missing or unreadable");
-    std::vector<char> bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-    require(!file.bad(), "cannot read image '" + path + "'");
-    return bytes;
 }
 
 // stb_image silently widens 1/2/4-bit grey images to 8 bits, so the true bit depth is read from the IHDR chunk,
@@ -139,7 +123,7 @@ ImageData decodePng(const std::string& path, const std::vector<char>& bytes) {
 namespace {
 
 ImageData loadPng(const std::string& path) {
-    return decodePng(path, readFileBytes(path));
+    return decodePng(path, readImageFileBytes(path));
 }
 
 // Reads the data window into `samples` (interleaved float channels) a strip of rows at a time, growing the buffer
@@ -203,7 +187,7 @@ std::vector<std::string> exrChannelsToRead(const std::string& path, const Imf::C
 
 
 ImageData loadExr(const std::string& path) {
-    MemoryIStream stream(path, readFileBytes(path));
+    MemoryIStream stream(path, readImageFileBytes(path));
     requireSafeExrHeaders(path, stream.bytes());
     try {
         Imf::InputFile file(stream);
@@ -227,6 +211,29 @@ ImageData loadExr(const std::string& path) {
 }
 
 } // namespace
+
+std::string lowerExtension(const std::string& path) {
+    size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos || path.find_first_of("/\\", dot) != std::string::npos) return "";
+    std::string ext = path.substr(dot + 1);
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+// Sized first and read in one go: a path naming a device (/dev/zero) or a pipe would never end.
+std::vector<char> readImageFileBytes(const std::string& path) {
+    std::error_code error;
+    require(std::filesystem::exists(path, error), "cannot open image '" + path + "': file missing or unreadable");
+    require(std::filesystem::is_regular_file(path, error), "cannot open image '" + path + "': not a regular file");
+    const uintmax_t size = std::filesystem::file_size(path, error);
+    require(!error && size <= kMaxImageFileBytes,
+            "image '" + path + "' is larger than " + std::to_string(kMaxImageFileBytes >> 30) + " GiB");
+    std::ifstream file(path, std::ios::binary);
+    std::vector<char> bytes(size);
+    file.read(bytes.data(), std::streamsize(size));
+    require(file.good(), "cannot read image '" + path + "'");
+    return bytes;
+}
 
 ImageData loadImage(const std::string& path) {
     const std::string ext = lowerExtension(path);

@@ -26,6 +26,12 @@ inline constexpr uint32_t kMaxImageEdge = 32768;
 // float; channels R,G,B[,A], or a single channel such as Y or Z). Throws sward::Error naming the file and the
 // problem for a missing file, an unknown extension, a bit depth below 8, or a corrupt file.
 ImageData loadImage(const std::string& path);
+// Largest image file read, in bytes (far above a 32768-pixel EXR's compressed size).
+inline constexpr uint64_t kMaxImageFileBytes = uint64_t(4) << 30;
+// The bytes of a regular image file of at most kMaxImageFileBytes; throws sward::Error naming the file otherwise.
+std::vector<char> readImageFileBytes(const std::string& path);
+// A path's extension after its last dot, lower-cased ("" when there is none): "a/B.PNG" -> "png".
+std::string lowerExtension(const std::string& path);
 // Decodes a PNG held in memory with the same checks; `path` names it in errors (e.g. "'ground.glb' image 2").
 ImageData decodePng(const std::string& path, const std::vector<char>& bytes);
 

@@ -9,15 +9,10 @@
 #include <cmath>
 #include <cctype>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 
 namespace sward {
 
 namespace {
-
-constexpr uintmax_t kMaxGroundImageBytes = uintmax_t(256) << 20;
 
 bool isPng(const unsigned char* bytes, int size) {
     static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -53,19 +48,25 @@ std::vector<unsigned char> toRgba8(const ImageData& png) {
     return rgba;
 }
 
+// PNG bytes as a ground texture, at most kMaxGroundTextureEdge per edge; `name` names them in errors.
+GroundTexture decodeTexture(const std::string& name, const std::vector<char>& bytes) {
+    const ImageData png = decodePng(name, bytes);
+    require(png.width <= kMaxGroundTextureEdge && png.height <= kMaxGroundTextureEdge,
+            "image '" + name + "' is larger than " + std::to_string(kMaxGroundTextureEdge) + " pixels per edge");
+    return GroundTexture{png.width, png.height, toRgba8(png)};
+}
+
 } // namespace
 
 bool decodeGltfImage(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
                      const unsigned char* bytes, int size, void* user) {
     if (!isPng(bytes, size)) return true; // refused later, and only if a ground material uses it
-    const std::string name = "'" + *static_cast<const std::string*>(user) + "' image " + std::to_string(index);
+    const std::string name = *static_cast<const std::string*>(user) + " image " + std::to_string(index);
     try {
-        const ImageData png = decodePng(name, std::vector<char>(bytes, bytes + size));
-        require(png.width <= kMaxGroundTextureEdge && png.height <= kMaxGroundTextureEdge,
-                "image " + name + " is larger than " + std::to_string(kMaxGroundTextureEdge) + " pixels per edge");
-        image->image = toRgba8(png);
-        image->width = int(png.width);
-        image->height = int(png.height);
+        GroundTexture texture = decodeTexture(name, std::vector<char>(bytes, bytes + size));
+        image->image = std::move(texture.rgba);
+        image->width = int(texture.width);
+        image->height = int(texture.height);
         image->component = 4;
         image->bits = 8;
         return true;
@@ -89,22 +90,9 @@ GroundTexture groundTexture(const tinygltf::Model& model, int textureIndex, cons
     require(!image.uri.empty() && image.uri.rfind("data:", 0) != 0, notPng);
     const std::string path =
         assets.resolve(percentDecoded(image.uri), folder, what + ": image " + std::to_string(source) + " uri");
-    // A regular file of bounded size: a uri naming a device (/dev/zero) or a pipe would never end.
-    std::error_code error;
-    const bool regular = std::filesystem::is_regular_file(path, error);
-    const uintmax_t size = regular ? std::filesystem::file_size(path, error) : 0;
-    require(regular && !error && size <= kMaxGroundImageBytes,
-            what + ": image " + std::to_string(source) + " '" + image.uri +
-                "' is not a readable file of at most 256 MiB");
-    std::ifstream file(path, std::ios::binary);
-    std::vector<char> bytes(size);
-    file.read(bytes.data(), std::streamsize(size));
-    require(file.good() && !bytes.empty(), what + ": cannot read image " + std::to_string(source) + " '" + image.uri + "'");
+    const std::vector<char> bytes = readImageFileBytes(path);
     require(isPng(reinterpret_cast<const unsigned char*>(bytes.data()), int(std::min<size_t>(bytes.size(), 8))), notPng);
-    const ImageData png = decodePng(path, bytes);
-    require(png.width <= kMaxGroundTextureEdge && png.height <= kMaxGroundTextureEdge,
-            "image '" + path + "' is larger than " + std::to_string(kMaxGroundTextureEdge) + " pixels per edge");
-    return GroundTexture{png.width, png.height, toRgba8(png)};
+    return decodeTexture(path, bytes);
 }
 
 } // namespace sward

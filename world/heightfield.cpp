@@ -7,9 +7,7 @@
 #include "common/noise.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 
 namespace sward {
@@ -135,14 +133,6 @@ Heightfield makeProceduralTerrain(const ProceduralTerrainParams& p) {
 
 namespace {
 
-bool hasExtension(const std::string& path, std::initializer_list<const char*> extensions) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    for (const char* e : extensions)
-        if (ext == e) return true;
-    return false;
-}
-
 // Raster rows run north to south; grid rows south to north. height(i, row) -> heights[(rows - 1 - row) * columns + i].
 template <typename Sample>
 std::vector<float> gridHeights(const std::string& path, uint32_t width, uint32_t height, Sample sample,
@@ -185,7 +175,8 @@ Heightfield loadHeightfield(const std::string& path, float verticalScale, float 
     require(spacing >= 0.0f && std::isfinite(spacing), "heightfield '" + path + "': spacing must not be negative");
     require(std::isfinite(verticalScale) && std::isfinite(heightOffset),
             "heightfield '" + path + "': vertical scale and offset must be finite");
-    if (!hasExtension(path, {".png", ".exr"})) {
+    const std::string extension = lowerExtension(path);
+    if (extension != "png" && extension != "exr") {
         RasterReadOptions options;
         const RasterBand raster = readRasterBand(path, options);
         const float step = rasterSpacing(raster, spacing);

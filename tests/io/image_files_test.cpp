@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <algorithm>
 #include <cstring>
@@ -119,4 +121,12 @@ TEST(ExrFiles, ADataWindowBeyondTheEdgeLimitIsRefusedBeforeOpenExrAllocatesItsTa
     std::memcpy(&*(at + 17 + 4 + 12), &maxY, 4); // after the size: min x, min y, max x, max y
     writeAll(path, bytes);
     sward::test::expectError([&] { loadImage(path); }, {path, "has size 2x1073741825", "each edge must be 1..32768"});
+}
+
+TEST(ImageFiles, APipeOrDeviceIsRefusedInsteadOfReadForever) {
+    const std::string fifo = sward::test::tempDir().string() + "/pipe.png";
+    std::filesystem::remove(fifo);
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    sward::test::expectError([&] { loadImage(fifo); }, {fifo, "not a regular file"});
+    sward::test::expectError([&] { readImageFileBytes("/dev/zero"); }, {"/dev/zero", "not a regular file"});
 }
