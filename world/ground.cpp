@@ -11,11 +11,24 @@ namespace sward {
 
 namespace {
 
+// cos(x) for x in [0, pi/2] by its Taylor series, + - * / only: libm's cos may differ in the last bit between
+// machines, and this value decides which triangles carry plants (docs/architecture.md, "No libm transcendentals").
+// 14 terms leave a remainder below (pi/2)^28 / 28! ~ 1e-24.
+double taylorCos(double x) {
+    double term = 1.0, sum = 1.0;
+    for (int k = 1; k <= 14; ++k) {
+        term *= -x * x / double((2 * k - 1) * (2 * k));
+        sum += term;
+    }
+    return sum;
+}
+
 // The smallest normal z a plant may stand on: cos(maxSlope); 0 for no limit (every surface seen from above).
 float minNormalZ(const GroundSelection& selection) {
     require(selection.maxSlopeDegrees > 0.0 && selection.maxSlopeDegrees <= 90.0,
             "the slope limit must lie in (0, 90] degrees");
-    return selection.maxSlopeDegrees >= 90.0 ? 0.0f : float(std::cos(selection.maxSlopeDegrees * std::numbers::pi / 180.0));
+    return selection.maxSlopeDegrees >= 90.0 ? 0.0f
+                                             : float(taylorCos(selection.maxSlopeDegrees * (std::numbers::pi / 180.0)));
 }
 
 std::string materialList(const std::vector<GroundMaterial>& materials) {
