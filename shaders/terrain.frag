@@ -37,10 +37,9 @@ float hiddenFraction(float area, vec3 world) {
 }
 
 // How much of the pixel the far cover takes: 0 inside the plants' range, rising over their dissolve band exactly
-// as their dither removes them (plants use the same 3D distance to the camera).
-float coverWeight(vec3 world) {
+// as their dither removes them (plants use the same 3D distance to the camera). uv: `world` in the cover's tile.
+float coverWeight(vec3 world, vec2 uv) {
     if (frame.coverRect.z == 0.0) return 0.0;
-    vec2 uv = (world.xy - frame.coverRect.xy) * frame.coverRect.z;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 0.0;
     float start = frame.coverBand.x - 0.5 * frame.coverBand.y;
     return clamp((distance(world, frame.cameraPosition.xyz) - start) / max(frame.coverBand.y, 1e-3), 0.0, 1.0);
@@ -61,10 +60,10 @@ void main() {
     float shadow = sunShadow(inWorld);
     float sun = max(dot(n, frame.sunDirection.xyz), 0.0) * shadow;
     vec3 color = albedo * (frame.sunRadiance.rgb * sun + ambientLight(n));
-    float weight = coverWeight(inWorld);
+    vec2 uv = (inWorld.xy - frame.coverRect.xy) * frame.coverRect.z;
+    float weight = coverWeight(inWorld, uv);
     if (weight > 0.0) {
         // The texture's v runs north to south (top row north), as the grass map's.
-        vec2 uv = (inWorld.xy - frame.coverRect.xy) * frame.coverRect.z;
         vec4 cover = texture(coverMap, vec2(uv.x, 1.0 - uv.y));
         // plant.frag's light for a plant standing along the ground normal (up_normal_blend aside).
         float plantSun = clamp(dot(n, frame.sunDirection.xyz) * 0.6 + 0.4, 0.0, 1.0) * shadow * kPlantSunlit;

@@ -127,12 +127,13 @@ def with_object(model_name, model_data):
     return edit
 
 
-def ground_mesh(model_data, **mesh_keys):
-    """The tiny scene on a glTF ground `model_data` (dict: glTF JSON; None: no file) with terrain.mesh keys."""
+def ground_mesh(model_data, terrain_keys=None, **mesh_keys):
+    """The tiny scene on a glTF ground `model_data` (dict: glTF JSON; None: no file) with terrain.mesh keys and
+    other terrain keys."""
     def edit(scene, env):
         if model_data is not None:
             env.write("ground.gltf", json.dumps(model_data))
-        scene["terrain"] = {"mesh": {"file": "ground.gltf", **mesh_keys}}
+        scene["terrain"] = {"mesh": {"file": "ground.gltf", **mesh_keys}, **(terrain_keys or {})}
     return edit
 
 
@@ -333,15 +334,13 @@ CASES = [
          scene_with(ground_mesh(triangle_gltf(t=tilted), vegetation_materials=["grass"])), 1,
          r"terrain\.mesh.*material 'grass' is not in the ground mesh"),
     Case("ground mesh with no surface for plants", "sward-render",
-         scene_with(lambda s, env: (ground_mesh(triangle_gltf(t=tilted))(s, env),
-                                    s["terrain"].update(max_slope_deg=30), s)[-1]), 1,
+         scene_with(ground_mesh(triangle_gltf(t=tilted), {"max_slope_deg": 30})), 1,
          r"terrain\.mesh.*no surface of it may carry vegetation"),
     Case("terrain with both heightmap and mesh", "sward-render",
          scene_with(set_key(["terrain"], {"mesh": {"file": "a.gltf"}, "heightmap": {"file": "b.png"}})), 1,
          r"either 'heightmap' or 'mesh'"),
     Case("procedural key beside a ground mesh", "sward-render",
-         scene_with(lambda s, env: (ground_mesh(triangle_gltf(t=tilted))(s, env),
-                                    s["terrain"].update(amplitude=3), s)[-1]), 1,
+         scene_with(ground_mesh(triangle_gltf(t=tilted), {"amplitude": 3})), 1,
          r"'terrain\.amplitude' applies to the procedural terrain only"),
     Case("missing heightmap file", "sward-render",
          scene_with(set_key(["terrain"], {"heightmap": {"file": "none.png", "metres_per_pixel": 1}})), 1,
