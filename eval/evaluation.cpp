@@ -3,6 +3,7 @@
 #include "common/parallel_for.h"
 
 #include "common/error.h"
+#include "common/staged_folder.h"
 #include "dataset/naming.h"
 #include "eval/dataset_reader.h"
 #include "eval/frame_evaluation.h"
@@ -17,20 +18,12 @@
 #include <filesystem>
 #include <thread>
 
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
 namespace sward {
 
 namespace {
-
-void makeDirectory(const std::string& dir) {
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    require(!ec && fs::is_directory(dir), "cannot create report folder '" + dir +
-                                              "': " + (ec ? ec.message() : std::string("a file of that name exists")));
-}
 
 // OpenCV parallelises some SGBM modes over image stripes; frames are our unit of parallelism instead, so its
 // result can never depend on the thread count. Restores OpenCV's setting on exit.
@@ -151,63 +144,6 @@ std::string summaryLine(const DatasetEvaluation& d) {
     return line;
 }
 
-// A report appears whole or not at all. Everything is written into a staging folder beside the report folder
-// and moved in only when the evaluation has succeeded: a dataset that fails half-way (a truncated PFM at frame
-// 40) leaves the report folder exactly as it was, and no half-made report or created parent folder behind.
-class StagedReportFolder {
-public:
-    explicit StagedReportFolder(const std::string& outDir) : final_(fs::absolute(outDir).lexically_normal()) {
-        if (final_.filename().empty()) final_ = final_.parent_path();
-        std::error_code ec;
-        require(!fs::exists(final_, ec) || fs::is_directory(final_, ec),
-                "cannot create report folder '" + outDir + "': a file of that name exists");
-        for (fs::path p = final_; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
-            firstCreated_ = p;
-            if (p == p.parent_path()) break;
-        }
-        makeDirectory(final_.parent_path().string());
-        staging_ = final_.parent_path() / ("." + final_.filename().string() + ".sward-" + std::to_string(getpid()) +
-                                           ".tmp");
-        fs::remove_all(staging_, ec);
-        makeDirectory(staging_.string());
-    }
-    StagedReportFolder(const StagedReportFolder&) = delete;
-    StagedReportFolder& operator=(const StagedReportFolder&) = delete;
-    ~StagedReportFolder() {
-        std::error_code ec;
-        fs::remove_all(staging_, ec);
-        if (!committed_ && !firstCreated_.empty()) fs::remove_all(firstCreated_, ec);
-    }
-
-    std::string path() const { return staging_.string(); }
-
-    // Moves every staged file over its place in the report folder (replacing an earlier report's file).
-    void commit() {
-        makeDirectory(final_.string());
-        moveInto(staging_, final_);
-        committed_ = true;
-    }
-
-private:
-    static void moveInto(const fs::path& from, const fs::path& to) {
-        for (const fs::directory_entry& entry : fs::directory_iterator(from)) {
-            const fs::path target = to / entry.path().filename();
-            if (entry.is_directory()) {
-                makeDirectory(target.string());
-                moveInto(entry.path(), target);
-            } else {
-                std::error_code ec;
-                fs::rename(entry.path(), target, ec);
-                require(!ec, "cannot move '" + entry.path().string() + "' to '" + target.string() + "': " +
-                                 ec.message());
-            }
-        }
-    }
-
-    fs::path final_, staging_, firstCreated_;
-    bool committed_ = false;
-};
-
 } // namespace
 
 DatasetEvaluation evaluateDataset(const std::string& datasetDir, const std::string& disparitiesDir,
@@ -229,8 +165,8 @@ DatasetEvaluation evaluateDataset(const std::string& datasetDir, const std::stri
     result.width = setup.calib.width;
     result.height = setup.calib.height;
     chooseMatcher(setup, result);
-    if (options.pictures) makeDirectory(pictureDir + "/frames");
-    if (options.saveDisparities && setup.sgbm) makeDirectory(pictureDir + "/disparity");
+    if (options.pictures) makeDirectory(pictureDir + "/frames", "report folder");
+    if (options.saveDisparities && setup.sgbm) makeDirectory(pictureDir + "/disparity", "report folder");
     addGroups(setup, result);
     evaluateFrames(setup, frames, result);
     return result;
@@ -240,7 +176,7 @@ EvaluationReport runEvaluation(const EvaluationOptions& options) {
     requireRunOptions(options);
     EvaluationReport report;
     const std::string outDir = options.outDir.empty() ? options.datasetDir + "/eval" : options.outDir;
-    StagedReportFolder staged(outDir);
+    StagedFolder staged(outDir, "report folder"); // the report appears whole or not at all
     report.outDir = staged.path();
     auto log = [&](const std::string& line) {
         if (options.log) options.log(line);
@@ -249,7 +185,7 @@ EvaluationReport runEvaluation(const EvaluationOptions& options) {
     log(summaryLine(report.main));
     if (!options.againstDir.empty()) {
         const std::string againstOut = report.outDir + "/against";
-        if (options.pictures || options.saveDisparities) makeDirectory(againstOut);
+        if (options.pictures || options.saveDisparities) makeDirectory(againstOut, "report folder");
         report.against = evaluateDataset(options.againstDir, options.againstDisparitiesDir, options, againstOut);
         log(summaryLine(*report.against));
     }
