@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/half_float.h"
 #include "common/parse_number.h"
 #include "dataset/fingerprint.h"
 #include "dataset/naming.h"
@@ -56,7 +57,7 @@ bool isSwardTemporaryName(const std::string& name) {
 bool isRootDatasetFile(const std::string& name) {
     static const std::regex shardManifest(R"(manifest\.shard-\d+-of-\d+\.json)");
     return name == kDatasetFile || name == kManifestFile || name == kCalibFile || name == kFrameLogFile ||
-           std::regex_match(name, shardManifest);
+           name == kSceneCopyFile || name == kClassesFile || std::regex_match(name, shardManifest);
 }
 
 // NNNNNN.exr / .png / .pfm: the per-frame files of a dataset folder.
@@ -82,6 +83,14 @@ std::vector<std::string> swardFilesIn(const std::string& root, bool withTemporar
     scan("", true);
     for (const char* folder : kAllFolders) scan(folder, false);
     return files;
+}
+
+// Alpha of the colour EXRs is coverage: every pixel is covered by a surface or by the sky, so it is 1. (What the
+// renderer leaves in its resolved alpha is the mean of alpha-to-coverage and blend values, meaningless to a user.)
+std::vector<uint16_t> withFullCoverage(std::span<const uint16_t> rgbaHalf) {
+    std::vector<uint16_t> rgba(rgbaHalf.begin(), rgbaHalf.end());
+    for (size_t i = 3; i < rgba.size(); i += 4) rgba[i] = floatToHalfBits(1.0f);
+    return rgba;
 }
 
 constexpr const char* kUseOverwrite = "; use --overwrite to start over or choose another --out";
@@ -203,7 +212,7 @@ std::vector<std::string> DatasetWriter::frameFiles(uint32_t frame) const {
 }
 
 std::vector<std::string> DatasetWriter::datasetFiles() const {
-    std::vector<std::string> files = {kFrameLogFile};
+    std::vector<std::string> files = {kFrameLogFile, kSceneCopyFile, kClassesFile};
     if (stereo_) files.push_back(kCalibFile);
     return files;
 }
@@ -225,7 +234,7 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
         semantic[i] = uint8_t(images.labels[i] >> gpu::kInstanceBits);
         instance[i] = float(images.labels[i] & ((1u << gpu::kInstanceBits) - 1u)); // exact: ids < 2^24
     }
-    writeExrRgbaHalf(path(kLeftFolder, ".exr"), w, h, images.rgbaHalf);
+    writeExrRgbaHalf(path(kLeftFolder, ".exr"), w, h, withFullCoverage(images.rgbaHalf));
     writeExrDepth(path(kDepthFolder, ".exr"), w, h, images.depth);
     writePng8(path(kSemanticFolder, ".png"), w, h, 1, semantic);
     writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y"}, {instance});
@@ -234,7 +243,7 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
 
     std::vector<float> disparity(pixels);
     for (size_t i = 0; i < pixels; ++i) disparity[i] = disparityOf(left.fx, baseline, images.depth[i]);
-    writeExrRgbaHalf(path(kRightFolder, ".exr"), w, h, images.rightRgbaHalf);
+    writeExrRgbaHalf(path(kRightFolder, ".exr"), w, h, withFullCoverage(images.rightRgbaHalf));
     writeExrFloatChannels(path(kDisparityFolder, ".exr"), w, h, {"Y"}, {disparity});
     writePfm(path(kDisparityFolder, ".pfm"), w, h, disparity);
     writeKittiPng(path(kDisparityFolder, ".png"), w, h, disparity);
@@ -257,6 +266,12 @@ void DatasetWriter::writeCalib(const Camera& left, double baseline, double minDe
     calib.vmin = 0.0;
     calib.vmax = maxDisparity;
     writeMiddleburyCalib(target(kCalibFile), calib);
+}
+
+void DatasetWriter::writeSceneFiles(const std::string& sceneText, const std::string& classesText) {
+    std::error_code ec;
+    if (!fs::exists(root_ + "/" + kSceneCopyFile, ec)) writeTextAtomically(target(kSceneCopyFile), sceneText);
+    if (!fs::exists(root_ + "/" + kClassesFile, ec)) writeTextAtomically(target(kClassesFile), classesText);
 }
 
 void DatasetWriter::writeFrameLog(const std::vector<nlohmann::json>& records) {

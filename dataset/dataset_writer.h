@@ -2,8 +2,8 @@
 //
 // Per frame NNNNNN: left/ right/ (HDR colour EXR), depth/ (planar metres, +inf sky), disparity/ (EXR, PFM, KITTI
 // PNG), semantic/ (uint8 class PNG), instance/ (float EXR ids), preview/ preview_right/ (tonemapped PNG).
-// Per dataset: dataset.json (the fingerprint, dataset/fingerprint.h), calib.txt, frames.jsonl, manifest.json (or
-// manifest.shard-I-of-N.json). Names: dataset/naming.h.
+// Per dataset: dataset.json (the fingerprint, dataset/fingerprint.h), calib.txt, frames.jsonl, scene.json (a copy
+// of the scene file), classes.json, manifest.json (or manifest.shard-I-of-N.json). Names: dataset/naming.h.
 //
 // Life of a run: check() (writes nothing) -> begin() -> writes -> on failure discardCreated(). Every file is
 // written atomically (common/atomic_file.h), so a file that exists is complete; since a folder only ever holds
@@ -49,7 +49,8 @@ public:
     // Paths of a frame's files relative to the root, in a fixed order.
     std::vector<std::string> frameFiles(uint32_t frame) const;
     bool frameComplete(uint32_t frame) const;
-    // Paths of the per-dataset files (frames.jsonl, and calib.txt for stereo) relative to the root.
+    // Paths of the per-dataset files (frames.jsonl, scene.json, classes.json, and calib.txt for stereo) relative
+    // to the root.
     std::vector<std::string> datasetFiles() const;
 
     // Writes every file of one rendered frame. `left` is the reference camera and `baseline` the rig's (metres),
@@ -59,6 +60,9 @@ public:
     // The per-dataset files are functions of the fingerprint, so each is written only when missing.
     // calib.txt (Middlebury 2014): the rig's intrinsics, baseline in millimetres, ndisp covering minDepth.
     void writeCalib(const Camera& left, double baseline, double minDepth);
+    // scene.json (`sceneText`: the scene file's bytes) and classes.json (`classesText`, naming.h): a dataset
+    // carries its own scene and class table.
+    void writeSceneFiles(const std::string& sceneText, const std::string& classesText);
     // frames.jsonl: one record per line, in frame order.
     void writeFrameLog(const std::vector<nlohmann::json>& records);
     // The manifest: `info` plus "files": {relative path: sha256} of `files` (relative paths); rewritten only

@@ -1,8 +1,12 @@
 #include "dataset/fingerprint.h"
 
 #include "common/error.h"
+#include "io/sha256.h"
+#include "scene/scene.h"
 
+#include <filesystem>
 #include <fstream>
+#include <cctype>
 #include <map>
 #include <sstream>
 
@@ -56,7 +60,80 @@ std::map<std::string, nlohmann::json> flatten(const nlohmann::json& json) {
     return flat;
 }
 
+// "a%20b.bin" -> "a b.bin": glTF URIs are percent-encoded.
+std::string percentDecoded(const std::string& uri) {
+    std::string text;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) &&
+            std::isxdigit(uint8_t(uri[i + 2]))) {
+            text += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            text += uri[i];
+        }
+    }
+    return text;
+}
+
+// The files a .gltf names (buffers and images that are not data: URIs), relative to its folder. A .glb holds its
+// own buffers; a file the parser cannot read adds nothing (the loader has already accepted it).
+std::vector<std::string> gltfExternalFiles(const std::string& path) {
+    std::vector<std::string> files;
+    if (!path.ends_with(".gltf")) return files;
+    std::ifstream file(path, std::ios::binary);
+    const nlohmann::json json = nlohmann::json::parse(file, nullptr, false);
+    if (!json.is_object()) return files;
+    for (const char* list : {"buffers", "images"}) {
+        if (!json.contains(list) || !json[list].is_array()) continue;
+        for (const nlohmann::json& item : json[list])
+            if (item.is_object() && item.contains("uri") && item["uri"].is_string() &&
+                !item["uri"].get<std::string>().starts_with("data:"))
+                files.push_back(percentDecoded(item["uri"].get<std::string>()));
+    }
+    return files;
+}
+
 } // namespace
+
+std::vector<SceneAsset> sceneAssets(const Scene& scene) {
+    std::vector<SceneAsset> assets;
+    auto add = [&](const std::string& key, const std::string& path) {
+        std::error_code ec;
+        if (path.empty() || !std::filesystem::is_regular_file(path, ec)) return;
+        assets.push_back({key, path, sha256File(path)});
+        const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+        for (const std::string& uri : gltfExternalFiles(path)) {
+            const std::string file = (folder / uri).string();
+            if (std::filesystem::is_regular_file(file, ec)) assets.push_back({key + "/" + uri, file, sha256File(file)});
+        }
+    };
+    add("grass_map", scene.grassMapPath);
+    add("land_cover.file", scene.landCover.file);
+    add("atlas.png", scene.atlasPngPath);
+    add("atlas.json", scene.atlasJsonPath);
+    add("terrain.heightmap.file", scene.terrain.heightmap.path);
+    add("terrain.mesh.file", scene.terrain.meshPath);
+    for (size_t k = 0; k < scene.objects.size(); ++k)
+        add("objects[" + std::to_string(k) + "].model", scene.objects[k].model);
+    return assets;
+}
+
+nlohmann::json assetHashes(const std::vector<SceneAsset>& assets) {
+    nlohmann::json hashes = nlohmann::json::object();
+    for (const SceneAsset& asset : assets) hashes[asset.key] = asset.sha256;
+    return hashes;
+}
+
+nlohmann::json assetManifest(const std::vector<SceneAsset>& assets, const std::string& sceneDir) {
+    nlohmann::json manifest = nlohmann::json::object();
+    for (const SceneAsset& asset : assets) {
+        std::error_code ec;
+        std::filesystem::path relative = std::filesystem::relative(asset.path, sceneDir.empty() ? "." : sceneDir, ec);
+        if (ec || relative.empty()) relative = asset.path;
+        manifest[asset.key] = {{"path", relative.generic_string()}, {"sha256", asset.sha256}};
+    }
+    return manifest;
+}
 
 std::string datasetFileText(const nlohmann::json& fingerprint) {
     return nlohmann::json{{"format", kFormat}, {"fingerprint", fingerprint}}.dump(2) + "\n";

@@ -8,8 +8,25 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <vector>
 
 namespace sward {
+
+struct Scene;
+
+// One file a scene read: `key` names where the scene names it ("grass_map", "objects[0].model", and
+// "objects[0].model/<uri>" for a buffer or image a .gltf names), `path` is the file as opened.
+struct SceneAsset {
+    std::string key, path, sha256;
+};
+// Every asset file of `scene` that exists, hashed (SHA-256), in a fixed order: grass map, land-cover raster, atlas
+// PNG and JSON, terrain heightmap, terrain mesh (+ its .gltf buffers and images), object models (+ theirs).
+std::vector<SceneAsset> sceneAssets(const Scene& scene);
+// The fingerprint's "assets": {key: sha256}.
+nlohmann::json assetHashes(const std::vector<SceneAsset>& assets);
+// The manifest's "assets": {key: {"path": path relative to `sceneDir` (the scene file's folder), "sha256"}}, so
+// a dataset names every input it needs beside its copy of the scene file.
+nlohmann::json assetManifest(const std::vector<SceneAsset>& assets, const std::string& sceneDir);
 
 // The content of dataset.json for `fingerprint`: {"format": "sward-dataset-1", "fingerprint": {...}}.
 std::string datasetFileText(const nlohmann::json& fingerprint);

@@ -10,6 +10,24 @@ nlohmann::json vec3Json(glm::vec3 v) { return {v.x, v.y, v.z}; }
 
 } // namespace
 
+nlohmann::json datasetUnits() {
+    return {{"length", "metre"},   {"depth", "metre"}, {"disparity", "pixel"},  {"time", "second"},
+            {"baseline", "metre (calib.txt: millimetre)"}, {"angle", "degree"}, {"colour", "linear HDR, arbitrary"}};
+}
+
+nlohmann::json datasetConventions() {
+    return {{"world_axes", "right-handed, z up"},
+            {"camera_axes", "OpenCV: x right, y down, z forward"},
+            {"pose", "4x4 camera-to-world, row-major (frames.jsonl left_pose, right_pose)"},
+            {"pixel_centres", "whole coordinates: pixel (u, v) has its centre at (u, v) in calib.txt / frames.jsonl"},
+            {"image_rows", "top row first (PFM: bottom row first, as the format stores it)"},
+            {"depth", "planar camera z of the surface; +inf for sky"},
+            {"disparity", "f * B / Z of the left (reference) view; left x - d = right x; sky 0 (PFM +inf, KITTI 0)"},
+            {"rig", "rectified: identical intrinsics and orientation, right = left + baseline along camera x"},
+            {"frame_time", "frame i shows simulation tick i, time i * sequence.time_step"},
+            {"classes", "classes.json"}};
+}
+
 nlohmann::json matrixJson(const glm::dmat4& m) {
     nlohmann::json rows = nlohmann::json::array();
     for (int r = 0; r < 4; ++r) rows.push_back({m[0][r], m[1][r], m[2][r], m[3][r]});

@@ -16,6 +16,11 @@ namespace sward {
 class Ground;
 struct Scene;
 
+// The manifest's "units" and "conventions": what every number of the dataset means (docs/dataset-format.md), so
+// a dataset explains itself without the docs.
+nlohmann::json datasetUnits();
+nlohmann::json datasetConventions();
+
 // Row-major 4x4.
 nlohmann::json matrixJson(const glm::dmat4& m);
 // Camera-to-world pose in OpenCV camera axes (x right, y down, z forward), row-major 4x4.

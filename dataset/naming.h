@@ -25,6 +25,8 @@ inline constexpr const char* kCalibFile = "calib.txt";
 inline constexpr const char* kFrameLogFile = "frames.jsonl";
 inline constexpr const char* kManifestFile = "manifest.json";
 inline constexpr const char* kDatasetFile = "dataset.json"; // the fingerprint (dataset/fingerprint.h)
+inline constexpr const char* kSceneCopyFile = "scene.json";  // the scene file's bytes ("{}" for the built-in one)
+inline constexpr const char* kClassesFile = "classes.json";  // the class table below, as JSON
 // "manifest.shard-I-of-N.json": the manifest a `--shard I/N` run writes instead of kManifestFile.
 std::string shardManifestName(uint32_t index, uint32_t count);
 
@@ -40,11 +42,16 @@ struct SemanticClass {
     uint32_t id;       // the pixel value (gpu::kSemantic*)
     const char* name;  // "sky", "ground", "vegetation category 0", ..., "object", "felled", "cut"
     const char* group; // the broad class: "sky", "ground", "vegetation" (2..5, felled, cut) or "object"
+    uint8_t colour[3]; // sRGB colour for pictures and point clouds (classes.json)
 };
 
 // Every class a dataset can hold, by increasing id.
 std::span<const SemanticClass> semanticClasses();
 // The class with pixel value `id`, or nullptr for a value no class uses.
 const SemanticClass* findSemanticClass(uint32_t id);
+// classes.json: {"format": "sward-classes-1", "classes": [{"id", "name", "group", "colour": [r, g, b]
+// (, "category": k, "scene_name": name)}], "instances": how instance ids are numbered}. `categoryNames` are the
+// scene's vegetation category names (index = category): each present category gets its "scene_name".
+std::string classesFileText(std::span<const std::string> categoryNames);
 
 } // namespace sward

@@ -2,6 +2,7 @@
 
 #include "common/parse_number.h"
 #include "dataset/dataset_writer.h"
+#include "dataset/fingerprint.h"
 #include "dataset/frame_record.h"
 #include "dataset/naming.h"
 #include "engine/context.h"
@@ -14,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <unistd.h>
 
 #ifndef SWARD_REVISION
@@ -122,24 +124,14 @@ std::vector<nlohmann::json> sequenceRecords(const SceneResources& r, const JobPl
 
 // Everything that determines the dataset's bytes except the device (added once the device is open): see
 // dataset/fingerprint.h. The scene's assets are hashed by content, so a changed grass map is a different dataset.
-nlohmann::json jobFingerprint(const Scene& scene, const JobPlan& plan, const RenderJobOptions& options) {
-    nlohmann::json assets = nlohmann::json::object();
-    auto asset = [&](const std::string& key, const std::string& path) {
-        std::error_code ec;
-        if (!path.empty() && std::filesystem::is_regular_file(path, ec)) assets[key] = sha256File(path);
-    };
-    asset("grass_map", scene.grassMapPath);
-    asset("land_cover.file", scene.landCover.file);
-    asset("atlas.png", scene.atlasPngPath);
-    asset("atlas.json", scene.atlasJsonPath);
-    for (size_t k = 0; k < scene.objects.size(); ++k)
-        asset("objects[" + std::to_string(k) + "].model", scene.objects[k].model);
+nlohmann::json jobFingerprint(const Scene& scene, const JobPlan& plan, const RenderJobOptions& options,
+                              const std::vector<SceneAsset>& assets) {
     auto vec3 = [](const std::optional<glm::dvec3>& v) {
         return v ? nlohmann::json{v->x, v->y, v->z} : nlohmann::json(nullptr);
     };
     return {{"scene_sha256", options.scenePath.empty() ? sha256Hex(std::string_view("<built-in>"))
                                                        : sha256File(options.scenePath)},
-            {"assets", assets},
+            {"assets", assetHashes(assets)},
             {"seed", scene.seed},
             {"resolution", std::to_string(plan.width) + "x" + std::to_string(plan.height)},
             {"samples", plan.samples},
@@ -151,9 +143,26 @@ nlohmann::json jobFingerprint(const Scene& scene, const JobPlan& plan, const Ren
             {"sward_revision", SWARD_REVISION}};
 }
 
+// scene.json: the scene file's bytes; the built-in scene is the empty object.
+std::string sceneCopyText(const std::string& scenePath) {
+    if (scenePath.empty()) return "{}\n";
+    std::ifstream file(scenePath, std::ios::binary);
+    std::stringstream text;
+    text << file.rdbuf();
+    require(bool(file), "cannot read scene file '" + scenePath + "'");
+    return text.str();
+}
+
+std::string classesText(const Scene& scene) {
+    std::vector<std::string> names;
+    for (uint32_t c = 0; c < scene.vegetation.categoryCount; ++c) names.push_back(scene.vegetation.categories[c].name);
+    return classesFileText(names);
+}
+
 // The free space a run needs before it starts: one frame (an upper bound) and the per-dataset files.
-uint64_t bytesNeeded(const DatasetWriter& dataset, const JobPlan& plan, const std::vector<nlohmann::json>& records) {
-    uint64_t sequenceBytes = 0;
+uint64_t bytesNeeded(const DatasetWriter& dataset, const JobPlan& plan, const std::vector<nlohmann::json>& records,
+                     uint64_t sceneBytes) {
+    uint64_t sequenceBytes = sceneBytes;
     for (const nlohmann::json& record : records) sequenceBytes += record.dump().size() + 1;
     const uint64_t manifestBytes = uint64_t(plan.endFrame - plan.firstFrame + 1) * 12 * 128;
     constexpr uint64_t kSmallFiles = 4 * 8192; // calib.txt, dataset.json and the blocks of the two large ones
@@ -191,7 +200,7 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
 // The manifest: everything needed to reproduce and verify the files, and nothing that changes between two runs of
 // the same command (no dates, no timings), so identical datasets have identical manifests.
 void writeJobManifest(DatasetWriter& dataset, const Scene& scene, const JobPlan& plan, const nlohmann::json& fingerprint,
-                      const RenderJobOptions& options) {
+                      const std::vector<SceneAsset>& assets, const RenderJobOptions& options) {
     std::vector<std::string> files = dataset.datasetFiles();
     for (uint32_t frame = plan.firstFrame; frame < plan.endFrame; ++frame)
         for (std::string& file : dataset.frameFiles(frame)) files.push_back(std::move(file));
@@ -203,6 +212,9 @@ void writeJobManifest(DatasetWriter& dataset, const Scene& scene, const JobPlan&
     nlohmann::json info = {{"format", "sward-dataset-1"},
                            {"scene", options.scenePath.empty() ? "<built-in>" : options.scenePath},
                            {"scene_sha256", fingerprint["scene_sha256"]},
+                           {"assets", assetManifest(assets, std::filesystem::path(options.scenePath).parent_path())},
+                           {"units", datasetUnits()},
+                           {"conventions", datasetConventions()},
                            {"seed", scene.seed},
                            {"frames", {plan.firstFrame, plan.endFrame}},
                            {"shard", options.shard ? nlohmann::json(*options.shard) : nlohmann::json(nullptr)},
@@ -234,8 +246,10 @@ void runRenderJob(const RenderJobOptions& options) {
     for (uint32_t frame = plan.firstFrame; frame < plan.endFrame; ++frame)
         if (options.overwrite || !dataset.frameComplete(frame)) todo.push_back(frame);
     const uint32_t skipped = (plan.endFrame - plan.firstFrame) - uint32_t(todo.size());
-    nlohmann::json fingerprint = jobFingerprint(resources.scene, plan, options);
-    const uint64_t needed = todo.empty() ? 0 : bytesNeeded(dataset, plan, records);
+    const std::vector<SceneAsset> assets = sceneAssets(resources.scene);
+    nlohmann::json fingerprint = jobFingerprint(resources.scene, plan, options, assets);
+    const std::string sceneText = sceneCopyText(options.scenePath);
+    const uint64_t needed = todo.empty() ? 0 : bytesNeeded(dataset, plan, records, sceneText.size());
     dataset.check(fingerprint, options.overwrite, needed); // before the device: a bad folder fails fast
 
     Context ctx(DeviceOptions{.deviceFilter = options.device, .validation = options.validation || DeviceOptions{}.validation});
@@ -248,10 +262,11 @@ void runRenderJob(const RenderJobOptions& options) {
         const RigParams& rig = resources.scene.camera.rig;
         if (rig.stereo()) dataset.writeCalib(firstRig.left, rig.baseline, rig.minDepth);
         dataset.writeFrameLog(records);
+        dataset.writeSceneFiles(sceneText, classesText(resources.scene));
         renderFrames(ctx, resources, plan, todo, dataset, sensor, options);
         uint32_t messages = ctx.device.validationMessageCount();
         require(messages == 0, std::to_string(messages) + " Vulkan validation message(s) were reported (see above)");
-        writeJobManifest(dataset, resources.scene, plan, fingerprint, options);
+        writeJobManifest(dataset, resources.scene, plan, fingerprint, assets, options);
     } catch (...) {
         dataset.discardCreated();
         throw;

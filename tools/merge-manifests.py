@@ -8,7 +8,7 @@ folders copied together). Shard manifests are DIR/manifest.shard-I-of-N.json unl
 
 Checks, each reported on one line (exit status 1 if any fails):
   - every shard 0..N-1 of one N is present exactly once, and all agree on format, scene, scene hash, seed,
-    options, sward revision and the dataset fingerprint (everything that determines the bytes, see
+    options, sward revision, assets, units, conventions and the dataset fingerprint (everything that determines the bytes, see
     dataset/fingerprint.h; its device and driver may differ between machines, with a warning), which must also
     be the one in DIR/dataset.json when that file is there;
   - the shards' frame ranges [A, B) tile one range without gap or overlap;
@@ -41,6 +41,8 @@ FRAME_FILE = re.compile(r"^(.+)/(\d{6})\.([A-Za-z0-9]+)$")
 SHARD_JSONL = re.compile(r"^(.+)\.shard-(\d+)-of-(\d+)\.jsonl$")
 # Keys every shard must agree on; device and driver may differ between machines (reported, kept as lists).
 SHARED_KEYS = ("format", "scene", "scene_sha256", "seed", "options", "sward_revision")
+# Written by newer sward-renders only (asset paths and hashes, units, conventions); shards must still agree.
+OPTIONAL_SHARED_KEYS = ("assets", "units", "conventions")
 REQUIRED_KEYS = SHARED_KEYS + ("frames", "shard", "device", "driver", "fingerprint", "files")
 MACHINE_KEYS = ("device", "driver")  # fingerprint entries that may differ between the machines of shards
 
@@ -197,8 +199,8 @@ def merge(dataset, manifest_paths, problems):
 
     first_path, first = shards[0][1], shards[0][2]
     for _, path, manifest in shards[1:]:
-        for key in SHARED_KEYS:
-            if manifest[key] != first[key]:
+        for key in SHARED_KEYS + OPTIONAL_SHARED_KEYS:
+            if manifest.get(key) != first.get(key):
                 problems.add(f"{path}: '{key}' differs from {first_path}")
     check_fingerprints(dataset, shards, problems)
 

@@ -48,8 +48,9 @@ TEST(DatasetWriter, FrameFilesAreNamedByTheNamingTable) {
     const std::vector<std::string> stereoFiles = stereo.frameFiles(7);
     EXPECT_EQ(stereoFiles.size(), 10u);
     EXPECT_NE(std::find(stereoFiles.begin(), stereoFiles.end(), "disparity/000007.pfm"), stereoFiles.end());
-    EXPECT_EQ(mono.datasetFiles(), std::vector<std::string>{kFrameLogFile});
-    EXPECT_EQ(stereo.datasetFiles(), (std::vector<std::string>{kFrameLogFile, kCalibFile}));
+    EXPECT_EQ(mono.datasetFiles(), (std::vector<std::string>{kFrameLogFile, kSceneCopyFile, kClassesFile}));
+    EXPECT_EQ(stereo.datasetFiles(),
+              (std::vector<std::string>{kFrameLogFile, kSceneCopyFile, kClassesFile, kCalibFile}));
 }
 
 TEST(DatasetWriter, WriteFrameWritesEveryListedFileAndTheClassBytes) {

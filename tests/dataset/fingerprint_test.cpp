@@ -3,10 +3,12 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "scene/scene.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <unistd.h>
 
 using namespace sward;
 
@@ -63,4 +65,29 @@ TEST(Fingerprint, DatasetFileRoundTripsAndForeignFilesAreRefused) {
     EXPECT_EQ(readDatasetFingerprint((dir / "dataset.json").string()), sample());
     writeTextAtomically((dir / "other.json").string(), R"({"name": "not a dataset"})");
     EXPECT_THROW(readDatasetFingerprint((dir / "other.json").string()), Error);
+}
+
+TEST(Fingerprint, SceneAssetsListEveryFileWithItsGltfBuffersRelativeToTheScene) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("sward-assets-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir / "models");
+    writeTextAtomically((dir / "map.png").string(), "not really a png");
+    writeTextAtomically((dir / "models/rover.gltf").string(),
+                        R"({"buffers": [{"uri": "rover%20mesh.bin"}, {"uri": "data:application/octet-stream;base64,AA=="}],
+                            "images": [{"uri": "paint.png"}, {"uri": "missing.png"}]})");
+    writeTextAtomically((dir / "models/rover mesh.bin").string(), "bytes");
+    writeTextAtomically((dir / "models/paint.png").string(), "paint");
+    Scene scene;
+    scene.grassMapPath = (dir / "map.png").string();
+    scene.objects.push_back(ObjectParams{.model = (dir / "models/rover.gltf").string()});
+    const std::vector<SceneAsset> assets = sceneAssets(scene);
+    std::vector<std::string> keys;
+    for (const SceneAsset& a : assets) keys.push_back(a.key);
+    // Data URIs are part of the .gltf; a missing file is not hashed (the loader would have refused it).
+    EXPECT_EQ(keys, (std::vector<std::string>{"grass_map", "objects[0].model", "objects[0].model/rover mesh.bin",
+                                              "objects[0].model/paint.png"}));
+    const nlohmann::json manifest = assetManifest(assets, dir.string());
+    EXPECT_EQ(manifest.at("objects[0].model/rover mesh.bin").at("path"), "models/rover mesh.bin");
+    EXPECT_EQ(manifest.at("grass_map").at("sha256"), assetHashes(assets).at("grass_map"));
+    EXPECT_EQ(manifest.at("grass_map").at("sha256").get<std::string>().size(), 64u);
+    std::filesystem::remove_all(dir);
 }

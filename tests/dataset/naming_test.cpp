@@ -4,9 +4,11 @@
 #include "shared/gpu_layout.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <set>
 #include <string>
+#include <vector>
 
 using namespace sward;
 
@@ -57,4 +59,20 @@ TEST(DatasetNaming, ClassIdsAreUniqueAndIncreasing) {
     ASSERT_FALSE(classes.empty());
     for (size_t i = 1; i < classes.size(); ++i) EXPECT_GT(classes[i].id, classes[i - 1].id) << classes[i].name;
     EXPECT_LT(classes.back().id, 256u) << "semantic/ PNGs hold one byte per pixel";
+}
+
+TEST(DatasetNaming, ClassesFileListsEveryClassWithColourAndTheScenesCategoryNames) {
+    const std::vector<std::string> names = {"ferns", "grass"};
+    const nlohmann::json file = nlohmann::json::parse(classesFileText(names));
+    EXPECT_EQ(file.at("format"), "sward-classes-1");
+    ASSERT_EQ(file.at("classes").size(), semanticClasses().size());
+    for (size_t i = 0; i < semanticClasses().size(); ++i) {
+        const nlohmann::json& c = file.at("classes")[i];
+        EXPECT_EQ(c.at("id"), semanticClasses()[i].id);
+        EXPECT_EQ(c.at("name"), semanticClasses()[i].name);
+        EXPECT_EQ(c.at("colour").size(), 3u);
+    }
+    EXPECT_EQ(file.at("classes")[3].at("scene_name"), "grass"); // id 3 = category 1
+    EXPECT_EQ(file.at("classes")[3].at("category"), 1);
+    EXPECT_FALSE(file.at("classes")[4].contains("scene_name")); // category 2: not in this scene
 }

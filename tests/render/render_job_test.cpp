@@ -1,6 +1,7 @@
 // sward-render datasets read back as a user's tools read them (OpenCV, a PFM reader of our own, the JSON files):
 // ground-truth consistency, shards, resume after a kill, identical manifests, bare-ground runs, rover tracks.
 #include "gpu_test.h"
+#include "pfm_reader.h"
 
 #include "shared/gpu_layout.h"
 
@@ -15,6 +16,7 @@
 #include <sstream>
 #include <sys/wait.h>
 
+using sward::test::readPfm;
 using sward::test::tempDir;
 
 namespace {
@@ -50,22 +52,6 @@ std::map<std::string, std::string> readCalib(const std::string& path) {
     for (std::string line; std::getline(lines, line);)
         if (auto eq = line.find('='); eq != std::string::npos) values[line.substr(0, eq)] = line.substr(eq + 1);
     return values;
-}
-
-// A deliberately independent PFM reader: "Pf", width height, negative scale = little endian, bottom row first.
-cv::Mat readPfm(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::string magic;
-    int width = 0, height = 0;
-    double scale = 0;
-    file >> magic >> width >> height >> scale;
-    file.get(); // the single whitespace byte before the data
-    EXPECT_EQ(magic, "Pf");
-    EXPECT_LT(scale, 0.0) << "expected little-endian data";
-    cv::Mat image(height, width, CV_32F);
-    for (int row = height - 1; row >= 0; --row) file.read(reinterpret_cast<char*>(image.ptr<float>(row)), width * 4);
-    EXPECT_TRUE(file.good()) << path;
-    return image;
 }
 
 cv::Mat readImage(const std::string& path) {
@@ -253,6 +239,37 @@ TEST(Dataset, TwoRunsGiveIdenticalManifests) {
     nlohmann::json manifest = readJson(dir + "/manifest.json");
     for (const char* key : {"scene_sha256", "seed", "sward_revision", "device", "driver", "options"})
         EXPECT_TRUE(manifest.contains(key)) << key;
+}
+
+TEST(Dataset, IsSelfContainedWithSceneCopyClassesAssetsAndConventions) {
+    const std::string& dir = referenceRun();
+    EXPECT_EQ(readFile(dir + "/scene.json"), readFile(kScene)); // byte for byte
+    const nlohmann::json classes = readJson(dir + "/classes.json");
+    std::map<int, nlohmann::json> byId;
+    for (const nlohmann::json& c : classes.at("classes")) byId[c.at("id").get<int>()] = c;
+    EXPECT_EQ(byId.at(int(sward::gpu::kSemanticSky)).at("name"), "sky");
+    EXPECT_EQ(byId.at(int(sward::gpu::kSemanticObject)).at("group"), "object");
+    EXPECT_EQ(byId.at(int(sward::gpu::kSemanticVegetation) + 1).at("scene_name"), "grass"); // the scene's names
+    EXPECT_FALSE(byId.at(int(sward::gpu::kSemanticVegetation) + 3).contains("scene_name")); // 3 categories
+    for (const auto& [id, c] : byId) EXPECT_EQ(c.at("colour").size(), 3u) << id;
+
+    const nlohmann::json manifest = readJson(dir + "/manifest.json");
+    for (const char* file : {"scene.json", "classes.json", "frames.jsonl", "calib.txt"})
+        EXPECT_TRUE(manifest.at("files").contains(file)) << file;
+    EXPECT_EQ(manifest.at("units").at("depth"), "metre");
+    EXPECT_NE(manifest.at("conventions").at("camera_axes").get<std::string>().find("OpenCV"), std::string::npos);
+    EXPECT_TRUE(manifest.at("assets").is_object()); // the test scene reads no files: procedural everything
+}
+
+TEST(Dataset, ColourAlphaIsFullCoverageEverywhere) {
+    const std::string& dir = referenceRun();
+    for (const char* view : {"left", "right"}) {
+        const cv::Mat colour = readImage(dir + "/" + view + "/000002.exr");
+        ASSERT_EQ(colour.channels(), 4);
+        std::vector<cv::Mat> channels;
+        cv::split(colour, channels);
+        EXPECT_EQ(cv::countNonZero(channels[3] != 1.0f), 0) << view;
+    }
 }
 
 TEST(Dataset, NoVegetationHasNoVegetationPixels) {
