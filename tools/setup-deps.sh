@@ -22,6 +22,8 @@ packages=(
   nlohmann-json3-dev libcli11-dev libimgui-dev
   # tests and benchmarks; a virtual X server for the viewer test
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
+  # sward-export's point clouds read back by Open3D (tests/tools/sward-export/open3d_test.py; brings numpy)
+  python3-open3d
   # scale-out tests (tests/scale-out): a private single-node Slurm, and the Kubernetes manifest check (YAML in
   # Python, TypeScript run by Node.js)
   slurm-wlm munge python3-yaml nodejs

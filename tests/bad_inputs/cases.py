@@ -186,6 +186,21 @@ def eval_case(name, break_it, error, *extra, exit=1):
     return Case(name, "sward-eval", dataset_with(break_it, *extra), exit, error, needs_dataset=True)
 
 
+def export_case(name, break_it, error, *extra, exit=1):
+    return Case(name, "sward-export", dataset_with(break_it, *extra), exit, error, needs_dataset=True)
+
+
+def export_out_under_a_file(env):
+    blocker = env.write("a-file", "not a folder\n")
+    env.out = os.path.join(blocker, "out")
+    env.watched = blocker
+    return [env.base_dataset, "--layout", "ply", "--out", env.out]
+
+
+def pfm_of(width, height, value):
+    return b"Pf\n%d %d\n-1\n" % (width, height) + struct.pack("<f", value) * (width * height)
+
+
 # --- cases whose output folder already holds something -----------------------------------------------------------
 
 def out_under_a_file(env):
@@ -429,6 +444,24 @@ CASES = [
     eval_case("sward-eval --frames past 2^32", lambda d, e: None, r"--frames", "--frames", "4294967296:4294967297",
               exit=2),
     eval_case("sward-eval --block-size 99", lambda d, e: None, r"--block-size", "--block-size", "99", exit=2),
+    # sward-export inputs.
+    Case("sward-export missing dataset folder", "sward-export",
+         lambda env: [env.path("none"), "--layout", "ply", "--out", env.out], 1, r"none"),
+    export_case("sward-export folder without dataset.json", remove("dataset.json"), r"dataset\.json",
+                "--layout", "middlebury"),
+    export_case("sward-export broken frames.jsonl", overwrite("frames.jsonl", b'{"frame": 0,\n'),
+                r"frames\.jsonl line 1", "--layout", "colmap"),
+    export_case("sward-export truncated disparity PFM", truncate("disparity/000000.pfm", 20), r"000000\.pfm",
+                "--layout", "middlebury"),
+    export_case("sward-export corrupt depth EXR", overwrite("depth/000001.exr", b"v/1\x01garbage"),
+                r"depth/000001\.exr", "--layout", "ply"),
+    export_case("sward-export KITTI disparity of 300 px", overwrite("disparity/000001.pfm", pfm_of(32, 24, 300.0)),
+                r"frame 1: disparity 300\.000 px .* KITTI", "--layout", "kitti"),
+    export_case("sward-export --frames without rendered frames", lambda d, e: None, r"no rendered frame",
+                "--layout", "nerfstudio", "--frames", "5:6"),
+    export_case("sward-export --layout unknown", lambda d, e: None, r"--layout", "--layout", "blender", exit=2),
+    Case("sward-export --out under a file", "sward-export", export_out_under_a_file, 1, r"a-file",
+         needs_dataset=True),
     # The other tools.
     Case("sward-view missing scene", "sward-view", lambda env: [env.path("none.json"), "--frames", "1",
                                                                  "--screenshot-dir", env.out], 1, r"none\.json"),

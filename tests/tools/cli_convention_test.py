@@ -18,7 +18,8 @@ import unittest
 
 BIN = None
 MERGE = None
-TOOLS = ("sward-render", "sward-view", "sward-atlas", "sward-rover", "sward-eval", "sward-bench", "merge-manifests.py")
+TOOLS = ("sward-render", "sward-view", "sward-atlas", "sward-rover", "sward-eval", "sward-export", "sward-bench",
+         "merge-manifests.py")
 
 
 def command(tool):
@@ -77,6 +78,7 @@ class Convention(unittest.TestCase):
                 "sward-atlas": ["--out", os.path.join(blocker, "atlas")],
                 "sward-rover": ["--out", "/nonexistent/folder/rover.gltf"],
                 "sward-eval": ["/nonexistent/dataset"],
+                "sward-export": ["/nonexistent/dataset", "--layout", "ply", "--out", os.path.join(tmp, "export")],
                 "sward-bench": ["frame", "/nonexistent/scene.json"],
                 "merge-manifests.py": ["/nonexistent/dataset"],
             }
@@ -117,6 +119,11 @@ class Convention(unittest.TestCase):
             ("sward-eval", ["d", "--threads", "-1"], r"--threads must be a whole number"),
             ("sward-eval", ["d", "--bands", "5,x"], r"--bands '5,x'"),
             ("sward-eval", ["d", "--mode", "fast"], r"SGBM mode 'fast'"),
+            ("sward-export", ["d", "--out", "o", "--layout", "ply", "--frames", "4294967296:4294967297"],
+             r"--frames .* start"),
+            ("sward-export", ["d", "--out", "o", "--layout", "blender"], r"--layout 'blender' is not a layout"),
+            ("sward-export", ["d", "--out", "o", "--layout", "ply", "--point-frame", "gl"], r"--point-frame 'gl'"),
+            ("sward-export", ["d", "--out", "o"], r"--layout is required"),
             ("sward-bench", [], r"a command is required"),
             ("sward-bench", ["frame", "--resolution", "4294967616x240"], r"width"),
             ("sward-bench", ["collide", "--fields", "4294967297"], r"--fields must be a whole number from 1 to 400"),

@@ -1,0 +1,123 @@
+#include "export/export_source.h"
+
+#include "common/error.h"
+#include "dataset/fingerprint.h"
+#include "dataset/naming.h"
+#include "io/disparity_files.h"
+#include "io/image_io.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace sward {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+glm::dmat4 poseOf(const nlohmann::json& rows) {
+    glm::dmat4 m(1.0);
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) m[c][r] = rows.at(r).at(c).get<double>();
+    return m;
+}
+
+// Every record of frames.jsonl, by frame number; also sets the camera from the first record.
+std::vector<ExportFrame> readFrameLog(const std::string& dir, ExportCamera& camera, bool& stereo) {
+    const std::string path = dir + "/" + kFrameLogFile;
+    std::ifstream file(path, std::ios::binary);
+    require(bool(file), "cannot read '" + path + "': not a complete sward dataset");
+    std::vector<ExportFrame> frames;
+    uint32_t lineNumber = 0;
+    for (std::string line; std::getline(file, line);) {
+        ++lineNumber;
+        try {
+            const nlohmann::json record = nlohmann::json::parse(line);
+            ExportFrame frame{.frame = record.at("frame").get<uint32_t>(), .leftPose = poseOf(record.at("left_pose"))};
+            stereo = record.contains("right_pose");
+            if (stereo) frame.rightPose = poseOf(record.at("right_pose"));
+            if (frames.empty()) {
+                const nlohmann::json& k = record.at("intrinsics");
+                camera = {.fx = k.at("fx"), .fy = k.at("fy"), .cx = k.at("cx"), .cy = k.at("cy"),
+                          .width = k.at("width"), .height = k.at("height"),
+                          .baseline = stereo ? record.at("baseline").get<double>() : 0.0};
+            }
+            frames.push_back(frame);
+        } catch (const nlohmann::json::exception& e) {
+            throw Error(path + " line " + std::to_string(lineNumber) + ": not a sward frame record (" + e.what() + ")");
+        }
+    }
+    require(!frames.empty(), path + " holds no frame records");
+    return frames;
+}
+
+// A decoded image of the dataset with the frame's size and `channels` channels.
+ImageData readFrameImage(const ExportDataset& dataset, const char* folder, uint32_t frame, const char* extension,
+                         uint32_t channels) {
+    const std::string path = dataset.dir + "/" + frameFile(folder, frame, extension);
+    ImageData image = loadImage(path);
+    require(image.width == dataset.camera.width && image.height == dataset.camera.height,
+            path + ": " + std::to_string(image.width) + "x" + std::to_string(image.height) + ", expected " +
+                std::to_string(dataset.camera.width) + "x" + std::to_string(dataset.camera.height) + " (frames.jsonl)");
+    require(image.channels == channels, path + ": " + std::to_string(image.channels) + " channel(s), expected " +
+                                            std::to_string(channels));
+    return image;
+}
+
+} // namespace
+
+ExportDataset openExportDataset(const std::string& dir, std::optional<std::pair<uint32_t, uint32_t>> range) {
+    std::error_code ec;
+    require(fs::is_directory(dir, ec), "'" + dir + "' is not a folder (expected a dataset written by sward-render)");
+    require(fs::exists(dir + "/" + kDatasetFile, ec),
+            "'" + dir + "' is not a sward dataset: it has no " + kDatasetFile + " (written by sward-render)");
+    readDatasetFingerprint(dir + "/" + kDatasetFile); // throws for a description sward did not write
+    ExportDataset dataset{.dir = dir};
+    for (const ExportFrame& frame : readFrameLog(dir, dataset.camera, dataset.stereo)) {
+        if (range && (frame.frame < range->first || frame.frame >= range->second)) continue;
+        if (fs::is_regular_file(dir + "/" + frameFile(kDepthFolder, frame.frame, ".exr"), ec))
+            dataset.frames.push_back(frame);
+    }
+    require(!dataset.frames.empty(), "'" + dir + "' has no rendered frame" +
+                                         (range ? " in " + std::to_string(range->first) + ":" +
+                                                      std::to_string(range->second)
+                                                : std::string()));
+    return dataset;
+}
+
+FrameTruth readFrameTruth(const ExportDataset& dataset, uint32_t frame) {
+    const ImageData depth = readFrameImage(dataset, kDepthFolder, frame, ".exr", 1);
+    const ImageData semantic = readFrameImage(dataset, kSemanticFolder, frame, ".png", 1);
+    const ImageData instance = readFrameImage(dataset, kInstanceFolder, frame, ".exr", 1);
+    const ImageData preview = readFrameImage(dataset, kPreviewFolder, frame, ".png", 3);
+    FrameTruth truth{.width = depth.width, .height = depth.height, .depth = depth.samples};
+    const size_t pixels = size_t(truth.width) * truth.height;
+    truth.semantic.resize(pixels);
+    truth.instance.resize(pixels);
+    truth.rgb.resize(pixels * 3);
+    // PNG samples come normalised to [0, 1]: 8-bit values are exact multiples of 1/255.
+    for (size_t i = 0; i < pixels; ++i) {
+        truth.semantic[i] = uint8_t(std::lround(semantic.samples[i] * 255.0f));
+        truth.instance[i] = uint32_t(instance.samples[i]); // integers, exact in float32 (< 2^24)
+    }
+    for (size_t i = 0; i < pixels * 3; ++i) truth.rgb[i] = uint8_t(std::lround(preview.samples[i] * 255.0f));
+    return truth;
+}
+
+std::vector<float> readFrameDisparity(const ExportDataset& dataset, uint32_t frame) {
+    const std::string path = dataset.dir + "/" + frameFile(kDisparityFolder, frame, ".pfm");
+    DisparityMap map = readPfm(path);
+    require(map.width == dataset.camera.width && map.height == dataset.camera.height,
+            path + ": " + std::to_string(map.width) + "x" + std::to_string(map.height) + ", expected " +
+                std::to_string(dataset.camera.width) + "x" + std::to_string(dataset.camera.height) + " (frames.jsonl)");
+    return std::move(map.values);
+}
+
+std::vector<char> readDatasetFile(const ExportDataset& dataset, const std::string& relative) {
+    return readImageFileBytes(dataset.dir + "/" + relative);
+}
+
+} // namespace sward

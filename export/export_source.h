@@ -1,0 +1,54 @@
+// Reading a sward dataset for sward-export: its camera (frames.jsonl), the frames present, and each frame's
+// ground truth and previews. Every function throws one sward::Error naming the file and the problem.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sward {
+
+// The rectified rig as frames.jsonl gives it: OpenCV pixel centres (cx, cy of calib.txt), metres.
+struct ExportCamera {
+    double fx = 0, fy = 0, cx = 0, cy = 0;
+    uint32_t width = 0, height = 0;
+    double baseline = 0; // 0 for a mono dataset
+};
+
+struct ExportFrame {
+    uint32_t frame = 0;
+    glm::dmat4 leftPose{1.0}, rightPose{1.0}; // camera-to-world, OpenCV camera axes
+};
+
+struct ExportDataset {
+    std::string dir;
+    bool stereo = false;
+    ExportCamera camera;
+    std::vector<ExportFrame> frames; // the frames whose depth file exists, in order
+};
+
+// Opens the dataset at `dir` (dataset.json must say it is one) and lists the frames of `range` ([first, end);
+// all when empty) that were rendered. Throws when there is none.
+ExportDataset openExportDataset(const std::string& dir, std::optional<std::pair<uint32_t, uint32_t>> range);
+
+// One frame's ground truth, top row first.
+struct FrameTruth {
+    uint32_t width = 0, height = 0;
+    std::vector<float> depth;       // planar metres, +inf for sky
+    std::vector<uint8_t> semantic;  // class id
+    std::vector<uint32_t> instance; // instance id
+    std::vector<uint8_t> rgb;       // the tonemapped left preview, 8-bit sRGB, 3 per pixel
+};
+FrameTruth readFrameTruth(const ExportDataset& dataset, uint32_t frame);
+
+// The left disparity of a stereo frame (disparity/NNNNNN.pfm), 0 where there is none (sky).
+std::vector<float> readFrameDisparity(const ExportDataset& dataset, uint32_t frame);
+
+// The bytes of a dataset file `relative` to its root, for a lossless copy.
+std::vector<char> readDatasetFile(const ExportDataset& dataset, const std::string& relative);
+
+} // namespace sward

@@ -1,0 +1,64 @@
+#include "export/point_cloud.h"
+
+#include "common/atomic_file.h"
+#include "dataset/naming.h"
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+namespace sward {
+
+// The bytes are assembled with memcpy of native values: binary_little_endian is what they are on every machine
+// sward builds for.
+static_assert(std::endian::native == std::endian::little, "PLY writer assumes a little-endian machine");
+
+namespace {
+
+template <typename T> void append(std::string& bytes, T value) {
+    char raw[sizeof(T)];
+    std::memcpy(raw, &value, sizeof(T));
+    bytes.append(raw, sizeof(T));
+}
+
+} // namespace
+
+std::string pointCloudPly(const FrameTruth& truth, const ExportCamera& camera, const glm::dmat4& pose,
+                          const std::string& comment) {
+    std::string body;
+    size_t count = 0;
+    for (uint32_t y = 0; y < truth.height; ++y)
+        for (uint32_t x = 0; x < truth.width; ++x) {
+            const size_t i = size_t(y) * truth.width + x;
+            const double z = truth.depth[i];
+            if (!std::isfinite(z) || z <= 0.0) continue; // sky: no surface
+            // OpenCV pixel centres: pixel (x, y) looks through (x, y) of the intrinsics' image plane.
+            const glm::dvec4 p = pose * glm::dvec4((x - camera.cx) * z / camera.fx, (y - camera.cy) * z / camera.fy, z, 1.0);
+            append(body, p.x);
+            append(body, p.y);
+            append(body, p.z);
+            body.append(reinterpret_cast<const char*>(&truth.rgb[i * 3]), 3);
+            append(body, truth.semantic[i]);
+            append(body, truth.instance[i]);
+            ++count;
+        }
+    const std::string header = "ply\nformat binary_little_endian 1.0\ncomment " + comment +
+                               "\nelement vertex " + std::to_string(count) +
+                               "\nproperty double x\nproperty double y\nproperty double z\n"
+                               "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+                               "property uchar class\nproperty uint instance\nend_header\n";
+    return header + body;
+}
+
+void exportPointClouds(const ExportDataset& dataset, const std::string& out, PointFrame frame) {
+    for (const ExportFrame& f : dataset.frames) {
+        const FrameTruth truth = readFrameTruth(dataset, f.frame);
+        const std::string comment = "sward frame " + frameName(f.frame) +
+                                    (frame == PointFrame::World ? ", world frame (right-handed, z up, metres)"
+                                                                : ", left camera frame (OpenCV axes, metres)");
+        const glm::dmat4 pose = frame == PointFrame::World ? f.leftPose : glm::dmat4(1.0);
+        writeTextAtomically(out + "/" + frameName(f.frame) + ".ply", pointCloudPly(truth, dataset.camera, pose, comment));
+    }
+}
+
+} // namespace sward

@@ -1,0 +1,23 @@
+// Coloured, labelled point clouds: one binary little-endian PLY per frame, one point per left pixel with ground
+// truth (sky has none), in row-major pixel order. Properties: double x, y, z (metres; world frame: right-handed,
+// z up; camera frame: OpenCV axes), uchar red, green, blue (the tonemapped left preview), uchar class
+// (semantic id, classes.json) and uint instance. Open3D, CloudCompare and MeshLab read it as it is.
+#pragma once
+
+#include "export/export_source.h"
+
+#include <string>
+
+namespace sward {
+
+enum class PointFrame { World, Camera };
+
+// Writes out/NNNNNN.ply for every frame of `dataset`.
+void exportPointClouds(const ExportDataset& dataset, const std::string& out, PointFrame frame);
+
+// The PLY bytes of one frame (exposed for tests): points from `truth` and the left camera, moved by `pose`
+// (camera-to-world; identity for the camera frame).
+std::string pointCloudPly(const FrameTruth& truth, const ExportCamera& camera, const glm::dmat4& pose,
+                          const std::string& comment);
+
+} // namespace sward
