@@ -6,6 +6,7 @@
 #include "common/parse_number.h"
 #include "dataset/fingerprint.h"
 #include "dataset/naming.h"
+#include "dataset/occlusion.h"
 #include "io/disparity_files.h"
 #include "io/image_files.h"
 #include "io/sha256.h"
@@ -45,8 +46,9 @@ void parseShard(const std::string& text, uint32_t& index, uint32_t& count) {
 namespace {
 
 // Every folder a dataset may have, whatever its rig: --overwrite clears them all.
-constexpr const char* kAllFolders[] = {kLeftFolder,    kRightFolder,   kDepthFolder,   kDisparityFolder,
-                                       kSemanticFolder, kInstanceFolder, kPreviewFolder, kPreviewRightFolder};
+constexpr const char* kAllFolders[] = {kLeftFolder,       kRightFolder,          kDepthFolder,     kDisparityFolder,
+                                       kSemanticFolder,   kInstanceFolder,       kPreviewFolder,   kPreviewRightFolder,
+                                       kDepthRightFolder, kDisparityRightFolder, kOcclusionFolder, kOcclusionRightFolder};
 
 bool isSwardTemporaryName(const std::string& name) {
     long pid = 0;
@@ -101,7 +103,9 @@ DatasetWriter::DatasetWriter(std::string root, bool stereo) : root_(std::move(ro
 
 std::vector<std::string> DatasetWriter::directories() const {
     std::vector<std::string> dirs = {kLeftFolder, kDepthFolder, kSemanticFolder, kInstanceFolder, kPreviewFolder};
-    if (stereo_) dirs.insert(dirs.end(), {kRightFolder, kDisparityFolder, kPreviewRightFolder});
+    if (stereo_)
+        dirs.insert(dirs.end(), {kRightFolder, kDisparityFolder, kPreviewRightFolder, kDepthRightFolder,
+                                 kDisparityRightFolder, kOcclusionFolder, kOcclusionRightFolder});
     return dirs;
 }
 
@@ -130,11 +134,12 @@ void DatasetWriter::check(const nlohmann::json& fingerprint, bool overwrite, uin
 
 uint64_t DatasetWriter::frameBytesUpperBound(uint32_t width, uint32_t height) const {
     // Raw bytes per pixel of each file: colour half RGBA, depth Y+Z, semantic, instance, preview RGB; stereo adds
-    // right colour, disparity EXR, PFM, KITTI 16-bit PNG and right preview. Deflate (EXR ZIP, PNG) can expand
+    // right colour, disparity EXR, PFM, KITTI 16-bit PNG, right preview, right depth Y+Z, right disparity EXR and
+    // PFM, and the two occlusion masks. Deflate (EXR ZIP, PNG) can expand
     // incompressible data by up to 1/8 (stb's fixed Huffman codes); each file gets a row byte per line and 4 KiB
     // of headers and tables, and is rounded up to 4 KiB blocks plus one for the file system's own records.
     std::vector<uint64_t> bytesPerPixel = {8, 8, 1, 4, 3};
-    if (stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {8, 4, 4, 2, 3});
+    if (stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {8, 4, 4, 2, 3, 8, 4, 4, 1, 1});
     constexpr uint64_t kBlock = 4096;
     uint64_t total = 0;
     for (uint64_t perPixel : bytesPerPixel) {
@@ -207,7 +212,9 @@ std::vector<std::string> DatasetWriter::frameFiles(uint32_t frame) const {
         files.insert(files.end(),
                      {frameFile(kRightFolder, frame, ".exr"), frameFile(kDisparityFolder, frame, ".exr"),
                       frameFile(kDisparityFolder, frame, ".pfm"), frameFile(kDisparityFolder, frame, ".png"),
-                      frameFile(kPreviewRightFolder, frame, ".png")});
+                      frameFile(kPreviewRightFolder, frame, ".png"), frameFile(kDepthRightFolder, frame, ".exr"),
+                      frameFile(kDisparityRightFolder, frame, ".exr"), frameFile(kDisparityRightFolder, frame, ".pfm"),
+                      frameFile(kOcclusionFolder, frame, ".png"), frameFile(kOcclusionRightFolder, frame, ".png")});
     return files;
 }
 
@@ -239,15 +246,32 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
     writePng8(path(kSemanticFolder, ".png"), w, h, 1, semantic);
     writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y"}, {instance});
     writePng8(path(kPreviewFolder, ".png"), w, h, 3, tonemapPreview(images.rgbaHalf, w, h));
-    if (!stereo_) return;
+    if (stereo_) writeStereoFiles(frame, images, left, baseline);
+}
 
-    std::vector<float> disparity(pixels);
-    for (size_t i = 0; i < pixels; ++i) disparity[i] = disparityOf(left.fx, baseline, images.depth[i]);
+void DatasetWriter::writeStereoFiles(uint32_t frame, const FrameImages& images, const Camera& left, double baseline) {
+    const uint32_t w = images.width, h = images.height;
+    auto path = [&](const char* folder, const char* extension) { return target(frameFile(folder, frame, extension)); };
+    // The rig is rectified: both views share fx, and the right view's depth gives its own disparity.
+    auto disparityOfDepth = [&](const std::vector<float>& depth) {
+        std::vector<float> disparity(depth.size());
+        for (size_t i = 0; i < depth.size(); ++i) disparity[i] = disparityOf(left.fx, baseline, depth[i]);
+        return disparity;
+    };
+    const std::vector<float> disparity = disparityOfDepth(images.depth);
+    const std::vector<float> rightDisparity = disparityOfDepth(images.rightDepth);
     writeExrRgbaHalf(path(kRightFolder, ".exr"), w, h, withFullCoverage(images.rightRgbaHalf));
     writeExrFloatChannels(path(kDisparityFolder, ".exr"), w, h, {"Y"}, {disparity});
     writePfm(path(kDisparityFolder, ".pfm"), w, h, disparity);
     writeKittiPng(path(kDisparityFolder, ".png"), w, h, disparity);
     writePng8(path(kPreviewRightFolder, ".png"), w, h, 3, tonemapPreview(images.rightRgbaHalf, w, h));
+    writeExrDepth(path(kDepthRightFolder, ".exr"), w, h, images.rightDepth);
+    writeExrFloatChannels(path(kDisparityRightFolder, ".exr"), w, h, {"Y"}, {rightDisparity});
+    writePfm(path(kDisparityRightFolder, ".pfm"), w, h, rightDisparity);
+    writePng8(path(kOcclusionFolder, ".png"), w, h, 1,
+              occlusionMaskPixels(visibilityInOtherView(w, h, disparity, rightDisparity, -1)));
+    writePng8(path(kOcclusionRightFolder, ".png"), w, h, 1,
+              occlusionMaskPixels(visibilityInOtherView(w, h, rightDisparity, disparity, +1)));
 }
 
 void DatasetWriter::writeCalib(const Camera& left, double baseline, double minDepth) {

@@ -12,6 +12,8 @@ struct FrameImages {
     std::vector<float> depth;       // planar metres, +inf where nothing was hit
     std::vector<uint32_t> labels;   // (semantic class << 24) | instance id, see gpu::kSemantic*
     std::vector<uint16_t> rightRgbaHalf; // stereo only: the right view's colour
+    std::vector<float> rightDepth;       // stereo only: the right view's truth pass, as depth
+    std::vector<uint32_t> rightLabels;   // stereo only: the right view's truth pass, as labels
 };
 
 } // namespace sward

@@ -19,6 +19,10 @@ inline constexpr const char* kSemanticFolder = "semantic";          // uint8 cla
 inline constexpr const char* kInstanceFolder = "instance";          // float instance id EXR
 inline constexpr const char* kPreviewFolder = "preview";            // tonemapped left PNG
 inline constexpr const char* kPreviewRightFolder = "preview_right"; // tonemapped right PNG (stereo)
+inline constexpr const char* kDepthRightFolder = "depth_right";         // the right view's planar depth EXR (stereo)
+inline constexpr const char* kDisparityRightFolder = "disparity_right"; // right disparity EXR, PFM (stereo)
+inline constexpr const char* kOcclusionFolder = "occlusion";            // left pixels visible in the right view (stereo)
+inline constexpr const char* kOcclusionRightFolder = "occlusion_right"; // right pixels visible in the left view
 
 // Files of a dataset as a whole.
 inline constexpr const char* kCalibFile = "calib.txt";

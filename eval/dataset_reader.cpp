@@ -61,15 +61,28 @@ cv::Mat readPreview(const std::string& dir, const char* folder, uint32_t frame, 
     return image;
 }
 
-cv::Mat readSemantic(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height) {
-    const std::string path = dir + "/" + frameFile(kSemanticFolder, frame, ".png");
-    require(isFile(path), "missing semantic image '" + path + "'");
-    cv::Mat semantic = cv::imread(path, cv::IMREAD_UNCHANGED);
-    require(!semantic.empty() && semantic.type() == CV_8UC1 && semantic.cols == int(width) &&
-                semantic.rows == int(height),
-            path + ": expected an 8-bit one-channel class image of " + std::to_string(width) + "x" +
+namespace {
+
+// An 8-bit one-channel image of the frame (`what` names it in errors: "semantic image", "occlusion mask").
+cv::Mat readByteImage(const std::string& dir, const char* folder, uint32_t frame, uint32_t width, uint32_t height,
+                      const std::string& what) {
+    const std::string path = dir + "/" + frameFile(folder, frame, ".png");
+    require(isFile(path), "missing " + what + " '" + path + "'");
+    cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    require(!image.empty() && image.type() == CV_8UC1 && image.cols == int(width) && image.rows == int(height),
+            path + ": expected an 8-bit one-channel " + what + " of " + std::to_string(width) + "x" +
                 std::to_string(height));
-    return semantic;
+    return image;
+}
+
+} // namespace
+
+cv::Mat readSemantic(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height) {
+    return readByteImage(dir, kSemanticFolder, frame, width, height, "semantic image");
+}
+
+cv::Mat readOcclusion(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height) {
+    return readByteImage(dir, kOcclusionFolder, frame, width, height, "occlusion mask");
 }
 
 std::vector<float> readEstimate(const std::string& disparitiesDir, uint32_t frame, uint32_t width, uint32_t height) {

@@ -25,6 +25,10 @@ cv::Mat readPreview(const std::string& dir, const char* folder, uint32_t frame, 
 // semantic/NNNNNN.png, which must be a one-channel 8-bit image of width x height.
 cv::Mat readSemantic(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height);
 
+// occlusion/NNNNNN.png (dataset/occlusion.h: 255 = visible in both views), a one-channel 8-bit image of
+// width x height.
+cv::Mat readOcclusion(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height);
+
 // Another matcher's estimate <disparitiesDir>/NNNNNN.pfm, else the KITTI .png, of width x height.
 std::vector<float> readEstimate(const std::string& disparitiesDir, uint32_t frame, uint32_t width, uint32_t height);
 

@@ -87,6 +87,10 @@ void addGroups(const DatasetSetup& setup, DatasetEvaluation& result) {
 void merge(FrameWork& f, DatasetEvaluation& result) {
     result.frames.push_back({f.frame, f.total.metrics()});
     result.total.merge(f.total);
+    if (f.nonOccluded) {
+        if (!result.nonOccluded) result.nonOccluded.emplace();
+        result.nonOccluded->merge(*f.nonOccluded);
+    }
     for (size_t c = 0; c < f.classes.size(); ++c) result.classes[c].accumulator.merge(f.classes[c]);
     for (size_t b = 0; b < f.bands.size(); ++b) result.bands[b].accumulator.merge(f.bands[b]);
     result.matchSeconds += f.matchSeconds;
@@ -157,6 +161,7 @@ DatasetEvaluation evaluateDataset(const std::string& datasetDir, const std::stri
     setup.calib = readMiddleburyCalib(datasetDir + "/" + kCalibFile);
     std::error_code ec;
     setup.semantic = fs::is_directory(datasetDir + "/" + kSemanticFolder, ec);
+    setup.occlusion = fs::is_directory(datasetDir + "/" + kOcclusionFolder, ec);
     const std::vector<uint32_t> frames = framesToEvaluate(datasetDir, options);
 
     DatasetEvaluation result;

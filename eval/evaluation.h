@@ -54,7 +54,8 @@ struct DatasetEvaluation {
     StereoCalib calib;
     uint32_t width = 0, height = 0;
     std::vector<FrameMetrics> frames;
-    ErrorAccumulator total;
+    ErrorAccumulator total;                      // every pixel with ground truth ("all")
+    std::optional<ErrorAccumulator> nonOccluded; // those visible in both views ("noc"); without occlusion/: none
     std::vector<GroupMetrics> classes; // empty when the dataset has no semantic/ folder
     std::vector<GroupMetrics> bands;
     double matchSeconds = 0; // wall-clock time spent in SGBM (log only)

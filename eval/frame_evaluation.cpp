@@ -53,7 +53,11 @@ void accumulateErrors(const DatasetSetup& setup, const DisparityMap& truth, cons
                       FrameWork& work) {
     const uint32_t w = truth.width, h = truth.height;
     static const std::array<uint8_t, 256> groupOf = classGroupTable();
-    cv::Mat semantic;
+    cv::Mat semantic, occlusion;
+    if (setup.occlusion) {
+        occlusion = readOcclusion(setup.dir, work.frame, w, h);
+        work.nonOccluded.emplace();
+    }
     if (setup.semantic) {
         semantic = readSemantic(setup.dir, work.frame, w, h);
         work.classes.resize(kClassGroups.size());
@@ -66,6 +70,7 @@ void accumulateErrors(const DatasetSetup& setup, const DisparityMap& truth, cons
             const float gt = truth.values[i];
             if (!isValidDisparity(gt)) continue;
             work.total.add(estimate[i], gt);
+            if (setup.occlusion && occlusion.at<uint8_t>(int(y), int(x)) == 255) work.nonOccluded->add(estimate[i], gt);
             if (setup.semantic) work.classes[groupOf[semantic.at<uint8_t>(int(y), int(x))]].add(estimate[i], gt);
             const double z = setup.calib.depthMetres(gt);
             const size_t band = size_t(std::upper_bound(edges.begin(), edges.end(), z) - edges.begin());

@@ -23,6 +23,7 @@ struct DatasetSetup {
     StereoCalib calib;
     std::optional<ResolvedSgbm> sgbm;  // empty: estimates are read from disparitiesDir
     bool semantic = false;             // the dataset has semantic/ images
+    bool occlusion = false;            // the dataset has occlusion/ masks: non-occluded metrics too
     double colourLo = 0, colourHi = 1; // disparity colour scale of the pictures
 };
 
@@ -30,6 +31,7 @@ struct DatasetSetup {
 struct FrameWork {
     uint32_t frame = 0;
     ErrorAccumulator total;
+    std::optional<ErrorAccumulator> nonOccluded; // pixels visible in both views (with occlusion/ masks)
     std::vector<ErrorAccumulator> classes; // per kClassGroups entry; empty without semantic/
     std::vector<ErrorAccumulator> bands;   // per distance band
     double matchSeconds = 0;

@@ -70,6 +70,7 @@ Json datasetJson(const DatasetEvaluation& d) {
     j["height"] = d.height;
     j["frames"] = d.frames.size();
     putMetrics(j, d.total.metrics());
+    if (d.nonOccluded) putMetrics(j["noc"], d.nonOccluded->metrics());
     Json perFrame = Json::array();
     for (const FrameMetrics& f : d.frames) {
         Json fj;
@@ -154,6 +155,19 @@ std::string markdownPictures(const std::string& prefix, uint32_t frame) {
            "_estimate.png) | ![](" + base + "_truth.png) | ![](" + base + "_difference.png) |\n";
 }
 
+// The metric rows of `main`, beside `against`'s and their difference when given.
+std::string metricsTable(const EvaluationReport& report, const StereoMetrics& main, const StereoMetrics* against) {
+    std::string md = against ? "| metric | " + report.main.datasetDir + " | " + report.against->datasetDir +
+                                   " | difference |\n|---|---:|---:|---:|\n"
+                             : "| metric | value |\n|---|---:|\n";
+    for (const RowSpec& row : kRows) {
+        md += std::string("| ") + row.label + " | " + cell(row, main);
+        if (against) md += " | " + cell(row, *against) + " | " + differenceCell(row, main, *against);
+        md += " |\n";
+    }
+    return md;
+}
+
 } // namespace
 
 std::string metricsJson(const EvaluationReport& report) {
@@ -187,6 +201,7 @@ std::string metricsCsv(const EvaluationReport& report) {
         };
         for (const FrameMetrics& f : d.frames) line(frameName(f.frame), f.metrics);
         line("all", d.total.metrics());
+        if (d.nonOccluded) line("noc", d.nonOccluded->metrics());
     };
     rows(report.main, "main");
     if (report.against) rows(*report.against, "against");
@@ -208,13 +223,13 @@ std::string reportMarkdown(const EvaluationReport& report) {
     }
     md += "\n## Overall\n\n";
     const StereoMetrics at = report.against ? report.against->total.metrics() : StereoMetrics{};
-    md += report.against ? "| metric | " + m.datasetDir + " | " + report.against->datasetDir +
-                               " | difference |\n|---|---:|---:|---:|\n"
-                         : "| metric | value |\n|---|---:|\n";
-    for (const RowSpec& row : kRows) {
-        md += std::string("| ") + row.label + " | " + cell(row, mt);
-        if (report.against) md += " | " + cell(row, at) + " | " + differenceCell(row, mt, at);
-        md += " |\n";
+    md += metricsTable(report, mt, report.against ? &at : nullptr);
+    if (m.nonOccluded) {
+        const bool both = report.against && report.against->nonOccluded;
+        const StereoMetrics an = both ? report.against->nonOccluded->metrics() : StereoMetrics{};
+        md += "\n## Non-occluded pixels (noc)\n\nPixels whose match the other camera sees (occlusion/ masks); the "
+              "table above is all pixels with ground truth.\n\n" +
+              metricsTable(report, m.nonOccluded->metrics(), both ? &an : nullptr);
     }
     auto groups = [&](const DatasetEvaluation& d, const std::string& suffix) {
         if (!d.classes.empty()) md += "\n## By semantic class" + suffix + "\n\n" + groupTable(d.classes);

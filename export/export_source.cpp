@@ -116,6 +116,13 @@ std::vector<float> readFrameDisparity(const ExportDataset& dataset, uint32_t fra
     return std::move(map.values);
 }
 
+std::vector<uint8_t> readOcclusionMask(const ExportDataset& dataset, uint32_t frame) {
+    const ImageData mask = readFrameImage(dataset, kOcclusionFolder, frame, ".png", 1);
+    std::vector<uint8_t> values(mask.samples.size());
+    for (size_t i = 0; i < values.size(); ++i) values[i] = uint8_t(std::lround(mask.samples[i] * 255.0f));
+    return values;
+}
+
 std::vector<char> readDatasetFile(const ExportDataset& dataset, const std::string& relative) {
     return readImageFileBytes(dataset.dir + "/" + relative);
 }

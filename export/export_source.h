@@ -48,6 +48,9 @@ FrameTruth readFrameTruth(const ExportDataset& dataset, uint32_t frame);
 // The left disparity of a stereo frame (disparity/NNNNNN.pfm), 0 where there is none (sky).
 std::vector<float> readFrameDisparity(const ExportDataset& dataset, uint32_t frame);
 
+// occlusion/NNNNNN.png of a stereo frame: 255 visible in both views, 128 occluded, 0 no truth.
+std::vector<uint8_t> readOcclusionMask(const ExportDataset& dataset, uint32_t frame);
+
 // The bytes of a dataset file `relative` to its root, for a lossless copy.
 std::vector<char> readDatasetFile(const ExportDataset& dataset, const std::string& relative);
 

@@ -4,7 +4,6 @@
 #include "common/error.h"
 #include "common/staged_folder.h"
 #include "dataset/naming.h"
-#include "export/occlusion.h"
 #include "io/disparity_files.h"
 #include "io/image_files.h"
 
@@ -23,14 +22,6 @@ void copyFile(const ExportDataset& dataset, const std::string& relative, const s
 void requireStereo(const ExportDataset& dataset, const char* layout) {
     require(dataset.stereo, "'" + dataset.dir + "' is a mono dataset; the " + layout +
                                 " layout needs a stereo rig (camera.baseline > 0)");
-}
-
-// Middlebury / ETH3D mask0nocc values.
-std::vector<uint8_t> maskPixels(const std::vector<Visibility>& visibility) {
-    std::vector<uint8_t> mask(visibility.size());
-    for (size_t i = 0; i < visibility.size(); ++i)
-        mask[i] = visibility[i] == Visibility::Visible ? 255 : visibility[i] == Visibility::Occluded ? 128 : 0;
-    return mask;
 }
 
 // KITTI stores round(d * 256) in 16 bits with 0 as "no value": a disparity outside that range cannot be exported.
@@ -82,7 +73,6 @@ std::string kittiCalibText(const ExportCamera& c) {
 
 void exportTwoView(const ExportDataset& dataset, const std::string& out, bool eth3d) {
     requireStereo(dataset, eth3d ? "eth3d" : "middlebury");
-    const uint32_t w = dataset.camera.width, h = dataset.camera.height;
     for (const ExportFrame& f : dataset.frames) {
         const std::string dir = out + "/" + frameName(f.frame);
         makeDirectory(dir, "output folder");
@@ -90,8 +80,10 @@ void exportTwoView(const ExportDataset& dataset, const std::string& out, bool et
         copyFile(dataset, frameFile(kPreviewRightFolder, f.frame, ".png"), dir + "/im1.png");
         copyFile(dataset, kCalibFile, dir + "/calib.txt");
         copyFile(dataset, frameFile(kDisparityFolder, f.frame, ".pfm"), dir + (eth3d ? "/disp0GT.pfm" : "/disp0.pfm"));
-        const std::vector<float> disparity = readFrameDisparity(dataset, f.frame);
-        writePng8(dir + "/mask0nocc.png", w, h, 1, maskPixels(leftVisibility(w, h, disparity)));
+        if (!eth3d) copyFile(dataset, frameFile(kDisparityRightFolder, f.frame, ".pfm"), dir + "/disp1.pfm");
+        // sward's occlusion masks use Middlebury's values (255 / 128 / 0).
+        copyFile(dataset, frameFile(kOcclusionFolder, f.frame, ".png"), dir + "/mask0nocc.png");
+        if (!eth3d) copyFile(dataset, frameFile(kOcclusionRightFolder, f.frame, ".png"), dir + "/mask1nocc.png");
     }
 }
 
@@ -108,9 +100,9 @@ void exportKitti(const ExportDataset& dataset, const std::string& out) {
         copyFile(dataset, frameFile(kPreviewFolder, f.frame, ".png"), root + "/image_2/" + name);
         copyFile(dataset, frameFile(kPreviewRightFolder, f.frame, ".png"), root + "/image_3/" + name);
         writeKittiPng(root + "/disp_occ_0/" + name, w, h, disparity);
-        const std::vector<Visibility> visibility = leftVisibility(w, h, disparity);
+        const std::vector<uint8_t> mask = readOcclusionMask(dataset, f.frame);
         for (size_t i = 0; i < disparity.size(); ++i)
-            if (visibility[i] != Visibility::Visible) disparity[i] = 0.0f;
+            if (mask[i] != 255) disparity[i] = 0.0f; // disp_noc_0: pixels visible in both views only
         writeKittiPng(root + "/disp_noc_0/" + name, w, h, disparity);
         writeTextAtomically(root + "/calib_cam_to_cam/" + frameName(f.frame) + ".txt", kittiCalibText(dataset.camera));
     }

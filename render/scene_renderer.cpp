@@ -351,7 +351,7 @@ OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, ui
 }
 
 OffscreenFrame::~OffscreenFrame() {
-    for (Buffer* b : {&color_, &depth_, &labels_, &rightColor_}) retireBuffer(ctx_, *b);
+    for (Buffer* b : {&color_, &depth_, &labels_, &rightColor_, &rightDepth_, &rightLabels_}) retireBuffer(ctx_, *b);
 }
 
 FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
@@ -363,16 +363,23 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
     const uint64_t pixels = uint64_t(desc.width) * desc.height;
     if (right && !rightMain_) {
         rightMain_ = std::make_unique<RenderTarget>(ctx_, desc);
+        rightTruth_ = std::make_unique<RenderTarget>(ctx_, truth_.desc());
         rightColor_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+        rightDepth_ = createBuffer(ctx_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+        rightLabels_ = createBuffer(ctx_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     }
     ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
         if (prologue) prologue(cmd);
-        SceneRenderer::View views[2] = {{&camera, &main_, &truth_}, {right, rightMain_.get(), nullptr}};
+        SceneRenderer::View views[2] = {{&camera, &main_, &truth_}, {right, rightMain_.get(), rightTruth_.get()}};
         renderer.recordViews(cmd, {views, right ? 2u : 1u}, timeSeconds, frameIndex);
         main_.recordReadback(cmd, 0, color_);
         truth_.recordReadback(cmd, 0, depth_);
         truth_.recordReadback(cmd, 1, labels_);
-        if (right) rightMain_->recordReadback(cmd, 0, rightColor_);
+        if (right) {
+            rightMain_->recordReadback(cmd, 0, rightColor_);
+            rightTruth_->recordReadback(cmd, 0, rightDepth_);
+            rightTruth_->recordReadback(cmd, 1, rightLabels_);
+        }
         transferToHostBarrier(cmd);
     });
     FrameImages images{.width = desc.width, .height = desc.height};
@@ -385,6 +392,10 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
     if (right) {
         images.rightRgbaHalf.resize(pixels * 4);
         std::memcpy(images.rightRgbaHalf.data(), rightColor_.mapped(), pixels * 8);
+        images.rightDepth.resize(pixels);
+        images.rightLabels.resize(pixels);
+        std::memcpy(images.rightDepth.data(), rightDepth_.mapped(), pixels * 4);
+        std::memcpy(images.rightLabels.data(), rightLabels_.mapped(), pixels * 4);
     }
     return images;
 }

@@ -127,15 +127,16 @@ public:
     OffscreenFrame& operator=(const OffscreenFrame&) = delete;
 
     // Records `prologue` (e.g. the interaction tick), the frame and the readbacks in one submission and waits.
-    // With `right`, also renders the right view of a stereo rig (see SceneRenderer::recordViews).
+    // With `right`, also renders the right view of a stereo rig (see SceneRenderer::recordViews), colour and
+    // ground truth.
     FrameImages render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
                        const std::function<void(VkCommandBuffer)>& prologue = {}, const Camera* right = nullptr);
 
 private:
     Context& ctx_;
     RenderTarget main_, truth_;
-    std::unique_ptr<RenderTarget> rightMain_; // created on the first stereo frame
-    Buffer color_, depth_, labels_, rightColor_;
+    std::unique_ptr<RenderTarget> rightMain_, rightTruth_; // created on the first stereo frame
+    Buffer color_, depth_, labels_, rightColor_, rightDepth_, rightLabels_;
 };
 
 // Renders one frame into fresh targets (the renderer's sample count) and reads colour and depth back (waits).

@@ -34,7 +34,11 @@ FrameImages tinyFrame(bool stereo) {
     images.rgbaHalf.assign(8, 0x3c00); // 1.0
     images.depth = {2.0f, INFINITY};
     images.labels = {gpu::kSemanticGround << gpu::kInstanceBits, gpu::kSemanticSky << gpu::kInstanceBits};
-    if (stereo) images.rightRgbaHalf = images.rgbaHalf;
+    if (stereo) {
+        images.rightRgbaHalf = images.rgbaHalf;
+        images.rightDepth = images.depth;
+        images.rightLabels = images.labels;
+    }
     return images;
 }
 
@@ -46,8 +50,10 @@ TEST(DatasetWriter, FrameFilesAreNamedByTheNamingTable) {
     EXPECT_EQ(monoFiles.size(), 5u);
     EXPECT_EQ(monoFiles[0], frameFile(kLeftFolder, 7, ".exr"));
     const std::vector<std::string> stereoFiles = stereo.frameFiles(7);
-    EXPECT_EQ(stereoFiles.size(), 10u);
-    EXPECT_NE(std::find(stereoFiles.begin(), stereoFiles.end(), "disparity/000007.pfm"), stereoFiles.end());
+    EXPECT_EQ(stereoFiles.size(), 15u);
+    for (const char* file : {"disparity/000007.pfm", "disparity_right/000007.pfm", "depth_right/000007.exr",
+                             "occlusion/000007.png", "occlusion_right/000007.png"})
+        EXPECT_NE(std::find(stereoFiles.begin(), stereoFiles.end(), file), stereoFiles.end()) << file;
     EXPECT_EQ(mono.datasetFiles(), (std::vector<std::string>{kFrameLogFile, kSceneCopyFile, kClassesFile}));
     EXPECT_EQ(stereo.datasetFiles(),
               (std::vector<std::string>{kFrameLogFile, kSceneCopyFile, kClassesFile, kCalibFile}));

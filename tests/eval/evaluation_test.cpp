@@ -3,6 +3,7 @@
 #include "stereo_test_files.h"
 
 #include "common/error.h"
+#include "io/image_files.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -116,6 +117,38 @@ TEST(Evaluation, DisparityFilesOfAnotherMatcherAreEvaluated) {
     EXPECT_DOUBLE_EQ(m.bad[0], 1.0);
     EXPECT_DOUBLE_EQ(m.bad[1], 0.0);
     EXPECT_DOUBLE_EQ(m.coverage, double(s.width - 20) / s.width);
+}
+
+TEST(Evaluation, OcclusionMasksGiveNonOccludedMetricsBesideAllPixels) {
+    const std::string dir = tempDir(), estimates = tempDir("_estimates"), out = tempDir("_out");
+    SyntheticDataset s;
+    writeSyntheticDataset(dir, s);
+    // The estimate is exact except in the left 30 columns (5 px off); the masks call those columns occluded.
+    std::filesystem::create_directories(dir + "/occlusion");
+    for (uint32_t frame = 0; frame < s.frames; ++frame) {
+        std::vector<float> d(size_t(s.width) * s.height);
+        std::vector<uint8_t> mask(d.size());
+        for (uint32_t y = 0; y < s.height; ++y)
+            for (uint32_t x = 0; x < s.width; ++x) {
+                d[size_t(y) * s.width + x] = float(s.disparity + (x < 30 ? 5 : 0));
+                mask[size_t(y) * s.width + x] = y < s.skyRows ? 0 : x < 30 ? 128 : 255;
+            }
+        writePfm(estimates + "/00000" + std::to_string(frame) + ".pfm", s.width, s.height, d);
+        writePng8(dir + "/occlusion/00000" + std::to_string(frame) + ".png", s.width, s.height, 1, mask);
+    }
+    EvaluationOptions options = quietOptions(dir, out);
+    options.disparitiesDir = estimates;
+    const EvaluationReport report = runEvaluation(options);
+    ASSERT_TRUE(report.main.nonOccluded.has_value());
+    const StereoMetrics all = report.main.total.metrics(), noc = report.main.nonOccluded->metrics();
+    EXPECT_DOUBLE_EQ(noc.meanAbsError, 0.0);
+    EXPECT_DOUBLE_EQ(all.meanAbsError, 5.0 * 30 / s.width);
+    const nlohmann::json json = readJson(out + "/metrics.json");
+    EXPECT_EQ(json.at("noc").at("mean_abs_error").get<double>(), 0.0);
+    EXPECT_EQ(json.at("gt_pixels").get<int64_t>(), int64_t(s.frames) * s.width * (s.height - s.skyRows));
+    EXPECT_EQ(json.at("noc").at("gt_pixels").get<int64_t>(), int64_t(s.frames) * (s.width - 30) * (s.height - s.skyRows));
+    EXPECT_NE(readFile(out + "/metrics.csv").find("\nmain,noc,"), std::string::npos);
+    EXPECT_NE(readFile(out + "/report.md").find("## Non-occluded pixels (noc)"), std::string::npos);
 }
 
 TEST(Evaluation, SavedSgbmDisparitiesReEvaluateToTheSameMetrics) {

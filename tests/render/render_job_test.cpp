@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -259,6 +260,81 @@ TEST(Dataset, IsSelfContainedWithSceneCopyClassesAssetsAndConventions) {
     EXPECT_EQ(manifest.at("units").at("depth"), "metre");
     EXPECT_NE(manifest.at("conventions").at("camera_axes").get<std::string>().find("OpenCV"), std::string::npos);
     EXPECT_TRUE(manifest.at("assets").is_object()); // the test scene reads no files: procedural everything
+}
+
+namespace {
+
+// The occlusion rule written out independently of dataset/occlusion.cpp: `own` pixel x with disparity d shows its
+// point at x + direction * d in `other`; it is hidden when that is outside the other image, or when every other
+// centre around it (one when the match is on a centre) sees a surface nearer by more than 0.5 px.
+bool seenByTheOtherView(const cv::Mat& own, const cv::Mat& other, int x, int y, int direction) {
+    const double d = own.at<float>(y, x), match = x + direction * d;
+    if (match < -0.5 || match > other.cols - 0.5) return false;
+    const int before = int(std::floor(match));
+    bool hidden = true;
+    for (int centre : {before, before + 1}) {
+        if (centre == before + 1 && match == before) break;
+        const float o = other.at<float>(y, std::clamp(centre, 0, other.cols - 1));
+        hidden = hidden && std::isfinite(o) && o > d + 0.5;
+    }
+    return !hidden;
+}
+
+// |other view's disparity interpolated at the match - d|: 0 up to float rounding when both centres around the
+// match see the pixel's own planar surface; +inf when a centre has no truth or the match leaves the image.
+double warpDifference(const cv::Mat& own, const cv::Mat& other, int x, int y, int direction) {
+    const double d = own.at<float>(y, x), match = x + direction * d;
+    if (match < 0.0 || match > other.cols - 1) return INFINITY;
+    const int i = int(std::floor(match));
+    const double t = match - i;
+    const double a = other.at<float>(y, i), b = t > 0.0 ? other.at<float>(y, i + 1) : a;
+    return std::abs((1.0 - t) * a + t * b - d);
+}
+
+} // namespace
+
+TEST(Dataset, RightViewTruthAndOcclusionMasksFollowTheDepthTestOfTheOtherView) {
+    const std::string& dir = referenceRun();
+    auto calib = readCalib(dir + "/calib.txt");
+    const double f = std::stod(calib.at("cam0").substr(1)), baseline = std::stod(calib.at("baseline")) * 1e-3;
+    for (const char* frame : {"000000", "000004"}) {
+        const cv::Mat left = readPfm(dir + "/disparity/" + frame + ".pfm");
+        const cv::Mat right = readPfm(dir + "/disparity_right/" + frame + ".pfm");
+        const cv::Mat rightDepth = readImage(dir + "/depth_right/" + frame + ".exr");
+        const cv::Mat masks[2] = {readImage(dir + "/occlusion/" + frame + ".png"),
+                                  readImage(dir + "/occlusion_right/" + frame + ".png")};
+        int occluded[2] = {0, 0}, visible[2] = {0, 0}, exact[2] = {0, 0}, close[2] = {0, 0};
+        for (int y = 0; y < left.rows; ++y)
+            for (int x = 0; x < left.cols; ++x) {
+                const float z = rightDepth.at<float>(y, x);
+                if (std::isinf(z)) {
+                    ASSERT_TRUE(std::isinf(right.at<float>(y, x)));
+                } else {
+                    ASSERT_NEAR(right.at<float>(y, x), f * baseline / z, 1e-5 * right.at<float>(y, x));
+                }
+                for (int view = 0; view < 2; ++view) {
+                    const cv::Mat &own = view == 0 ? left : right, &other = view == 0 ? right : left;
+                    const uint8_t m = masks[view].at<uint8_t>(y, x);
+                    if (std::isinf(own.at<float>(y, x))) {
+                        ASSERT_EQ(m, 0) << view << ": " << x << "," << y;
+                        continue;
+                    }
+                    const bool seen = seenByTheOtherView(own, other, x, y, view == 0 ? -1 : +1);
+                    ASSERT_EQ(m, seen ? 255 : 128) << view << ": " << x << "," << y;
+                    (seen ? visible : occluded)[view] += 1;
+                    const double difference = warpDifference(own, other, x, y, view == 0 ? -1 : +1);
+                    if (seen && difference <= 1e-3) ++exact[view];
+                    if (seen && difference <= 0.1) ++close[view];
+                }
+            }
+        for (int view = 0; view < 2; ++view) {
+            std::printf("frame %s %s: %d visible (warp within 1e-3 px: %d, 0.1 px: %d), %d occluded\n", frame,
+                        view ? "right" : "left", visible[view], exact[view], close[view], occluded[view]);
+            EXPECT_GT(visible[view], 15 * occluded[view]) << "most pixels are seen by both cameras";
+            EXPECT_GT(occluded[view], 10) << "at least the image border the other camera does not see";
+            EXPECT_GT(close[view], 9 * visible[view] / 10) << "the other view's truth agrees where it is seen";
+        }
+    }
 }
 
 TEST(Dataset, ColourAlphaIsFullCoverageEverywhere) {

@@ -114,6 +114,9 @@ TEST(SwardExport, MiddleburyPfmIsFocalTimesBaselineOverDepthAndMasksFollowTheRul
         const std::string dir = out + "/" + frame;
         EXPECT_EQ(readFile(dir + "/im0.png"), readFile(dataset() + "/preview/" + frame + ".png"));
         EXPECT_EQ(readFile(dir + "/im1.png"), readFile(dataset() + "/preview_right/" + frame + ".png"));
+        EXPECT_EQ(readFile(dir + "/disp1.pfm"), readFile(dataset() + "/disparity_right/" + frame + ".pfm"));
+        EXPECT_EQ(readFile(dir + "/mask0nocc.png"), readFile(dataset() + "/occlusion/" + frame + ".png"));
+        EXPECT_EQ(readFile(dir + "/mask1nocc.png"), readFile(dataset() + "/occlusion_right/" + frame + ".png"));
         const Calib calib = middleburyCalib(dir + "/calib.txt");
         const cv::Mat depth = readImage(dataset() + "/depth/" + frame + ".exr");
         const cv::Mat disparity = readPfm(dir + "/disp0.pfm");
