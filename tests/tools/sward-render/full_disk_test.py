@@ -78,8 +78,9 @@ def inside(exe, scene):
         subprocess.run(["umount", mnt], check=True)
 
         # (c) an earlier run's finished frame stays, bitwise; the failed run's files go. The extra room holds
-        # what the earlier run wrote, so the later run passes the up-front check and fills the disk mid-run.
-        mount_tmpfs(mnt, room + 512 * 1024)
+        # what the earlier run wrote (a stereo frame with right-view truth and masks: about 0.6 MB at 160x120), so
+        # the later run passes the up-front check and fills the disk mid-run.
+        mount_tmpfs(mnt, room + 1024 * 1024)
         code, err = render(exe, scene, mnt + "/out", "--frames", "0:1")
         check(code == 0, f"(c) the one-frame run failed: {err}")
         before = snapshot(mnt)
