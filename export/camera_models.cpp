@@ -35,7 +35,7 @@ std::vector<View> copyViews(const ExportDataset& dataset, const std::string& ima
             if (right && !dataset.stereo) continue;
             const std::string name = std::string(right ? "right/" : "left/") + frameName(f.frame) + ".png";
             const std::vector<char> bytes =
-                readDatasetFile(dataset, frameFile(right ? kPreviewRightFolder : kPreviewFolder, f.frame, ".png"));
+                readFrameFileBytes(dataset, right ? kPreviewRightFolder : kPreviewFolder, f.frame, ".png");
             writeBytesAtomically(imagesDir + "/" + name, bytes.data(), bytes.size());
             views.push_back({name, right ? f.rightPose : f.leftPose});
         }
@@ -71,11 +71,16 @@ void exportColmap(const ExportDataset& dataset, const std::string& out) {
     const ExportCamera& c = dataset.camera;
     const std::string model = out + "/sparse/0";
     makeDirectory(model, "output folder");
+    // The sensor model's lens distortion is OpenCV's: COLMAP's FULL_OPENCV (k4..k6 = 0) holds it exactly.
+    std::string params = number(c.fx) + " " + number(c.fy) + " " + number(c.cx + 0.5) + " " + number(c.cy + 0.5);
+    if (c.distorted())
+        for (double k : {c.distortion[0], c.distortion[1], c.distortion[2], c.distortion[3], c.distortion[4], 0.0, 0.0, 0.0})
+            params += " " + number(k);
     writeTextAtomically(model + "/cameras.txt",
                         "# Camera list with one line of data per camera:\n"
-                        "#   CAMERA_ID, MODEL, WIDTH, HEIGHT, PARAMS[]\n# Number of cameras: 1\n1 PINHOLE " +
-                            std::to_string(c.width) + " " + std::to_string(c.height) + " " + number(c.fx) + " " +
-                            number(c.fy) + " " + number(c.cx + 0.5) + " " + number(c.cy + 0.5) + "\n");
+                        "#   CAMERA_ID, MODEL, WIDTH, HEIGHT, PARAMS[]\n# Number of cameras: 1\n1 " +
+                            std::string(c.distorted() ? "FULL_OPENCV " : "PINHOLE ") + std::to_string(c.width) + " " +
+                            std::to_string(c.height) + " " + params + "\n");
     std::string images = "# Image list with two lines of data per image:\n"
                          "#   IMAGE_ID, QW, QX, QY, QZ, TX, TY, TZ, CAMERA_ID, NAME\n"
                          "#   POINTS2D[] as (X, Y, POINT3D_ID)\n# Number of images: " +
@@ -110,7 +115,8 @@ void exportNerfstudio(const ExportDataset& dataset, const std::string& out) {
     }
     const nlohmann::json transforms = {{"camera_model", "OPENCV"}, {"fl_x", c.fx}, {"fl_y", c.fy},
                                        {"cx", c.cx + 0.5}, {"cy", c.cy + 0.5}, {"w", c.width}, {"h", c.height},
-                                       {"k1", 0.0}, {"k2", 0.0}, {"p1", 0.0}, {"p2", 0.0}, {"frames", frames}};
+                                       {"k1", c.distortion[0]}, {"k2", c.distortion[1]}, {"p1", c.distortion[2]},
+                                       {"p2", c.distortion[3]}, {"k3", c.distortion[4]}, {"frames", frames}};
     writeTextAtomically(out + "/transforms.json", transforms.dump(2) + "\n");
 }
 

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <string_view>
 
 namespace sward {
 
@@ -44,6 +45,10 @@ std::vector<ExportFrame> readFrameLog(const std::string& dir, ExportCamera& came
                 camera = {.fx = k.at("fx"), .fy = k.at("fy"), .cx = k.at("cx"), .cy = k.at("cy"),
                           .width = k.at("width"), .height = k.at("height"),
                           .baseline = stereo ? record.at("baseline").get<double>() : 0.0};
+                if (record.contains("sensor") && record["sensor"].value("enabled", true)) {
+                    const nlohmann::json& s = record["sensor"];
+                    camera.distortion = {s.at("k1"), s.at("k2"), s.at("p1"), s.at("p2"), s.at("k3")};
+                }
             }
             frames.push_back(frame);
         } catch (const nlohmann::json::exception& e) {
@@ -54,14 +59,18 @@ std::vector<ExportFrame> readFrameLog(const std::string& dir, ExportCamera& came
     return frames;
 }
 
+void requireFrameSize(const ExportDataset& dataset, const std::string& path, uint32_t width, uint32_t height) {
+    require(width == dataset.camera.width && height == dataset.camera.height,
+            path + ": " + std::to_string(width) + "x" + std::to_string(height) + ", expected " +
+                std::to_string(dataset.camera.width) + "x" + std::to_string(dataset.camera.height) + " (frames.jsonl)");
+}
+
 // A decoded image of the dataset with the frame's size and `channels` channels.
 ImageData readFrameImage(const ExportDataset& dataset, const char* folder, uint32_t frame, const char* extension,
                          uint32_t channels) {
     const std::string path = dataset.dir + "/" + frameFile(folder, frame, extension);
     ImageData image = loadImage(path);
-    require(image.width == dataset.camera.width && image.height == dataset.camera.height,
-            path + ": " + std::to_string(image.width) + "x" + std::to_string(image.height) + ", expected " +
-                std::to_string(dataset.camera.width) + "x" + std::to_string(dataset.camera.height) + " (frames.jsonl)");
+    requireFrameSize(dataset, path, image.width, image.height);
     require(image.channels == channels, path + ": " + std::to_string(image.channels) + " channel(s), expected " +
                                             std::to_string(channels));
     return image;
@@ -107,12 +116,17 @@ FrameTruth readFrameTruth(const ExportDataset& dataset, uint32_t frame) {
     return truth;
 }
 
+void requireUndistorted(const ExportDataset& dataset, const char* layout) {
+    require(!dataset.camera.distorted(),
+            "'" + dataset.dir + "' was rendered with lens distortion (camera.sensor k1, k2, k3, p1, p2): its images no "
+                "longer line up with the undistorted ground truth the " + layout + " layout pairs them with; render "
+                "without distortion, or export colmap / nerfstudio, which carry the coefficients");
+}
+
 std::vector<float> readFrameDisparity(const ExportDataset& dataset, uint32_t frame) {
     const std::string path = dataset.dir + "/" + frameFile(kDisparityFolder, frame, ".pfm");
     DisparityMap map = readPfm(path);
-    require(map.width == dataset.camera.width && map.height == dataset.camera.height,
-            path + ": " + std::to_string(map.width) + "x" + std::to_string(map.height) + ", expected " +
-                std::to_string(dataset.camera.width) + "x" + std::to_string(dataset.camera.height) + " (frames.jsonl)");
+    requireFrameSize(dataset, path, map.width, map.height);
     return std::move(map.values);
 }
 
@@ -123,8 +137,27 @@ std::vector<uint8_t> readOcclusionMask(const ExportDataset& dataset, uint32_t fr
     return values;
 }
 
-std::vector<char> readDatasetFile(const ExportDataset& dataset, const std::string& relative) {
-    return readImageFileBytes(dataset.dir + "/" + relative);
+std::vector<char> readFrameFileBytes(const ExportDataset& dataset, const char* folder, uint32_t frame,
+                                     const char* extension) {
+    const std::string path = dataset.dir + "/" + frameFile(folder, frame, extension);
+    const bool pfm = std::string_view(extension) == ".pfm";
+    uint32_t width = 0, height = 0;
+    if (pfm) {
+        const DisparityMap map = readPfm(path);
+        width = map.width, height = map.height;
+    } else {
+        const ImageData image = loadImage(path);
+        width = image.width, height = image.height;
+    }
+    requireFrameSize(dataset, path, width, height);
+    return readImageFileBytes(path);
+}
+
+std::vector<char> readCalibBytes(const ExportDataset& dataset) {
+    const std::string path = dataset.dir + "/" + kCalibFile;
+    const StereoCalib calib = readMiddleburyCalib(path);
+    requireFrameSize(dataset, path, calib.width, calib.height);
+    return readImageFileBytes(path);
 }
 
 } // namespace sward

@@ -4,6 +4,7 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -17,6 +18,10 @@ struct ExportCamera {
     double fx = 0, fy = 0, cx = 0, cy = 0;
     uint32_t width = 0, height = 0;
     double baseline = 0; // 0 for a mono dataset
+    // The sensor model's lens distortion of the colour images (OpenCV k1, k2, p1, p2, k3); the ground truth is
+    // never distorted (scene/sensor_model.h).
+    std::array<double, 5> distortion{};
+    bool distorted() const { return distortion != std::array<double, 5>{}; }
 };
 
 struct ExportFrame {
@@ -45,13 +50,20 @@ struct FrameTruth {
 };
 FrameTruth readFrameTruth(const ExportDataset& dataset, uint32_t frame);
 
+// Throws when the colour images are distorted: `layout` pairs them pixel for pixel with the undistorted truth.
+void requireUndistorted(const ExportDataset& dataset, const char* layout);
+
 // The left disparity of a stereo frame (disparity/NNNNNN.pfm), 0 where there is none (sky).
 std::vector<float> readFrameDisparity(const ExportDataset& dataset, uint32_t frame);
 
 // occlusion/NNNNNN.png of a stereo frame: 255 visible in both views, 128 occluded, 0 no truth.
 std::vector<uint8_t> readOcclusionMask(const ExportDataset& dataset, uint32_t frame);
 
-// The bytes of a dataset file `relative` to its root, for a lossless copy.
-std::vector<char> readDatasetFile(const ExportDataset& dataset, const std::string& relative);
+// The bytes of a frame's PNG or PFM file for a lossless copy, decoded once first: a truncated or corrupt file,
+// or one of another size than the frames, is refused rather than copied.
+std::vector<char> readFrameFileBytes(const ExportDataset& dataset, const char* folder, uint32_t frame,
+                                     const char* extension);
+// calib.txt's bytes, parsed once first (its size must be the frames').
+std::vector<char> readCalibBytes(const ExportDataset& dataset);
 
 } // namespace sward

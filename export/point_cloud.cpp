@@ -51,6 +51,7 @@ std::string pointCloudPly(const FrameTruth& truth, const ExportCamera& camera, c
 }
 
 void exportPointClouds(const ExportDataset& dataset, const std::string& out, PointFrame frame) {
+    requireUndistorted(dataset, "ply"); // a point's colour is its pixel's
     for (const ExportFrame& f : dataset.frames) {
         const FrameTruth truth = readFrameTruth(dataset, f.frame);
         const std::string comment = "sward frame " + frameName(f.frame) +

@@ -5,7 +5,6 @@
 #include "common/staged_folder.h"
 #include "dataset/naming.h"
 #include "io/disparity_files.h"
-#include "io/image_files.h"
 
 #include <cmath>
 #include <cstdio>
@@ -14,12 +13,14 @@ namespace sward {
 
 namespace {
 
-void copyFile(const ExportDataset& dataset, const std::string& relative, const std::string& target) {
-    const std::vector<char> bytes = readDatasetFile(dataset, relative);
+void copyFrameFile(const ExportDataset& dataset, const char* folder, uint32_t frame, const char* extension,
+                   const std::string& target) {
+    const std::vector<char> bytes = readFrameFileBytes(dataset, folder, frame, extension);
     writeBytesAtomically(target, bytes.data(), bytes.size());
 }
 
 void requireStereo(const ExportDataset& dataset, const char* layout) {
+    requireUndistorted(dataset, layout);
     require(dataset.stereo, "'" + dataset.dir + "' is a mono dataset; the " + layout +
                                 " layout needs a stereo rig (camera.baseline > 0)");
 }
@@ -73,17 +74,18 @@ std::string kittiCalibText(const ExportCamera& c) {
 
 void exportTwoView(const ExportDataset& dataset, const std::string& out, bool eth3d) {
     requireStereo(dataset, eth3d ? "eth3d" : "middlebury");
+    const std::vector<char> calib = readCalibBytes(dataset);
     for (const ExportFrame& f : dataset.frames) {
         const std::string dir = out + "/" + frameName(f.frame);
         makeDirectory(dir, "output folder");
-        copyFile(dataset, frameFile(kPreviewFolder, f.frame, ".png"), dir + "/im0.png");
-        copyFile(dataset, frameFile(kPreviewRightFolder, f.frame, ".png"), dir + "/im1.png");
-        copyFile(dataset, kCalibFile, dir + "/calib.txt");
-        copyFile(dataset, frameFile(kDisparityFolder, f.frame, ".pfm"), dir + (eth3d ? "/disp0GT.pfm" : "/disp0.pfm"));
-        if (!eth3d) copyFile(dataset, frameFile(kDisparityRightFolder, f.frame, ".pfm"), dir + "/disp1.pfm");
+        copyFrameFile(dataset, kPreviewFolder, f.frame, ".png", dir + "/im0.png");
+        copyFrameFile(dataset, kPreviewRightFolder, f.frame, ".png", dir + "/im1.png");
+        writeBytesAtomically(dir + "/calib.txt", calib.data(), calib.size());
+        copyFrameFile(dataset, kDisparityFolder, f.frame, ".pfm", dir + (eth3d ? "/disp0GT.pfm" : "/disp0.pfm"));
+        if (!eth3d) copyFrameFile(dataset, kDisparityRightFolder, f.frame, ".pfm", dir + "/disp1.pfm");
         // sward's occlusion masks use Middlebury's values (255 / 128 / 0).
-        copyFile(dataset, frameFile(kOcclusionFolder, f.frame, ".png"), dir + "/mask0nocc.png");
-        if (!eth3d) copyFile(dataset, frameFile(kOcclusionRightFolder, f.frame, ".png"), dir + "/mask1nocc.png");
+        copyFrameFile(dataset, kOcclusionFolder, f.frame, ".png", dir + "/mask0nocc.png");
+        if (!eth3d) copyFrameFile(dataset, kOcclusionRightFolder, f.frame, ".png", dir + "/mask1nocc.png");
     }
 }
 
@@ -97,8 +99,8 @@ void exportKitti(const ExportDataset& dataset, const std::string& out) {
         std::vector<float> disparity = readFrameDisparity(dataset, f.frame);
         requireKittiRange(dataset, f.frame, disparity);
         const std::string name = frameName(f.frame) + "_10.png"; // KITTI: frame 10 is the reference of a pair
-        copyFile(dataset, frameFile(kPreviewFolder, f.frame, ".png"), root + "/image_2/" + name);
-        copyFile(dataset, frameFile(kPreviewRightFolder, f.frame, ".png"), root + "/image_3/" + name);
+        copyFrameFile(dataset, kPreviewFolder, f.frame, ".png", root + "/image_2/" + name);
+        copyFrameFile(dataset, kPreviewRightFolder, f.frame, ".png", root + "/image_3/" + name);
         writeKittiPng(root + "/disp_occ_0/" + name, w, h, disparity);
         const std::vector<uint8_t> mask = readOcclusionMask(dataset, f.frame);
         for (size_t i = 0; i < disparity.size(); ++i)

@@ -197,6 +197,16 @@ def export_out_under_a_file(env):
     return [env.base_dataset, "--layout", "ply", "--out", env.out]
 
 
+def with_lens_distortion(dataset, env):
+    """frames.jsonl as a render with the sensor model's lens distortion writes it."""
+    path = os.path.join(dataset, "frames.jsonl")
+    records = [json.loads(line) for line in open(path)]
+    for record in records:
+        record["sensor"] = {"enabled": True, "k1": -0.1, "k2": 0.0, "k3": 0.0, "p1": 0.0, "p2": 0.0}
+    with open(path, "w") as f:
+        f.writelines(json.dumps(r) + "\n" for r in records)
+
+
 def pfm_of(width, height, value):
     return b"Pf\n%d %d\n-1\n" % (width, height) + struct.pack("<f", value) * (width * height)
 
@@ -455,10 +465,14 @@ CASES = [
                 "--layout", "middlebury"),
     export_case("sward-export corrupt depth EXR", overwrite("depth/000001.exr", b"v/1\x01garbage"),
                 r"depth/000001\.exr", "--layout", "ply"),
+    export_case("sward-export corrupt preview PNG", overwrite("preview_right/000001.png", b"\x89PNG garbage"),
+                r"preview_right/000001\.png", "--layout", "colmap"),
     export_case("sward-export KITTI disparity of 300 px", overwrite("disparity/000001.pfm", pfm_of(32, 24, 300.0)),
                 r"frame 1: disparity 300\.000 px .* KITTI", "--layout", "kitti"),
     export_case("sward-export --frames without rendered frames", lambda d, e: None, r"no rendered frame",
                 "--layout", "nerfstudio", "--frames", "5:6"),
+    export_case("sward-export KITTI of a lens-distorted dataset", with_lens_distortion, r"lens distortion",
+                "--layout", "kitti"),
     export_case("sward-export --layout unknown", lambda d, e: None, r"--layout", "--layout", "blender", exit=2),
     Case("sward-export --out under a file", "sward-export", export_out_under_a_file, 1, r"a-file",
          needs_dataset=True),

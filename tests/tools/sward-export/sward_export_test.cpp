@@ -364,6 +364,39 @@ TEST(SwardExport, NerfstudioTransformsAreFramesJsonlPosesInOpenGlAxes) {
     }
 }
 
+TEST(SwardExport, LensDistortionGoesIntoColmapAndNerfstudioAndKeepsPixelPairedLayoutsOut) {
+    // frames.jsonl as a render with the sensor model's distortion writes it (the images are not looked at).
+    const std::string folder = tempDir("export-distorted"), copy = folder + "/dataset";
+    std::filesystem::copy(dataset(), copy, std::filesystem::copy_options::recursive);
+    std::istringstream lines(readFile(copy + "/frames.jsonl"));
+    std::string text;
+    for (std::string line; std::getline(lines, line);) {
+        nlohmann::json record = nlohmann::json::parse(line);
+        record["sensor"] = {{"enabled", true}, {"k1", -0.1}, {"k2", 0.02}, {"k3", 0.0}, {"p1", 0.001}, {"p2", 0.0}};
+        text += record.dump() + "\n";
+    }
+    std::ofstream(copy + "/frames.jsonl", std::ios::trunc) << text;
+    ASSERT_EQ(run(SWARD_EXPORT_EXE " " + copy + " --layout colmap --out " + folder + "/colmap").exitCode, 0);
+    const std::string cameras = readFile(folder + "/colmap/sparse/0/cameras.txt");
+    const std::string line = cameras.substr(cameras.rfind("\n1 ") + 1);
+    EXPECT_EQ(line.substr(0, 20), "1 FULL_OPENCV 160 12") << line;
+    const std::vector<double> values = numbers(line.substr(line.find("OPENCV") + 6));
+    ASSERT_EQ(values.size(), 2u + 12u); // width, height, fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6
+    EXPECT_EQ(values[6], -0.1);
+    EXPECT_EQ(values[7], 0.02);
+    EXPECT_EQ(values[8], 0.001);
+    ASSERT_EQ(run(SWARD_EXPORT_EXE " " + copy + " --layout nerfstudio --out " + folder + "/ns").exitCode, 0);
+    const nlohmann::json transforms = nlohmann::json::parse(readFile(folder + "/ns/transforms.json"));
+    EXPECT_EQ(transforms.at("k1"), -0.1);
+    EXPECT_EQ(transforms.at("p1"), 0.001);
+    for (const char* layout : {"middlebury", "kitti", "ply"}) {
+        const ToolRun r = run(SWARD_EXPORT_EXE " " + copy + " --layout " + layout + " --out " + folder + "/no");
+        EXPECT_EQ(r.exitCode, 1) << layout;
+        EXPECT_NE(r.err.find("lens distortion"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(folder + "/no"));
+    }
+}
+
 TEST(SwardExport, AFolderThatIsNotADatasetIsOneErrorAndNothingIsWritten) {
     const std::string empty = tempDir("export-not-a-dataset");
     const std::string out = empty + "/out";
