@@ -110,7 +110,12 @@ FrameTruth readFrameTruth(const ExportDataset& dataset, uint32_t frame) {
     // PNG samples come normalised to [0, 1]: 8-bit values are exact multiples of 1/255.
     for (size_t i = 0; i < pixels; ++i) {
         truth.semantic[i] = uint8_t(std::lround(semantic.samples[i] * 255.0f));
-        truth.instance[i] = uint32_t(instance.samples[i]); // integers, exact in float32 (< 2^24)
+        // Ids are integers below 2^24, exact in float32; anything else is a damaged file (and no cast of it).
+        const float id = instance.samples[i];
+        require(id >= 0.0f && id < 16777216.0f && id == std::floor(id),
+                instance.source + ": pixel " + std::to_string(i % truth.width) + ", " + std::to_string(i / truth.width) +
+                    " holds " + std::to_string(id) + ", not an instance id");
+        truth.instance[i] = uint32_t(id);
     }
     for (size_t i = 0; i < pixels * 3; ++i) truth.rgb[i] = uint8_t(std::lround(preview.samples[i] * 255.0f));
     return truth;
