@@ -7,6 +7,7 @@
 #include "io/disparity_files.h"
 
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 
 namespace sward {
@@ -23,6 +24,10 @@ void requireStereo(const ExportDataset& dataset, const char* layout) {
     requireUndistorted(dataset, layout);
     require(dataset.stereo, "'" + dataset.dir + "' is a mono dataset; the " + layout +
                                 " layout needs a stereo rig (camera.baseline > 0)");
+    std::error_code ec;
+    require(std::filesystem::is_directory(dataset.dir + "/" + kOcclusionFolder, ec),
+            "'" + dataset.dir + "' has no " + kOcclusionFolder + "/ masks (rendered by an older sward); render it "
+                "again to export the " + layout + " layout");
 }
 
 // KITTI stores round(d * 256) in 16 bits with 0 as "no value": a disparity outside that range cannot be exported.

@@ -467,6 +467,8 @@ CASES = [
                 r"depth/000001\.exr", "--layout", "ply"),
     export_case("sward-export corrupt preview PNG", overwrite("preview_right/000001.png", b"\x89PNG garbage"),
                 r"preview_right/000001\.png", "--layout", "colmap"),
+    export_case("sward-export dataset without occlusion masks",
+                lambda d, e: shutil.rmtree(os.path.join(d, "occlusion")), r"no occlusion/ masks", "--layout", "kitti"),
     export_case("sward-export KITTI disparity of 300 px", overwrite("disparity/000001.pfm", pfm_of(32, 24, 300.0)),
                 r"frame 1: disparity 300\.000 px .* KITTI", "--layout", "kitti"),
     export_case("sward-export --frames without rendered frames", lambda d, e: None, r"no rendered frame",
