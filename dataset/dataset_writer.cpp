@@ -4,6 +4,7 @@
 #include "common/error.h"
 #include "common/parse_number.h"
 #include "dataset/fingerprint.h"
+#include "dataset/frame_truth.h"
 #include "dataset/naming.h"
 #include "io/disparity_files.h"
 #include "io/image_files.h"
@@ -216,28 +217,20 @@ bool DatasetWriter::frameComplete(uint32_t frame) const {
 
 void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline) {
     const uint32_t w = images.width, h = images.height;
-    const size_t pixels = size_t(w) * h;
     auto path = [&](const char* folder, const char* extension) { return target(frameFile(folder, frame, extension)); };
 
-    std::vector<uint8_t> semantic(pixels);
-    std::vector<float> instance(pixels);
-    for (size_t i = 0; i < pixels; ++i) {
-        semantic[i] = uint8_t(images.labels[i] >> gpu::kInstanceBits);
-        instance[i] = float(images.labels[i] & ((1u << gpu::kInstanceBits) - 1u)); // exact: ids < 2^24
-    }
+    const FrameTruth truth = frameTruth(images, left.fx, stereo_ ? baseline : 0.0);
     writeExrRgbaHalf(path(kLeftFolder, ".exr"), w, h, images.rgbaHalf);
     writeExrDepth(path(kDepthFolder, ".exr"), w, h, images.depth);
-    writePng8(path(kSemanticFolder, ".png"), w, h, 1, semantic);
-    writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y"}, {instance});
+    writePng8(path(kSemanticFolder, ".png"), w, h, 1, truth.semantic);
+    writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y"}, {truth.instance});
     writePng8(path(kPreviewFolder, ".png"), w, h, 3, tonemapPreview(images.rgbaHalf, w, h));
     if (!stereo_) return;
 
-    std::vector<float> disparity(pixels);
-    for (size_t i = 0; i < pixels; ++i) disparity[i] = disparityOf(left.fx, baseline, images.depth[i]);
     writeExrRgbaHalf(path(kRightFolder, ".exr"), w, h, images.rightRgbaHalf);
-    writeExrFloatChannels(path(kDisparityFolder, ".exr"), w, h, {"Y"}, {disparity});
-    writePfm(path(kDisparityFolder, ".pfm"), w, h, disparity);
-    writeKittiPng(path(kDisparityFolder, ".png"), w, h, disparity);
+    writeExrFloatChannels(path(kDisparityFolder, ".exr"), w, h, {"Y"}, {truth.disparity});
+    writePfm(path(kDisparityFolder, ".pfm"), w, h, truth.disparity);
+    writeKittiPng(path(kDisparityFolder, ".png"), w, h, truth.disparity);
     writePng8(path(kPreviewRightFolder, ".png"), w, h, 3, tonemapPreview(images.rightRgbaHalf, w, h));
 }
 
