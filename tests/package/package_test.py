@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Package.InstallAndBuildAConsumer: `cmake --install` into a temporary prefix, move the prefix elsewhere (the
-package must be relocatable and must not reach back into the build tree), build tests/package/consumer against it
-with find_package(sward) + sward::render, and run it: one frame rendered headless.
+package must be relocatable and must not reach back into the build tree), then build two programs against it with
+find_package(sward) + sward::render and run them on SCENE: tests/package/consumer (one frame rendered headless) and
+examples/host-app (the host's own Vulkan device, its object and sward's meadow in one image, validation clean).
 
-usage: package_test.py BUILD_DIR CONSUMER_SOURCE SCENE
+usage: package_test.py BUILD_DIR CONSUMER_SOURCE HOST_APP_SOURCE SCENE
 """
 import os
 import pathlib
@@ -20,7 +21,7 @@ def run(*command: str) -> str:
 
 
 def main() -> int:
-    build, consumer, scene = (pathlib.Path(a).resolve() for a in sys.argv[1:4])
+    build, consumer, host_app, scene = (pathlib.Path(a).resolve() for a in sys.argv[1:5])
     with tempfile.TemporaryDirectory(prefix="sward-package-") as tmp:
         staged, prefix = pathlib.Path(tmp, "staged"), pathlib.Path(tmp, "prefix")
         run("cmake", "--install", str(build), "--prefix", str(staged))
@@ -33,11 +34,12 @@ def main() -> int:
             for tree in (str(build), str(pathlib.Path(__file__).resolve().parents[2]), str(staged)):
                 if tree in text:
                     sys.exit(f"FAIL: {text_file.name} names {tree}")
-        out = pathlib.Path(tmp, "consumer-build")
-        run("cmake", "-S", str(consumer), "-B", str(out), "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
-            f"-DCMAKE_PREFIX_PATH={prefix}")
-        run("cmake", "--build", str(out))
-        print(run(str(out / "consumer"), str(scene)).strip())
+        for source, program in ((consumer, "consumer"), (host_app, "host-app")):
+            out = pathlib.Path(tmp, program + "-build")
+            run("cmake", "-S", str(source), "-B", str(out), "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
+                f"-DCMAKE_PREFIX_PATH={prefix}")
+            run("cmake", "--build", str(out))
+            print(run(str(out / program), str(scene)).strip())
         print(run(str(prefix / "bin/sward-render"), "--version").strip())
     print("PASS")
     return 0
