@@ -99,7 +99,9 @@ def _point(value):
 class Dataset:
     """A dataset sward wrote, as a sequence of frames: len(), indexing (negative too) and iteration give dicts of
     numpy arrays, the same keys as Simulator.render() plus "disparity_pfm", "disparity_kitti" and "record" (the
-    frame's frames.jsonl line). Usable as a PyTorch map-style dataset without sward depending on torch."""
+    frame's frames.jsonl line); attributes info (dataset.json), manifest (manifest.json, {} for a shard or an
+    unfinished run), calib (calib.txt as a dict, stereo), records, frames. Usable as a PyTorch map-style dataset
+    without sward depending on torch."""
 
     def __init__(self, path):
         self.root = pathlib.Path(path)
@@ -118,6 +120,8 @@ class Dataset:
                 self.records[record["frame"]] = record
         info = self.root / names["dataset"]
         self.info = json.loads(info.read_text()) if info.is_file() else {}
+        manifest = self.root / names["manifest"]
+        self.manifest = json.loads(manifest.read_text()) if manifest.is_file() else {}
         calib = self.root / names["calib"]
         self.calib = _sward.read_calib(str(calib)) if calib.is_file() else None
 

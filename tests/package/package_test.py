@@ -41,6 +41,10 @@ def main() -> int:
             run("cmake", "--build", str(out))
             print(run(str(out / program), str(scene)).strip())
         print(run(str(prefix / "bin/sward-render"), "--version").strip())
+        # The Python module from the prefix (its numpy is Debian's, as for the build tree's).
+        site = prefix / "lib/python3/dist-packages"
+        print(run("env", f"PYTHONPATH={site}", sys.executable, "-c",
+                  "import sward; print('python: sward from', sward.__file__)").strip())
     print("PASS")
     return 0
 

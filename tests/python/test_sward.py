@@ -64,6 +64,7 @@ def test_dataset_reader_reads_every_file_kind(cli_dataset):
     assert item["semantic"].dtype == np.uint8 and item["instance"].dtype == np.uint32
     assert item["preview"].shape == (64, 96, 3) and item["preview"].dtype == np.uint8
     assert data.calib["width"] == 96 and data.info["fingerprint"]["resolution"] == "96x64"
+    assert set(data.manifest["files"]) >= {"left/000002.exr", "disparity/000002.pfm", "frames.jsonl", "calib.txt"}
     with pytest.raises(IndexError):
         data[3]
 
@@ -118,6 +119,25 @@ def test_set_camera_and_a_scene_dict(tmp_path):
     assert not bitwise_equal(before, sim.render()["depth"])
 
 
+def test_an_object_posed_from_python_moves_in_the_image(tmp_path):
+    rover = str(pathlib.Path(os.environ["SWARD_TEST_SCENE"]).parents[2] / "examples/assets/rover.gltf")
+    document = json.loads(scene_with(tmp_path, SMALL).read_text())
+    document.update(vehicles=[], objects=[{"model": rover, "path": {"points": [[50, 51]]}}])
+    sim = sward.Simulator(document)
+    sim.set_camera(position=[50, 46, 4], look_at=[50, 51, 0])
+    object_id = 16_000_000  # instance id of object 0 (docs/dataset-format.md)
+
+    def columns():
+        return np.nonzero((sim.render()["instance"] == object_id).any(axis=0))[0]
+
+    before = columns()
+    sim.set_object_pose(0, [48.5, 51], heading_deg=90)
+    after = columns()
+    assert before.size and after.size and after.mean() < before.mean()  # moved to -x: left in the image
+    with pytest.raises(sward.Error, match="no object 1"):
+        sim.set_object_pose(1, [0, 0], 0)
+
+
 def test_bad_input_raises_the_cli_message(tmp_path):
     scene = scene_with(tmp_path, {"render.samples": 3})
     cli = subprocess.run([RENDER, str(scene), "--out", str(tmp_path / "out")], capture_output=True, text=True)
@@ -130,3 +150,5 @@ def test_bad_input_raises_the_cli_message(tmp_path):
         sward.Simulator(scene_with(tmp_path, SMALL), overrides={"render.samples.x": 1})
     with pytest.raises(sward.Error, match="centre"):
         sward.Simulator(scene_with(tmp_path, SMALL)).set_colliders([{"radius": 1}])
+    with pytest.raises(sward.Error, match="not a sward dataset"):
+        sward.Dataset(tmp_path)
