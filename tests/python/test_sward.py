@@ -5,6 +5,8 @@ import json
 import os
 import pathlib
 import subprocess
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -136,6 +138,23 @@ def test_an_object_posed_from_python_moves_in_the_image(tmp_path):
     assert before.size and after.size and after.mean() < before.mean()  # moved to -x: left in the image
     with pytest.raises(sward.Error, match="no object 1"):
         sim.set_object_pose(1, [0, 0], 0)
+
+
+def test_rendering_releases_the_gil(tmp_path):
+    sim = sward.Simulator(scene_with(tmp_path, SMALL))
+    ticks, done = [0], threading.Event()
+
+    def render():
+        sim.render()
+        done.set()
+
+    worker = threading.Thread(target=render)
+    worker.start()
+    while not done.is_set():  # this thread keeps running while the other renders
+        ticks[0] += 1
+        time.sleep(0.001)
+    worker.join()
+    assert ticks[0] > 10
 
 
 def test_bad_input_raises_the_cli_message(tmp_path):
