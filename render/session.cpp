@@ -25,7 +25,8 @@ Session::Session(Scene scene, const SessionOptions& options)
 Session::~Session() {
     // The renderer and the simulation hold GPU objects of the context: destroyed first, then the device.
     target_.reset();
-    gpu_ = SceneGpu{};
+    gpu_.simulation.reset(); // uses the renderer's buffers: first
+    gpu_.renderer.reset();
     ctx_.reset();
 }
 
