@@ -1,8 +1,9 @@
-# sward_add_shaders(TARGET target SOURCES a.comp b.vert ... DEPENDS shared headers)
+# sward_add_shaders(TARGET target OUTPUT_DIR dir EMBED source.cpp SOURCES a.comp b.vert ... DEPENDS shared headers)
 # Compiles GLSL to SPIR-V in the build folder at build time. Every shader depends on every shared include,
-# so a change to the GPU layout header rebuilds all of them.
+# so a change to the GPU layout header rebuilds all of them. EMBED names a C++ source holding every module as an
+# array (tools/embed-spirv.py), compiled into sward_engine: programs carry their shaders and look up no folder.
 function(sward_add_shaders)
-  cmake_parse_arguments(ARG "" "TARGET;OUTPUT_DIR" "SOURCES;DEPENDS" ${ARGN})
+  cmake_parse_arguments(ARG "" "TARGET;OUTPUT_DIR;EMBED" "SOURCES;DEPENDS" ${ARGN})
   set(outputs)
   set(debug_flags)
   if(CMAKE_BUILD_TYPE STREQUAL "Debug")
@@ -20,5 +21,11 @@ function(sward_add_shaders)
       VERBATIM)
     list(APPEND outputs ${output})
   endforeach()
-  add_custom_target(${ARG_TARGET} ALL DEPENDS ${outputs})
+  add_custom_command(
+    OUTPUT ${ARG_EMBED}
+    COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/embed-spirv.py ${ARG_EMBED} ${outputs}
+    DEPENDS ${outputs} ${PROJECT_SOURCE_DIR}/tools/embed-spirv.py
+    COMMENT "Embedding SPIR-V"
+    VERBATIM)
+  add_custom_target(${ARG_TARGET} ALL DEPENDS ${outputs} ${ARG_EMBED})
 endfunction()

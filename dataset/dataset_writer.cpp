@@ -5,6 +5,7 @@
 #include "common/half_float.h"
 #include "common/parse_number.h"
 #include "dataset/fingerprint.h"
+#include "dataset/frame_truth.h"
 #include "dataset/naming.h"
 #include "dataset/occlusion.h"
 #include "io/disparity_files.h"
@@ -232,34 +233,22 @@ bool DatasetWriter::frameComplete(uint32_t frame) const {
 
 void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline) {
     const uint32_t w = images.width, h = images.height;
-    const size_t pixels = size_t(w) * h;
     auto path = [&](const char* folder, const char* extension) { return target(frameFile(folder, frame, extension)); };
 
-    std::vector<uint8_t> semantic(pixels);
-    std::vector<float> instance(pixels);
-    for (size_t i = 0; i < pixels; ++i) {
-        semantic[i] = uint8_t(images.labels[i] >> gpu::kInstanceBits);
-        instance[i] = float(images.labels[i] & ((1u << gpu::kInstanceBits) - 1u)); // exact: ids < 2^24
-    }
+    const FrameTruth truth = frameTruth(images, left.fx, stereo_ ? baseline : 0.0);
     writeExrRgbaHalf(path(kLeftFolder, ".exr"), w, h, withFullCoverage(images.rgbaHalf));
     writeExrDepth(path(kDepthFolder, ".exr"), w, h, images.depth);
-    writePng8(path(kSemanticFolder, ".png"), w, h, 1, semantic);
-    writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y"}, {instance});
+    writePng8(path(kSemanticFolder, ".png"), w, h, 1, truth.semantic);
+    writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y"}, {truth.instance});
     writePng8(path(kPreviewFolder, ".png"), w, h, 3, tonemapPreview(images.rgbaHalf, w, h));
-    if (stereo_) writeStereoFiles(frame, images, left, baseline);
+    if (stereo_) writeStereoFiles(frame, images, truth);
 }
 
-void DatasetWriter::writeStereoFiles(uint32_t frame, const FrameImages& images, const Camera& left, double baseline) {
+void DatasetWriter::writeStereoFiles(uint32_t frame, const FrameImages& images, const FrameTruth& truth) {
     const uint32_t w = images.width, h = images.height;
     auto path = [&](const char* folder, const char* extension) { return target(frameFile(folder, frame, extension)); };
-    // The rig is rectified: both views share fx, and the right view's depth gives its own disparity.
-    auto disparityOfDepth = [&](const std::vector<float>& depth) {
-        std::vector<float> disparity(depth.size());
-        for (size_t i = 0; i < depth.size(); ++i) disparity[i] = disparityOf(left.fx, baseline, depth[i]);
-        return disparity;
-    };
-    const std::vector<float> disparity = disparityOfDepth(images.depth);
-    const std::vector<float> rightDisparity = disparityOfDepth(images.rightDepth);
+    const std::vector<float>& disparity = truth.disparity;
+    const std::vector<float>& rightDisparity = truth.rightDisparity;
     writeExrRgbaHalf(path(kRightFolder, ".exr"), w, h, withFullCoverage(images.rightRgbaHalf));
     writeExrFloatChannels(path(kDisparityFolder, ".exr"), w, h, {"Y"}, {disparity});
     writePfm(path(kDisparityFolder, ".pfm"), w, h, disparity);

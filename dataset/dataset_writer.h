@@ -13,6 +13,7 @@
 #pragma once
 
 #include "dataset/frame_images.h"
+#include "dataset/frame_truth.h"
 #include "world/camera.h"
 
 #include <nlohmann/json.hpp>
@@ -73,7 +74,7 @@ public:
 private:
     std::vector<std::string> directories() const;
     // The stereo files of writeFrame: right colour, both views' disparity and depth, occlusion masks.
-    void writeStereoFiles(uint32_t frame, const FrameImages& images, const Camera& left, double baseline);
+    void writeStereoFiles(uint32_t frame, const FrameImages& images, const FrameTruth& truth);
     // The absolute path of `relative`, remembered as created by this run when no file of that name exists yet.
     std::string target(const std::string& relative);
     void createFolder(const std::string& path);

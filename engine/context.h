@@ -10,6 +10,8 @@ namespace sward {
 
 struct Context {
     explicit Context(const DeviceOptions& options) : device(options), allocator(device), submitter(device) {}
+    // Host-owned Vulkan: sward's memory and submissions on the application's device and queue (HostVulkan).
+    explicit Context(const HostVulkan& host) : device(host), allocator(device), submitter(device) {}
 
     VkDevice vk() const { return device.handle(); }
 

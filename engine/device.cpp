@@ -94,12 +94,37 @@ Device::Device(const DeviceOptions& options) {
     if (filter.empty() && std::getenv("SWARD_DEVICE")) filter = std::getenv("SWARD_DEVICE");
     pickPhysicalDevice(filter);
     createDevice(options);
-    if (!options.quiet)
-        logInfo("device: " + name_ + " (" + typeName(properties_.deviceType) + "), driver " + driver_ +
-                ", Vulkan " + versionString(properties_.apiVersion) + (validation_ ? ", validation on" : ""));
+    if (!options.quiet) logDevice();
+}
+
+Device::Device(const HostVulkan& host)
+    : instance_(host.instance), physical_(host.physical), device_(host.device), queue_(host.queue),
+      queueFamily_(host.queueFamily), drawIndirectCount_(host.drawIndirectCount), owned_(false) {
+    require(instance_ && physical_ && device_ && queue_, "host Vulkan: instance, physical device, device and queue are required");
+    uint32_t family = 0;
+    require(usable(physical_, VK_NULL_HANDLE, &family),
+            "host Vulkan: the physical device lacks Vulkan 1.3, VK_KHR_push_descriptor or a graphics + compute queue");
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &count, families.data());
+    const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+    require(queueFamily_ < count && (families[queueFamily_].queueFlags & need) == need &&
+                families[queueFamily_].timestampValidBits > 0,
+            "host Vulkan: queue family " + std::to_string(queueFamily_) + " lacks graphics, compute or timestamps");
+    readProperties();
+    loadDeviceFunctions();
+    if (!host.quiet) logDevice();
+}
+
+void Device::logDevice() const {
+    logInfo("device: " + name_ + " (" + typeName(properties_.deviceType) + "), driver " + driver_ + ", Vulkan " +
+            versionString(properties_.apiVersion) + (validation_ ? ", validation on" : "") +
+            (owned_ ? "" : ", the host's"));
 }
 
 Device::~Device() {
+    if (!owned_) return; // the host's instance and device
     if (device_) vkDestroyDevice(device_, nullptr);
     if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
     if (messenger_) {
@@ -206,6 +231,10 @@ void Device::pickPhysicalDevice(const std::string& filter) {
         throw Error("no Vulkan 1.3 device with graphics, compute and push descriptors found (available: " +
                     (names.empty() ? "none" : names) + ")");
     }
+    readProperties();
+}
+
+void Device::readProperties() {
     VkPhysicalDeviceDriverProperties driverProps{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
     VkPhysicalDeviceProperties2 props2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &driverProps};
     vkGetPhysicalDeviceProperties2(physical_, &props2);
@@ -271,6 +300,10 @@ void Device::createDevice(const DeviceOptions& options) {
     };
     VK_CHECK(vkCreateDevice(physical_, &info, nullptr, &device_));
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+    loadDeviceFunctions();
+}
+
+void Device::loadDeviceFunctions() {
     cmdPushDescriptorSet =
         reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
     require(cmdPushDescriptorSet != nullptr, "the device does not expose vkCmdPushDescriptorSetKHR");

@@ -35,9 +35,29 @@ struct DeviceOptions {
     std::function<VkSurfaceKHR(VkInstance)> createSurface;
 };
 
+// Host-owned Vulkan (docs/integration.md): the application's own instance, device and queue. sward then creates no
+// instance or device and destroys none of these. The host must have created `device` for Vulkan 1.3 with
+// VK_KHR_push_descriptor and at least the features Device::createDevice enables for itself (synchronization2,
+// dynamicRendering, maintenance4, timelineSemaphore, and storageBuffer8BitAccess, shaderInt8, shaderInt16,
+// independentBlend, multiDrawIndirect, drawIndirectFirstInstance, depthClamp, samplerAnisotropy,
+// fragmentStoresAndAtomics where supported), on a queue family with graphics, compute and timestamps. Vulkan
+// requires external synchronisation of a queue: the host must not submit to `queue` from another thread while a
+// sward call that submits is running.
+struct HostVulkan {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physical = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    uint32_t queueFamily = 0;
+    VkQueue queue = VK_NULL_HANDLE;
+    bool drawIndirectCount = false; // the host enabled VkPhysicalDeviceVulkan12Features::drawIndirectCount
+    bool quiet = false;             // don't log the device
+};
+
 class Device {
 public:
     explicit Device(const DeviceOptions& options);
+    // The host's device (see HostVulkan): checked to be Vulkan 1.3 with a suitable queue family, never destroyed.
+    explicit Device(const HostVulkan& host);
     ~Device();
     Device(const Device&) = delete;
     Device& operator=(const Device&) = delete;
@@ -54,6 +74,7 @@ public:
     const std::string& driver() const { return driver_; }
     VkSurfaceKHR surface() const { return surface_; } // null without DeviceOptions::createSurface
     bool isCpu() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+    bool hostOwned() const { return !owned_; } // made by the application (HostVulkan)
     bool validationEnabled() const { return validation_; }
     bool supportsDrawIndirectCount() const { return drawIndirectCount_; }
 
@@ -70,6 +91,9 @@ private:
     void createInstance(const DeviceOptions& options);
     void pickPhysicalDevice(const std::string& filter);
     void createDevice(const DeviceOptions& options);
+    void readProperties();
+    void loadDeviceFunctions();
+    void logDevice() const;
 
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
@@ -83,6 +107,7 @@ private:
     std::string name_, driver_;
     bool validation_ = false;
     bool drawIndirectCount_ = false;
+    bool owned_ = true; // false: the host's instance and device (HostVulkan), left alive
     std::atomic<uint32_t> validationMessages_{0};
 };
 

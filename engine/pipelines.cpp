@@ -5,30 +5,12 @@
 
 #include <algorithm>
 
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-
 namespace sward {
 
-std::string shaderDirectory() {
-    if (const char* env = std::getenv("SWARD_SHADER_DIR"); env && *env) return env;
-#ifdef SWARD_BUILD_SHADER_DIR
-    if (std::filesystem::is_directory(SWARD_BUILD_SHADER_DIR)) return SWARD_BUILD_SHADER_DIR;
-#endif
-    std::error_code ec;
-    auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    return (exe.parent_path().parent_path() / "shaders").string();
-}
-
 VkShaderModule loadShaderModule(VkDevice device, const std::string& name) {
-    std::string path = shaderDirectory() + "/" + name + ".spv";
-    std::ifstream file(path, std::ios::binary | std::ios::ate);
-    require(file.good(), "cannot open compiled shader '" + path + "' (is the build complete?)");
-    std::vector<uint32_t> code(size_t(file.tellg()) / 4);
-    file.seekg(0);
-    file.read(reinterpret_cast<char*>(code.data()), std::streamsize(code.size() * 4));
-    require(!code.empty() && code[0] == 0x07230203u, "'" + path + "' is not a SPIR-V module");
+    const std::span<const uint32_t> code = spirvModule(name);
+    require(!code.empty(), "no compiled shader '" + name + "' in sward_engine");
+    require(code[0] == 0x07230203u, "shader '" + name + "' is not a SPIR-V module");
     VkShaderModuleCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = code.size() * 4, .pCode = code.data()};
     VkShaderModule module = VK_NULL_HANDLE;

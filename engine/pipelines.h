@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -56,9 +57,10 @@ struct GraphicsPipelineDesc {
     SpecConstants specialization; // applied to both stages
 };
 
-// Directory holding compiled shaders: $SWARD_SHADER_DIR, else the build's shader folder, else
-// <executable>/../shaders.
-std::string shaderDirectory();
+// The compiled SPIR-V of shader `name` (e.g. "terrain.vert"), empty when there is none. The modules are compiled at
+// build time and embedded in sward_engine (tools/embed-spirv.py), so a program finds them wherever it and the
+// library live: the build tree, an install prefix, the Python module.
+std::span<const uint32_t> spirvModule(const std::string& name);
 VkShaderModule loadShaderModule(VkDevice device, const std::string& name);
 
 Pipeline createComputePipeline(Device& device, const std::string& shader, const PipelineLayoutDesc& layout,

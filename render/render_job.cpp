@@ -8,6 +8,8 @@
 #include "engine/context.h"
 #include "io/sha256.h"
 #include "render/scene_gpu.h"
+#include "render/sequence_frame.h"
+#include "scene/scene_input.h"
 #include "scene/scene_resources.h"
 
 #include <chrono>
@@ -48,24 +50,20 @@ struct JobPlan {
     uint32_t shardIndex = 0, shardCount = 1;
 };
 
-// --camera / --look-at / --fov replace the scene's camera; a fixed target needs a fixed camera.
-void applyCameraOverrides(Scene& scene, const RenderJobOptions& options) {
-    if (options.cameraPosition) {
-        scene.camera.position = *options.cameraPosition;
-        scene.camera.useHeightAboveGround = false;
-        scene.camera.hasPath = false;
-        scene.camera.rig.mountObject.clear();
+SceneInput sceneInput(const RenderJobOptions& options) {
+    return SceneInput{.path = options.scenePath, .text = options.sceneText, .overrides = options.overrides,
+                      .seed = options.seed, .allowedAssetDirs = options.allowAssets};
+}
+
+// The scene's SHA-256 in the fingerprint: of the file as it is (so datasets made before overrides existed keep
+// their fingerprint), else of the document actually parsed (text, overrides).
+std::string sceneHash(const RenderJobOptions& options) {
+    if (options.sceneText || !options.overrides.empty()) {
+        SceneInput input = sceneInput(options);
+        input.seed.reset(); // the seed is a fingerprint key of its own
+        return sha256Hex(std::string_view(sceneInputJson(input).dump()));
     }
-    if (options.cameraLookAt) { // the scene's position unless --camera
-        scene.camera.lookAt = *options.cameraLookAt;
-        scene.camera.lookAtUsesGround = false;
-        scene.camera.hasPath = false;
-        scene.camera.rig.mountObject.clear();
-    }
-    if (options.fovYDegrees) {
-        require(*options.fovYDegrees >= 1.0 && *options.fovYDegrees <= 170.0, "--fov must be between 1 and 170 degrees");
-        scene.camera.fovYDegrees = *options.fovYDegrees;
-    }
+    return options.scenePath.empty() ? sha256Hex(std::string_view("<built-in>")) : sha256File(options.scenePath);
 }
 
 JobPlan planJob(Scene& scene, const RenderJobOptions& options) {
@@ -74,7 +72,7 @@ JobPlan planJob(Scene& scene, const RenderJobOptions& options) {
     plan.samples = options.samples.value_or(scene.render.samples);
     require(std::isfinite(options.time) && options.time >= 0.0, "--time must be a finite, non-negative number of seconds");
     require(plan.samples == 1 || plan.samples == 4, "--samples must be 1 or 4 (got " + std::to_string(plan.samples) + ")");
-    applyCameraOverrides(scene, options);
+    overrideCamera(scene, options.cameraPosition, options.cameraLookAt, options.fovYDegrees);
     plan.endFrame = scene.sequence.frames;
     if (options.frames) {
         parseFrameRange(*options.frames, plan.firstFrame, plan.endFrame);
@@ -89,35 +87,12 @@ JobPlan planJob(Scene& scene, const RenderJobOptions& options) {
     return plan;
 }
 
-RigCameras rigAt(const SceneResources& r, const JobPlan& plan, uint32_t frame) {
-    return sceneRig(r.scene, r.terrain, r.models, plan.width, plan.height, double(frame) * r.scene.sequence.timeStep);
-}
-
-// The first rig pose (which checks a mount) and the sensor model (which checks its lens is invertible over the
-// image): both before anything is written.
-std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, const JobPlan& plan, RigCameras& firstRig) {
-    try {
-        firstRig = rigAt(r, plan, plan.firstFrame);
-    } catch (const Error& e) {
-        throw Error(r.scene.source + ": 'camera.mount': " + e.what());
-    }
-    std::optional<SensorModel> sensor;
-    if (r.scene.camera.rig.sensor.enabled) {
-        try {
-            sensor.emplace(r.scene.camera.rig.sensor, Intrinsics::of(firstRig.left));
-        } catch (const Error& e) {
-            throw Error(r.scene.source + ": 'camera.sensor': " + e.what());
-        }
-    }
-    return sensor;
-}
-
 // The frames.jsonl records. They cover the scene's whole sequence, whatever this run renders: every record is a
 // pure function of the scene and the tick, so shards and resumed runs write the very same file.
 std::vector<nlohmann::json> sequenceRecords(const SceneResources& r, const JobPlan& plan, double timeOffset) {
     std::vector<nlohmann::json> records;
     for (uint32_t frame = 0; frame < r.scene.sequence.frames; ++frame)
-        records.push_back(frameRecord(r.scene, r.models, r.terrain, rigAt(r, plan, frame), frame, timeOffset,
+        records.push_back(frameRecord(r.scene, r.models, r.terrain, sequenceRig(r, plan.width, plan.height, frame), frame, timeOffset,
                                       r.withVegetation()));
     return records;
 }
@@ -129,8 +104,7 @@ nlohmann::json jobFingerprint(const Scene& scene, const JobPlan& plan, const Ren
     auto vec3 = [](const std::optional<glm::dvec3>& v) {
         return v ? nlohmann::json{v->x, v->y, v->z} : nlohmann::json(nullptr);
     };
-    return {{"scene_sha256", options.scenePath.empty() ? sha256Hex(std::string_view("<built-in>"))
-                                                       : sha256File(options.scenePath)},
+    return {{"scene_sha256", sceneHash(options)},
             {"assets", assetHashes(assets)},
             {"seed", scene.seed},
             {"resolution", std::to_string(plan.width) + "x" + std::to_string(plan.height)},
@@ -143,8 +117,15 @@ nlohmann::json jobFingerprint(const Scene& scene, const JobPlan& plan, const Ren
             {"sward_revision", SWARD_REVISION}};
 }
 
-// scene.json: the scene file's bytes; the built-in scene is the empty object.
-std::string sceneCopyText(const std::string& scenePath) {
+// scene.json: the scene file's bytes; the built-in scene is the empty object; a scene given as text or with
+// overrides (the Python module) is the document actually parsed, as sceneHash hashes it.
+std::string sceneCopyText(const RenderJobOptions& options) {
+    if (options.sceneText || !options.overrides.empty()) {
+        SceneInput input = sceneInput(options);
+        input.seed.reset();
+        return sceneInputJson(input).dump(2) + "\n";
+    }
+    const std::string& scenePath = options.scenePath;
     if (scenePath.empty()) return "{}\n";
     std::ifstream file(scenePath, std::ios::binary);
     std::stringstream text;
@@ -179,19 +160,9 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
     Progress progress{!options.quiet && isatty(fileno(stderr)), uint32_t(todo.size())};
     uint32_t done = 0;
     for (uint32_t frame : todo) {
-        const double time = double(frame) * r.scene.sequence.timeStep;
-        RigCameras cameras = rigAt(r, plan, frame);
-        std::function<void(VkCommandBuffer)> tick;
-        if (gpu.simulation) {
-            gpu.simulation->runTicksBefore(frame); // ticks of frames skipped or rendered elsewhere (shards)
-            tick = [&](VkCommandBuffer cmd) { gpu.simulation->recordNextTick(cmd, frame); };
-        }
-        FrameImages images = target.render(*gpu.renderer, cameras.left, options.time + time, frame, tick,
-                                           rig.stereo() ? &cameras.right : nullptr);
-        if (sensor) {
-            sensor->applyHalf(r.scene.seed, frame, 0, images.rgbaHalf);
-            if (rig.stereo()) sensor->applyHalf(r.scene.seed, frame, 1, images.rightRgbaHalf);
-        }
+        RigCameras cameras;
+        const FrameImages images =
+            renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, cameras);
         dataset.writeFrame(frame, images, cameras.left, rig.baseline);
         progress.frameDone(++done, frame);
     }
@@ -210,7 +181,7 @@ void writeJobManifest(DatasetWriter& dataset, const Scene& scene, const JobPlan&
                                  {"time", options.time}};
     if (options.cameraPosition || options.cameraLookAt || options.fovYDegrees) jobOptions["camera_override"] = true;
     nlohmann::json info = {{"format", "sward-dataset-1"},
-                           {"scene", options.scenePath.empty() ? "<built-in>" : options.scenePath},
+                           {"scene", options.sceneText ? "<scene>" : options.scenePath.empty() ? "<built-in>" : options.scenePath},
                            {"scene_sha256", fingerprint["scene_sha256"]},
                            {"assets", assetManifest(assets, std::filesystem::path(options.scenePath).parent_path())},
                            {"units", datasetUnits()},
@@ -233,11 +204,12 @@ void runRenderJob(const RenderJobOptions& options) {
     const auto start = std::chrono::steady_clock::now();
 
     // Everything that can be checked without a GPU is checked first, so bad input fails fast and writes nothing.
-    Scene scene = loadScene(options.scenePath, options.seed, options.allowAssets);
+    Scene scene = loadSceneInput(sceneInput(options));
     const JobPlan plan = planJob(scene, options);
     SceneResources resources = buildSceneResources(std::move(scene), !options.noVegetation);
     RigCameras firstRig;
-    const std::optional<SensorModel> sensor = checkRigAndSensor(resources, plan, firstRig);
+    const std::optional<SensorModel> sensor =
+        checkRigAndSensor(resources, plan.width, plan.height, plan.firstFrame, firstRig);
     const bool stereo = resources.scene.camera.rig.stereo();
 
     const std::vector<nlohmann::json> records = sequenceRecords(resources, plan, options.time);
@@ -248,7 +220,7 @@ void runRenderJob(const RenderJobOptions& options) {
     const uint32_t skipped = (plan.endFrame - plan.firstFrame) - uint32_t(todo.size());
     const std::vector<SceneAsset> assets = sceneAssets(resources.scene);
     nlohmann::json fingerprint = jobFingerprint(resources.scene, plan, options, assets);
-    const std::string sceneText = sceneCopyText(options.scenePath);
+    const std::string sceneText = sceneCopyText(options);
     const uint64_t needed = todo.empty() ? 0 : bytesNeeded(dataset, plan, records, sceneText.size());
     dataset.check(fingerprint, options.overwrite, needed); // before the device: a bad folder fails fast
 

@@ -12,6 +12,8 @@ namespace sward {
 
 struct RenderJobOptions {
     std::string scenePath;  // empty = built-in default scene
+    std::optional<std::string> sceneText;   // the scene as JSON text instead of a file (the Python module)
+    std::string overrides;                  // JSON object of dotted keys -> values (scene/scene_input.h)
     std::string outDir = "out";
     std::optional<std::string> resolution;  // "WxH", overrides the scene
     std::optional<uint32_t> samples;        // 1 or 4, overrides the scene

@@ -1,4 +1,5 @@
 #include "scene/scene.h"
+#include "scene/scene_input.h"
 
 #include "common/error.h"
 #include "common/json_reader.h"
@@ -269,13 +270,7 @@ Scene parseScene(const nlohmann::json& json, const std::string& source, const As
 
 Scene loadScene(const std::string& path, std::optional<uint64_t> seed,
                 const std::vector<std::string>& allowedAssetDirs) {
-    nlohmann::json json = nlohmann::json::object();
-    if (!path.empty()) json = readJsonFile(path, "scene file");
-    if (seed && json.is_object()) json["seed"] = *seed; // before parsing: every seed derived from it follows
-    if (path.empty()) return parseScene(json, "<built-in>");
-    // A scene file's assets stay inside its folder and the folders the user allows.
-    return parseScene(json, path,
-                      AssetPolicy::confinedTo(std::filesystem::path(path).parent_path().string(), allowedAssetDirs));
+    return loadSceneInput(SceneInput{.path = path, .seed = seed, .allowedAssetDirs = allowedAssetDirs});
 }
 
 Atlas buildAtlas(const Scene& scene) {

@@ -1,5 +1,7 @@
 #include "scene/vehicles.h"
 
+#include "scene/collider_params.h"
+
 #include "common/json_reader.h"
 #include "scene/scene_limits.h"
 #include "world/ground.h"
@@ -80,30 +82,10 @@ VehicleParams parseVehicle(JsonReader r) {
 }
 
 MovingColliderParams parseMovingCollider(JsonReader r) {
-    const auto shape = ColliderShape(r.choice("shape", 0, {"sphere", "capsule", "box"}));
-    const auto kind = ColliderKind(r.choice("kind", 0, {"push", "gust", "downwash", "mower"}));
     MovingColliderParams m;
+    m.collider = parseColliderShape(r);
     m.path = parsePath(r.required("path", "the collider's path"), r.source(), r.childPath("path"));
-    const float radius = r.numberF("radius", 0.5f, 0.01, 100.0);
-    const float force = r.numberF("force", 0.5f, 0.0, 1e6);
-    // "length" is a downwash's reach below the path (default 2 m) or a capsule's segment length (default 1 m).
-    const bool downwash = kind == ColliderKind::Downwash;
-    const float length = r.numberF("length", downwash ? 2.0f : 1.0f, downwash ? 0.01 : 0.0, 1000.0);
-    const glm::vec3 half(r.vector<3>("half_extents", glm::dvec3(0.5), 0.0, 1000.0));
-    const float cutHeight = r.numberF("cut_height", 0.1f, 0.0, 10.0);
     r.finish();
-    if (downwash) {
-        m.collider = makeDownwash(0, glm::vec3(0.0f), radius, length, force);
-        return m;
-    }
-    if (shape == ColliderShape::Sphere)
-        m.collider = makeSphere(0, glm::vec3(0.0f), radius, force, kind);
-    else if (shape == ColliderShape::Capsule)
-        m.collider =
-            makeCapsule(0, glm::vec3(-0.5f * length, 0, 0), glm::vec3(0.5f * length, 0, 0), radius, force, kind);
-    else
-        m.collider = makeBox(0, glm::vec3(0.0f), half, glm::mat3(1.0f), force, kind);
-    if (kind == ColliderKind::Mower) m.collider = makeMower(m.collider, cutHeight);
     return m;
 }
 

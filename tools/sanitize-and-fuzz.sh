@@ -58,7 +58,7 @@ echo "sanitize-and-fuzz: build took $(seconds_since "$start") s"
 export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
 export LSAN_OPTIONS="suppressions=$root/tests/sanitize/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-export SWARD_VALIDATION=1 OPENCV_IO_ENABLE_OPENEXR=1 SWARD_SHADER_DIR="$root/$build/shaders"
+export SWARD_VALIDATION=1 OPENCV_IO_ENABLE_OPENEXR=1
 start=$(date +%s)
 for suite in $cpu_suites; do
   "$build/bin/sward_${suite}_tests" --gtest_brief=1 > "$build/sanitize-$suite.log" 2>&1 \

@@ -20,6 +20,8 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-calib3d-dev
   # configuration, command line, UI
   nlohmann-json3-dev libcli11-dev libimgui-dev
+  # the Python module (python/): pybind11 and numpy; its tests run under pytest
+  pybind11-dev python3-dev python3-numpy python3-pytest
   # tests and benchmarks; a virtual X server for the viewer test
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
   # sward-export's point clouds read back by Open3D (tests/tools/sward-export/open3d_test.py; brings numpy)

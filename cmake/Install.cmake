@@ -1,0 +1,40 @@
+# `cmake --install build --prefix P`: the CMake package of sward (docs/architecture.md, "The installed package").
+#   P/include/sward/<layer>/*.h     headers by layer, included as "engine/context.h" (P/include/sward is the one
+#                                   include directory, as the source root is in the tree); shaders/shared/ as shared/
+#   P/lib/libsward_<layer>.a        the layer libraries; sward_engine carries the compiled shaders
+#   P/lib/cmake/sward/              swardConfig.cmake, swardConfigVersion.cmake, swardTargets.cmake
+#   P/bin/sward-*                   the tools
+# A program uses it with find_package(sward) and target_link_libraries(app sward::render): each layer is exported
+# as sward::<layer> with its dependencies on the layers below and on Debian's packages (swardConfig.cmake finds
+# them). The libraries are static, so their private dependencies are exported as link-only ones.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(SWARD_LAYERS common io world vegetation interaction scene dataset eval engine render)
+set(SWARD_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/sward)
+
+foreach(layer ${SWARD_LAYERS})
+  set_target_properties(sward_${layer} PROPERTIES EXPORT_NAME ${layer})
+  install(DIRECTORY ${layer}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sward/${layer} FILES_MATCHING PATTERN "*.h")
+endforeach()
+install(DIRECTORY shaders/shared/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sward/shared FILES_MATCHING PATTERN "*.h")
+# Interface helpers the static libraries name in their link interfaces: the GPU layout headers, OpenCV's modules
+# (cmake/OpenCVModules.cmake) and sward's warning / sanitizer options (only their link options reach a consumer).
+set_target_properties(sward_gpu_layout PROPERTIES EXPORT_NAME gpu_layout)
+set_target_properties(sward_opencv PROPERTIES EXPORT_NAME opencv)
+set_target_properties(sward_options PROPERTIES EXPORT_NAME options)
+
+list(TRANSFORM SWARD_LAYERS PREPEND sward_ OUTPUT_VARIABLE SWARD_LAYER_TARGETS)
+install(TARGETS ${SWARD_LAYER_TARGETS} sward_gpu_layout sward_opencv sward_options
+        EXPORT swardTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(TARGETS sward-render sward-eval sward-view sward-bench sward-atlas sward-rover
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(EXPORT swardTargets NAMESPACE sward:: DESTINATION ${SWARD_CMAKE_DIR})
+
+configure_package_config_file(cmake/swardConfig.cmake.in ${CMAKE_BINARY_DIR}/swardConfig.cmake
+                              INSTALL_DESTINATION ${SWARD_CMAKE_DIR})
+# 0.x: a minor version may change the API, so only the same minor version is compatible.
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/swardConfigVersion.cmake COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/swardConfig.cmake ${CMAKE_BINARY_DIR}/swardConfigVersion.cmake
+        DESTINATION ${SWARD_CMAKE_DIR})

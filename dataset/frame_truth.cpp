@@ -1,0 +1,28 @@
+#include "dataset/frame_truth.h"
+
+#include "scene/camera_rig.h"
+#include "shared/gpu_layout.h"
+
+namespace sward {
+
+FrameTruth frameTruth(const FrameImages& images, double focalPx, double baseline) {
+    const size_t pixels = size_t(images.width) * images.height;
+    FrameTruth truth{std::vector<uint8_t>(pixels), std::vector<float>(pixels), {}};
+    for (size_t i = 0; i < pixels; ++i) {
+        truth.semantic[i] = uint8_t(images.labels[i] >> gpu::kInstanceBits);
+        truth.instance[i] = float(images.labels[i] & ((1u << gpu::kInstanceBits) - 1u)); // exact: ids < 2^24
+    }
+    // The rig is rectified: both views share fx, and the right view's depth gives its own disparity.
+    auto disparityOfDepth = [&](const std::vector<float>& depth) {
+        std::vector<float> disparity(depth.size());
+        for (size_t i = 0; i < depth.size(); ++i) disparity[i] = disparityOf(focalPx, baseline, depth[i]);
+        return disparity;
+    };
+    if (baseline > 0.0) {
+        truth.disparity = disparityOfDepth(images.depth);
+        truth.rightDisparity = disparityOfDepth(images.rightDepth);
+    }
+    return truth;
+}
+
+} // namespace sward

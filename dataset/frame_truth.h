@@ -1,0 +1,22 @@
+// The ground-truth images of a rendered frame as a dataset stores them (docs/dataset-format.md): the one
+// conversion used by the dataset writer and by the Python module's frames, so both are bitwise the same.
+#pragma once
+
+#include "dataset/frame_images.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace sward {
+
+struct FrameTruth {
+    std::vector<uint8_t> semantic;  // class per pixel (labels >> gpu::kInstanceBits)
+    std::vector<float> instance;    // instance id per pixel, exact in float32 (ids < 2^24)
+    std::vector<float> disparity;   // stereo: f * B / depth in pixels, 0 where nothing was hit; empty for mono
+    std::vector<float> rightDisparity; // the same of the right view's depth, when the frame has it
+};
+
+// `focalPx` and `baseline` (metres) are the left camera's and the rig's; baseline 0 = mono (no disparity).
+FrameTruth frameTruth(const FrameImages& images, double focalPx, double baseline);
+
+} // namespace sward

@@ -1,0 +1,209 @@
+// _sward: the Python bindings of sward (python/sward/__init__.py is the API users see; docs/python.md). Thin: every
+// call goes to render/session.h, render/render_job.h, scene/scene_input.h or the readers of io/, and converts
+// arrays. sward::Error becomes sward.Error with the message the command-line tools print.
+#include "common/error.h"
+#include "common/half_float.h"
+#include "common/json_reader.h"
+#include "dataset/frame_truth.h"
+#include "dataset/naming.h"
+#include "io/disparity_files.h"
+#include "io/image_files.h"
+#include "io/image_io.h"
+#include "render/render_job.h"
+#include "render/session.h"
+#include "scene/collider_params.h"
+#include "scene/scene_input.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+
+namespace py = pybind11;
+using namespace sward;
+
+namespace {
+
+// A height x width (x channels) numpy array holding a copy of `values`.
+template <typename T>
+py::array_t<T> image(const std::vector<T>& values, uint32_t width, uint32_t height, uint32_t channels = 1) {
+    std::vector<py::ssize_t> shape = {py::ssize_t(height), py::ssize_t(width)};
+    if (channels > 1) shape.push_back(channels);
+    py::array_t<T> out(shape);
+    std::copy(values.begin(), values.end(), out.mutable_data());
+    return out;
+}
+
+py::array_t<float> colour(const std::vector<uint16_t>& half, uint32_t width, uint32_t height) {
+    std::vector<float> rgba(half.size());
+    for (size_t i = 0; i < half.size(); ++i) rgba[i] = halfBitsToFloat(half[i]); // exact
+    return image(rgba, width, height, 4);
+}
+
+// The frame as numpy arrays, named and converted as the dataset's files hold them (dataset/frame_truth.h).
+py::dict frameDict(const SessionFrame& f) {
+    const FrameImages& im = f.images;
+    const uint32_t w = im.width, h = im.height;
+    const FrameTruth truth = frameTruth(im, f.cameras.left.fx, f.baseline);
+    std::vector<uint32_t> instance(truth.instance.size());
+    for (size_t i = 0; i < instance.size(); ++i) instance[i] = uint32_t(truth.instance[i]);
+    py::dict d;
+    d["frame"] = f.frame;
+    d["left"] = colour(im.rgbaHalf, w, h);
+    d["depth"] = image(im.depth, w, h);
+    d["semantic"] = image(truth.semantic, w, h);
+    d["instance"] = image(instance, w, h);
+    d["preview"] = image(tonemapPreview(im.rgbaHalf, w, h), w, h, 3);
+    if (f.baseline > 0.0) {
+        d["right"] = colour(im.rightRgbaHalf, w, h);
+        d["disparity"] = image(truth.disparity, w, h);
+        d["preview_right"] = image(tonemapPreview(im.rightRgbaHalf, w, h), w, h, 3);
+    }
+    return d;
+}
+
+std::optional<glm::dvec3> point(const std::optional<std::vector<double>>& v, const char* name) {
+    if (!v) return std::nullopt;
+    require(v->size() == 3, std::string(name) + " must be 3 numbers x, y, z");
+    return glm::dvec3((*v)[0], (*v)[1], (*v)[2]);
+}
+
+// An image file as stored: EXR as float32, PNG as uint8 / uint16 (io/image_io.h reads samples normalised).
+py::array readImage(const std::string& path) {
+    ImageData im;
+    {
+        py::gil_scoped_release release;
+        im = loadImage(path);
+    }
+    if (im.bitDepth == 32) return image(im.samples, im.width, im.height, im.channels);
+    const float scale = im.bitDepth == 16 ? 65535.0f : 255.0f;
+    std::vector<uint16_t> values(im.samples.size());
+    for (size_t i = 0; i < values.size(); ++i) values[i] = uint16_t(std::lround(im.samples[i] * scale));
+    if (im.bitDepth == 16) return image(values, im.width, im.height, im.channels);
+    return image(std::vector<uint8_t>(values.begin(), values.end()), im.width, im.height, im.channels);
+}
+
+py::array_t<float> readDisparityFile(const std::string& path) {
+    DisparityMap map;
+    {
+        py::gil_scoped_release release;
+        map = readDisparity(path);
+    }
+    return image(map.values, map.width, map.height);
+}
+
+py::dict readCalib(const std::string& path) {
+    const StereoCalib c = readMiddleburyCalib(path);
+    py::dict d;
+    d["cam0"] = c.cam0;
+    d["cam1"] = c.cam1;
+    d["doffs"] = c.doffs;
+    d["baseline_mm"] = c.baselineMm;
+    d["width"] = c.width;
+    d["height"] = c.height;
+    d["ndisp"] = c.ndisp;
+    d["vmin"] = c.vmin;
+    d["vmax"] = c.vmax;
+    return d;
+}
+
+SceneInput sceneInput(const std::string& path, const std::optional<std::string>& text, const std::string& overrides,
+                      std::optional<uint64_t> seed, const std::vector<std::string>& allowAssets) {
+    return SceneInput{.path = path, .text = text, .overrides = overrides, .seed = seed, .allowedAssetDirs = allowAssets};
+}
+
+std::unique_ptr<Session> openSession(const std::string& path, const std::optional<std::string>& text,
+                                     const std::string& overrides, std::optional<uint64_t> seed,
+                                     const std::vector<std::string>& allowAssets, const SessionOptions& options) {
+    py::gil_scoped_release release;
+    return std::make_unique<Session>(loadSceneInput(sceneInput(path, text, overrides, seed, allowAssets)), options);
+}
+
+void bindSession(py::module_& m) {
+    py::class_<Session>(m, "Session")
+        .def(py::init([](const std::string& path, const std::optional<std::string>& text, const std::string& overrides,
+                         std::optional<uint64_t> seed, const std::vector<std::string>& allowAssets,
+                         const std::string& device, bool validation, bool vegetation, double time) {
+                 return openSession(path, text, overrides, seed, allowAssets,
+                                    SessionOptions{device, validation, vegetation, time});
+             }))
+        .def_property_readonly("frame", &Session::frame)
+        .def_property_readonly("width", &Session::width)
+        .def_property_readonly("height", &Session::height)
+        .def_property_readonly("stereo", [](const Session& s) { return s.resources().scene.camera.rig.stereo(); })
+        .def_property_readonly("object_count", [](const Session& s) { return s.resources().scene.objects.size(); })
+        .def_property_readonly("device_name", [](const Session& s) { return s.device().name(); })
+        .def_property_readonly("validation_messages", [](const Session& s) { return s.device().validationMessageCount(); })
+        .def("step", &Session::step, py::call_guard<py::gil_scoped_release>())
+        .def("render", [](Session& s) {
+            SessionFrame f;
+            {
+                py::gil_scoped_release release;
+                f = s.render();
+            }
+            return frameDict(f);
+        })
+        .def("set_camera", [](Session& s, const std::optional<std::vector<double>>& position,
+                              const std::optional<std::vector<double>>& lookAt, std::optional<double> fov) {
+            s.setCamera(point(position, "position"), point(lookAt, "look_at"), fov);
+        })
+        .def("set_object_pose", [](Session& s, size_t k, double x, double y, double heading) {
+            s.setObjectPose(k, glm::dvec2(x, y), heading);
+        })
+        .def("set_colliders", [](Session& s, const std::string& json) {
+            s.setColliders(parsePlacedColliders(parseJsonText(json, "colliders", "colliders"), "colliders"));
+        })
+        .def("save_state", &Session::saveState, py::call_guard<py::gil_scoped_release>())
+        .def("restore_state", &Session::restoreState, py::call_guard<py::gil_scoped_release>());
+}
+
+void writeDataset(const std::string& path, const std::optional<std::string>& text, const std::string& overrides,
+                  std::optional<uint64_t> seed, const std::vector<std::string>& allowAssets, const std::string& out,
+                  const std::optional<std::string>& frames, const std::optional<std::string>& shard, bool overwrite,
+                  const std::string& device, bool validation, bool vegetation, double time) {
+    RenderJobOptions o;
+    o.scenePath = path;
+    o.sceneText = text;
+    o.overrides = overrides;
+    o.seed = seed;
+    o.allowAssets = allowAssets;
+    o.outDir = out;
+    o.frames = frames;
+    o.shard = shard;
+    o.overwrite = overwrite;
+    o.device = device;
+    o.validation = validation;
+    o.noVegetation = !vegetation;
+    o.time = time;
+    o.quiet = true;
+    py::gil_scoped_release release;
+    runRenderJob(o);
+}
+
+} // namespace
+
+PYBIND11_MODULE(_sward, m) {
+    m.doc() = "sward's C++ core; use the sward package (docs/python.md)";
+    py::register_exception<Error>(m, "Error", PyExc_RuntimeError);
+    bindSession(m);
+    m.def("write_dataset", &writeDataset);
+    m.def("read_image", &readImage);
+    m.def("read_disparity", &readDisparityFile);
+    m.def("read_calib", &readCalib);
+    m.def("frame_file", [](const std::string& folder, uint32_t frame, const std::string& extension) {
+        return frameFile(folder.c_str(), frame, extension.c_str());
+    });
+    m.def("frame_number", &frameNumber);
+    py::dict names;
+    for (auto [key, value] : {std::pair{"left", kLeftFolder}, {"right", kRightFolder}, {"depth", kDepthFolder},
+                              {"disparity", kDisparityFolder}, {"semantic", kSemanticFolder},
+                              {"instance", kInstanceFolder}, {"preview", kPreviewFolder},
+                              {"preview_right", kPreviewRightFolder}, {"calib", kCalibFile},
+                              {"frame_log", kFrameLogFile}, {"manifest", kManifestFile}, {"dataset", kDatasetFile}})
+        names[key] = value;
+    m.attr("NAMES") = names;
+    py::dict classes; // semantic class name -> pixel value of semantic images (dataset/naming.h)
+    for (const SemanticClass& c : semanticClasses()) classes[c.name] = c.id;
+    m.attr("SEMANTIC_CLASSES") = classes;
+}

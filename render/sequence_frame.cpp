@@ -1,0 +1,70 @@
+#include "render/sequence_frame.h"
+
+#include "common/error.h"
+
+#include <functional>
+
+namespace sward {
+
+void overrideCamera(Scene& scene, const std::optional<glm::dvec3>& position, const std::optional<glm::dvec3>& lookAt,
+                    const std::optional<double>& fovYDegrees) {
+    if (position) {
+        scene.camera.position = *position;
+        scene.camera.useHeightAboveGround = false;
+        scene.camera.hasPath = false;
+        scene.camera.rig.mountObject.clear();
+    }
+    if (lookAt) { // the scene's position unless a position is given too
+        scene.camera.lookAt = *lookAt;
+        scene.camera.lookAtUsesGround = false;
+        scene.camera.hasPath = false;
+        scene.camera.rig.mountObject.clear();
+    }
+    if (fovYDegrees) {
+        require(*fovYDegrees >= 1.0 && *fovYDegrees <= 170.0, "--fov must be between 1 and 170 degrees");
+        scene.camera.fovYDegrees = *fovYDegrees;
+    }
+}
+
+RigCameras sequenceRig(const SceneResources& r, uint32_t width, uint32_t height, uint32_t frame) {
+    return sceneRig(r.scene, r.terrain, r.models, width, height, double(frame) * r.scene.sequence.timeStep);
+}
+
+std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, uint32_t width, uint32_t height, uint32_t frame,
+                                             RigCameras& rig) {
+    try {
+        rig = sequenceRig(r, width, height, frame);
+    } catch (const Error& e) {
+        throw Error(r.scene.source + ": 'camera.mount': " + e.what());
+    }
+    std::optional<SensorModel> sensor;
+    if (r.scene.camera.rig.sensor.enabled) {
+        try {
+            sensor.emplace(r.scene.camera.rig.sensor, Intrinsics::of(rig.left));
+        } catch (const Error& e) {
+            throw Error(r.scene.source + ": 'camera.sensor': " + e.what());
+        }
+    }
+    return sensor;
+}
+
+FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
+                                uint32_t height, uint32_t frame, double timeOffset, const std::optional<SensorModel>& sensor, RigCameras& cameras) {
+    const double time = double(frame) * r.scene.sequence.timeStep;
+    const bool stereo = r.scene.camera.rig.stereo();
+    cameras = sequenceRig(r, width, height, frame);
+    std::function<void(VkCommandBuffer)> tick;
+    if (gpu.simulation) {
+        gpu.simulation->runTicksBefore(frame); // ticks of frames skipped or rendered elsewhere (shards)
+        tick = [&](VkCommandBuffer cmd) { gpu.simulation->recordNextTick(cmd, frame); };
+    }
+    FrameImages images =
+        target.render(*gpu.renderer, cameras.left, timeOffset + time, frame, tick, stereo ? &cameras.right : nullptr);
+    if (sensor) {
+        sensor->applyHalf(r.scene.seed, frame, 0, images.rgbaHalf);
+        if (stereo) sensor->applyHalf(r.scene.seed, frame, 1, images.rightRgbaHalf);
+    }
+    return images;
+}
+
+} // namespace sward

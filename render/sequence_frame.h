@@ -1,0 +1,36 @@
+// One frame of a scene's sequence as sward-render renders it — the rig at the frame's time, the interaction ticks up
+// to and including the frame's own, the render and the sensor model — shared by the render job and the Python
+// module (render/session.h), so a frame rendered either way is bitwise the same.
+#pragma once
+
+#include "render/scene_gpu.h"
+#include "scene/camera_rig.h"
+#include "scene/sensor_model.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <optional>
+
+namespace sward {
+
+// A fixed camera instead of the scene's (--camera, --look-at, --fov; the Python module's set_camera): a position
+// or a target given here is absolute and detaches the rig from its path and mount. Checks the field of view.
+void overrideCamera(Scene& scene, const std::optional<glm::dvec3>& position, const std::optional<glm::dvec3>& lookAt,
+                    const std::optional<double>& fovYDegrees);
+
+// The rig of frame `frame` (time frame * sequence.time_step) for width x height images.
+RigCameras sequenceRig(const SceneResources& r, uint32_t width, uint32_t height, uint32_t frame);
+
+// The rig of `frame` (which checks a mount) and the scene's sensor model (which checks its lens is invertible over
+// the image), each error naming the scene and the key; call before anything is written.
+std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, uint32_t width, uint32_t height, uint32_t frame,
+                                             RigCameras& rig);
+
+// Renders `frame` (width x height: `target`'s size): first simulates the ticks before it that have not run (each its own submission), then records
+// the frame's own tick, the views and the readbacks in one submission; applies the sensor model with the (seed,
+// frame, camera) noise key. `timeOffset` is added to the wind's time (--time). Returns the rig in `cameras`.
+FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
+                                uint32_t height, uint32_t frame, double timeOffset, const std::optional<SensorModel>& sensor, RigCameras& cameras);
+
+} // namespace sward

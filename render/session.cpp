@@ -1,0 +1,97 @@
+#include "render/session.h"
+
+#include "common/error.h"
+#include "render/object_renderer.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace sward {
+
+Session::Session(Scene scene, const SessionOptions& options)
+    : resources_(buildSceneResources(std::move(scene), options.vegetation)), options_(options),
+      width_(resources_.scene.render.width), height_(resources_.scene.render.height) {
+    require(std::isfinite(options.time) && options.time >= 0.0, "time must be a finite, non-negative number of seconds");
+    RigCameras firstRig;
+    sensor_ = checkRigAndSensor(resources_, width_, height_, 0, firstRig); // before a device exists
+    ctx_ = std::make_unique<Context>(
+        DeviceOptions{.deviceFilter = options.device, .validation = options.validation || DeviceOptions{}.validation});
+    // Always a simulation: colliders placed from the program may touch plants at any tick. A tick with no contact
+    // and no active field records nothing, so frames are the same as sward-render's.
+    gpu_ = createSceneGpu(*ctx_, resources_, resources_.scene.render.samples, SimulationMode::Always);
+    target_ = std::make_unique<OffscreenFrame>(*ctx_, width_, height_, resources_.scene.render.samples);
+}
+
+Session::~Session() {
+    // The renderer and the simulation hold GPU objects of the context: destroyed first, then the device.
+    target_.reset();
+    gpu_.simulation.reset(); // uses the renderer's buffers: first
+    gpu_.renderer.reset();
+    ctx_.reset();
+}
+
+void Session::step(uint32_t ticks) {
+    require(uint64_t(next_) + ticks <= UINT32_MAX, "step: the frame number would pass 2^32 - 1");
+    next_ += ticks;
+    if (gpu_.simulation) gpu_.simulation->runTicksBefore(next_);
+}
+
+SessionFrame Session::render() {
+    require(next_ < UINT32_MAX, "render: the frame number would pass 2^32 - 1");
+    SessionFrame out{.frame = next_};
+    out.images = renderSequenceFrame(gpu_, *target_, resources_, width_, height_, next_, options_.time, sensor_,
+                                     out.cameras);
+    out.baseline = resources_.scene.camera.rig.baseline;
+    ++next_;
+    return out;
+}
+
+void Session::setCamera(const std::optional<glm::dvec3>& position, const std::optional<glm::dvec3>& lookAt,
+                        const std::optional<double>& fovYDegrees) {
+    Scene& scene = resources_.scene;
+    const CameraParams before = scene.camera;
+    overrideCamera(scene, position, lookAt, fovYDegrees);
+    try {
+        sequenceRig(resources_, width_, height_, next_); // a camera looking at itself fails here, not mid-frame
+    } catch (const Error&) {
+        scene.camera = before;
+        throw;
+    }
+}
+
+void Session::setObjectPose(size_t k, glm::dvec2 position, double headingDegrees) {
+    ObjectRenderer* objects = gpu_.renderer->objects();
+    require(objects && k < resources_.scene.objects.size(),
+            "set_object_pose: no object " + std::to_string(k) + " (the scene has " +
+                std::to_string(resources_.scene.objects.size()) + ")");
+    require(std::isfinite(position.x) && std::isfinite(position.y) && std::isfinite(headingDegrees),
+            "set_object_pose: the pose must be finite");
+    objects->place(k, position, headingDegrees * std::numbers::pi / 180.0);
+    // The same one-point path for the node colliders (sceneColliders reads the scene's objects).
+    resources_.scene.objects[k].path.points = {position};
+    resources_.scene.objects[k].yawDegrees = headingDegrees;
+}
+
+void Session::setColliders(std::vector<Collider> colliders) {
+    simulation("set_colliders").setExternalColliders(std::move(colliders));
+}
+
+void Session::saveState(const std::string& path) {
+    Simulation& sim = simulation("save_state");
+    sim.world().saveState(path, sim.gpu().readDynamics());
+}
+
+void Session::restoreState(const std::string& path) {
+    Simulation& sim = simulation("restore_state");
+    sim.gpu().writeDynamics(sim.world().restoreState(path));
+    require(sim.world().tick() < UINT32_MAX, "restore_state: the saved tick is beyond the last frame");
+    next_ = uint32_t(sim.world().tick());
+}
+
+Simulation& Session::simulation(const char* what) {
+    require(gpu_.simulation != nullptr,
+            std::string(what) + ": the scene has no vegetation to interact with (vegetation off or empty)");
+    return *gpu_.simulation;
+}
+
+} // namespace sward

@@ -1,0 +1,81 @@
+// Session: a scene driven from a program tick by tick — the engine behind the Python module (python/). It renders
+// exactly what sward-render renders (render/sequence_frame.h): frame f shows the state after tick f, at time
+// f * sequence.time_step, so a session's frame and the dataset file of the same scene and frame are bitwise equal.
+// Between frames the program may move the camera, the scene's objects and colliders of its own, step without
+// rendering, and save or restore the interaction state.
+#pragma once
+
+#include "engine/context.h"
+#include "render/sequence_frame.h"
+#include "scene/scene_resources.h"
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace sward {
+
+struct SessionOptions {
+    std::string device;        // Vulkan device name substring (else SWARD_DEVICE, else the automatic choice)
+    bool validation = false;   // Vulkan validation (also SWARD_VALIDATION=1); messages are counted, see below
+    bool vegetation = true;    // false: the same scene without vegetation (--no-vegetation)
+    double time = 0.0;         // seconds added to every frame's wind time (--time)
+};
+
+// One rendered frame and the rig that saw it.
+struct SessionFrame {
+    uint32_t frame = 0;
+    FrameImages images;
+    RigCameras cameras;
+    double baseline = 0.0; // metres; 0 for a mono rig
+};
+
+class Session {
+public:
+    // Builds the scene's resources (every input checked), then the device, the renderer and the simulation. The
+    // resolution and samples are the scene's ("render.resolution", "render.samples").
+    Session(Scene scene, const SessionOptions& options);
+    ~Session();
+    Session(const Session&) = delete;
+    Session& operator=(const Session&) = delete;
+
+    // The next frame render() shows, = the next interaction tick.
+    uint32_t frame() const { return next_; }
+    // Advances `ticks` ticks without rendering (the interaction runs each of them).
+    void step(uint32_t ticks);
+    // Renders the next frame with its own tick, as sward-render would, and advances by one.
+    SessionFrame render();
+
+    // A fixed camera from now on (scene/render/sequence_frame.h overrideCamera).
+    void setCamera(const std::optional<glm::dvec3>& position, const std::optional<glm::dvec3>& lookAt,
+                   const std::optional<double>& fovYDegrees);
+    // Object k stands at world xy `position`, heading `headingDegrees` (from +x towards +y), on the terrain,
+    // instead of following its path: drawn there and its node colliders act there from the next tick.
+    void setObjectPose(size_t k, glm::dvec2 position, double headingDegrees);
+    // Colliders of the program's own (scene/collider_params.h), acting from the next tick until replaced.
+    void setColliders(std::vector<Collider> colliders);
+
+    // The interaction state (SWARDST1, interaction/state_file.h): tick, field activity, every plant's dynamic
+    // record. restoreState continues from the saved tick; next frame = that tick.
+    void saveState(const std::string& path);
+    void restoreState(const std::string& path);
+
+    const SceneResources& resources() const { return resources_; }
+    const Device& device() const { return ctx_->device; }
+    uint32_t width() const { return width_; }
+    uint32_t height() const { return height_; }
+
+private:
+    Simulation& simulation(const char* what);
+
+    SceneResources resources_;
+    SessionOptions options_;
+    uint32_t width_ = 0, height_ = 0;
+    std::optional<SensorModel> sensor_;
+    std::unique_ptr<Context> ctx_;
+    SceneGpu gpu_;
+    std::unique_ptr<OffscreenFrame> target_;
+    uint32_t next_ = 0;
+};
+
+} // namespace sward

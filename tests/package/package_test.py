@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""Package.InstallAndBuildAConsumer: `cmake --install` into a temporary prefix, move the prefix elsewhere (the
+package must be relocatable and must not reach back into the build tree), then build two programs against it with
+find_package(sward) + sward::render and run them on SCENE: tests/package/consumer (one frame rendered headless) and
+examples/host-app (the host's own Vulkan device, its object and sward's meadow in one image, validation clean).
+
+usage: package_test.py BUILD_DIR CONSUMER_SOURCE HOST_APP_SOURCE SCENE
+"""
+import os
+import pathlib
+import subprocess
+import sys
+import tempfile
+
+
+def run(*command: str) -> str:
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        sys.exit(f"FAIL: {' '.join(command)} exited {result.returncode}\n{result.stdout}\n{result.stderr}")
+    return result.stdout
+
+
+def main() -> int:
+    build, consumer, host_app, scene = (pathlib.Path(a).resolve() for a in sys.argv[1:5])
+    with tempfile.TemporaryDirectory(prefix="sward-package-") as tmp:
+        staged, prefix = pathlib.Path(tmp, "staged"), pathlib.Path(tmp, "prefix")
+        run("cmake", "--install", str(build), "--prefix", str(staged))
+        staged.rename(prefix)  # relocated: nothing may point at the staging path
+        for header in ("engine/context.h", "render/scene_gpu.h", "common/error.h", "shared/config.h"):
+            if not (prefix / "include/sward" / header).is_file():
+                sys.exit(f"FAIL: include/sward/{header} not installed")
+        for text_file in (prefix / "lib/cmake/sward").iterdir():
+            text = text_file.read_text()
+            for tree in (str(build), str(pathlib.Path(__file__).resolve().parents[2]), str(staged)):
+                if tree in text:
+                    sys.exit(f"FAIL: {text_file.name} names {tree}")
+        for source, program in ((consumer, "consumer"), (host_app, "host-app")):
+            out = pathlib.Path(tmp, program + "-build")
+            run("cmake", "-S", str(source), "-B", str(out), "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
+                f"-DCMAKE_PREFIX_PATH={prefix}")
+            run("cmake", "--build", str(out))
+            print(run(str(out / program), str(scene)).strip())
+        print(run(str(prefix / "bin/sward-render"), "--version").strip())
+        # The Python module from the prefix (its numpy is Debian's, as for the build tree's).
+        site = prefix / "lib/python3/dist-packages"
+        print(run("env", f"PYTHONPATH={site}", sys.executable, "-c",
+                  "import sward; print('python: sward from', sward.__file__)").strip())
+    print("PASS")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

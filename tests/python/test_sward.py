@@ -1,0 +1,173 @@
+"""The Python module (docs/python.md) against sward-render: frames bitwise equal to the CLI's files, the Dataset
+reader on every file kind, a collider moved from Python leaving a track, save / restore, bad input raising the
+CLI's message. Run by CTest (Python.Module) with PYTHONPATH=build/python, SWARD_RENDER and SWARD_TEST_SCENE."""
+import json
+import os
+import pathlib
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import sward
+
+RENDER = os.environ["SWARD_RENDER"]
+# The GPU test scene, small: a stereo rig, a rover driving through the grass (tracks from tick 0).
+SMALL = {"render.resolution": [96, 64], "render.samples": 1, "sequence.frames": 3}
+KINDS = ["left", "right", "depth", "disparity", "semantic", "instance", "preview", "preview_right"]
+
+
+def scene_with(tmp, changes):
+    document = json.loads(pathlib.Path(os.environ["SWARD_TEST_SCENE"]).read_text())
+    for dotted, value in changes.items():
+        node = document
+        *parents, last = dotted.split(".")
+        for part in parents:
+            node = node.setdefault(part, {})
+        node[last] = value
+    path = tmp / "scene.json"
+    path.write_text(json.dumps(document))
+    return path
+
+
+def bitwise_equal(a, b):
+    return a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes()
+
+
+@pytest.fixture(scope="module")
+def cli_dataset(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("cli")
+    scene = scene_with(tmp, SMALL)
+    subprocess.run([RENDER, str(scene), "--out", str(tmp / "out"), "--quiet"], check=True, capture_output=True)
+    return scene, sward.Dataset(tmp / "out")
+
+
+def test_frames_equal_the_cli_files_bitwise(cli_dataset):
+    scene, data = cli_dataset
+    assert len(data) == 3 and data.stereo
+    sim = sward.Simulator(scene)
+    for index in range(len(data)):
+        frame, files = sim.render(), data[index]
+        assert frame["frame"] == files["frame"] == index
+        for kind in KINDS:
+            assert bitwise_equal(frame[kind], files[kind]), f"frame {index}: {kind}"
+        assert frame["left"].dtype == np.float32 and frame["left"].shape == (64, 96, 4)
+    assert sim.validation_messages == 0
+
+
+def test_dataset_reader_reads_every_file_kind(cli_dataset):
+    _, data = cli_dataset
+    item = data[-1]
+    assert item["frame"] == 2 and item["record"]["frame"] == 2
+    assert bitwise_equal(item["disparity_pfm"], item["disparity"])  # PFM: float32 as written, 0 = no value
+    assert np.abs(item["disparity_kitti"] - item["disparity"]).max() <= 1 / 256  # KITTI: 1/256 pixel steps
+    assert item["semantic"].dtype == np.uint8 and item["instance"].dtype == np.uint32
+    assert item["preview"].shape == (64, 96, 3) and item["preview"].dtype == np.uint8
+    assert data.calib["width"] == 96 and data.info["fingerprint"]["resolution"] == "96x64"
+    assert set(data.manifest["files"]) >= {"left/000002.exr", "disparity/000002.pfm", "frames.jsonl", "calib.txt"}
+    with pytest.raises(IndexError):
+        data[3]
+
+
+def test_write_dataset_from_python_equals_the_cli(cli_dataset, tmp_path):
+    scene, _ = cli_dataset
+    sward.write_dataset(scene, tmp_path / "py", frames="1:3")
+    cli = json.loads((scene.parent / "out" / "manifest.json").read_text())["files"]
+    ours = json.loads((tmp_path / "py" / "manifest.json").read_text())["files"]
+    assert ours and all(cli[name] == digest for name, digest in ours.items())
+
+
+def test_a_step_and_a_render_show_what_the_cli_shows(cli_dataset):
+    scene, data = cli_dataset
+    sim = sward.Simulator(scene)
+    sim.step(2)
+    assert sim.frame == 2
+    assert bitwise_equal(sim.render()["left"], data[2]["left"])
+
+
+def test_a_collider_moved_from_python_leaves_a_track(tmp_path):
+    sim = sward.Simulator(scene_with(tmp_path, {**SMALL, "vehicles": []}))
+    sim.set_camera(position=[50, 46, 7], look_at=[50, 51, 0])  # looking down on the box's way
+    felled = sward.SEMANTIC_CLASSES["felled"]
+    assert not (sim.render()["semantic"] == felled).any()
+    for x in np.linspace(48, 52, 6):  # a heavy box dragged across the view, reaching through the ground
+        sim.set_colliders([{"shape": "box", "centre": [float(x), 51.0, 0.0], "half_extents": [0.5, 0.5, 6.0],
+                            "force": 5.0}])
+        sim.render()
+    sim.set_colliders([])
+    sim.step(3)  # gone, and the plants it felled stay down
+    assert (sim.render()["semantic"] == felled).sum() > 0
+
+
+def test_save_and_restore_continue_bitwise(tmp_path):
+    sim = sward.Simulator(scene_with(tmp_path, SMALL))
+    sim.step(1)
+    sim.save_state(tmp_path / "state.bin")
+    first = sim.render()
+    sim.render()
+    sim.restore_state(tmp_path / "state.bin")
+    assert sim.frame == 1
+    again = sim.render()
+    assert all(bitwise_equal(first[k], again[k]) for k in KINDS)
+
+
+def test_set_camera_and_a_scene_dict(tmp_path):
+    document = json.loads(scene_with(tmp_path, SMALL).read_text())
+    sim = sward.Simulator(document, overrides={"vehicles": []})
+    before = sim.render()["depth"]
+    sim.set_camera(position=[50, 40, 8], look_at=[50, 50, 0])
+    assert not bitwise_equal(before, sim.render()["depth"])
+
+
+def test_an_object_posed_from_python_moves_in_the_image(tmp_path):
+    rover = str(pathlib.Path(os.environ["SWARD_TEST_SCENE"]).parents[2] / "examples/assets/rover.gltf")
+    document = json.loads(scene_with(tmp_path, SMALL).read_text())
+    document.update(vehicles=[], objects=[{"model": rover, "path": {"points": [[50, 51]]}}])
+    sim = sward.Simulator(document)
+    sim.set_camera(position=[50, 46, 4], look_at=[50, 51, 0])
+    object_id = 16_000_000  # instance id of object 0 (docs/dataset-format.md)
+
+    def columns():
+        return np.nonzero((sim.render()["instance"] == object_id).any(axis=0))[0]
+
+    before = columns()
+    sim.set_object_pose(0, [48.5, 51], heading_deg=90)
+    after = columns()
+    assert before.size and after.size and after.mean() < before.mean()  # moved to -x: left in the image
+    with pytest.raises(sward.Error, match="no object 1"):
+        sim.set_object_pose(1, [0, 0], 0)
+
+
+def test_rendering_releases_the_gil(tmp_path):
+    sim = sward.Simulator(scene_with(tmp_path, SMALL))
+    ticks, done = [0], threading.Event()
+
+    def render():
+        sim.render()
+        done.set()
+
+    worker = threading.Thread(target=render)
+    worker.start()
+    while not done.is_set():  # this thread keeps running while the other renders
+        ticks[0] += 1
+        time.sleep(0.001)
+    worker.join()
+    assert ticks[0] > 10
+
+
+def test_bad_input_raises_the_cli_message(tmp_path):
+    scene = scene_with(tmp_path, {"render.samples": 3})
+    cli = subprocess.run([RENDER, str(scene), "--out", str(tmp_path / "out")], capture_output=True, text=True)
+    assert cli.returncode == 1
+    message = cli.stderr.strip().removeprefix("sward-render: error: ")
+    with pytest.raises(sward.Error) as error:
+        sward.Simulator(scene)
+    assert str(error.value) == message
+    with pytest.raises(sward.Error, match="not an object"):
+        sward.Simulator(scene_with(tmp_path, SMALL), overrides={"render.samples.x": 1})
+    with pytest.raises(sward.Error, match="centre"):
+        sward.Simulator(scene_with(tmp_path, SMALL)).set_colliders([{"radius": 1}])
+    with pytest.raises(sward.Error, match="not a sward dataset"):
+        sward.Dataset(tmp_path)
