@@ -88,7 +88,9 @@ JobPlan planJob(Scene& scene, const RenderJobOptions& options) {
 }
 
 RigCameras rigAt(const SceneResources& r, const JobPlan& plan, uint32_t frame) {
-    return sceneRig(r.scene, r.terrain, r.models, plan.width, plan.height, double(frame) * r.scene.sequence.timeStep);
+    const double time = double(frame) * r.scene.sequence.timeStep;
+    if (r.world) return sceneRig(r.scene, cameraGround(r.scene, time), r.models, plan.width, plan.height, time);
+    return sceneRig(r.scene, r.terrain, r.models, plan.width, plan.height, time);
 }
 
 // The first rig pose (which checks a mount) and the sensor model (which checks its lens is invertible over the
@@ -172,6 +174,11 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
     for (uint32_t frame : todo) {
         const double time = double(frame) * r.scene.sequence.timeStep;
         RigCameras cameras = rigAt(r, plan, frame);
+        if (r.world) { // every tile within load_radius of the camera, generated before the frame: deterministic
+            const glm::dvec2 camera(cameras.left.position);
+            r.world->waitFor({&camera, 1});
+            syncWorldTiles(*gpu.renderer, *r.world);
+        }
         std::function<void(VkCommandBuffer)> tick;
         if (gpu.simulation) {
             gpu.simulation->runTicksBefore(frame); // ticks of frames skipped or rendered elsewhere (shards)
