@@ -8,6 +8,13 @@ namespace sward {
 SceneGpu createSceneGpu(Context& ctx, SceneResources& resources, uint32_t samples, SimulationMode mode) {
     require(samples == 1 || samples == 4, "MSAA samples must be 1 or 4 (got " + std::to_string(samples) + ")");
     SceneGpu gpu;
+    if (resources.world) {
+        gpu.renderer = std::make_unique<SceneRenderer>(ctx, resources.scene,
+                                                       samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
+                                                       resources.atlas ? &*resources.atlas : nullptr);
+        resources.atlas.reset();
+        return gpu;
+    }
     VegetationTile* tile = resources.tile ? &*resources.tile : nullptr;
     gpu.renderer = std::make_unique<SceneRenderer>(ctx, resources.scene, resources.terrain,
                                                    samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT, tile,
@@ -25,6 +32,21 @@ SceneGpu createSceneGpu(Context& ctx, SceneResources& resources, uint32_t sample
         resources.tile.reset(); // uploaded; only the collision pass reads the CPU copy
     }
     return gpu;
+}
+
+uint32_t syncWorldTiles(SceneRenderer& renderer, const WorldTiles& world) {
+    std::vector<TileCoord> resident = world.residentTiles(), gone;
+    for (TileCoord coord : renderer.tiles())
+        if (!world.find(coord)) gone.push_back(coord);
+    for (TileCoord coord : gone) renderer.removeTile(coord);
+    uint32_t added = 0;
+    for (TileCoord coord : resident) {
+        if (renderer.hasTile(coord)) continue;
+        const WorldTile& tile = *world.find(coord);
+        renderer.addTile(coord, tile.ground, &tile.vegetation, tile.cover.texels.empty() ? nullptr : &tile.cover);
+        ++added;
+    }
+    return added;
 }
 
 } // namespace sward

@@ -25,6 +25,11 @@ struct SceneGpu {
 // Uploads `resources` (terrain, objects, vegetation, atlas) with `samples` (1 or 4) MSAA. `resources` must outlive
 // the result (the simulation reads the tile, scene, terrain and models). The CPU copies of the atlas and (without a
 // simulation) of the tile are released once uploaded.
+// A world (resources.world) starts with no tile: syncWorldTiles draws what is resident.
 SceneGpu createSceneGpu(Context& ctx, SceneResources& resources, uint32_t samples, SimulationMode mode);
+
+// Makes the renderer's tiles those resident in `world`: drops the evicted, uploads the new (waits for the uploads,
+// never for a generation). Returns how many tiles were uploaded.
+uint32_t syncWorldTiles(SceneRenderer& renderer, const WorldTiles& world);
 
 } // namespace sward

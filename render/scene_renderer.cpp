@@ -51,20 +51,51 @@ template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) 
 SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& terrain, VkSampleCountFlagBits samples,
                              const VegetationTile* vegetation, const Atlas* atlas,
                              const std::vector<ObjectModel>* models, const CoverMap* cover)
-    : ctx_(ctx), scene_(scene), samples_(samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1) {
+    : ctx_(ctx), scene_(scene), samples_(samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1), objectGround_(&terrain) {
     terrainMinHeight_ = terrain.minHeight();
     terrainMaxHeight_ = terrain.maxHeight();
-    const GroundDrawMesh ground = groundDrawMesh(terrain);
-    terrainVertices_ = createBufferWithData(ctx, bytesOf(ground.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    terrainIndices_ = createBufferWithData(ctx, bytesOf(ground.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-    terrainIndexCount_ = uint32_t(ground.indices.size());
+    uploadGroundTextures(&terrain);
+    createPipelines(vegetation ? atlas : nullptr,
+                    vegetation ? VegetationRenderer::instanceCapacityFor(countVegetation(*vegetation).plants) : 0);
+    if (!scene.objects.empty())
+        objects_ = models ? std::make_unique<ObjectRenderer>(ctx, scene, terrain, plantPassFormats(), *models)
+                          : std::make_unique<ObjectRenderer>(ctx, scene, terrain, plantPassFormats());
+    addTile(vegetation ? vegetation->coord : TileCoord{}, terrain, vegetation, cover);
+}
 
+SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, VkSampleCountFlagBits samples, const Atlas* atlas)
+    : ctx_(ctx), scene_(scene), samples_(samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1) {
+    require(scene.world.enabled && scene.objects.empty(), "SceneRenderer: a world scene without objects");
+    viewDistance_ = scene.world.viewDistance;
+    // The procedural ground's heights lie within +-amplitude / 2 (world/heightfield.h): the same shadow depth range
+    // whichever tiles are resident.
+    terrainMinHeight_ = -0.5f * std::abs(scene.terrain.procedural.amplitude);
+    terrainMaxHeight_ = 0.5f * std::abs(scene.terrain.procedural.amplitude);
+    uploadGroundTextures(nullptr);
+    createPipelines(atlas, VegetationRenderer::instanceCapacityFor(UINT32_MAX));
+}
+
+VegetationPassFormats SceneRenderer::plantPassFormats() const {
+    const RenderTargetDesc mainDesc = mainPassTargetDesc(1, 1, samples_);
+    const RenderTargetDesc truthDesc = truthPassTargetDesc(1, 1);
+    return VegetationPassFormats{.mainColor = mainDesc.colors[0].format,
+                                 .mainDepth = mainDesc.depthFormat,
+                                 .mainSamples = mainDesc.samples,
+                                 .truthDepthBits = truthDesc.colors[0].format,
+                                 .truthLabel = truthDesc.colors[1].format,
+                                 .truthDepth = truthDesc.depthFormat,
+                                 .shadowDepth = VK_FORMAT_D32_SFLOAT};
+}
+
+void SceneRenderer::createPipelines(const Atlas* atlas, uint32_t instanceCapacity) {
+    Context& ctx = ctx_;
+    const Scene& scene = scene_;
     uint64_t align = ctx.device.properties().limits.minUniformBufferOffsetAlignment;
     constantsStride_ = (sizeof(gpu::FrameConstants) + align - 1) / align * align;
     constants_ = createBuffer(ctx, constantsStride_ * gpu::kFrameDataSlots * kMaxViews,
                               VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryIntent::Upload);
 
-    RenderTargetDesc mainDesc = mainPassTargetDesc(1, 1, samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1);
+    RenderTargetDesc mainDesc = mainPassTargetDesc(1, 1, samples_);
     RenderTargetDesc truthDesc = truthPassTargetDesc(1, 1);
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     PipelineLayoutDesc layout{
@@ -72,12 +103,13 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& ter
     PipelineLayoutDesc shadedLayout = layout; // + the sun shadow map
     shadedLayout.bindings.push_back(
         layoutBinding(gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
-    PipelineLayoutDesc terrainLayout = shadedLayout; // + the far cover
+    PipelineLayoutDesc terrainLayout = shadedLayout; // + the tile's far cover and the ground textures
     for (uint32_t binding : {gpu::kBindingCoverMap, gpu::kBindingGroundTextures})
         terrainLayout.bindings.push_back(
             layoutBinding(binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
-    uploadCoverMap(cover);
-    uploadGroundTextures(terrain);
+    terrainLayout.pushConstantSize = sizeof(gpu::TerrainTileConstants);
+    terrainLayout.pushConstantStages = VK_SHADER_STAGE_FRAGMENT_BIT;
+    coverSampler_ = createLinearSampler(ctx, 1);
 
     // Sun shadow map: always present (1x1 and disabled when shadow_map_size is 0) so bindings stay valid.
     uint32_t shadowSize = std::max(scene.render.shadowMapSize, 1u);
@@ -126,17 +158,8 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& ter
     terrainDesc.depthBiasSlope = -1.5f;
     terrainShadowPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, layout);
 
-    const VegetationPassFormats formats{.mainColor = mainDesc.colors[0].format,
-                                        .mainDepth = mainDesc.depthFormat,
-                                        .mainSamples = mainDesc.samples,
-                                        .truthDepthBits = truthDesc.colors[0].format,
-                                        .truthLabel = truthDesc.colors[1].format,
-                                        .truthDepth = truthDesc.depthFormat,
-                                        .shadowDepth = VK_FORMAT_D32_SFLOAT};
-    if (vegetation && atlas) vegetation_ = std::make_unique<VegetationRenderer>(ctx, scene, *vegetation, *atlas, formats);
-    if (!scene.objects.empty())
-        objects_ = models ? std::make_unique<ObjectRenderer>(ctx, scene, terrain, formats, *models)
-                          : std::make_unique<ObjectRenderer>(ctx, scene, terrain, formats);
+    if (atlas)
+        vegetation_ = std::make_unique<VegetationRenderer>(ctx, scene, *atlas, plantPassFormats(), instanceCapacity);
     skyPipeline_ = createGraphicsPipeline(ctx.device,
                                           {.vertexShader = "sky.vert",
                                            .fragmentShader = "sky.frag",
@@ -151,11 +174,11 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& ter
 
 SceneRenderer::~SceneRenderer() {
     ctx_.submitter.waitIdle();
+    for (TileCoord coord : tiles()) removeTile(coord);
     vegetation_.reset();
     objects_.reset();
     shadowMap_.reset();
     vkDestroySampler(ctx_.vk(), shadowSampler_, nullptr);
-    destroyImage(ctx_, coverImage_);
     vkDestroySampler(ctx_.vk(), coverSampler_, nullptr);
     destroyImage(ctx_, groundTextures_);
     vkDestroySampler(ctx_.vk(), groundSampler_, nullptr);
@@ -163,9 +186,37 @@ SceneRenderer::~SceneRenderer() {
     destroyPipeline(ctx_.device, terrainTruthPipeline_);
     destroyPipeline(ctx_.device, terrainShadowPipeline_);
     destroyPipeline(ctx_.device, skyPipeline_);
-    destroyBuffer(ctx_, terrainVertices_);
-    destroyBuffer(ctx_, terrainIndices_);
     destroyBuffer(ctx_, constants_);
+}
+
+void SceneRenderer::addTile(TileCoord coord, const Ground& ground, const VegetationTile* plants, const CoverMap* cover) {
+    require(!hasTile(coord), "SceneRenderer: the tile is resident already");
+    TerrainTile tile;
+    const GroundDrawMesh mesh = groundDrawMesh(ground);
+    tile.vertices = createBufferWithData(ctx_, bytesOf(mesh.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    tile.indices = createBufferWithData(ctx_, bytesOf(mesh.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    tile.indexCount = uint32_t(mesh.indices.size());
+    tile.boundsMin = glm::dvec2(ground.boundsMin());
+    tile.boundsMax = glm::dvec2(ground.boundsMax());
+    uploadCoverMap(tile, plants && vegetation_ ? cover : nullptr);
+    tiles_.emplace(TileKey(coord.y, coord.x), std::move(tile));
+    if (plants && vegetation_ && !plants->fields.empty()) vegetation_->addTile(*plants);
+}
+
+std::vector<TileCoord> SceneRenderer::tiles() const {
+    std::vector<TileCoord> coords;
+    for (const auto& [key, tile] : tiles_) coords.push_back({key.second, key.first});
+    return coords;
+}
+
+void SceneRenderer::removeTile(TileCoord coord) {
+    auto it = tiles_.find(TileKey(coord.y, coord.x));
+    if (it == tiles_.end()) return;
+    retireBuffer(ctx_, it->second.vertices);
+    retireBuffer(ctx_, it->second.indices);
+    retireImage(ctx_, it->second.cover);
+    tiles_.erase(it);
+    if (vegetation_) vegetation_->removeTile(coord);
 }
 
 void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Camera& shadowCamera, double timeSeconds) {
@@ -210,19 +261,37 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Ca
     const bool shadows = scene_.render.shadowMapSize > 0;
     c.shadowParams = glm::vec4(shadows ? 1.0f : 0.0f, float(0.05 / (2.0 * reach)), 1.0f / size, 0.0f);
     c.debug = glm::uvec4(debugFlags_, 0u, 0u, 0u);
-    c.coverRect = coverRect_;
     c.coverBand = glm::vec4(scene_.lod.farLimit, scene_.lod.band, 0.0f, 0.0f);
     std::memcpy(constants_.mapped() + slot * constantsStride_, &c, sizeof c);
 }
 
-void SceneRenderer::drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline,
-                                std::initializer_list<DescriptorBinding> bindings) {
-    drawIndexedMesh(ctx_.device, cmd, pipeline, bindings, terrainVertices_.handle, terrainIndices_.handle,
-                    terrainIndexCount_);
+void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame,
+                                const glm::dvec3& reference) {
+    const Pipeline& pipeline = pass == PlantPass::Main    ? terrainPipeline_
+                               : pass == PlantPass::Truth ? terrainTruthPipeline_
+                                                          : terrainShadowPipeline_;
+    bindPipeline(cmd, pipeline);
+    for (const auto& [key, tile] : tiles_) {
+        const double dx = std::max({0.0, tile.boundsMin.x - reference.x, reference.x - tile.boundsMax.x});
+        const double dy = std::max({0.0, tile.boundsMin.y - reference.y, reference.y - tile.boundsMax.y});
+        if (std::sqrt(dx * dx + dy * dy) > viewDistance_) continue;
+        if (pass == PlantPass::Main) {
+            pushDescriptors(ctx_.device, cmd, pipeline,
+                            {frame, shadowBinding(), sampledImage(gpu::kBindingCoverMap, tile.cover.view, coverSampler_),
+                             sampledImage(gpu::kBindingGroundTextures, groundTextures_.view, groundSampler_)});
+            pushConstants(cmd, pipeline, gpu::TerrainTileConstants{.coverRect = tile.coverRect});
+        } else {
+            pushDescriptors(ctx_.device, cmd, pipeline, {frame});
+        }
+        VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(cmd, 0, 1, &tile.vertices.handle, &offset);
+        vkCmdBindIndexBuffer(cmd, tile.indices.handle, 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, tile.indexCount, 1, 0, 0, 0);
+    }
 }
 
 // Half floats: linear filtering of 16-bit float textures is mandatory in Vulkan, of 32-bit ones is not.
-void SceneRenderer::uploadCoverMap(const CoverMap* cover) {
+void SceneRenderer::uploadCoverMap(TerrainTile& tile, const CoverMap* cover) {
     const bool present = cover && !cover->texels.empty();
     const uint32_t width = present ? cover->width : 1, height = present ? cover->height : 1;
     std::vector<uint16_t> texels(size_t(width) * height * 4, 0);
@@ -230,15 +299,14 @@ void SceneRenderer::uploadCoverMap(const CoverMap* cover) {
         for (size_t i = 0; i < cover->texels.size(); ++i)
             for (int k = 0; k < 4; ++k) texels[4 * i + size_t(k)] = floatToHalfBits(cover->texels[i][k]);
     const std::span<const uint8_t> bytes(reinterpret_cast<const uint8_t*>(texels.data()), texels.size() * 2);
-    coverImage_ = createImageWithData(
+    tile.cover = createImageWithData(
         ctx_, {.format = VK_FORMAT_R16G16B16A16_SFLOAT, .width = width, .height = height, .mipLevels = 1}, {&bytes, 1});
-    coverRect_ = present ? glm::vec4(cover->origin, 1.0f / cover->size, 0.0f) : glm::vec4(0.0f);
-    coverSampler_ = createLinearSampler(ctx_, 1);
+    tile.coverRect = present ? glm::vec4(cover->origin, 1.0f / cover->size, 0.0f) : glm::vec4(0.0f);
 }
 
 // glTF's default wrap mode is repeat; per-texture samplers are not read (one sampler for the whole array).
-void SceneRenderer::uploadGroundTextures(const Ground& terrain) {
-    const GroundTextureArray textures = groundTextureArray(terrain);
+void SceneRenderer::uploadGroundTextures(const Ground* terrain) {
+    const GroundTextureArray textures = terrain ? groundTextureArray(*terrain) : groundTextureArray(Ground());
     std::vector<std::span<const uint8_t>> levels(textures.levels.begin(), textures.levels.end());
     groundTextures_ = createImageWithData(ctx_,
                                           {.format = VK_FORMAT_R8G8B8A8_SRGB,
@@ -260,13 +328,11 @@ DescriptorBinding SceneRenderer::shadowBinding() const {
 }
 
 void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint32_t frameSlot, uint32_t slot,
-                                   GpuTimers* timers, const BakedPlants* baked) {
+                                   const glm::dvec3& reference, GpuTimers* timers, const BakedPlants* baked) {
     DescriptorBinding frame = frameBinding(frameSlot), shadow = shadowBinding();
     if (timers) timers->begin(cmd, "main");
     main.begin(cmd);
-    drawTerrain(cmd, terrainPipeline_,
-                {frame, shadow, sampledImage(gpu::kBindingCoverMap, coverImage_.view, coverSampler_),
-                 sampledImage(gpu::kBindingGroundTextures, groundTextures_.view, groundSampler_)});
+    drawTerrain(cmd, PlantPass::Main, frame, reference);
     if (objects_) objects_->recordMain(cmd, frame, shadow, slot);
     if (vegetation_ && baked) vegetation_->drawBaked(cmd, *baked, frame, shadow, slot);
     else if (vegetation_) vegetation_->draw(cmd, PlantPass::Main, frame, shadow, slot);
@@ -308,7 +374,7 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
     if (timers) timers->begin(cmd, "shadow");
     shadowMap_->begin(cmd);
     if (scene_.render.shadowMapSize > 0) {
-        drawTerrain(cmd, terrainShadowPipeline_, {frame});
+        drawTerrain(cmd, PlantPass::Shadow, frame, reference.position);
         if (objects_) objects_->recordShadow(cmd, frame, dataSlot);
         if (vegetation_) vegetation_->draw(cmd, PlantPass::Shadow, frame, shadow, dataSlot);
     }
@@ -317,11 +383,11 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
 
     for (uint32_t v = 0; v < views.size(); ++v) {
         const uint32_t slot = firstSlot + v;
-        recordMainPass(cmd, *views[v].main, slot, dataSlot, timers, nullptr);
+        recordMainPass(cmd, *views[v].main, slot, dataSlot, reference.position, timers, nullptr);
         if (!views[v].truth) continue;
         if (timers) timers->begin(cmd, "truth");
         views[v].truth->begin(cmd);
-        drawTerrain(cmd, terrainTruthPipeline_, {frameBinding(slot)});
+        drawTerrain(cmd, PlantPass::Truth, frameBinding(slot), reference.position);
         if (objects_) objects_->recordTruth(cmd, frameBinding(slot), dataSlot);
         if (vegetation_) vegetation_->draw(cmd, PlantPass::Truth, frameBinding(slot), shadow, dataSlot);
         views[v].truth->end(cmd);
@@ -339,7 +405,7 @@ void SceneRenderer::recordMainOnly(VkCommandBuffer cmd, RenderTarget& main, cons
         vegetation_->expand(cmd, camera, timeSeconds, slot);
         if (timers) timers->end(cmd);
     }
-    recordMainPass(cmd, main, slot * kMaxViews, slot, timers, baked);
+    recordMainPass(cmd, main, slot * kMaxViews, slot, camera.position, timers, baked);
 }
 
 OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples)

@@ -11,6 +11,7 @@
 
 #include "vegetation/atlas.h"
 #include "vegetation/cover_map.h"
+#include "vegetation/vegetation_tile.h"
 #include "world/camera.h"
 #include "dataset/frame_images.h"
 #include "engine/context.h"
@@ -18,8 +19,12 @@
 #include "engine/pipelines.h"
 #include "engine/render_target.h"
 #include "scene/scene.h"
+#include "render/vegetation_renderer.h"
 
+#include <cmath>
 #include <functional>
+#include <map>
+#include <utility>
 #include <span>
 #include <memory>
 
@@ -27,10 +32,8 @@ namespace sward {
 
 class GpuTimers;
 class ObjectRenderer;
-class VegetationRenderer;
 struct ObjectModel;
 struct BakedPlants;
-struct VegetationTile;
 
 // Formats and clear values of the passes, in attachment order.
 RenderTargetDesc mainPassTargetDesc(uint32_t width, uint32_t height, uint32_t samples);
@@ -45,6 +48,11 @@ public:
     SceneRenderer(Context& ctx, const Scene& scene, const Ground& terrain, VkSampleCountFlagBits samples,
                   const VegetationTile* vegetation = nullptr, const Atlas* atlas = nullptr,
                   const std::vector<ObjectModel>* models = nullptr, const CoverMap* cover = nullptr);
+    // A world (scene.world, procedural ground, no objects): starts with no tile; the owner of the WorldTiles adds
+    // and removes tiles as they become resident. `atlas` null: bare ground. Only tiles within
+    // world.view_distance (<= load_radius, within which WorldTiles keeps every tile resident) of the reference
+    // camera are drawn, so a frame is the same whichever tiles beyond it happen to be resident.
+    SceneRenderer(Context& ctx, const Scene& scene, VkSampleCountFlagBits samples, const Atlas* atlas);
     ~SceneRenderer();
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
@@ -80,36 +88,56 @@ public:
     using Overlay = std::function<void(VkCommandBuffer, const DescriptorBinding& frame)>;
     void setMainPassOverlay(Overlay overlay) { overlay_ = std::move(overlay); }
 
+    // Tiles: the ground (and its plants and far cover, when given) of tile `coord`, uploaded (waits). A one-tile
+    // scene's renderer holds the tile (0, 0) from its construction.
+    void addTile(TileCoord coord, const Ground& ground, const VegetationTile* plants, const CoverMap* cover);
+    void removeTile(TileCoord coord); // freed once the frames in flight are done
+    bool hasTile(TileCoord coord) const { return tiles_.contains(TileKey(coord.y, coord.x)); }
+    uint32_t tileCount() const { return uint32_t(tiles_.size()); }
+    std::vector<TileCoord> tiles() const; // (y, x) order
+
     VegetationRenderer* vegetation() { return vegetation_.get(); }
     ObjectRenderer* objects() { return objects_.get(); } // null when the scene has no objects
     uint32_t samples() const { return samples_; }
 
 private:
+    // A resident tile's ground: its mesh and its far cover (1x1 "nothing" without one, so the binding is valid).
+    struct TerrainTile {
+        Buffer vertices, indices;
+        uint32_t indexCount = 0;
+        Image cover;
+        glm::vec4 coverRect{0.0f};
+        glm::dvec2 boundsMin{0.0}, boundsMax{0.0}; // xy
+    };
+    using TileKey = std::pair<int32_t, int32_t>; // (y, x): the drawing order
+
+    void createPipelines(const Atlas* atlas, uint32_t instanceCapacity);
+    VegetationPassFormats plantPassFormats() const;
     // Frame constants of `camera`, with the shadow map fitted in front of `shadowCamera`.
     void writeConstants(uint32_t slot, const Camera& camera, const Camera& shadowCamera, double timeSeconds);
-    void drawTerrain(VkCommandBuffer cmd, const Pipeline& pipeline, std::initializer_list<DescriptorBinding> bindings);
+    // The tiles' ground within the view distance of `reference`; the main pass binds each tile's cover.
+    void drawTerrain(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame, const glm::dvec3& reference);
     // `frameSlot`: frame-constants slot (frame x view); `slot`: vegetation constants slot (frame).
-    void recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint32_t frameSlot, uint32_t slot, GpuTimers* timers,
-                        const BakedPlants* baked);
+    void recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint32_t frameSlot, uint32_t slot,
+                        const glm::dvec3& reference, GpuTimers* timers, const BakedPlants* baked);
     DescriptorBinding frameBinding(uint32_t slot) const;
     DescriptorBinding shadowBinding() const;
-    void uploadCoverMap(const CoverMap* cover);
-    void uploadGroundTextures(const Ground& terrain);
+    void uploadCoverMap(TerrainTile& tile, const CoverMap* cover);
+    void uploadGroundTextures(const Ground* terrain);
 
     Context& ctx_;
     Scene scene_;
     uint32_t samples_ = 1;
-    Buffer terrainVertices_, terrainIndices_;
-    uint32_t terrainIndexCount_ = 0;
+    std::map<TileKey, TerrainTile> tiles_;
+    double viewDistance_ = INFINITY; // world.view_distance in a world
     float terrainMinHeight_ = 0.0f, terrainMaxHeight_ = 0.0f;
+    const Ground* objectGround_ = nullptr; // what objects stand on (one-tile scenes)
     Buffer constants_; // gpu::kFrameDataSlots * kMaxViews slots of FrameConstants, host-visible
     uint64_t constantsStride_ = 0;
     Pipeline terrainPipeline_, terrainTruthPipeline_, terrainShadowPipeline_, skyPipeline_;
     std::unique_ptr<RenderTarget> shadowMap_;
     VkSampler shadowSampler_ = VK_NULL_HANDLE;
-    Image coverImage_; // the far cover (1x1 "nothing" without vegetation, so the binding is always valid)
     VkSampler coverSampler_ = VK_NULL_HANDLE;
-    glm::vec4 coverRect_{0.0f};
     Image groundTextures_; // a mesh ground's base-colour textures (one white layer without any)
     VkSampler groundSampler_ = VK_NULL_HANDLE;
     std::unique_ptr<VegetationRenderer> vegetation_;

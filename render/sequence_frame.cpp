@@ -27,7 +27,9 @@ void overrideCamera(Scene& scene, const std::optional<glm::dvec3>& position, con
 }
 
 RigCameras sequenceRig(const SceneResources& r, uint32_t width, uint32_t height, uint32_t frame) {
-    return sceneRig(r.scene, r.terrain, r.models, width, height, double(frame) * r.scene.sequence.timeStep);
+    const double time = double(frame) * r.scene.sequence.timeStep;
+    if (r.world) return sceneRig(r.scene, cameraGround(r.scene, time), r.models, width, height, time);
+    return sceneRig(r.scene, r.terrain, r.models, width, height, time);
 }
 
 std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, uint32_t width, uint32_t height, uint32_t frame,
@@ -53,6 +55,11 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
     const double time = double(frame) * r.scene.sequence.timeStep;
     const bool stereo = r.scene.camera.rig.stereo();
     cameras = sequenceRig(r, width, height, frame);
+    if (r.world) { // every tile within load_radius of the camera, generated before the frame: deterministic
+        const glm::dvec2 camera(cameras.left.position);
+        r.world->waitFor({&camera, 1});
+        syncWorldTiles(*gpu.renderer, *r.world);
+    }
     std::function<void(VkCommandBuffer)> tick;
     if (gpu.simulation) {
         gpu.simulation->runTicksBefore(frame); // ticks of frames skipped or rendered elsewhere (shards)

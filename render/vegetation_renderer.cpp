@@ -28,28 +28,42 @@ VkDescriptorSetLayoutBinding shadowMapLayoutBinding() {
 
 } // namespace
 
-VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const VegetationTile& tile, const Atlas& atlas,
-                                       const VegetationPassFormats& formats)
-    : ctx_(ctx), scene_(scene), buffers_(ctx, tile), formats_(formats) {
+uint32_t VegetationRenderer::instanceCapacityFor(uint64_t plants) {
+    return uint32_t(std::clamp<uint64_t>(plants * 2, 1024, 4u << 20));
+}
+
+namespace {
+
+constexpr VkBufferUsageFlags kStorage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+
+} // namespace
+
+VegetationRenderer::Tile::Tile(Context& ctx, const VegetationTile& tile, uint64_t constantsBytes)
+    : ctx(ctx), coord(tile.coord), buffers(ctx, tile) {
+    constants = createBuffer(ctx, constantsBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryIntent::Upload);
+    clusterCounts = createBuffer(ctx, uint64_t(std::max(buffers.clusterCount, 1u)) * 16, kStorage,
+                                 MemoryIntent::DeviceLocal);
+    draws = createBuffer(ctx, gpu::kLodCount * sizeof(VkDrawIndirectCommand),
+                         kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryIntent::DeviceLocal);
+    stats = createBuffer(ctx, sizeof(gpu::ExpansionStats), kStorage, MemoryIntent::DeviceLocal);
+}
+
+VegetationRenderer::Tile::~Tile() {
+    for (Buffer* b : {&constants, &clusterCounts, &draws, &stats}) retireBuffer(ctx, *b);
+}
+
+VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const Atlas& atlas,
+                                       const VegetationPassFormats& formats, uint32_t instanceCapacity)
+    : ctx_(ctx), scene_(scene), capacity_(std::max(instanceCapacity, 1u)), formats_(formats) {
     require(atlas.desc.rows.size() >= scene.vegetation.categoryCount,
             "the atlas has " + std::to_string(atlas.desc.rows.size()) + " rows but the scene has " +
                 std::to_string(scene.vegetation.categoryCount) + " vegetation categories");
-    // Each plant yields at most two instances (inside a cross-fade band); cap the memory at 4 M instances.
-    capacity_ = uint32_t(std::clamp<uint64_t>(uint64_t(buffers_.plantCount) * 2, 1024, 4u << 20));
-
     uint64_t align = ctx.device.properties().limits.minUniformBufferOffsetAlignment;
     constantsStride_ = (sizeof(gpu::VegetationConstants) + align - 1) / align * align;
-    constants_ = createBuffer(ctx, constantsStride_ * gpu::kFrameDataSlots, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                              MemoryIntent::Upload);
-    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    clusterCounts_ = createBuffer(ctx, uint64_t(std::max(buffers_.clusterCount, 1u)) * 16, storage,
-                                  MemoryIntent::DeviceLocal);
-    instances_ = createBuffer(ctx, uint64_t(capacity_) * sizeof(gpu::ExpandedPlant), storage, MemoryIntent::DeviceLocal);
-    instancePlants_ = createBuffer(ctx, uint64_t(capacity_) * sizeof(uint32_t), storage, MemoryIntent::DeviceLocal);
-    draws_ = createBuffer(ctx, gpu::kLodCount * sizeof(VkDrawIndirectCommand),
-                          storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryIntent::DeviceLocal);
-    stats_ = createBuffer(ctx, sizeof(gpu::ExpansionStats), storage, MemoryIntent::DeviceLocal);
+    instances_ = createBuffer(ctx, uint64_t(capacity_) * sizeof(gpu::ExpandedPlant), kStorage, MemoryIntent::DeviceLocal);
+    instancePlants_ = createBuffer(ctx, uint64_t(capacity_) * sizeof(uint32_t), kStorage, MemoryIntent::DeviceLocal);
+    cursor_ = createBuffer(ctx, 16, kStorage, MemoryIntent::DeviceLocal);
     uploadAtlas(atlas);
 
     auto ssbo = [](uint32_t b, VkShaderStageFlags stages) {
@@ -67,7 +81,7 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
     scanPipeline_ =
         createComputePipeline(ctx.device, "vegetation_scan.comp",
                               {.bindings = {ssbo(gpu::kScanBindingClusterCounts, cs), ssbo(gpu::kScanBindingDraws, cs),
-                                            ssbo(gpu::kScanBindingStats, cs)},
+                                            ssbo(gpu::kScanBindingStats, cs), ssbo(gpu::kScanBindingCursor, cs)},
                                .pushConstantSize = sizeof(gpu::ScanConstants),
                                .pushConstantStages = cs});
 
@@ -108,10 +122,11 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const V
 
 VegetationRenderer::~VegetationRenderer() {
     ctx_.submitter.waitIdle();
+    tiles_.clear();
     for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &truthPipeline_,
                         &shadowPipeline_, &bakePipeline_, &staticPipeline_})
         destroyPipeline(ctx_.device, *p);
-    for (Buffer* b : {&constants_, &clusterCounts_, &instances_, &instancePlants_, &draws_, &stats_, &atlasCells_}) destroyBuffer(ctx_, *b);
+    for (Buffer* b : {&instances_, &instancePlants_, &cursor_, &atlasCells_}) destroyBuffer(ctx_, *b);
     destroyImage(ctx_, atlasImage_);
     vkDestroySampler(ctx_.vk(), atlasSampler_, nullptr);
 }
@@ -153,59 +168,95 @@ DescriptorBinding VegetationRenderer::atlasBinding() const {
     return sampledImage(gpu::kBindingAtlas, atlasImage_.view, atlasSampler_);
 }
 
-DescriptorBinding VegetationRenderer::constantsBinding(uint32_t slot) const {
-    return uniformBuffer(gpu::kBindingVegetation, constants_.handle, (slot % gpu::kFrameDataSlots) * constantsStride_,
+DescriptorBinding VegetationRenderer::constantsBinding(const Tile& tile, uint32_t slot) const {
+    return uniformBuffer(gpu::kBindingVegetation, tile.constants.handle, (slot % gpu::kFrameDataSlots) * constantsStride_,
                          sizeof(gpu::VegetationConstants));
 }
 
-void VegetationRenderer::expand(VkCommandBuffer cmd, const Camera& camera, double timeSeconds, uint32_t slot,
-                                const std::array<glm::vec4, 5>* cullPlanes) {
+void VegetationRenderer::addTile(const VegetationTile& tile) {
+    require(!hasTile(tile.coord), "VegetationRenderer: the tile is resident already");
+    tiles_.emplace(TileKey(tile.coord.y, tile.coord.x),
+                   std::make_unique<Tile>(ctx_, tile, constantsStride_ * gpu::kFrameDataSlots));
+}
+
+void VegetationRenderer::removeTile(TileCoord coord) {
+    tiles_.erase(TileKey(coord.y, coord.x));
+}
+
+bool VegetationRenderer::hasTile(TileCoord coord) const {
+    return tiles_.contains(TileKey(coord.y, coord.x));
+}
+
+VegetationRenderer::Tile& VegetationRenderer::onlyTile() {
+    require(tiles_.size() == 1, "VegetationRenderer: this needs exactly one resident tile");
+    return *tiles_.begin()->second;
+}
+
+VegetationBuffers& VegetationRenderer::buffers() {
+    return onlyTile().buffers;
+}
+
+void VegetationRenderer::writeConstants(const Tile& tile, const Camera& camera, double timeSeconds, uint32_t slot,
+                                        const std::array<glm::vec4, 5>& planes) {
     gpu::VegetationConstants c{};
-    auto planes = cullPlanes ? *cullPlanes : camera.frustumPlanes();
     for (int i = 0; i < 5; ++i) c.frustumPlanes[i] = planes[i];
     c.cameraPosition = glm::vec4(glm::vec3(camera.position), 1.0f);
     c.lodDistances = glm::vec4(scene_.lod.nearToMid, scene_.lod.midToFar, scene_.lod.farLimit, scene_.lod.band);
     glm::vec2 dir = scene_.wind.direction();
     c.wind = glm::vec4(dir, scene_.wind.strength, scene_.wind.gustFrequency);
     c.windGusts = glm::vec4(scene_.wind.gustStrength, scene_.wind.gustWavelength, float(timeSeconds), scene_.wind.flutter);
-    for (uint32_t i = 0; i < gpu::kMaxPlantCategories; ++i) {
-        c.categoryHeight[int(i)] = scene_.vegetation.categories[i].height;
-    }
+    for (uint32_t i = 0; i < gpu::kMaxPlantCategories; ++i) c.categoryHeight[int(i)] = scene_.vegetation.categories[i].height;
     c.atlasColumns = atlasColumns_;
-    c.counts = glm::uvec4(buffers_.clusterCount, buffers_.clustersPerField, capacity_, atlasMaxColumns_);
-    std::memcpy(constants_.mapped() + (slot % gpu::kFrameDataSlots) * constantsStride_, &c, sizeof c);
+    c.counts = glm::uvec4(tile.buffers.clusterCount, tile.buffers.clustersPerField, capacity_, atlasMaxColumns_);
+    std::memcpy(tile.constants.mapped() + (slot % gpu::kFrameDataSlots) * constantsStride_, &c, sizeof c);
+}
 
+void VegetationRenderer::expand(VkCommandBuffer cmd, const Camera& camera, double timeSeconds, uint32_t slot,
+                                const std::array<glm::vec4, 5>* cullPlanes) {
+    const std::array<glm::vec4, 5> planes = cullPlanes ? *cullPlanes : camera.frustumPlanes();
     // The previous frame's draws read instances and draw commands; this frame overwrites them (WAR).
     drawReadsToComputeWritesBarrier(cmd);
+    bool first = true;
+    for (const auto& [key, tile] : tiles_) {
+        writeConstants(*tile, camera, timeSeconds, slot, planes);
+        expandTile(cmd, *tile, slot, first);
+        first = false;
+    }
+    computeToDrawBarrier(cmd);
+}
+
+void VegetationRenderer::expandTile(VkCommandBuffer cmd, const Tile& tile, uint32_t slot, bool firstTile) {
+    const VegetationBuffers& b = tile.buffers;
     auto bindExpand = [&](const Pipeline& pipeline) {
         bindPipeline(cmd, pipeline);
         pushDescriptors(ctx_.device, cmd, pipeline,
-                        {storageBuffer(gpu::kExpandBindingStatics, buffers_.statics.handle), constantsBinding(slot),
-                         storageBuffer(gpu::kExpandBindingDynamics, buffers_.dynamics.handle),
-                         storageBuffer(gpu::kExpandBindingClusters, buffers_.clusters.handle),
-                         storageBuffer(gpu::kExpandBindingFields, buffers_.fields.handle),
-                         storageBuffer(gpu::kExpandBindingClusterCounts, clusterCounts_.handle),
+                        {storageBuffer(gpu::kExpandBindingStatics, b.statics.handle), constantsBinding(tile, slot),
+                         storageBuffer(gpu::kExpandBindingDynamics, b.dynamics.handle),
+                         storageBuffer(gpu::kExpandBindingClusters, b.clusters.handle),
+                         storageBuffer(gpu::kExpandBindingFields, b.fields.handle),
+                         storageBuffer(gpu::kExpandBindingClusterCounts, tile.clusterCounts.handle),
                          storageBuffer(gpu::kExpandBindingInstances, instances_.handle),
                          storageBuffer(gpu::kExpandBindingInstancePlants, instancePlants_.handle)});
     };
 
     // Count and write passes: one invocation per cluster.
     bindExpand(countPipeline_);
-    dispatchLinear(cmd, buffers_.clusterCount, gpu::kExpandGroupSize);
+    dispatchLinear(cmd, b.clusterCount, gpu::kExpandGroupSize);
     computeToComputeBarrier(cmd);
 
     bindPipeline(cmd, scanPipeline_);
     pushDescriptors(ctx_.device, cmd, scanPipeline_,
-                    {storageBuffer(gpu::kScanBindingClusterCounts, clusterCounts_.handle),
-                     storageBuffer(gpu::kScanBindingDraws, draws_.handle),
-                     storageBuffer(gpu::kScanBindingStats, stats_.handle)});
-    pushConstants(cmd, scanPipeline_, gpu::ScanConstants{.clusterCount = buffers_.clusterCount, .capacity = capacity_});
+                    {storageBuffer(gpu::kScanBindingClusterCounts, tile.clusterCounts.handle),
+                     storageBuffer(gpu::kScanBindingDraws, tile.draws.handle),
+                     storageBuffer(gpu::kScanBindingStats, tile.stats.handle),
+                     storageBuffer(gpu::kScanBindingCursor, cursor_.handle)});
+    pushConstants(cmd, scanPipeline_, gpu::ScanConstants{.clusterCount = b.clusterCount, .capacity = capacity_, .firstTile = firstTile ? 1u : 0u});
     vkCmdDispatch(cmd, 1, 1, 1); // one workgroup scans every cluster
     computeToComputeBarrier(cmd);
 
     bindExpand(writePipeline_);
-    dispatchLinear(cmd, buffers_.clusterCount, gpu::kExpandGroupSize);
-    computeToDrawBarrier(cmd);
+    dispatchLinear(cmd, b.clusterCount, gpu::kExpandGroupSize);
+    computeToComputeBarrier(cmd); // the next tile's scan reads the cursor this one advanced
 }
 
 void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame,
@@ -214,24 +265,32 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
     bindPipeline(cmd, pipeline);
     DescriptorBinding instances = storageBuffer(gpu::kBindingPlantInstances, instances_.handle);
     DescriptorBinding plants = storageBuffer(gpu::kBindingInstancePlants, instancePlants_.handle);
-    if (pass == PlantPass::Main)
-        pushDescriptors(
-            ctx_.device, cmd, pipeline,
-            {frame, constantsBinding(slot), instances, atlasCellsBinding(), atlasBinding(), shadowMap, plants});
-    else
-        pushDescriptors(ctx_.device, cmd, pipeline,
-                        {frame, constantsBinding(slot), instances, atlasCellsBinding(), atlasBinding(), plants});
-    for (uint32_t lod = 0; lod < gpu::kLodCount; ++lod) {
-        pushConstants(cmd, pipeline, lod);
-        vkCmdDrawIndirect(cmd, draws_.handle, lod * sizeof(VkDrawIndirectCommand), 1, sizeof(VkDrawIndirectCommand));
+    for (const auto& [key, tile] : tiles_) {
+        if (pass == PlantPass::Main)
+            pushDescriptors(ctx_.device, cmd, pipeline,
+                            {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(),
+                             shadowMap, plants});
+        else
+            pushDescriptors(ctx_.device, cmd, pipeline,
+                            {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(), plants});
+        for (uint32_t lod = 0; lod < gpu::kLodCount; ++lod) {
+            pushConstants(cmd, pipeline, lod);
+            vkCmdDrawIndirect(cmd, tile->draws.handle, lod * sizeof(VkDrawIndirectCommand), 1,
+                              sizeof(VkDrawIndirectCommand));
+        }
     }
 }
 
 gpu::ExpansionStats VegetationRenderer::readStats() {
-    std::vector<uint8_t> bytes = readBuffer(ctx_, stats_, 0, sizeof(gpu::ExpansionStats));
-    gpu::ExpansionStats stats;
-    std::memcpy(&stats, bytes.data(), sizeof stats);
-    return stats;
+    gpu::ExpansionStats sum{};
+    for (const auto& [key, tile] : tiles_) {
+        std::vector<uint8_t> bytes = readBuffer(ctx_, tile->stats, 0, sizeof(gpu::ExpansionStats));
+        gpu::ExpansionStats stats;
+        std::memcpy(&stats, bytes.data(), sizeof stats);
+        sum.instances += stats.instances;
+        sum.info += glm::uvec4(glm::uvec3(stats.info), 0u);
+    }
+    return sum;
 }
 
 } // namespace sward
@@ -265,7 +324,7 @@ BakedPlants VegetationRenderer::bake(uint32_t slot) {
     ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
         bindPipeline(cmd, bakePipeline_);
         pushDescriptors(ctx_.device, cmd, bakePipeline_,
-                        {constantsBinding(slot), storageBuffer(gpu::kBindingPlantInstances, instances_.handle),
+                        {constantsBinding(onlyTile(), slot), storageBuffer(gpu::kBindingPlantInstances, instances_.handle),
                          atlasCellsBinding(), storageBuffer(gpu::kBindingBakedVertices, baked.vertices.handle)});
         for (uint32_t lod = 0, firstInstance = 0, firstVertex = 0; lod < gpu::kLodCount; ++lod) {
             uint32_t count = std::min(baked.stats.instances[int(lod)], kept - std::min(kept, firstInstance));
@@ -306,7 +365,7 @@ void VegetationRenderer::drawBaked(VkCommandBuffer cmd, const BakedPlants& baked
     }
     bindPipeline(cmd, staticPipeline_);
     pushDescriptors(ctx_.device, cmd, staticPipeline_,
-                    {frame, constantsBinding(slot), storageBuffer(gpu::kBindingPlantInstances, baked.vertices.handle),
+                    {frame, constantsBinding(onlyTile(), slot), storageBuffer(gpu::kBindingPlantInstances, baked.vertices.handle),
                      atlasCellsBinding(), atlasBinding(), shadowMap});
     if (baked.vertexCount) vkCmdDraw(cmd, baked.vertexCount, 1, 0, 0);
 }

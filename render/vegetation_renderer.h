@@ -1,11 +1,14 @@
 // VegetationRenderer: per-frame compute expansion of point plants into LOD instances and their draws.
 //
-// Frame flow (docs/architecture.md):
+// Frame flow (docs/architecture.md), per resident tile in (y, x) order:
 //   expand()  count pass (workgroup per cluster: frustum + distance cull, LOD choice, per-LOD counts)
 //             -> scan (one workgroup: exclusive prefix sums in cluster order -> offsets + 3 indirect draws)
 //             -> write pass (same choices; instances written at offset + rank: a fixed, deterministic order)
 //   draw()    three vkCmdDrawIndirect (near 4 quads, mid 2 quads, far 1 billboard) into the current pass:
 //             main colour (alpha-to-coverage at 4x MSAA, alpha test at 1x), ground truth or sun shadow map.
+// The tiles share one instance pool: each scan starts where the previous tile's ended (a GPU-side cursor), so the
+// pool is sized by what a frame shows, not by the number of resident tiles. A tile whose clusters are all culled
+// adds nothing, so a frame is the same whether tiles out of sight are resident or not.
 #pragma once
 
 #include "vegetation/atlas.h"
@@ -17,6 +20,10 @@
 
 #include "shared/config.h"
 #include "shared/gpu_layout.h"
+
+#include <map>
+#include <memory>
+#include <utility>
 
 namespace sward {
 
@@ -38,9 +45,19 @@ struct VegetationPassFormats {
 
 class VegetationRenderer {
 public:
-    // Uploads the tile and the atlas (with its mip chain) and builds the pipelines.
-    VegetationRenderer(Context& ctx, const Scene& scene, const VegetationTile& tile, const Atlas& atlas,
-                       const VegetationPassFormats& formats);
+    // Uploads the atlas (with its mip chain) and builds the pipelines; plants come with addTile(). The frame's
+    // instance pool holds `instanceCapacity` instances (instanceCapacityFor).
+    VegetationRenderer(Context& ctx, const Scene& scene, const Atlas& atlas, const VegetationPassFormats& formats,
+                       uint32_t instanceCapacity);
+    // A pool for `plants` plants: each yields at most two instances (inside a cross-fade band); at most 4 M.
+    static uint32_t instanceCapacityFor(uint64_t plants);
+
+    // Uploads a tile's records (one submission; waits). Requires a tile with fields, not resident yet.
+    void addTile(const VegetationTile& tile);
+    // Drops a resident tile; its buffers are destroyed once the frames in flight are done with them.
+    void removeTile(TileCoord coord);
+    bool hasTile(TileCoord coord) const;
+    uint32_t tileCount() const { return uint32_t(tiles_.size()); }
     ~VegetationRenderer();
     VegetationRenderer(const VegetationRenderer&) = delete;
     VegetationRenderer& operator=(const VegetationRenderer&) = delete;
@@ -55,9 +72,9 @@ public:
     void draw(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame, const DescriptorBinding& shadowMap,
               uint32_t slot);
 
-    // Statistics of the latest expansion (reads back; waits for the GPU).
+    // Statistics of the latest expansion, summed over the tiles (reads back; waits for the GPU). info.w: 0.
     gpu::ExpansionStats readStats();
-    // Bakes the latest expansion's quads into static vertices (one submission; waits).
+    // Bakes the latest expansion's quads into static vertices (one submission; waits). One tile only.
     BakedPlants bake(uint32_t slot);
     // Draws baked vertices into the current main pass, with the main pass's fragment shading.
     void drawBaked(VkCommandBuffer cmd, const BakedPlants& baked, const DescriptorBinding& frame,
@@ -68,25 +85,40 @@ public:
         scene_.wind = wind;
         scene_.lod = lod;
     }
-    VegetationBuffers& buffers() { return buffers_; }
+    // The records of the only resident tile (one-tile scenes: what the simulation updates).
+    VegetationBuffers& buffers();
     uint32_t instanceCapacity() const { return capacity_; }
-    // Instances and their draw commands, for benchmarks that re-draw a frozen expansion.
+    // The instance pool, for tests that read a one-tile expansion back.
     const Buffer& instances() const { return instances_; }
-    const Buffer& drawCommands() const { return draws_; }
 
 private:
+    // A resident tile: its records and what its expansion writes besides the shared pool.
+    struct Tile {
+        Tile(Context& ctx, const VegetationTile& tile, uint64_t constantsBytes);
+        ~Tile();
+        Context& ctx;
+        TileCoord coord;
+        VegetationBuffers buffers;
+        Buffer constants, clusterCounts, draws, stats;
+    };
+    using TileKey = std::pair<int32_t, int32_t>; // (y, x): the map iterates in the frame's tile order
+
     void uploadAtlas(const Atlas& atlas);
-    DescriptorBinding constantsBinding(uint32_t slot) const;
+    void writeConstants(const Tile& tile, const Camera& camera, double timeSeconds, uint32_t slot,
+                        const std::array<glm::vec4, 5>& planes);
+    void expandTile(VkCommandBuffer cmd, const Tile& tile, uint32_t slot, bool firstTile);
+    Tile& onlyTile();
+    DescriptorBinding constantsBinding(const Tile& tile, uint32_t slot) const;
     DescriptorBinding atlasCellsBinding() const;
     DescriptorBinding atlasBinding() const;
 
     Context& ctx_;
     Scene scene_;
-    VegetationBuffers buffers_;
+    std::map<TileKey, std::unique_ptr<Tile>> tiles_;
     uint32_t capacity_ = 0;
     uint32_t atlasMaxColumns_ = 1;
     glm::uvec4 atlasColumns_{1u};
-    Buffer constants_, clusterCounts_, instances_, instancePlants_, draws_, stats_, atlasCells_;
+    Buffer instances_, instancePlants_, cursor_, atlasCells_;
     uint64_t constantsStride_ = 0;
     Image atlasImage_;
     VkSampler atlasSampler_ = VK_NULL_HANDLE;

@@ -8,7 +8,10 @@
 #include "vegetation/atlas.h"
 #include "vegetation/cover_map.h"
 #include "vegetation/vegetation_tile.h"
+#include "scene/world_tiles.h"
 #include "world/ground.h"
+
+#include <memory>
 
 #include <optional>
 #include <vector>
@@ -17,7 +20,8 @@ namespace sward {
 
 struct SceneResources {
     Scene scene;
-    Ground terrain;
+    Ground terrain;                     // one-tile scenes (a world's tiles have their own, in `world`)
+    std::unique_ptr<WorldTiles> world;  // a world of several tiles: made resident around the cameras
     std::vector<ObjectModel> models;   // object k of scene.objects
     std::optional<VegetationTile> tile; // CPU copies, present when the vegetation is drawn; createSceneGpu
     std::optional<Atlas> atlas;         // releases them once uploaded, unless the simulation reads the tile
@@ -28,8 +32,9 @@ struct SceneResources {
 };
 
 // Builds the scene's terrain, object models and, when `withVegetation` and the scene enables it, its vegetation
-// tile (threads: 0 = all cores) and atlas. Checks that the atlas has a row per vegetation category, and refuses a
-// "world" of more than one tile (streamed by scene/world_tiles.h, not drawn yet).
+// tile (threads: 0 = all cores) and atlas. Checks that the atlas has a row per vegetation category. A "world" of
+// several tiles gets its WorldTiles instead of a terrain and a tile (nothing generated yet; tiles carry their far
+// cover when the vegetation is drawn).
 SceneResources buildSceneResources(Scene scene, bool withVegetation = true, uint32_t threads = 0);
 
 } // namespace sward

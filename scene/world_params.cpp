@@ -42,6 +42,10 @@ WorldParams parseWorldParams(JsonReader r) {
     if (!(w.evictRadius > w.loadRadius))
         r.fail(r.name("evict_radius") + " (" + formatNumber(w.evictRadius) + " m) must be larger than " +
                r.name("load_radius") + " (" + formatNumber(w.loadRadius) + " m)");
+    w.viewDistance = r.number("view_distance", w.loadRadius, 1.0, kMaxLoadRadius);
+    if (w.viewDistance > w.loadRadius)
+        r.fail(r.name("view_distance") + " (" + formatNumber(w.viewDistance) + " m) must not exceed " +
+               r.name("load_radius") + " (" + formatNumber(w.loadRadius) + " m): only resident tiles can be drawn");
     if (r.has("memory_budget_mib"))
         w.memoryBudgetBytes = uint64_t(r.number("memory_budget_mib", 0.0, 1.0, 1048576.0) * 1048576.0);
     r.finish();
@@ -75,6 +79,21 @@ void checkWorldScene(const Scene& scene) {
     if (extent > kMaxWorldExtent)
         fail("'world.tiles' times 'vegetation.tile_size' is " + formatNumber(extent) + " m, over the " +
              formatNumber(kMaxWorldExtent) + " m a world may span (plant positions are floats)");
+    // Ground is drawn out to view_distance, within which every tile is resident; plants dissolve at lod.far (+ half
+    // the band), so nothing drawn depends on which tiles beyond it happen to be resident.
+    if (double(scene.lod.farLimit) + 0.5 * scene.lod.band > w.viewDistance)
+        fail("in a world 'lod.far' + half 'lod.band' (" + formatNumber(scene.lod.farLimit + 0.5f * scene.lod.band) +
+             " m) must not exceed 'world.view_distance' (" + formatNumber(w.viewDistance) +
+             " m, default 'world.load_radius'): plants are drawn only from resident tiles");
+    const ActorParams& a = scene.actors;
+    const char* moving = !scene.objects.empty() ? "objects"
+                         : !a.vehicles.empty()  ? "vehicles"
+                         : !a.colliders.empty() ? "colliders"
+                         : a.gusts.count > 0    ? "gusts"
+                                                : nullptr;
+    if (moving && w.tilesX * w.tilesY > 1)
+        fail(std::string("'") + moving +
+             "' in a world of several tiles are not supported yet (objects and the interaction run on one tile)");
     checkWorldBudget(scene);
 }
 
@@ -84,13 +103,14 @@ uint64_t predictedTileBytes(const Scene& scene) {
     const double vertices = std::pow(std::round(double(v.tileSize) / t.spacing) + 1.0, 2.0);
     const double fields = double(v.fieldsPerTile()) * v.fieldsPerTile();
     const double clusters = fields * v.clustersPerField() * v.clustersPerField();
-    double plants = 0.0;
+    double plants = 0.0, coverTexels = 0.0;
     if (scene.vegetationEnabled) {
         // The meadow's intensities never exceed 1, and rounding adds at most one plant per cluster and category.
         static const GrassMap full(1, 1, 3, {1.0f, 1.0f, 1.0f}, "full intensity");
         plants = predictPlantCount(full, v) + clusters * v.categoryCount;
+        coverTexels = std::pow(double(MeadowMapParams{}.resolution), 2.0); // the far cover: one per meadow texel
     }
-    const double bytes = vertices * sizeof(float) +
+    const double bytes = vertices * sizeof(float) + coverTexels * sizeof(glm::vec4) +
                          plants * double(sizeof(gpu::PlantStatic) + sizeof(gpu::PlantDynamic)) +
                          clusters * double(sizeof(gpu::PlantCluster)) + fields * double(sizeof(FieldVegetation));
     return uint64_t(std::min(std::ceil(bytes), 1e18));

@@ -25,9 +25,12 @@ struct WorldParams {
     double evictRadius = 400.0;                        // metres, > loadRadius (default loadRadius + 100): tiles
                                                        // beyond it of every point are evicted
     uint64_t memoryBudgetBytes = uint64_t(2048) << 20; // "memory_budget_mib": resident tiles at most
+    double viewDistance = 300.0;                       // metres, <= loadRadius (default loadRadius): ground and
+                                                       // plants are drawn out to it from the camera
 };
 
-// Reads "tiles", "load_radius", "evict_radius" and "memory_budget_mib"; errors name the file and the JSON path.
+// Reads "tiles", "load_radius", "evict_radius", "view_distance" and "memory_budget_mib"; errors name the file and
+// the JSON path.
 WorldParams parseWorldParams(JsonReader r);
 
 // The world's requirements on the rest of the scene, checked once terrain and vegetation are parsed: the procedural

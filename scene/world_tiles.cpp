@@ -33,7 +33,7 @@ double distanceToTile(const Scene& scene, int32_t x, int32_t y, glm::dvec2 point
 // The same parts predictedTileBytes bounds.
 uint64_t tileBytes(const WorldTile& tile) {
     return tile.ground.heightfield()->heights().size() * sizeof(float) + countVegetation(tile.vegetation).totalBytes() +
-           tile.vegetation.fields.size() * sizeof(FieldVegetation);
+           tile.vegetation.fields.size() * sizeof(FieldVegetation) + tile.cover.texels.size() * sizeof(glm::vec4);
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -46,7 +46,7 @@ std::string mib(uint64_t bytes) {
 
 } // namespace
 
-WorldTile generateWorldTile(const Scene& scene, TileCoord coord, uint32_t threads) {
+WorldTile generateWorldTile(const Scene& scene, TileCoord coord, uint32_t threads, std::span<const CategoryLook> looks) {
     const WorldParams& w = scene.world;
     require(w.enabled && coord.x >= 0 && coord.y >= 0 && uint32_t(coord.x) < w.tilesX && uint32_t(coord.y) < w.tilesY,
             "generateWorldTile: " + tileName(coord.x, coord.y) + " is not a tile of the scene's world");
@@ -56,14 +56,35 @@ WorldTile generateWorldTile(const Scene& scene, TileCoord coord, uint32_t thread
     terrain.origin = origin;
     WorldTile tile{.coord = coord, .ground = Ground(makeProceduralTerrain(terrain), scene.terrain.selection)};
     tile.vegetation.coord = coord;
-    if (scene.vegetationEnabled)
-        tile.vegetation = generateTile(tile.ground, buildGrassMap(scene, scene.vegetation.tileSize, origin),
-                                       scene.vegetation, coord, threads);
+    if (scene.vegetationEnabled) {
+        const GrassMap map = buildGrassMap(scene, scene.vegetation.tileSize, origin);
+        tile.vegetation = generateTile(tile.ground, map, scene.vegetation, coord, threads);
+        if (!looks.empty()) {
+            VegetationParams params = scene.vegetation;
+            params.worldOrigin = glm::vec2(origin);
+            tile.cover = makeCoverMap(map, looks, params);
+        }
+    }
     tile.bytes = tileBytes(tile);
     return tile;
 }
 
-WorldTiles::WorldTiles(Scene scene, uint32_t threads) : scene_(std::move(scene)), threads_(threads) {
+Ground cameraGround(const Scene& scene, double time) {
+    const CameraParams& c = scene.camera;
+    const glm::dvec2 a = c.hasPath ? pathPoseXY(c.path, time) : glm::dvec2(c.position);
+    const glm::dvec2 b = c.hasPath ? pathPointAheadXY(c.path, time, c.lookAhead) : glm::dvec2(c.lookAt);
+    // A square on the lattice with two cells of margin around both points.
+    ProceduralTerrainParams window = scene.terrain.procedural;
+    const double step = window.spacing;
+    const glm::dvec2 lo = glm::floor(glm::min(a, b) / step) * step - 2.0 * step;
+    const glm::dvec2 hi = glm::ceil(glm::max(a, b) / step) * step + 2.0 * step;
+    window.origin = lo;
+    window.size = float(std::max(hi.x - lo.x, hi.y - lo.y));
+    return Ground(makeProceduralTerrain(window), scene.terrain.selection);
+}
+
+WorldTiles::WorldTiles(Scene scene, uint32_t threads, std::vector<CategoryLook> looks)
+    : scene_(std::move(scene)), threads_(threads), looks_(std::move(looks)) {
     require(scene_.world.enabled, scene_.source + ": the scene has no 'world'");
     checkWorldScene(scene_);
     predictedTileBytes_ = predictedTileBytes(scene_);
@@ -206,7 +227,7 @@ void WorldTiles::waitFor(std::span<const glm::dvec2> points) {
     std::sort(p.load.begin(), p.load.end());
     for (const Key& key : p.load) {
         const auto start = std::chrono::steady_clock::now();
-        WorldTile tile = generateWorldTile(scene_, TileCoord{key.second, key.first}, threads_);
+        WorldTile tile = generateWorldTile(scene_, TileCoord{key.second, key.first}, threads_, looks_);
         stats_.generationSeconds += secondsSince(start);
         makeResident(std::move(tile));
     }
@@ -260,7 +281,7 @@ void WorldTiles::workerLoop() {
         std::optional<WorldTile> tile;
         std::exception_ptr error;
         try {
-            tile = generateWorldTile(scene_, TileCoord{key.second, key.first}, threads_);
+            tile = generateWorldTile(scene_, TileCoord{key.second, key.first}, threads_, looks_);
         } catch (...) {
             error = std::current_exception();
         }

@@ -15,6 +15,7 @@
 
 #include "interaction/tile_state.h"
 #include "scene/scene.h"
+#include "vegetation/cover_map.h"
 #include "vegetation/vegetation_tile.h"
 #include "world/ground.h"
 
@@ -40,12 +41,19 @@ struct WorldTile {
     Ground ground;             // the tile's procedural terrain
     VegetationTile vegetation; // its plants (no fields with vegetation off); dynamic records + field activity are
                                // its interaction state
-    uint64_t bytes = 0;        // resident bytes: terrain heights, plant and cluster records, field headers
+    CoverMap cover;            // its far cover (empty without category looks)
+    uint64_t bytes = 0;        // resident bytes: terrain heights, plant and cluster records, field headers, cover
 };
 
 // The tile (x, y) of a world scene, generated on `threads` threads (0 = all cores); a pure function of the scene
-// and the coordinate. Requires scene.world.enabled and (x, y) inside the world.
-WorldTile generateWorldTile(const Scene& scene, TileCoord coord, uint32_t threads);
+// and the coordinate. Requires scene.world.enabled and (x, y) inside the world. With `looks` (one per category,
+// categoryLooks), also the tile's far cover.
+WorldTile generateWorldTile(const Scene& scene, TileCoord coord, uint32_t threads,
+                            std::span<const CategoryLook> looks = {});
+
+// The ground a world scene's camera needs at `time`: the procedural terrain on the world's lattice (bitwise the
+// tiles' heights) around the camera's position and its look-at point, without generating any tile.
+Ground cameraGround(const Scene& scene, double time);
 
 struct WorldTileStats {
     uint64_t generated = 0, evicted = 0, restored = 0; // tiles; restored: generated with kept state written back
@@ -56,7 +64,8 @@ struct WorldTileStats {
 class WorldTiles {
 public:
     // Requires scene.world.enabled; checks the memory budget (checkWorldScene). threads: per tile (0 = all cores).
-    explicit WorldTiles(Scene scene, uint32_t threads = 0);
+    // looks: the vegetation's far look (categoryLooks), given to every tile's cover; empty: no cover.
+    explicit WorldTiles(Scene scene, uint32_t threads = 0, std::vector<CategoryLook> looks = {});
     ~WorldTiles(); // stops the worker once the tile it is generating (discarded) is done
     WorldTiles(const WorldTiles&) = delete;
     WorldTiles& operator=(const WorldTiles&) = delete;
@@ -111,6 +120,7 @@ private:
 
     Scene scene_;
     uint32_t threads_;
+    std::vector<CategoryLook> looks_;
     uint64_t predictedTileBytes_;
     std::map<Key, WorldTile> resident_;
     std::map<Key, TileInteractionState> kept_; // evicted tiles with touched fields

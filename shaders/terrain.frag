@@ -9,6 +9,7 @@
 
 layout(set = 0, binding = kBindingCoverMap) uniform sampler2D coverMap;
 layout(set = 0, binding = kBindingGroundTextures) uniform sampler2DArray groundTextures;
+layout(push_constant) uniform Push { TerrainTileConstants tile; };
 
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inNormal;
@@ -39,7 +40,7 @@ float hiddenFraction(float area, vec3 world) {
 // How much of the pixel the far cover takes: 0 inside the plants' range, rising over their dissolve band exactly
 // as their dither removes them (plants use the same 3D distance to the camera). uv: `world` in the cover's tile.
 float coverWeight(vec3 world, vec2 uv) {
-    if (frame.coverRect.z == 0.0) return 0.0;
+    if (tile.coverRect.z == 0.0) return 0.0;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 0.0;
     float start = frame.coverBand.x - 0.5 * frame.coverBand.y;
     return clamp((distance(world, frame.cameraPosition.xyz) - start) / max(frame.coverBand.y, 1e-3), 0.0, 1.0);
@@ -60,7 +61,7 @@ void main() {
     float shadow = sunShadow(inWorld);
     float sun = max(dot(n, frame.sunDirection.xyz), 0.0) * shadow;
     vec3 color = albedo * (frame.sunRadiance.rgb * sun + ambientLight(n));
-    vec2 uv = (inWorld.xy - frame.coverRect.xy) * frame.coverRect.z;
+    vec2 uv = (inWorld.xy - tile.coverRect.xy) * tile.coverRect.z;
     float weight = coverWeight(inWorld, uv);
     if (weight > 0.0) {
         // The texture's v runs north to south (top row north), as the grass map's.

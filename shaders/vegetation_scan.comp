@@ -1,8 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Exclusive prefix sum of the per-cluster LOD counts, in cluster order, by a single workgroup; turns counts
-// into instance offsets (in place) and writes the three indirect draw commands. Instances are laid out as
-// [all near | all mid | all far], each LOD in cluster order.
+// into instance offsets (in place) and writes the three indirect draw commands. A tile's instances are laid out as
+// [all near | all mid | all far], each LOD in cluster order, from the pool's cursor on; the scan advances the
+// cursor past what it kept, so the tiles of a frame (expanded one after another, in tile order) share one pool.
 #include "shared/config.h"
 #include "shared/gpu_layout.h"
 
@@ -18,6 +19,7 @@ struct DrawIndirectCommand {
 layout(set = 0, binding = kScanBindingClusterCounts, std430) buffer ClusterCounts { uvec4 clusterCounts[]; };
 layout(set = 0, binding = kScanBindingDraws, std430) writeonly buffer Draws { DrawIndirectCommand draws[]; };
 layout(set = 0, binding = kScanBindingStats, std430) writeonly buffer Stats { ExpansionStats stats; };
+layout(set = 0, binding = kScanBindingCursor, std430) buffer Cursor { uint cursor; };
 layout(push_constant) uniform Push { ScanConstants push; };
 
 shared uvec4 partial[kScanGroupSize];
@@ -46,7 +48,8 @@ void main() {
         barrier();
     }
     uvec4 total = partial[kScanGroupSize - 1u];
-    uvec4 lodBase = uvec4(0u, total.x, total.x + total.y, 0u);
+    uint first = push.firstTile != 0u ? 0u : cursor; // every lane reads it before lane 0 advances it (barrier)
+    uvec4 lodBase = uvec4(first, first + total.x, first + total.x + total.y, 0u);
     uvec4 running = partial[lane] - sum; // exclusive prefix of this lane's chunk
     for (uint i = begin; i < end; ++i) {
         uvec4 counts = clusterCounts[i];
@@ -60,9 +63,12 @@ void main() {
         uint kept = base >= push.capacity ? 0u : min(count, push.capacity - base);
         draws[lane] = DrawIndirectCommand(kVerticesPerQuad * quads[lane], kept, 0u, base);
     }
+    barrier();
     if (lane == 0u) {
         uint all = total.x + total.y + total.z;
+        uint room = push.capacity - min(first, push.capacity);
         stats.instances = uvec4(total.xyz, all);
-        stats.info = uvec4(visibleClusters, all > push.capacity ? all - push.capacity : 0u, total.w, 0u);
+        stats.info = uvec4(visibleClusters, all > room ? all - room : 0u, total.w, first);
+        cursor = first + min(all, room);
     }
 }

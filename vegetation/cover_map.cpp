@@ -39,7 +39,11 @@ std::vector<CategoryLook> categoryLooks(const Atlas& atlas, const VegetationPara
 }
 
 CoverMap makeCoverMap(const GrassMap& map, const Atlas& atlas, const VegetationParams& params) {
-    const std::vector<CategoryLook> looks = categoryLooks(atlas, params);
+    return makeCoverMap(map, categoryLooks(atlas, params), params);
+}
+
+CoverMap makeCoverMap(const GrassMap& map, std::span<const CategoryLook> looks, const VegetationParams& params) {
+    require(looks.size() >= params.categoryCount, "makeCoverMap: one look per vegetation category");
     CoverMap cover{.width = map.width(), .height = map.height(), .origin = params.worldOrigin, .size = params.tileSize};
     cover.texels.resize(size_t(map.width()) * map.height());
     const std::vector<float>& values = map.values();

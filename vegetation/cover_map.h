@@ -15,6 +15,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace sward {
@@ -36,5 +37,7 @@ struct CoverMap {
 
 // The cover of the map's tile (origin and size from params), texel for texel of the grass map.
 CoverMap makeCoverMap(const GrassMap& map, const Atlas& atlas, const VegetationParams& params);
+// The same from the categories' looks (a world computes them once for all its tiles).
+CoverMap makeCoverMap(const GrassMap& map, std::span<const CategoryLook> looks, const VegetationParams& params);
 
 } // namespace sward

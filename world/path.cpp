@@ -45,10 +45,19 @@ PathPose pathPose(const PathParams& path, const Ground& terrain, double time) {
     return {glm::dvec3(xy, z), heading, s};
 }
 
-glm::dvec3 pathPointAhead(const PathParams& path, const Ground& terrain, double time, double ahead) {
+glm::dvec2 pathPoseXY(const PathParams& path, double time) {
+    return pointAt(path, std::max(time - path.startTime, 0.0) * path.speed).first;
+}
+
+glm::dvec2 pathPointAheadXY(const PathParams& path, double time, double ahead) {
     double s = std::max(time - path.startTime, 0.0) * path.speed + ahead;
     auto [xy, heading] = pointAt(path, s);
     if (!path.loop && s > pathLength(path)) xy += heading * (s - pathLength(path)); // look beyond the end
+    return xy;
+}
+
+glm::dvec3 pathPointAhead(const PathParams& path, const Ground& terrain, double time, double ahead) {
+    const glm::dvec2 xy = pathPointAheadXY(path, time, ahead);
     return glm::dvec3(xy, double(terrain.height(glm::vec2(xy))));
 }
 

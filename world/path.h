@@ -32,6 +32,9 @@ struct PathPose {
 PathPose pathPose(const PathParams& path, const Ground& terrain, double time);
 // Point `ahead` metres further along the path from the pose at `time` (clamped to the end unless looping).
 glm::dvec3 pathPointAhead(const PathParams& path, const Ground& terrain, double time, double ahead);
+// The xy of pathPose and pathPointAhead, which need no ground (e.g. to know where to make the ground resident).
+glm::dvec2 pathPoseXY(const PathParams& path, double time);
+glm::dvec2 pathPointAheadXY(const PathParams& path, double time, double ahead);
 // Total polyline length in metres.
 double pathLength(const PathParams& path);
 

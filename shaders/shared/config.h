@@ -68,6 +68,7 @@ SWARD_CONST(uint, kExpandBindingInstancePlants, 7u);
 SWARD_CONST(uint, kScanBindingClusterCounts, 0u);
 SWARD_CONST(uint, kScanBindingDraws, 1u);
 SWARD_CONST(uint, kScanBindingStats, 2u);
+SWARD_CONST(uint, kScanBindingCursor, 3u); // uint: first free instance of the frame's shared pool (tiles chain)
 
 // Interaction recovery (plant_recovery.comp).
 SWARD_CONST(uint, kRecoveryBindingDynamics, 0u);

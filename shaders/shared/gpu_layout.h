@@ -58,8 +58,12 @@ struct FrameConstants {
     mat4 shadowViewProj; // world -> sun shadow map clip space (orthographic, reversed Z)
     vec4 shadowParams;   // x enabled (0/1), y depth bias, z 1/shadow map size, w unused
     uvec4 debug;         // x kDebug* flags (sward-view overlays; 0 for renders), yzw unused
-    vec4 coverRect;      // the cover map's tile: xy world south-west corner, z 1 / edge (0: no cover), w unused
     vec4 coverBand;      // x lod.far, y lod.band (the plants' dissolve band around it), zw unused
+};
+
+// Per-tile constants of the terrain's main pass (push constants of terrain.frag): each tile has its own cover map.
+struct TerrainTileConstants {
+    vec4 coverRect; // the cover map's tile: xy world south-west corner, z 1 / edge (0: no cover), w unused
 };
 
 // FrameConstants::debug.x flags: viewer visualisations drawn by the main-pass shaders.
@@ -151,7 +155,9 @@ struct RecoveryConstants {
 // Scan pass parameters (push constants of vegetation_scan.comp).
 struct ScanConstants {
     uint clusterCount;
-    uint capacity; // instance capacity: draws keep at most this many instances
+    uint capacity; // instance capacity of the frame's pool: draws keep instances below it
+    uint firstTile; // 1: the frame's first tile, whose instances start at 0 (the cursor is only written)
+    uint pad;
 };
 
 // Bake pass parameters (push constants of plant_bake.comp): one dispatch per level of detail.
@@ -166,11 +172,12 @@ struct BakeConstants {
 struct ExpansionStats {
     uvec4 instances;     // instances per LOD (x near, y mid, z far), w total
     uvec4 info;          // x clusters visible, y instances dropped for lack of capacity, z plants in visible
-                         // clusters (the per-plant work done), w unused
+                         // clusters (the per-plant work done), w the tile's first instance in the frame's pool
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameConstants) == 4 * 64 + 12 * 16);
+static_assert(sizeof(FrameConstants) == 4 * 64 + 11 * 16);
+static_assert(sizeof(TerrainTileConstants) == 16);
 static_assert(sizeof(DebugLineVertex) == 32);
 static_assert(sizeof(VegetationConstants) == 12 * 16);
 static_assert(sizeof(ExpandedPlant) == 32);
@@ -179,7 +186,7 @@ static_assert(sizeof(ExpansionStats) == 32);
 static_assert(sizeof(BakedVertex) == 48);
 static_assert(sizeof(PlantContact) == 16);
 static_assert(sizeof(RecoveryConstants) == 48);
-static_assert(sizeof(ScanConstants) == 8);
+static_assert(sizeof(ScanConstants) == 16);
 static_assert(sizeof(BakeConstants) == 16);
 static_assert(sizeof(TerrainVertex) == 64);
 } // namespace sward::gpu

@@ -1,0 +1,111 @@
+// Drawing a world of several tiles (issue 15, part 3): frames of a flight across tiles are bitwise the same whether
+// the tiles come and go around the camera (streamed) or all stay resident, and the tiles meet without a gap.
+#include "gpu_test.h"
+
+#include "render/scene_gpu.h"
+#include "scene/camera_rig.h"
+#include "scene/scene_resources.h"
+#include "shared/gpu_layout.h"
+
+#include <algorithm>
+#include <cmath>
+
+using namespace sward;
+using sward::test::GpuTest;
+
+namespace {
+
+constexpr uint32_t kWidth = 160, kHeight = 96;
+
+// 4 x 4 tiles of 40 m; the camera flies diagonally across six of them, 3 m above the ground, looking ahead.
+// `loadRadius` 35 m streams (tiles come and go); 400 m keeps the whole world resident. Both draw out to 35 m.
+Scene smallWorld(double loadRadius) {
+    nlohmann::json json = nlohmann::json::parse(R"({
+        "seed": 11,
+        "terrain": {"size": 40, "spacing": 1, "amplitude": 5, "feature_size": 50, "octaves": 3},
+        "vegetation": {"tile_size": 40, "field_size": 20},
+        "world": {"tiles": [4, 4], "view_distance": 35},
+        "camera": {"path": {"points": [[10, 8], [150, 130]], "speed": 12, "height_above_ground": 3},
+                   "look_ahead": 14, "look_at_height_above_ground": 0, "fov_y_deg": 70},
+        "render": {"shadow_map_size": 256, "shadow_distance": 25},
+        "lod": {"near": 4, "mid": 10, "far": 24, "band": 2}
+    })");
+    json["world"]["load_radius"] = loadRadius;
+    json["world"]["evict_radius"] = loadRadius + 10.0;
+    json["world"]["memory_budget_mib"] = 512;
+    return parseScene(json, "small world");
+}
+
+struct Flight {
+    std::vector<FrameImages> frames;
+    uint32_t mostTilesDrawn = 0, evicted = 0;
+};
+
+Flight fly(Context& ctx, double loadRadius, uint32_t frames) {
+    SceneResources r = buildSceneResources(smallWorld(loadRadius), true, 2);
+    SceneGpu gpu = createSceneGpu(ctx, r, 1, SimulationMode::None);
+    OffscreenFrame target(ctx, kWidth, kHeight, 1);
+    Flight flight;
+    for (uint32_t frame = 0; frame < frames; ++frame) {
+        const double time = 1.0 * frame;
+        const RigCameras rig = sceneRig(r.scene, cameraGround(r.scene, time), r.models, kWidth, kHeight, time);
+        const glm::dvec2 camera(rig.left.position);
+        r.world->waitFor({&camera, 1});
+        syncWorldTiles(*gpu.renderer, *r.world);
+        flight.mostTilesDrawn = std::max(flight.mostTilesDrawn, gpu.renderer->tileCount());
+        flight.frames.push_back(target.render(*gpu.renderer, rig.left, time, frame, {}, &rig.right));
+    }
+    flight.evicted = uint32_t(r.world->stats().evicted);
+    return flight;
+}
+
+} // namespace
+
+TEST_F(GpuTest, WorldFramesAreBitwiseTheSameStreamedOrResident) {
+    constexpr uint32_t kFrames = 12; // 12 s at 12 m/s: 144 m, across the diagonal tiles (0,0) .. (2,2)
+    const Flight streamed = fly(*ctx, 35.0, kFrames);
+    const Flight resident = fly(*ctx, 400.0, kFrames);
+    EXPECT_GT(streamed.evicted, 0u) << "the flight must leave tiles behind";
+    EXPECT_EQ(resident.evicted, 0u);
+    EXPECT_EQ(resident.mostTilesDrawn, 16u);
+    EXPECT_LT(streamed.mostTilesDrawn, 16u);
+    uint64_t plantPixels = 0;
+    for (uint32_t f = 0; f < kFrames; ++f) {
+        const FrameImages& a = streamed.frames[f];
+        const FrameImages& b = resident.frames[f];
+        EXPECT_EQ(a.rgbaHalf, b.rgbaHalf) << "left colour, frame " << f;
+        EXPECT_EQ(a.rightRgbaHalf, b.rightRgbaHalf) << "right colour, frame " << f;
+        EXPECT_EQ(a.depth, b.depth) << "depth, frame " << f;
+        EXPECT_EQ(a.labels, b.labels) << "labels, frame " << f;
+        for (uint32_t label : a.labels) {
+            const uint32_t semantic = label >> gpu::kInstanceBits;
+            plantPixels += semantic >= gpu::kSemanticVegetation && semantic < gpu::kSemanticObject;
+        }
+    }
+    EXPECT_GT(plantPixels, uint64_t(kFrames) * kWidth * kHeight / 20) << "the flight sees grass";
+    EXPECT_EQ(ctx->device.validationMessageCount(), 0u);
+}
+
+// The camera looks down across the corner where four tiles meet: every pixel is ground or plant, so the ground has
+// no crack along the seams (sky would show through).
+TEST_F(GpuTest, WorldTilesMeetWithoutACrack) {
+    Scene scene = smallWorld(60.0);
+    scene.camera.hasPath = false;
+    scene.camera.position = glm::dvec3(76.0, 76.0, 0.0);
+    scene.camera.useHeightAboveGround = true;
+    scene.camera.heightAboveGround = 12.0;
+    scene.camera.lookAt = glm::dvec3(80.5, 80.5, 0.0);
+    scene.camera.lookAtUsesGround = true;
+    SceneResources r = buildSceneResources(scene, true, 2);
+    SceneGpu gpu = createSceneGpu(*ctx, r, 1, SimulationMode::None);
+    const Camera camera = sceneCamera(r.scene, cameraGround(r.scene, 0.0), kWidth, kHeight);
+    const glm::dvec2 xy(camera.position);
+    r.world->waitFor({&xy, 1});
+    syncWorldTiles(*gpu.renderer, *r.world);
+    ASSERT_GE(gpu.renderer->tileCount(), 4u);
+    const FrameImages images = renderFrame(*ctx, *gpu.renderer, camera);
+    uint32_t sky = 0;
+    for (uint32_t label : images.labels) sky += (label >> gpu::kInstanceBits) == gpu::kSemanticSky;
+    EXPECT_EQ(sky, 0u) << "the view is below the horizon: a sky pixel is a crack between tiles";
+    EXPECT_EQ(ctx->device.validationMessageCount(), 0u);
+}
