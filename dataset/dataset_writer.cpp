@@ -88,14 +88,6 @@ std::vector<std::string> swardFilesIn(const std::string& root, bool withTemporar
     return files;
 }
 
-// Alpha of the colour EXRs is coverage: every pixel is covered by a surface or by the sky, so it is 1. (What the
-// renderer leaves in its resolved alpha is the mean of alpha-to-coverage and blend values, meaningless to a user.)
-std::vector<uint16_t> withFullCoverage(std::span<const uint16_t> rgbaHalf) {
-    std::vector<uint16_t> rgba(rgbaHalf.begin(), rgbaHalf.end());
-    for (size_t i = 3; i < rgba.size(); i += 4) rgba[i] = floatToHalfBits(1.0f);
-    return rgba;
-}
-
 constexpr const char* kUseOverwrite = "; use --overwrite to start over or choose another --out";
 
 } // namespace
@@ -236,7 +228,7 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
     auto path = [&](const char* folder, const char* extension) { return target(frameFile(folder, frame, extension)); };
 
     const FrameTruth truth = frameTruth(images, left.fx, stereo_ ? baseline : 0.0);
-    writeExrRgbaHalf(path(kLeftFolder, ".exr"), w, h, withFullCoverage(images.rgbaHalf));
+    writeExrRgbaHalf(path(kLeftFolder, ".exr"), w, h, colourWithCoverage(images.rgbaHalf));
     writeExrDepth(path(kDepthFolder, ".exr"), w, h, images.depth);
     writePng8(path(kSemanticFolder, ".png"), w, h, 1, truth.semantic);
     writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y"}, {truth.instance});
@@ -249,7 +241,7 @@ void DatasetWriter::writeStereoFiles(uint32_t frame, const FrameImages& images, 
     auto path = [&](const char* folder, const char* extension) { return target(frameFile(folder, frame, extension)); };
     const std::vector<float>& disparity = truth.disparity;
     const std::vector<float>& rightDisparity = truth.rightDisparity;
-    writeExrRgbaHalf(path(kRightFolder, ".exr"), w, h, withFullCoverage(images.rightRgbaHalf));
+    writeExrRgbaHalf(path(kRightFolder, ".exr"), w, h, colourWithCoverage(images.rightRgbaHalf));
     writeExrFloatChannels(path(kDisparityFolder, ".exr"), w, h, {"Y"}, {disparity});
     writePfm(path(kDisparityFolder, ".pfm"), w, h, disparity);
     writeKittiPng(path(kDisparityFolder, ".png"), w, h, disparity);

@@ -1,9 +1,16 @@
 #include "dataset/frame_truth.h"
 
+#include "common/half_float.h"
 #include "scene/camera_rig.h"
 #include "shared/gpu_layout.h"
 
 namespace sward {
+
+std::vector<uint16_t> colourWithCoverage(std::span<const uint16_t> rgbaHalf) {
+    std::vector<uint16_t> rgba(rgbaHalf.begin(), rgbaHalf.end());
+    for (size_t i = 3; i < rgba.size(); i += 4) rgba[i] = floatToHalfBits(1.0f);
+    return rgba;
+}
 
 FrameTruth frameTruth(const FrameImages& images, double focalPx, double baseline) {
     const size_t pixels = size_t(images.width) * images.height;

@@ -5,6 +5,7 @@
 #include "dataset/frame_images.h"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace sward {
@@ -15,6 +16,10 @@ struct FrameTruth {
     std::vector<float> disparity;   // stereo: f * B / depth in pixels, 0 where nothing was hit; empty for mono
     std::vector<float> rightDisparity; // the same of the right view's depth, when the frame has it
 };
+
+// The colour as the dataset stores it: alpha is coverage, and every pixel is covered by a surface or by the sky, so
+// it is 1. (The renderer's resolved alpha is the mean of alpha-to-coverage and blend values, meaningless to a user.)
+std::vector<uint16_t> colourWithCoverage(std::span<const uint16_t> rgbaHalf);
 
 // `focalPx` and `baseline` (metres) are the left camera's and the rig's; baseline 0 = mono (no disparity).
 FrameTruth frameTruth(const FrameImages& images, double focalPx, double baseline);

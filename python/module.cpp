@@ -35,7 +35,8 @@ py::array_t<T> image(const std::vector<T>& values, uint32_t width, uint32_t heig
     return out;
 }
 
-py::array_t<float> colour(const std::vector<uint16_t>& half, uint32_t width, uint32_t height) {
+py::array_t<float> colour(const std::vector<uint16_t>& rendered, uint32_t width, uint32_t height) {
+    const std::vector<uint16_t> half = colourWithCoverage(rendered);
     std::vector<float> rgba(half.size());
     for (size_t i = 0; i < half.size(); ++i) rgba[i] = halfBitsToFloat(half[i]); // exact
     return image(rgba, width, height, 4);
@@ -58,6 +59,8 @@ py::dict frameDict(const SessionFrame& f) {
     if (f.baseline > 0.0) {
         d["right"] = colour(im.rightRgbaHalf, w, h);
         d["disparity"] = image(truth.disparity, w, h);
+        d["depth_right"] = image(im.rightDepth, w, h);
+        d["disparity_right"] = image(truth.rightDisparity, w, h);
         d["preview_right"] = image(tonemapPreview(im.rightRgbaHalf, w, h), w, h, 3);
     }
     return d;

@@ -55,10 +55,16 @@ SceneInput sceneInput(const RenderJobOptions& options) {
                       .seed = options.seed, .allowedAssetDirs = options.allowAssets};
 }
 
+// The scene is the file as it is: no text instead of it and no override ("{}" is none; the overrides were parsed
+// by loadSceneInput before this is asked).
+bool sceneIsTheFile(const RenderJobOptions& options) {
+    return !options.sceneText && (options.overrides.empty() || nlohmann::json::parse(options.overrides).empty());
+}
+
 // The scene's SHA-256 in the fingerprint: of the file as it is (so datasets made before overrides existed keep
 // their fingerprint), else of the document actually parsed (text, overrides).
 std::string sceneHash(const RenderJobOptions& options) {
-    if (options.sceneText || !options.overrides.empty()) {
+    if (!sceneIsTheFile(options)) {
         SceneInput input = sceneInput(options);
         input.seed.reset(); // the seed is a fingerprint key of its own
         return sha256Hex(std::string_view(sceneInputJson(input).dump()));
@@ -120,7 +126,7 @@ nlohmann::json jobFingerprint(const Scene& scene, const JobPlan& plan, const Ren
 // scene.json: the scene file's bytes; the built-in scene is the empty object; a scene given as text or with
 // overrides (the Python module) is the document actually parsed, as sceneHash hashes it.
 std::string sceneCopyText(const RenderJobOptions& options) {
-    if (options.sceneText || !options.overrides.empty()) {
+    if (!sceneIsTheFile(options)) {
         SceneInput input = sceneInput(options);
         input.seed.reset();
         return sceneInputJson(input).dump(2) + "\n";

@@ -19,6 +19,7 @@ void checkAtlasRows(const SceneResources& r) {
 SceneResources buildSceneResources(Scene scene, bool withVegetation, uint32_t threads) {
     SceneResources r{.scene = std::move(scene)};
     if (r.scene.world.enabled && r.scene.world.tilesX * r.scene.world.tilesY > 1) {
+        checkWorldDrawable(r.scene);
         std::vector<CategoryLook> looks;
         if (withVegetation && r.scene.vegetationEnabled) {
             r.atlas = buildAtlas(r.scene);

@@ -79,6 +79,12 @@ void checkWorldScene(const Scene& scene) {
     if (extent > kMaxWorldExtent)
         fail("'world.tiles' times 'vegetation.tile_size' is " + formatNumber(extent) + " m, over the " +
              formatNumber(kMaxWorldExtent) + " m a world may span (plant positions are floats)");
+    checkWorldBudget(scene);
+}
+
+void checkWorldDrawable(const Scene& scene) {
+    auto fail = [&](const std::string& message) { throw Error(scene.source + ": " + message); };
+    const WorldParams& w = scene.world;
     // Ground is drawn out to view_distance, within which every tile is resident; plants dissolve at lod.far (+ half
     // the band), so nothing drawn depends on which tiles beyond it happen to be resident.
     if (double(scene.lod.farLimit) + 0.5 * scene.lod.band > w.viewDistance)
@@ -94,10 +100,9 @@ void checkWorldScene(const Scene& scene) {
     if (moving && w.tilesX * w.tilesY > 1)
         fail(std::string("'") + moving +
              "' in a world of several tiles are not supported yet (objects and the interaction run on one tile)");
-    checkWorldBudget(scene);
 }
 
-uint64_t predictedTileBytes(const Scene& scene) {
+uint64_t predictedTileBytes(const Scene& scene, bool farCover) {
     const VegetationParams& v = scene.vegetation;
     const ProceduralTerrainParams& t = scene.terrain.procedural;
     const double vertices = std::pow(std::round(double(v.tileSize) / t.spacing) + 1.0, 2.0);
@@ -108,7 +113,7 @@ uint64_t predictedTileBytes(const Scene& scene) {
         // The meadow's intensities never exceed 1, and rounding adds at most one plant per cluster and category.
         static const GrassMap full(1, 1, 3, {1.0f, 1.0f, 1.0f}, "full intensity");
         plants = predictPlantCount(full, v) + clusters * v.categoryCount;
-        coverTexels = std::pow(double(MeadowMapParams{}.resolution), 2.0); // the far cover: one per meadow texel
+        if (farCover) coverTexels = std::pow(double(MeadowMapParams{}.resolution), 2.0); // one per meadow texel
     }
     const double bytes = vertices * sizeof(float) + coverTexels * sizeof(glm::vec4) +
                          plants * double(sizeof(gpu::PlantStatic) + sizeof(gpu::PlantDynamic)) +
@@ -138,10 +143,10 @@ uint32_t maxTilesWithin(double radius, double tileSize, uint32_t tilesX, uint32_
     return uint32_t(std::min<uint64_t>(most, uint64_t(tilesX) * tilesY));
 }
 
-void checkWorldBudget(const Scene& scene) {
+void checkWorldBudget(const Scene& scene, bool farCover) {
     const WorldParams& w = scene.world;
     const uint32_t tiles = maxTilesWithin(w.evictRadius, scene.vegetation.tileSize, w.tilesX, w.tilesY);
-    const uint64_t perTile = predictedTileBytes(scene);
+    const uint64_t perTile = predictedTileBytes(scene, farCover);
     const double bytes = double(tiles) * double(perTile);
     require(bytes <= double(w.memoryBudgetBytes),
             scene.source + ": 'world.memory_budget_mib' (" + mib(double(w.memoryBudgetBytes)) +
@@ -149,7 +154,7 @@ void checkWorldBudget(const Scene& scene) {
                 formatNumber(scene.vegetation.tileSize) + " m lie within 'world.evict_radius' (" +
                 formatNumber(w.evictRadius) + " m; 'world.load_radius' " + formatNumber(w.loadRadius) +
                 " m) of a point, each up to " + mib(double(perTile)) +
-                " of terrain and plant records; raise 'world.memory_budget_mib' or lower 'world.load_radius' / "
+                (farCover ? " of terrain, plant records and far cover" : " of terrain and plant records") + "; raise 'world.memory_budget_mib' or lower 'world.load_radius' / "
                 "'world.evict_radius' or 'vegetation.density_multiplier'");
 }
 

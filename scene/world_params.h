@@ -39,10 +39,14 @@ WorldParams parseWorldParams(JsonReader r);
 // 'vegetation.world_origin', the extent, and checkWorldBudget. Throws sward::Error naming the keys.
 void checkWorldScene(const Scene& scene);
 
+// What drawing a world of several tiles needs besides (renderers, not the tile streaming itself): lod.far + half
+// lod.band within view_distance, no objects or actors (they run on one tile). Throws sward::Error naming the keys.
+void checkWorldDrawable(const Scene& scene);
+
 // Upper bound of one tile's resident bytes, the same parts WorldTile::bytes counts: terrain heights, plant records
 // (static + dynamic) at full grass-map intensity plus one per cluster and category (count rounding), cluster records
-// and field headers.
-uint64_t predictedTileBytes(const Scene& scene);
+// and field headers, and with `farCover` the tile's cover map (tiles that are drawn).
+uint64_t predictedTileBytes(const Scene& scene, bool farCover = false);
 
 // The most tiles of side tileSize a disc of `radius` metres can touch, wherever its centre lies (an upper bound: the
 // centre is sampled on a 64 x 64 grid per tile and the radius widened by the sampling step), at most tilesX * tilesY.
@@ -50,6 +54,6 @@ uint32_t maxTilesWithin(double radius, double tileSize, uint32_t tilesX, uint32_
 
 // Throws sward::Error naming 'world.memory_budget_mib', 'world.load_radius' and 'world.evict_radius' when the tiles
 // that can be resident around ONE interest point (those within evict_radius of it) can exceed the budget.
-void checkWorldBudget(const Scene& scene);
+void checkWorldBudget(const Scene& scene, bool farCover = false);
 
 } // namespace sward

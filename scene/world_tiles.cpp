@@ -87,7 +87,8 @@ WorldTiles::WorldTiles(Scene scene, uint32_t threads, std::vector<CategoryLook> 
     : scene_(std::move(scene)), threads_(threads), looks_(std::move(looks)) {
     require(scene_.world.enabled, scene_.source + ": the scene has no 'world'");
     checkWorldScene(scene_);
-    predictedTileBytes_ = predictedTileBytes(scene_);
+    if (!looks_.empty()) checkWorldBudget(scene_, true); // drawn tiles carry their far cover too
+    predictedTileBytes_ = predictedTileBytes(scene_, !looks_.empty());
 }
 
 WorldTiles::~WorldTiles() {
@@ -301,6 +302,14 @@ void WorldTiles::stopWorker() {
     }
     wake_.notify_all();
     if (worker_.joinable()) worker_.join();
+}
+
+std::optional<float> WorldTiles::height(glm::dvec2 xy) const {
+    const glm::dvec2 t = glm::floor((xy - tileOrigin(scene_, 0, 0)) / double(scene_.vegetation.tileSize));
+    if (!(t.x >= 0.0 && t.y >= 0.0 && t.x < scene_.world.tilesX && t.y < scene_.world.tilesY)) return std::nullopt;
+    const WorldTile* tile = find(TileCoord{int32_t(t.x), int32_t(t.y)});
+    if (!tile) return std::nullopt;
+    return tile->ground.height(glm::vec2(xy));
 }
 
 const WorldTile* WorldTiles::find(TileCoord coord) const {

@@ -82,6 +82,8 @@ public:
     uint32_t poll();
 
     const WorldTile* find(TileCoord coord) const;
+    // The ground height at xy from the resident tile under it; nothing where that tile is not resident.
+    std::optional<float> height(glm::dvec2 xy) const;
     WorldTile* find(TileCoord coord);             // its vegetation's dynamic records and activity may be written
     std::vector<TileCoord> residentTiles() const; // ascending (y, x)
     uint32_t residentCount() const { return uint32_t(resident_.size()); }

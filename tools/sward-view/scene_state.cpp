@@ -26,7 +26,8 @@ std::unique_ptr<SceneState> loadSceneState(Context& ctx, const Scene& sceneIn, u
     // Simulation::setExternalColliders); ObjectRenderer::place moves it every frame.
     Scene scene = sceneIn;
     std::optional<size_t> roverObject;
-    if (std::string model = roverModelPath(); !model.empty()) {
+    const bool world = scene.world.enabled && scene.world.tilesX * scene.world.tilesY > 1; // no objects (yet)
+    if (std::string model = roverModelPath(); !model.empty() && !world) {
         ObjectParams rover;
         rover.name = "sward-view rover";
         rover.model = model;

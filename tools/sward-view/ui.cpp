@@ -163,6 +163,12 @@ void Ui::panel(PanelState& s) {
         }
         ImGui::Text("%-12s %7.2f ms", "total", total);
     }
+    if (s.worldTiles > 0 && ImGui::CollapsingHeader("World", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::Text("resident tiles %u, generating %u", s.worldTiles, s.worldPending);
+        ImGui::Text("memory %.0f / %.0f MiB", s.worldMiB, s.worldBudgetMiB);
+        ImGui::Text("generated %llu, evicted %llu", (unsigned long long)s.worldGenerated,
+                    (unsigned long long)s.worldEvicted);
+    }
     if (ImGui::CollapsingHeader("Simulation", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::Text("tick %llu  (%.2f s)%s", (unsigned long long)s.tick, s.simulationSeconds, s.paused ? "  paused" : "");
         ImGui::Text("active fields %zu / %zu, contacts %zu", s.activeFieldCount, s.fieldCount, s.contacts);

@@ -36,6 +36,10 @@ struct PanelState {
     uint64_t tick = 0;
     size_t activeFieldCount = 0, fieldCount = 0, contacts = 0;
     double cameraSpeed = 0.0, simulationSeconds = 0.0, collisionMs = 0.0;
+    // A world of several tiles (worldTiles 0: a one-tile scene).
+    uint32_t worldTiles = 0, worldPending = 0;
+    uint64_t worldGenerated = 0, worldEvicted = 0;
+    double worldMiB = 0.0, worldBudgetMiB = 0.0;
     std::vector<std::pair<std::string, double>> passTimes; // GPU milliseconds per pass, latest completed frame
     std::vector<float> frameTimes;                         // milliseconds, oldest first
     std::string message;                                   // last event (screenshot written, reload error, ...)

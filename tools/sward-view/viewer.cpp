@@ -59,7 +59,10 @@ private:
     void rebuild(const Scene& scene, bool keepInteraction);
     void reload();
     void resetCameraAndRover();
-    void spawnRover() { rover_.spawn(camera_, state_->resources.terrain); }
+    void spawnRover();
+    WorldTiles* world() const { return state_->resources.world.get(); }
+    float groundHeight(glm::dvec2 xy) const;
+    void streamWorld(const Camera& camera);
     float canopyHeight() const;
     // Input and the panel's edits.
     void onKey(int key, int action, int mods);
@@ -184,8 +187,43 @@ void Viewer::rebuild(const Scene& sceneIn, bool keepInteraction) {
     rover_.setVehicle(state_->resources.scene.actors.vehicles.empty() ? VehicleParams{} : state_->resources.scene.actors.vehicles[0]);
 }
 
+void Viewer::spawnRover() {
+    if (world()) {
+        panel_.message = "driving needs a one-tile scene (a world of several tiles has no interaction yet)";
+        return;
+    }
+    rover_.spawn(camera_, state_->resources.terrain);
+}
+
+// The ground under xy: in a world, of the resident tile there (none yet: the camera is not held up).
+float Viewer::groundHeight(glm::dvec2 xy) const {
+    if (world()) return world()->height(xy).value_or(-INFINITY);
+    return state_->resources.terrain.height(glm::vec2(xy));
+}
+
+// A world's tiles around the camera: requested from the generator thread and drawn once they are ready, so a frame
+// never waits for a generation (only for the upload of a finished tile).
+void Viewer::streamWorld(const Camera& camera) {
+    if (!world()) return;
+    const glm::dvec2 xy(camera.position);
+    try {
+        world()->request({&xy, 1});
+        world()->poll();
+    } catch (const Error& e) { // e.g. over the memory budget: keep the tiles there are
+        panel_.message = e.what();
+    }
+    syncWorldTiles(*state_->gpu.renderer, *world());
+    panel_.worldTiles = world()->residentCount();
+    panel_.worldPending = world()->pendingTiles();
+    panel_.worldMiB = double(world()->residentBytes() + world()->keptStateBytes()) / 1048576.0;
+    panel_.worldBudgetMiB = double(state_->resources.scene.world.memoryBudgetBytes) / 1048576.0;
+    panel_.worldGenerated = world()->stats().generated;
+    panel_.worldEvicted = world()->stats().evicted;
+}
+
 void Viewer::resetCameraAndRover() {
-    Camera c = sceneCamera(state_->resources.scene, state_->resources.terrain, 16, 16, 0.0);
+    const Scene& scene = state_->resources.scene;
+    Camera c = sceneCamera(scene, world() ? cameraGround(scene, 0.0) : state_->resources.terrain, 16, 16, 0.0);
     camera_ = FlyCamera(c.position, c.position + glm::dvec3(c.worldFromCamera[2]));
     rover_.deactivate();
     driving_ = false;
@@ -232,7 +270,7 @@ void Viewer::handleInput(double dt) {
     if (!driving_) {
         camera_.update(input, dt);
         glm::dvec3 p = camera_.position();
-        camera_.clampAbove(state_->resources.terrain.height(glm::vec2(p)), 0.3);
+        camera_.clampAbove(groundHeight(glm::dvec2(p)), 0.3);
     }
 }
 
@@ -328,6 +366,7 @@ void Viewer::renderFrame(const SwapchainImage& image, double dt) {
     VkExtent2D extent = swapchain_.extent();
     ensureTargets(extent);
     Camera camera = viewCamera(extent);
+    streamWorld(camera);
     buildOverlay(camera);
     updatePanel();
 
@@ -466,6 +505,11 @@ void Viewer::printSummary() const {
                 state_->resources.scene.name.c_str(), (unsigned long long)frame_, e.width, e.height,
                 (unsigned long long)swapchain_.generation(), recreations_,
                 (unsigned long long)(state_->gpu.simulation ? state_->gpu.simulation->nextTick() : 0));
+    if (world())
+        std::printf("sward-view: world: %u tile(s) resident, %u pending, %llu generated, %llu evicted, %.0f MiB\n",
+                    world()->residentCount(), world()->pendingTiles(),
+                    (unsigned long long)world()->stats().generated, (unsigned long long)world()->stats().evicted,
+                    double(world()->residentBytes()) / 1048576.0);
 }
 
 } // namespace

@@ -106,6 +106,31 @@ TEST(SwardView, KeysToggleMsaaWriteScreenshotsAndReloadWithoutValidationMessages
     EXPECT_LT(centre, 100.0f);
 }
 
+// A world of several tiles: tiles are requested around the camera, generated on the worker thread and drawn when
+// ready (a frame never waits for a generation); the last frame shows the meadow and the summary the resident tiles.
+TEST(SwardView, AWorldStreamsItsTilesAroundTheCamera) {
+    std::string png = tempPath("world.png");
+    std::filesystem::remove(png);
+    RunResult r = run(underXvfb(std::string(SWARD_VIEW_WORLD_SCENE) +
+                                " --validation --size 256x192 --samples 1 --frames 40 --screenshot " + png));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(countLines(r.output, "sward: validation"), 0) << r.output;
+    int resident = 0;
+    const size_t at = r.output.find("sward-view: world: ");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    std::sscanf(r.output.c_str() + at, "sward-view: world: %d tile(s) resident", &resident);
+    EXPECT_GE(resident, 4) << "the camera stands where four tiles meet:\n" << r.output;
+    cv::Mat image = cv::imread(png, cv::IMREAD_COLOR); // BGR
+    ASSERT_FALSE(image.empty()) << r.output;
+    int grass = 0;
+    for (int y = 0; y < image.rows; ++y)
+        for (int x = 0; x < image.cols; ++x) {
+            cv::Vec3b p = image.at<cv::Vec3b>(y, x);
+            grass += p[1] > 30 && p[1] > p[2] + 8 && p[1] > p[0] + 8;
+        }
+    EXPECT_GT(double(grass) / double(image.total()), 0.25) << r.output;
+}
+
 TEST(SwardView, MissingSceneIsOneClearError) {
     RunResult r = run(std::string(SWARD_VIEW_EXE) + " /nonexistent/scene.json --frames 1");
     EXPECT_EQ(r.exitCode, 1) << r.output;
