@@ -70,6 +70,10 @@ struct WorldBenchOptions {
     uint32_t threads = 0;                 // per tile generation, 0 = all cores
     uint32_t tiles = 4;                   // tiles generated one by one for the generation figures
     std::vector<uint32_t> resident = {1, 4, 9, 16, 25}; // resident-tile counts of the memory figures
+    bool noGpu = false;                   // --no-gpu: CPU figures only
+    std::string device;                   // device name filter (GPU figures)
+    uint32_t width = 640, height = 360;   // frame size of the GPU figures
+    uint32_t frames = 3;                  // timed frames per resident count (after one warm-up)
 };
 
 // The CPU side of a world of many tiles (scene/world_tiles.h). Keys: generation (per tile: ms wall and CPU (process,
@@ -77,7 +81,9 @@ struct WorldBenchOptions {
 // (the budget's upper bound), memory (per world size "4x4" / "16x16": per resident count n: resident_tiles,
 // resident_bytes, bytes_per_tile, ratio_to_n_times_one (resident_bytes / (n * bytes of one tile)), wait_ms),
 // same_radius (one camera at the scene's load radius in a 4x4 and a 16x16 world: resident tiles and bytes of each),
-// threads, density_multiplier, tile_size, scene.
+// threads, density_multiplier, tile_size, scene; gpu (null with noGpu): device, resolution, frames, view_distance,
+// rows per resident count 1, 4, 9, 16 with the camera seeing one tile: upload_ms_per_tile, frame_ms (wall, median,
+// frame + readback), frame_cpu_ms (process CPU), same_image_as_one_tile (bitwise).
 nlohmann::json benchWorld(const WorldBenchOptions& options);
 // The memory figures of benchWorld's result as an aligned text table.
 std::string worldTable(const nlohmann::json& result);

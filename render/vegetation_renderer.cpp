@@ -40,7 +40,8 @@ constexpr VkBufferUsageFlags kStorage =
 } // namespace
 
 VegetationRenderer::Tile::Tile(Context& ctx, const VegetationTile& tile, uint64_t constantsBytes)
-    : ctx(ctx), coord(tile.coord), buffers(ctx, tile) {
+    : ctx(ctx), coord(tile.coord), boundsMin(glm::dvec2(tile.origin)),
+      boundsMax(glm::dvec2(tile.origin) + double(tile.size)), buffers(ctx, tile) {
     constants = createBuffer(ctx, constantsBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryIntent::Upload);
     clusterCounts = createBuffer(ctx, uint64_t(std::max(buffers.clusterCount, 1u)) * 16, kStorage,
                                  MemoryIntent::DeviceLocal);
@@ -218,11 +219,23 @@ void VegetationRenderer::expand(VkCommandBuffer cmd, const Camera& camera, doubl
     drawReadsToComputeWritesBarrier(cmd);
     bool first = true;
     for (const auto& [key, tile] : tiles_) {
+        tile->expanded = withinReach(*tile, camera.position);
+        if (!tile->expanded) continue;
         writeConstants(*tile, camera, timeSeconds, slot, planes);
         expandTile(cmd, *tile, slot, first);
         first = false;
     }
     computeToDrawBarrier(cmd);
+}
+
+// A plant is drawn while its root is nearer than lod.far + half the band (chooseLod, 3D distance); the roots of a tile
+// lie in its square, so a tile whose square is farther in xy (plus a metre for float rounding) adds no instance: it
+// is skipped, and a resident tile out of reach costs nothing per frame.
+bool VegetationRenderer::withinReach(const Tile& tile, const glm::dvec3& camera) const {
+    const double dx = std::max({0.0, tile.boundsMin.x - camera.x, camera.x - tile.boundsMax.x});
+    const double dy = std::max({0.0, tile.boundsMin.y - camera.y, camera.y - tile.boundsMax.y});
+    const double reach = double(scene_.lod.farLimit) + 0.5 * double(scene_.lod.band) + 1.0;
+    return dx * dx + dy * dy < reach * reach;
 }
 
 void VegetationRenderer::expandTile(VkCommandBuffer cmd, const Tile& tile, uint32_t slot, bool firstTile) {
@@ -266,6 +279,7 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
     DescriptorBinding instances = storageBuffer(gpu::kBindingPlantInstances, instances_.handle);
     DescriptorBinding plants = storageBuffer(gpu::kBindingInstancePlants, instancePlants_.handle);
     for (const auto& [key, tile] : tiles_) {
+        if (!tile->expanded) continue;
         if (pass == PlantPass::Main)
             pushDescriptors(ctx_.device, cmd, pipeline,
                             {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(),
@@ -284,6 +298,7 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
 gpu::ExpansionStats VegetationRenderer::readStats() {
     gpu::ExpansionStats sum{};
     for (const auto& [key, tile] : tiles_) {
+        if (!tile->expanded) continue;
         std::vector<uint8_t> bytes = readBuffer(ctx_, tile->stats, 0, sizeof(gpu::ExpansionStats));
         gpu::ExpansionStats stats;
         std::memcpy(&stats, bytes.data(), sizeof stats);

@@ -98,8 +98,10 @@ private:
         ~Tile();
         Context& ctx;
         TileCoord coord;
+        glm::dvec2 boundsMin, boundsMax; // xy of the tile: its plants' roots lie in it
         VegetationBuffers buffers;
         Buffer constants, clusterCounts, draws, stats;
+        bool expanded = false; // by the latest expand(): within reach of the camera; draw() draws only these
     };
     using TileKey = std::pair<int32_t, int32_t>; // (y, x): the map iterates in the frame's tile order
 
@@ -107,6 +109,7 @@ private:
     void writeConstants(const Tile& tile, const Camera& camera, double timeSeconds, uint32_t slot,
                         const std::array<glm::vec4, 5>& planes);
     void expandTile(VkCommandBuffer cmd, const Tile& tile, uint32_t slot, bool firstTile);
+    bool withinReach(const Tile& tile, const glm::dvec3& camera) const;
     Tile& onlyTile();
     DescriptorBinding constantsBinding(const Tile& tile, uint32_t slot) const;
     DescriptorBinding atlasCellsBinding() const;

@@ -1,10 +1,14 @@
-// sward-bench world: the CPU side of a world of many tiles — tile generation time and resident memory against the
-// number of resident tiles, in a small and a large world. (The GPU half, upload and frame time against resident tiles,
-// is the renderer's.)
+// sward-bench world: a world of many tiles — tile generation time and resident memory against the number of resident
+// tiles, in a small and a large world (CPU), and tile upload time and frame time against the number of resident
+// tiles (GPU).
 #include "render/benchmarks.h"
 
 #include "common/error.h"
 #include "common/parallel_for.h"
+#include "engine/timestamps.h"
+#include "io/sha256.h"
+#include "render/scene_gpu.h"
+#include "scene/scene_resources.h"
 #include "scene/world_tiles.h"
 
 #include <algorithm>
@@ -101,6 +105,62 @@ nlohmann::json sameRadiusFigures(const Scene& base, uint32_t threads) {
     return result;
 }
 
+// Frame time against resident tiles: the camera stands at the centre of tile (0, 0), 2 m up, looking along +x; with
+// view_distance = lod.far + half the band it sees that tile only, whatever else is resident. Tiles of the k x k block
+// at the corner are made resident (k = 1, 2, 3, 4): the frames must stay bitwise the same (checked) and their cost
+// shows what a resident tile out of sight costs. Upload: wall time of addTile per tile (terrain, plants, cover).
+nlohmann::json gpuFigures(const Scene& base, const WorldBenchOptions& options, uint32_t threads) {
+    Scene scene = sizedWorld(base, 4);
+    scene.world.viewDistance = double(scene.lod.farLimit) + 0.5 * scene.lod.band;
+    scene.world.loadRadius = scene.world.viewDistance; // each point makes its own tile resident, no neighbour
+    scene.world.evictRadius = scene.world.loadRadius + 100.0;
+    SceneResources r = buildSceneResources(scene, true, threads);
+    Context ctx(DeviceOptions{.deviceFilter = options.device, .quiet = true});
+    SceneGpu gpu = createSceneGpu(ctx, r, 1, SimulationMode::None);
+    const double s = scene.vegetation.tileSize;
+    const glm::dvec3 eye(glm::dvec2(scene.vegetation.worldOrigin) + 0.5 * s, 0.0);
+    const Ground ground = cameraGround(scene, 0.0);
+    const double z = ground.height(glm::vec2(eye)) + 2.0;
+    const Camera camera = Camera::lookAt(glm::dvec3(eye.x, eye.y, z), glm::dvec3(eye.x + 40.0, eye.y, z - 2.0),
+                                         glm::dvec3(0, 0, 1), 60.0, options.width, options.height);
+    OffscreenFrame target(ctx, options.width, options.height, 1);
+    nlohmann::json rows = nlohmann::json::array();
+    std::string firstHash;
+    for (uint32_t k = 1; k <= 4; ++k) {
+        std::vector<glm::dvec2> points;
+        for (uint32_t y = 0; y < k; ++y)
+            for (uint32_t x = 0; x < k; ++x)
+                points.push_back(glm::dvec2(scene.vegetation.worldOrigin) + s * glm::dvec2(x + 0.5, y + 0.5));
+        r.world->waitFor(points);
+        const auto uploadStart = std::chrono::steady_clock::now();
+        const uint32_t uploaded = syncWorldTiles(*gpu.renderer, *r.world);
+        const double uploadMs = msSince(uploadStart);
+        std::vector<double> wall, cpu;
+        std::string hash;
+        for (uint32_t i = 0; i <= options.frames; ++i) { // frame 0 warms up and is not counted
+            const auto start = std::chrono::steady_clock::now();
+            const std::clock_t cpuStart = std::clock();
+            const FrameImages images = target.render(*gpu.renderer, camera, 0.0, i);
+            if (i == 0) continue;
+            wall.push_back(msSince(start));
+            cpu.push_back(cpuMsSince(cpuStart));
+            hash = sha256Hex(std::string_view(reinterpret_cast<const char*>(images.rgbaHalf.data()),
+                                              images.rgbaHalf.size() * sizeof(uint16_t)));
+        }
+        if (firstHash.empty()) firstHash = hash;
+        rows.push_back({{"resident_tiles", gpu.renderer->tileCount()},
+                        {"upload_ms_per_tile", uploaded ? uploadMs / uploaded : 0.0},
+                        {"frame_ms", medianOf(wall)},
+                        {"frame_cpu_ms", medianOf(cpu)},
+                        {"same_image_as_one_tile", hash == firstHash}});
+    }
+    return {{"device", ctx.device.name()},
+            {"resolution", std::to_string(options.width) + "x" + std::to_string(options.height)},
+            {"frames", options.frames},
+            {"view_distance", scene.world.viewDistance},
+            {"rows", rows}};
+}
+
 } // namespace
 
 nlohmann::json benchWorld(const WorldBenchOptions& options) {
@@ -125,7 +185,8 @@ nlohmann::json benchWorld(const WorldBenchOptions& options) {
             {"tile_bytes", oneTile},
             {"predicted_tile_bytes", predictedTileBytes(scene)},
             {"memory", memory},
-            {"same_radius", sameRadiusFigures(scene, threads)}};
+            {"same_radius", sameRadiusFigures(scene, threads)},
+            {"gpu", options.noGpu ? nlohmann::json(nullptr) : gpuFigures(scene, options, threads)}};
 }
 
 std::string worldTable(const nlohmann::json& result) {
@@ -139,6 +200,14 @@ std::string worldTable(const nlohmann::json& result) {
                           r.at("wait_ms").get<double>());
             table += line;
         }
+    if (result.at("gpu").is_null()) return table;
+    table += "resident  upload ms/tile  frame ms  frame CPU ms  same image\n";
+    for (const nlohmann::json& r : result.at("gpu").at("rows")) {
+        std::snprintf(line, sizeof line, "%8u  %14.1f  %8.1f  %12.1f  %s\n", r.at("resident_tiles").get<uint32_t>(),
+                      r.at("upload_ms_per_tile").get<double>(), r.at("frame_ms").get<double>(),
+                      r.at("frame_cpu_ms").get<double>(), r.at("same_image_as_one_tile").get<bool>() ? "yes" : "NO");
+        table += line;
+    }
     return table;
 }
 

@@ -89,6 +89,9 @@ int main(int argc, char** argv) {
     sward::addUnsigned(*wld, "--threads", world.threads, 0, sward::kMaxThreadsOption,
                        "Threads per tile generation (0 = all cores)");
     sward::addUnsigned(*wld, "--tiles", world.tiles, 1, 256, "Tiles generated one by one for the generation figures");
+    wld->add_flag("--no-gpu", world.noGpu, "CPU figures only (no upload and frame times)");
+    wld->add_option("--device", world.device, "Vulkan device name filter for the GPU figures");
+    sward::addUnsigned(*wld, "--frames", world.frames, 1, 1000, "Timed frames per resident-tile count");
     wld->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
     return sward::runTool(app, argc, argv, "sward-bench", [&] {
