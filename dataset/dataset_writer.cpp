@@ -231,7 +231,8 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
     writeExrRgbaHalf(path(kLeftFolder, ".exr"), w, h, colourWithCoverage(images.rgbaHalf));
     writeExrDepth(path(kDepthFolder, ".exr"), w, h, images.depth);
     writePng8(path(kSemanticFolder, ".png"), w, h, 1, truth.semantic);
-    writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y"}, {truth.instance});
+    if (truth.tile.empty()) writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y"}, {truth.instance});
+    else writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y", "tile"}, {truth.instance, truth.tile});
     writePng8(path(kPreviewFolder, ".png"), w, h, 3, tonemapPreview(images.rgbaHalf, w, h));
     if (stereo_) writeStereoFiles(frame, images, truth);
 }

@@ -11,6 +11,8 @@ struct FrameImages {
     std::vector<uint16_t> rgbaHalf; // width*height*4 half floats, top row first
     std::vector<float> depth;       // planar metres, +inf where nothing was hit
     std::vector<uint32_t> labels;   // (semantic class << 24) | instance id, see gpu::kSemantic*
+    std::vector<uint32_t> tiles;    // worlds of several tiles only: the plant's tile label (y * tilesX + x + 1) per
+                                    // pixel, 0 where no plant is; instance ids count within a tile
     std::vector<uint16_t> rightRgbaHalf; // stereo only: the right view's colour
     std::vector<float> rightDepth;       // stereo only: the right view's truth pass, as depth
     std::vector<uint32_t> rightLabels;   // stereo only: the right view's truth pass, as labels

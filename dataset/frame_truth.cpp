@@ -19,6 +19,7 @@ FrameTruth frameTruth(const FrameImages& images, double focalPx, double baseline
         truth.semantic[i] = uint8_t(images.labels[i] >> gpu::kInstanceBits);
         truth.instance[i] = float(images.labels[i] & ((1u << gpu::kInstanceBits) - 1u)); // exact: ids < 2^24
     }
+    truth.tile.assign(images.tiles.begin(), images.tiles.end()); // exact: labels < 2^16
     // The rig is rectified: both views share fx, and the right view's depth gives its own disparity.
     auto disparityOfDepth = [&](const std::vector<float>& depth) {
         std::vector<float> disparity(depth.size());

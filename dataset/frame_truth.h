@@ -13,6 +13,7 @@ namespace sward {
 struct FrameTruth {
     std::vector<uint8_t> semantic;  // class per pixel (labels >> gpu::kInstanceBits)
     std::vector<float> instance;    // instance id per pixel, exact in float32 (ids < 2^24)
+    std::vector<float> tile;        // worlds of several tiles: the plant's tile label per pixel (FrameImages::tiles)
     std::vector<float> disparity;   // stereo: f * B / depth in pixels, 0 where nothing was hit; empty for mono
     std::vector<float> rightDisparity; // the same of the right view's depth, when the frame has it
 };

@@ -55,6 +55,7 @@ py::dict frameDict(const SessionFrame& f) {
     d["depth"] = image(im.depth, w, h);
     d["semantic"] = image(truth.semantic, w, h);
     d["instance"] = image(instance, w, h);
+    if (!im.tiles.empty()) d["tile"] = image(im.tiles, w, h);
     d["preview"] = image(tonemapPreview(im.rgbaHalf, w, h), w, h, 3);
     if (f.baseline > 0.0) {
         d["right"] = colour(im.rightRgbaHalf, w, h);

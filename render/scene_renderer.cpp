@@ -34,7 +34,7 @@ RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height) {
         .width = width,
         .height = height,
         .samples = VK_SAMPLE_COUNT_1_BIT,
-        .colors = {{VK_FORMAT_R32_UINT, infinity}, {VK_FORMAT_R32_UINT, sky}}, // depth bits, label
+        .colors = {{VK_FORMAT_R32_UINT, infinity}, {VK_FORMAT_R32G32_UINT, sky}}, // depth bits, (label, tile)
         .depthFormat = VK_FORMAT_D32_SFLOAT,
         .depthClear = 0.0f,
     };
@@ -413,8 +413,23 @@ OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, ui
     uint64_t pixels = uint64_t(width) * height;
     color_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     depth_ = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-    labels_ = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    labels_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
 }
+
+namespace {
+
+// The truth pass's (label, tile) pairs: labels always, the tile labels for a world of several tiles.
+void splitLabels(const Buffer& pairs, uint64_t pixels, bool world, std::vector<uint32_t>& labels,
+                 std::vector<uint32_t>* tiles) {
+    const uint32_t* pair = reinterpret_cast<const uint32_t*>(pairs.mapped());
+    labels.resize(pixels);
+    for (uint64_t i = 0; i < pixels; ++i) labels[i] = pair[2 * i];
+    if (!world || !tiles) return;
+    tiles->resize(pixels);
+    for (uint64_t i = 0; i < pixels; ++i) (*tiles)[i] = pair[2 * i + 1];
+}
+
+} // namespace
 
 OffscreenFrame::~OffscreenFrame() {
     for (Buffer* b : {&color_, &depth_, &labels_, &rightColor_, &rightDepth_, &rightLabels_}) retireBuffer(ctx_, *b);
@@ -432,7 +447,7 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
         rightTruth_ = std::make_unique<RenderTarget>(ctx_, truth_.desc());
         rightColor_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
         rightDepth_ = createBuffer(ctx_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-        rightLabels_ = createBuffer(ctx_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+        rightLabels_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     }
     ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
         if (prologue) prologue(cmd);
@@ -451,17 +466,15 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
     FrameImages images{.width = desc.width, .height = desc.height};
     images.rgbaHalf.resize(pixels * 4);
     images.depth.resize(pixels);
-    images.labels.resize(pixels);
     std::memcpy(images.rgbaHalf.data(), color_.mapped(), pixels * 8);
     std::memcpy(images.depth.data(), depth_.mapped(), pixels * 4); // float bit patterns written by the shader
-    std::memcpy(images.labels.data(), labels_.mapped(), pixels * 4);
+    splitLabels(labels_, pixels, renderer.world(), images.labels, &images.tiles);
     if (right) {
         images.rightRgbaHalf.resize(pixels * 4);
         std::memcpy(images.rightRgbaHalf.data(), rightColor_.mapped(), pixels * 8);
         images.rightDepth.resize(pixels);
-        images.rightLabels.resize(pixels);
         std::memcpy(images.rightDepth.data(), rightDepth_.mapped(), pixels * 4);
-        std::memcpy(images.rightLabels.data(), rightLabels_.mapped(), pixels * 4);
+        splitLabels(rightLabels_, pixels, false, images.rightLabels, nullptr);
     }
     return images;
 }

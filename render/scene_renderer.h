@@ -99,6 +99,7 @@ public:
     VegetationRenderer* vegetation() { return vegetation_.get(); }
     ObjectRenderer* objects() { return objects_.get(); } // null when the scene has no objects
     uint32_t samples() const { return samples_; }
+    bool world() const { return std::isfinite(viewDistance_); } // a world of several tiles
 
 private:
     // A resident tile's ground: its mesh and its far cover (1x1 "nothing" without one, so the binding is valid).

@@ -209,6 +209,9 @@ void VegetationRenderer::writeConstants(const Tile& tile, const Camera& camera, 
     for (uint32_t i = 0; i < gpu::kMaxPlantCategories; ++i) c.categoryHeight[int(i)] = scene_.vegetation.categories[i].height;
     c.atlasColumns = atlasColumns_;
     c.counts = glm::uvec4(tile.buffers.clusterCount, tile.buffers.clustersPerField, capacity_, atlasMaxColumns_);
+    const WorldParams& w = scene_.world;
+    if (w.enabled && w.tilesX * w.tilesY > 1)
+        c.tile = glm::uvec4(uint32_t(tile.coord.y) * w.tilesX + uint32_t(tile.coord.x) + 1u, 0u, 0u, 0u);
     std::memcpy(tile.constants.mapped() + (slot % gpu::kFrameDataSlots) * constantsStride_, &c, sizeof c);
 }
 

@@ -8,9 +8,9 @@ layout(location = 2) in float inViewDepth;
 layout(location = 4) flat in uint inLabel;
 
 layout(location = 0) out uint outDepthBits;
-layout(location = 1) out uint outLabel;
+layout(location = 1) out uvec2 outLabel; // label, no tile
 
 void main() {
     outDepthBits = floatBitsToUint(inViewDepth);
-    outLabel = inLabel;
+    outLabel = uvec2(inLabel, 0u);
 }

@@ -19,6 +19,7 @@ layout(location = 4) flat out uint outFade;
 layout(location = 5) out float outHeightFraction;
 layout(location = 6) flat out float outRandom;
 layout(location = 7) flat out uint outLabel; // ground truth: (semantic class << 24) | instance id
+layout(location = 8) flat out uint outTile;  // ground truth: the tile's label (VegetationConstants::tile)
 
 void main() {
     ExpandedPlant instance = instances[gl_InstanceIndex];
@@ -36,8 +37,10 @@ void main() {
                       : state == kPlantStateCut    ? kSemanticCut
                                                    : kSemanticVegetation + bitfieldExtract(instance.attributes, 0, 2);
         outLabel = (semantic << kInstanceBits) | (instancePlants[gl_InstanceIndex] + 1u);
+        outTile = veg.tile.x;
     } else {
         outLabel = 0u;
+        outTile = 0u;
     }
     gl_Position = (PASS == kPassShadow ? frame.shadowViewProj : frame.viewProj) * vec4(v.position, 1.0);
 }

@@ -5,11 +5,13 @@
 #include "shared/frame.glsl"
 #include "shared/plant_fragment.glsl"
 
+layout(location = 8) flat in uint inTile;
+
 layout(location = 0) out uint outDepthBits;
-layout(location = 1) out uint outLabel;
+layout(location = 1) out uvec2 outLabel; // label, tile label
 
 void main() {
     if (!keepFragment() || texture(atlas, inUv).a < 0.5) discard;
     outDepthBits = floatBitsToUint(inViewDepth);
-    outLabel = inLabel;
+    outLabel = uvec2(inLabel, inTile);
 }

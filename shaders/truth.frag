@@ -7,9 +7,9 @@
 
 layout(location = 2) in float inViewDepth;
 layout(location = 0) out uint outDepthBits;
-layout(location = 1) out uint outLabel;
+layout(location = 1) out uvec2 outLabel; // label, no tile (a plant's only)
 
 void main() {
     outDepthBits = floatBitsToUint(inViewDepth);
-    outLabel = kSemanticGround << kInstanceBits;
+    outLabel = uvec2(kSemanticGround << kInstanceBits, 0u);
 }

@@ -109,6 +109,7 @@ struct VegetationConstants {
     vec4 categoryHeight;   // base height per category, metres
     uvec4 counts;          // x clusters, y clusters per field, z instance capacity, w atlas max columns
     uvec4 atlasColumns;    // variants (atlas columns) per category
+    uvec4 tile;            // x: the tile's ground-truth label in a world of several tiles (y * tilesX + x + 1), else 0
 };
 
 // One expanded plant in one level of detail (storage buffer written by vegetation_expand.comp).
@@ -179,7 +180,7 @@ struct ExpansionStats {
 static_assert(sizeof(FrameConstants) == 4 * 64 + 11 * 16);
 static_assert(sizeof(TerrainTileConstants) == 16);
 static_assert(sizeof(DebugLineVertex) == 32);
-static_assert(sizeof(VegetationConstants) == 12 * 16);
+static_assert(sizeof(VegetationConstants) == 13 * 16);
 static_assert(sizeof(ExpandedPlant) == 32);
 static_assert(sizeof(AtlasCellGpu) == 32);
 static_assert(sizeof(ExpansionStats) == 32);

@@ -93,7 +93,7 @@ protected:
                                             .mainDepth = VK_FORMAT_D32_SFLOAT,
                                             .mainSamples = VK_SAMPLE_COUNT_1_BIT,
                                             .truthDepthBits = VK_FORMAT_R32_UINT,
-                                            .truthLabel = VK_FORMAT_R32_UINT,
+                                            .truthLabel = VK_FORMAT_R32G32_UINT,
                                             .truthDepth = VK_FORMAT_D32_SFLOAT,
                                             .shadowDepth = VK_FORMAT_D32_SFLOAT};
         ObjectRenderer objectRenderer(*ctx, scene, terrain, formats);
@@ -162,8 +162,14 @@ protected:
         std::memcpy(images.color.data(), color.data(), color.size());
         images.depthBits.resize(depth.size() / 4);
         std::memcpy(images.depthBits.data(), depth.data(), depth.size());
-        images.labels.resize(labels.size() / 4);
-        std::memcpy(images.labels.data(), labels.data(), labels.size());
+        // (label, tile) pairs: objects have no tile.
+        images.labels.resize(labels.size() / 8);
+        for (size_t i = 0; i < images.labels.size(); ++i) {
+            uint32_t pair[2];
+            std::memcpy(pair, labels.data() + 8 * i, 8);
+            images.labels[i] = pair[0];
+            EXPECT_EQ(pair[1], 0u);
+        }
         if (const char* png = std::getenv("SWARD_OBJECT_TEST_PNG")) // for looking at it: a tonemapped preview
             writePng8(std::string(png) + (plate ? "-plate.png" : ".png"), kWidth, kHeight, 3,
                       tonemapPreview(images.color, kWidth, kHeight));

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 using namespace sward;
 using sward::test::GpuTest;
@@ -38,6 +39,7 @@ Scene smallWorld(double loadRadius) {
 
 struct Flight {
     std::vector<FrameImages> frames;
+    std::vector<Camera> cameras; // left
     uint32_t mostTilesDrawn = 0, evicted = 0;
 };
 
@@ -54,6 +56,7 @@ Flight fly(Context& ctx, double loadRadius, uint32_t frames) {
         syncWorldTiles(*gpu.renderer, *r.world);
         flight.mostTilesDrawn = std::max(flight.mostTilesDrawn, gpu.renderer->tileCount());
         flight.frames.push_back(target.render(*gpu.renderer, rig.left, time, frame, {}, &rig.right));
+        flight.cameras.push_back(rig.left);
     }
     flight.evicted = uint32_t(r.world->stats().evicted);
     return flight;
@@ -84,6 +87,41 @@ TEST_F(GpuTest, WorldFramesAreBitwiseTheSameStreamedOrResident) {
     }
     EXPECT_GT(plantPixels, uint64_t(kFrames) * kWidth * kHeight / 20) << "the flight sees grass";
     EXPECT_EQ(ctx->device.validationMessageCount(), 0u);
+}
+
+// In a world, instance ids count within a tile and the truth names the tile: every plant pixel's tile label is the
+// tile its surface lies over (a blade leaning over the border lies within a metre of it), every other pixel has none.
+TEST_F(GpuTest, WorldPlantPixelsNameTheirTile) {
+    const Flight flight = fly(*ctx, 35.0, 6);
+    constexpr double kTile = 40.0;
+    std::set<uint32_t> seen;
+    uint64_t plants = 0, inside = 0;
+    for (size_t f = 0; f < flight.frames.size(); ++f) {
+        const FrameImages& im = flight.frames[f];
+        ASSERT_EQ(im.tiles.size(), im.labels.size());
+        for (uint32_t v = 0; v < kHeight; ++v)
+            for (uint32_t u = 0; u < kWidth; ++u) {
+                const size_t i = size_t(v) * kWidth + u;
+                const uint32_t semantic = im.labels[i] >> gpu::kInstanceBits;
+                const bool plant = semantic >= gpu::kSemanticVegetation && semantic < gpu::kSemanticObject;
+                if (!plant) {
+                    ASSERT_EQ(im.tiles[i], 0u) << "frame " << f << " pixel " << u << "," << v;
+                    continue;
+                }
+                ASSERT_GE(im.tiles[i], 1u);
+                const uint32_t tile = im.tiles[i] - 1, tx = tile % 4, ty = tile / 4;
+                seen.insert(tile);
+                const Camera& c = flight.cameras[f];
+                const glm::dvec3 p = c.position + double(im.depth[i]) * c.ray(u + 0.5, v + 0.5);
+                const double dx = std::max({0.0, tx * kTile - p.x, p.x - (tx + 1) * kTile});
+                const double dy = std::max({0.0, ty * kTile - p.y, p.y - (ty + 1) * kTile});
+                ASSERT_LT(std::max(dx, dy), 1.0) << "a plant of tile " << tile << " seen at " << p.x << ", " << p.y;
+                ++plants;
+                inside += dx == 0.0 && dy == 0.0;
+            }
+    }
+    EXPECT_GE(seen.size(), 3u) << "the flight crosses several tiles";
+    EXPECT_GT(double(inside), 0.99 * double(plants));
 }
 
 // The camera looks down across the corner where four tiles meet: every pixel is ground or plant, so the ground has
