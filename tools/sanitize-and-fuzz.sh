@@ -20,7 +20,7 @@ fuzz_budget=(-max_total_time="$fuzz_seconds")
 jobs=${JOBS:-$(nproc)}
 all_targets="scene grass_map atlas gltf glb state_file pfm kitti_png exr calib"
 targets=${FUZZ_TARGETS:-$all_targets}
-cpu_suites="common io world vegetation interaction scene dataset eval"
+cpu_suites="common io world vegetation interaction scene dataset eval export"
 # A GPU smoke subset: engine basics, the validation self-test, one renderer of each kind and the GPU simulation.
 gpu_filter="RangeAllocator.*:Validation.*:GpuTest.ComputeRoundTrip*:GpuTest.BuffersAreSubAllocated*"
 gpu_filter+=":GpuTest.ExpansionMatchesTheCpuReference:GpuTest.RecoveryMatchesTheCpuReference"
