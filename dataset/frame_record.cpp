@@ -57,11 +57,11 @@ nlohmann::json colliderJson(const Collider& c) {
 }
 
 nlohmann::json frameRecord(const Scene& scene, const std::vector<ObjectModel>& models, const Ground& terrain,
-                           const RigCameras& rig, uint32_t frame, double windTimeOffset, bool withColliders) {
+                           const RigCameras& rig, uint32_t frame, double windTimeOffset,
+                           std::span<const Collider> acting) {
     const double time = double(frame) * scene.sequence.timeStep;
     nlohmann::json colliders = nlohmann::json::array();
-    if (withColliders)
-        for (const Collider& c : sceneColliders(scene, models, terrain, frame)) colliders.push_back(colliderJson(c));
+    for (const Collider& c : acting) colliders.push_back(colliderJson(c));
     nlohmann::json objects = nlohmann::json::array();
     for (size_t k = 0; k < scene.objects.size() && k < models.size(); ++k)
         objects.push_back({{"name", scene.objects[k].name},

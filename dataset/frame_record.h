@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace sward {
@@ -28,9 +29,10 @@ nlohmann::json cameraPoseJson(const Camera& camera);
 nlohmann::json colliderJson(const Collider& collider);
 
 // The record of `frame` (tick `frame`, time frame * sequence.time_step): rig poses and intrinsics (OpenCV pixel
-// centres), wind (its clock offset by `windTimeOffset`), the colliders acting during the tick (when
-// `withColliders`: none act on bare ground), object poses and the sensor parameters.
+// centres), wind (its clock offset by `windTimeOffset`), the colliders acting during the tick (sceneColliders;
+// empty on bare ground, where none act), object poses and the sensor parameters.
 nlohmann::json frameRecord(const Scene& scene, const std::vector<ObjectModel>& models, const Ground& terrain,
-                           const RigCameras& rig, uint32_t frame, double windTimeOffset, bool withColliders);
+                           const RigCameras& rig, uint32_t frame, double windTimeOffset,
+                           std::span<const Collider> colliders);
 
 } // namespace sward

@@ -23,6 +23,22 @@ void InteractionWorld::setThreads(uint32_t threads) {
     threads_ = threads;
 }
 
+void InteractionWorld::resumeAt(uint64_t tick) {
+    tick_ = tick;
+    for (size_t f = 0; f < tile_->fields.size(); ++f) {
+        active_[f] = tile_->fields[f].active ? 1 : 0;
+        lastContact_[f] = tile_->fields[f].timeStamp;
+    }
+}
+
+void InteractionWorld::writeActivity(VegetationTile& tile) const {
+    assert(&tile == tile_);
+    for (size_t f = 0; f < tile.fields.size(); ++f) {
+        tile.fields[f].active = active_[f] != 0;
+        tile.fields[f].timeStamp = lastContact_[f];
+    }
+}
+
 TickResult InteractionWorld::step(std::span<const Collider> colliders) {
     TickResult result;
     static_cast<CollisionResult&>(result) = pass_.run(colliders, threads_);

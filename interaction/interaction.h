@@ -32,6 +32,13 @@ public:
     // Collides the colliders at the current tick, updates field activity and advances the tick.
     TickResult step(std::span<const Collider> colliders);
 
+    // Continues a tile that was simulated before (a world tile made resident again, or its simulation made anew):
+    // the next tick is `tick` and field activity is the tile's FieldVegetation::active / timeStamp.
+    void resumeAt(uint64_t tick);
+    // Writes field activity into `tile` (FieldVegetation::active / timeStamp; the tile this world was made for), so
+    // that a world tile's kept state and its residency see it.
+    void writeActivity(VegetationTile& tile) const;
+
     std::vector<uint32_t> activeFields() const; // ascending field indices
     uint64_t tick() const { return tick_; }     // the next tick step() simulates
     bool fieldActive(uint32_t field) const { return active_[field] != 0; }

@@ -98,8 +98,9 @@ JobPlan planJob(Scene& scene, const RenderJobOptions& options) {
 std::vector<nlohmann::json> sequenceRecords(const SceneResources& r, const JobPlan& plan, double timeOffset) {
     std::vector<nlohmann::json> records;
     for (uint32_t frame = 0; frame < r.scene.sequence.frames; ++frame)
-        records.push_back(frameRecord(r.scene, r.models, r.terrain, sequenceRig(r, plan.width, plan.height, frame), frame, timeOffset,
-                                      r.withVegetation()));
+        records.push_back(frameRecord(r.scene, r.models, r.terrain, sequenceRig(r, plan.width, plan.height, frame),
+                                      frame, timeOffset,
+                                      r.withVegetation() ? sceneColliders(r, frame) : std::vector<Collider>{}));
     return records;
 }
 

@@ -13,6 +13,8 @@ SceneGpu createSceneGpu(Context& ctx, SceneResources& resources, uint32_t sample
                                                        samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
                                                        resources.atlas ? &*resources.atlas : nullptr);
         resources.atlas.reset();
+        if (mode != SimulationMode::None && resources.vegetation && sceneHasColliders(resources.scene))
+            gpu.worldSimulation = std::make_unique<WorldSimulation>(ctx, resources, *gpu.renderer);
         return gpu;
     }
     VegetationTile* tile = resources.tile ? &*resources.tile : nullptr;

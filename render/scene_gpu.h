@@ -4,6 +4,7 @@
 
 #include "render/scene_renderer.h"
 #include "render/simulation.h"
+#include "render/world_simulation.h"
 #include "scene/scene_resources.h"
 
 #include <memory>
@@ -16,16 +17,18 @@ enum class SimulationMode {
     Always,                // the viewer: the user's rover may touch plants at any time
 };
 
-// Members in construction order: the simulation (which uses the renderer's buffers) is destroyed first.
+// Members in construction order: the simulations (which use the renderer's buffers) are destroyed first.
 struct SceneGpu {
     std::unique_ptr<SceneRenderer> renderer;
-    std::unique_ptr<Simulation> simulation; // null without vegetation or without a simulation
+    std::unique_ptr<Simulation> simulation;           // one tile: null without vegetation or without a simulation
+    std::unique_ptr<WorldSimulation> worldSimulation; // a world with vehicles or colliders (SimulationMode not None)
 };
 
 // Uploads `resources` (terrain, objects, vegetation, atlas) with `samples` (1 or 4) MSAA. `resources` must outlive
 // the result (the simulation reads the tile, scene, terrain and models). The CPU copies of the atlas and (without a
 // simulation) of the tile are released once uploaded.
-// A world (resources.world) starts with no tile: syncWorldTiles draws what is resident.
+// A world (resources.world) starts with no tile: syncWorldTiles draws what is resident. Its actors touch plants through
+// a WorldSimulation (not in SimulationMode::None), which then also decides what is resident.
 SceneGpu createSceneGpu(Context& ctx, SceneResources& resources, uint32_t samples, SimulationMode mode);
 
 // Makes the renderer's tiles those resident in `world`: drops the evicted, uploads the new (waits for the uploads,

@@ -55,12 +55,18 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
     const double time = double(frame) * r.scene.sequence.timeStep;
     const bool stereo = r.scene.camera.rig.stereo();
     cameras = sequenceRig(r, width, height, frame);
-    if (r.world) { // every tile within load_radius of the camera, generated before the frame: deterministic
+    std::function<void(VkCommandBuffer)> tick;
+    if (gpu.worldSimulation) { // the tiles around the camera and the actors, generated before the frame
+        gpu.worldSimulation->runTicksBefore(frame);
+        require(gpu.worldSimulation->nextTick() == frame,
+                "frame " + std::to_string(frame) + " comes after tick " + std::to_string(gpu.worldSimulation->nextTick()));
+        gpu.worldSimulation->prepare();
+        tick = [&](VkCommandBuffer cmd) { gpu.worldSimulation->recordNextTick(cmd, frame); };
+    } else if (r.world) { // every tile within load_radius of the camera, generated before the frame: deterministic
         const glm::dvec2 camera(cameras.left.position);
         r.world->waitFor({&camera, 1});
         syncWorldTiles(*gpu.renderer, *r.world);
     }
-    std::function<void(VkCommandBuffer)> tick;
     if (gpu.simulation) {
         gpu.simulation->runTicksBefore(frame); // ticks of frames skipped or rendered elsewhere (shards)
         tick = [&](VkCommandBuffer cmd) { gpu.simulation->recordNextTick(cmd, frame); };

@@ -25,7 +25,8 @@ Session::Session(Scene scene, const SessionOptions& options)
 Session::~Session() {
     // The renderer and the simulation hold GPU objects of the context: destroyed first, then the device.
     target_.reset();
-    gpu_.simulation.reset(); // uses the renderer's buffers: first
+    gpu_.worldSimulation.reset(); // these use the renderer's buffers: first
+    gpu_.simulation.reset();
     gpu_.renderer.reset();
     ctx_.reset();
 }
@@ -34,6 +35,7 @@ void Session::step(uint32_t ticks) {
     require(uint64_t(next_) + ticks <= UINT32_MAX, "step: the frame number would pass 2^32 - 1");
     next_ += ticks;
     if (gpu_.simulation) gpu_.simulation->runTicksBefore(next_);
+    if (gpu_.worldSimulation) gpu_.worldSimulation->runTicksBefore(next_);
 }
 
 SessionFrame Session::render() {
@@ -77,11 +79,18 @@ void Session::setColliders(std::vector<Collider> colliders) {
 }
 
 void Session::saveState(const std::string& path) {
+    if (gpu_.worldSimulation) return gpu_.worldSimulation->saveState(path);
     Simulation& sim = simulation("save_state");
     sim.world().saveState(path, sim.gpu().readDynamics());
 }
 
 void Session::restoreState(const std::string& path) {
+    if (gpu_.worldSimulation) {
+        const uint64_t tick = gpu_.worldSimulation->restoreState(path);
+        require(tick < UINT32_MAX, "restore_state: the saved tick is beyond the last frame");
+        next_ = uint32_t(tick);
+        return;
+    }
     Simulation& sim = simulation("restore_state");
     sim.gpu().writeDynamics(sim.world().restoreState(path));
     require(sim.world().tick() < UINT32_MAX, "restore_state: the saved tick is beyond the last frame");
@@ -89,6 +98,7 @@ void Session::restoreState(const std::string& path) {
 }
 
 Simulation& Session::simulation(const char* what) {
+    require(!resources_.world, std::string(what) + ": not supported in a world of several tiles yet");
     require(gpu_.simulation != nullptr,
             std::string(what) + ": the scene has no vegetation to interact with (vegetation off or empty)");
     return *gpu_.simulation;

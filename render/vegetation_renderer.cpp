@@ -197,6 +197,13 @@ VegetationBuffers& VegetationRenderer::buffers() {
     return onlyTile().buffers;
 }
 
+VegetationBuffers& VegetationRenderer::buffers(TileCoord coord) {
+    const auto it = tiles_.find(TileKey(coord.y, coord.x));
+    require(it != tiles_.end(), "VegetationRenderer: tile (" + std::to_string(coord.x) + ", " + std::to_string(coord.y) +
+                                    ") is not resident");
+    return it->second->buffers;
+}
+
 void VegetationRenderer::writeConstants(const Tile& tile, const Camera& camera, double timeSeconds, uint32_t slot,
                                         const std::array<glm::vec4, 5>& planes) {
     gpu::VegetationConstants c{};

@@ -87,6 +87,8 @@ public:
     }
     // The records of the only resident tile (one-tile scenes: what the simulation updates).
     VegetationBuffers& buffers();
+    // The records of resident tile `coord` (a world's simulation updates those of the tiles colliders touch).
+    VegetationBuffers& buffers(TileCoord coord);
     uint32_t instanceCapacity() const { return capacity_; }
     // The instance pool, for tests that read a one-tile expansion back.
     const Buffer& instances() const { return instances_; }

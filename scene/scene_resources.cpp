@@ -45,4 +45,9 @@ SceneResources buildSceneResources(Scene scene, bool withVegetation, uint32_t th
     return r;
 }
 
+std::vector<Collider> sceneColliders(const SceneResources& r, uint64_t tick) {
+    if (r.world) return worldActorColliders(r.scene, double(tick) * r.scene.sequence.timeStep);
+    return sceneColliders(r.scene, r.models, r.terrain, tick);
+}
+
 } // namespace sward

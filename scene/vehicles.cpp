@@ -39,6 +39,15 @@ std::vector<Collider> wheelColliders(const VehicleParams& vehicle, const std::ve
     return colliders;
 }
 
+Collider movingCollider(const MovingColliderParams& m, uint32_t index, const Ground& terrain, double time) {
+    Collider c = m.collider;
+    const glm::vec3 offset = glm::vec3(pathPose(m.path, terrain, time).position) - c.centre;
+    c.centre += offset;
+    c.end += offset;
+    c.id = uint32_t(100000 + index);
+    return c;
+}
+
 std::vector<Collider> actorColliders(const ActorParams& actors, const Ground& terrain, double time, uint64_t tick,
                                      float timeStep) {
     std::vector<Collider> colliders;
@@ -46,16 +55,8 @@ std::vector<Collider> actorColliders(const ActorParams& actors, const Ground& te
         auto wheels = wheelColliders(actors.vehicles[v], vehicleWheels(actors.vehicles[v], terrain, time), uint32_t(v));
         colliders.insert(colliders.end(), wheels.begin(), wheels.end());
     }
-    for (size_t i = 0; i < actors.colliders.size(); ++i) {
-        const MovingColliderParams& m = actors.colliders[i];
-        Collider c = m.collider;
-        glm::vec3 position(pathPose(m.path, terrain, time).position);
-        glm::vec3 offset = position - c.centre;
-        c.centre += offset;
-        c.end += offset;
-        c.id = uint32_t(100000 + i);
-        colliders.push_back(c);
-    }
+    for (size_t i = 0; i < actors.colliders.size(); ++i)
+        colliders.push_back(movingCollider(actors.colliders[i], uint32_t(i), terrain, time));
     if (actors.gusts.count > 0) {
         glm::vec2 lo = terrain.boundsMin(), hi = terrain.boundsMax();
         Aabb area{glm::vec3(lo, terrain.minHeight()), glm::vec3(hi, terrain.maxHeight() + actors.gusts.height)};

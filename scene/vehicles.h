@@ -56,6 +56,9 @@ std::vector<WheelPose> vehicleWheelsAt(const VehicleParams& vehicle, const Groun
 // One capsule collider per wheel (along the axle), ids 1000 * (index + 1) + w: what actorColliders uses.
 std::vector<Collider> wheelColliders(const VehicleParams& vehicle, const std::vector<WheelPose>& wheels, uint32_t index);
 
+// The free collider `index` of the scene (id 100000 + index) at simulation time `time`: what actorColliders uses.
+Collider movingCollider(const MovingColliderParams& params, uint32_t index, const Ground& terrain, double time);
+
 // Every collider of the scene's actors at simulation time `time` (tick = time / timeStep for gusts), with
 // stable ids: vehicle v wheel w -> 1000 * (v + 1) + w, free collider i -> 100000 + i, gusts from 0x80000000.
 std::vector<Collider> actorColliders(const ActorParams& actors, const Ground& terrain, double time, uint64_t tick,

@@ -91,15 +91,12 @@ void checkWorldDrawable(const Scene& scene) {
         fail("in a world 'lod.far' + half 'lod.band' (" + formatNumber(scene.lod.farLimit + 0.5f * scene.lod.band) +
              " m) must not exceed 'world.view_distance' (" + formatNumber(w.viewDistance) +
              " m, default 'world.load_radius'): plants are drawn only from resident tiles");
-    const ActorParams& a = scene.actors;
-    const char* moving = !scene.objects.empty() ? "objects"
-                         : !a.vehicles.empty()  ? "vehicles"
-                         : !a.colliders.empty() ? "colliders"
-                         : a.gusts.count > 0    ? "gusts"
-                                                : nullptr;
-    if (moving && w.tilesX * w.tilesY > 1)
-        fail(std::string("'") + moving +
-             "' in a world of several tiles are not supported yet (objects and the interaction run on one tile)");
+    // Vehicles and free colliders follow paths over the world's lattice ground; objects stand on one tile's ground
+    // and gusts drift over one tile's box.
+    if (w.tilesX * w.tilesY > 1 && !scene.objects.empty())
+        fail("'objects' in a world of several tiles are not supported yet (an object stands on one tile's ground)");
+    if (w.tilesX * w.tilesY > 1 && scene.actors.gusts.count > 0)
+        fail("'gusts' in a world of several tiles are not supported yet (gusts drift over one tile)");
 }
 
 uint64_t predictedTileBytes(const Scene& scene, bool farCover) {

@@ -46,6 +46,13 @@ std::string mib(uint64_t bytes) {
 
 } // namespace
 
+// A tile with an active field stays resident until its plants have sprung back: recovery runs only on resident tiles,
+// so evicting it earlier would freeze a half-recovered track and make a streamed world differ from a resident one.
+bool recovering(const WorldTile& tile) {
+    return std::any_of(tile.vegetation.fields.begin(), tile.vegetation.fields.end(),
+                       [](const FieldVegetation& f) { return f.active; });
+}
+
 WorldTile generateWorldTile(const Scene& scene, TileCoord coord, uint32_t threads, std::span<const CategoryLook> looks) {
     const WorldParams& w = scene.world;
     require(w.enabled && coord.x >= 0 && coord.y >= 0 && uint32_t(coord.x) < w.tilesX && uint32_t(coord.y) < w.tilesY,
@@ -69,18 +76,61 @@ WorldTile generateWorldTile(const Scene& scene, TileCoord coord, uint32_t thread
     return tile;
 }
 
+Ground latticeGround(const Scene& scene, glm::dvec2 a, glm::dvec2 b, double margin) {
+    ProceduralTerrainParams window = scene.terrain.procedural;
+    const double step = window.spacing;
+    const glm::dvec2 lo = glm::floor((glm::min(a, b) - margin) / step) * step - 2.0 * step;
+    const glm::dvec2 hi = glm::ceil((glm::max(a, b) + margin) / step) * step + 2.0 * step;
+    window.origin = lo;
+    window.size = float(std::max(hi.x - lo.x, hi.y - lo.y));
+    return Ground(makeProceduralTerrain(window), scene.terrain.selection);
+}
+
 Ground cameraGround(const Scene& scene, double time) {
     const CameraParams& c = scene.camera;
     const glm::dvec2 a = c.hasPath ? pathPoseXY(c.path, time) : glm::dvec2(c.position);
     const glm::dvec2 b = c.hasPath ? pathPointAheadXY(c.path, time, c.lookAhead) : glm::dvec2(c.lookAt);
-    // A square on the lattice with two cells of margin around both points.
-    ProceduralTerrainParams window = scene.terrain.procedural;
-    const double step = window.spacing;
-    const glm::dvec2 lo = glm::floor(glm::min(a, b) / step) * step - 2.0 * step;
-    const glm::dvec2 hi = glm::ceil(glm::max(a, b) / step) * step + 2.0 * step;
-    window.origin = lo;
-    window.size = float(std::max(hi.x - lo.x, hi.y - lo.y));
-    return Ground(makeProceduralTerrain(window), scene.terrain.selection);
+    return latticeGround(scene, a, b, 0.0);
+}
+
+std::vector<glm::dvec2> actorPoints(const Scene& scene, double time) {
+    std::vector<glm::dvec2> points;
+    for (const VehicleParams& v : scene.actors.vehicles) points.push_back(pathPoseXY(v.path, time));
+    for (const MovingColliderParams& m : scene.actors.colliders) points.push_back(pathPoseXY(m.path, time));
+    return points;
+}
+
+std::vector<Collider> worldActorColliders(const Scene& scene, double time) {
+    const ActorParams& actors = scene.actors;
+    require(actors.gusts.count == 0, "worldActorColliders: gusts are not supported in a world");
+    std::vector<Collider> colliders;
+    for (size_t v = 0; v < actors.vehicles.size(); ++v) {
+        const VehicleParams& vehicle = actors.vehicles[v];
+        const glm::dvec2 centre = pathPoseXY(vehicle.path, time);
+        const Ground ground = latticeGround(scene, centre, centre, double(vehicle.wheelBase + vehicle.trackWidth));
+        const auto wheels = wheelColliders(vehicle, vehicleWheels(vehicle, ground, time), uint32_t(v));
+        colliders.insert(colliders.end(), wheels.begin(), wheels.end());
+    }
+    for (size_t i = 0; i < actors.colliders.size(); ++i) {
+        const glm::dvec2 centre = pathPoseXY(actors.colliders[i].path, time);
+        colliders.push_back(movingCollider(actors.colliders[i], uint32_t(i), latticeGround(scene, centre, centre, 0.0),
+                                           time));
+    }
+    return colliders;
+}
+
+std::vector<TileCoord> tilesReached(const Scene& scene, const Collider& collider) {
+    const Aabb box = worldBounds(collider);
+    const WorldParams& w = scene.world;
+    const double s = scene.vegetation.tileSize;
+    const glm::dvec2 origin = tileOrigin(scene, 0, 0);
+    const glm::dvec2 lo = glm::floor((glm::dvec2(box.min) - 1.0 - origin) / s);
+    const glm::dvec2 hi = glm::floor((glm::dvec2(box.max) + 1.0 - origin) / s);
+    std::vector<TileCoord> tiles;
+    for (double y = std::max(lo.y, 0.0); y <= std::min(hi.y, double(w.tilesY) - 1.0); ++y)
+        for (double x = std::max(lo.x, 0.0); x <= std::min(hi.x, double(w.tilesX) - 1.0); ++x)
+            tiles.push_back(TileCoord{int32_t(x), int32_t(y)});
+    return tiles;
 }
 
 WorldTiles::WorldTiles(Scene scene, uint32_t threads, std::vector<CategoryLook> looks)
@@ -123,11 +173,7 @@ WorldTiles::Plan WorldTiles::plan(std::span<const glm::dvec2> points) const {
     std::sort(missing.begin(), missing.end());
     for (const auto& [distance, key] : missing) result.load.push_back(key);
     for (const auto& [key, tile] : resident_)
-        for (const glm::dvec2& p : points)
-            if (distanceToTile(scene_, key.second, key.first, p) <= w.evictRadius) {
-                result.keep.push_back(key);
-                break;
-            }
+        if (recovering(tile) || wantedNear(key, points)) result.keep.push_back(key);
     return result;
 }
 
@@ -142,7 +188,7 @@ void WorldTiles::fitBudget(Plan& p, std::span<const glm::dvec2> points, uint64_t
         double nearest = INFINITY;
         for (const glm::dvec2& point : points)
             nearest = std::min(nearest, distanceToTile(scene_, key.second, key.first, point));
-        if (nearest > w.loadRadius) band.emplace_back(nearest, key);
+        if (nearest > w.loadRadius && !recovering(resident_.at(key))) band.emplace_back(nearest, key);
     }
     std::sort(band.begin(), band.end());
     while (bytes > w.memoryBudgetBytes && !band.empty()) {

@@ -7,12 +7,14 @@
 // any order or on any number of threads is bitwise the same, and neighbouring tiles meet without gap or overlap.
 //
 // Residency: a tile whose square lies within load_radius of a point is made resident; one beyond evict_radius of every
-// point is evicted (the band between them keeps tiles from flickering in and out). An evicted tile leaves behind only
+// point is evicted (the band between them keeps tiles from flickering in and out) once its plants have recovered (no
+// active field: recovery runs on resident tiles only, so a tile still springing back stays, at most rest_ticks). An evicted tile leaves behind only
 // its touched fields (interaction/tile_state.h), written back when it is generated again, so a track survives.
 // Memory grows with the resident tiles: besides them the object holds the kept state of touched tiles and nothing
 // per world tile.
 #pragma once
 
+#include "interaction/colliders.h"
 #include "interaction/tile_state.h"
 #include "scene/scene.h"
 #include "vegetation/cover_map.h"
@@ -54,6 +56,24 @@ WorldTile generateWorldTile(const Scene& scene, TileCoord coord, uint32_t thread
 // The ground a world scene's camera needs at `time`: the procedural terrain on the world's lattice (bitwise the
 // tiles' heights) around the camera's position and its look-at point, without generating any tile.
 Ground cameraGround(const Scene& scene, double time);
+
+// The procedural terrain on the world's lattice over the square spanned by a and b, widened by `margin` metres and
+// two lattice cells: bitwise the tiles' heights there, without generating any tile.
+Ground latticeGround(const Scene& scene, glm::dvec2 a, glm::dvec2 b, double margin);
+
+// The xy of every vehicle and free collider of a world scene at `time`: interest points, like the cameras.
+std::vector<glm::dvec2> actorPoints(const Scene& scene, double time);
+
+// actorColliders for a world scene: each actor stands on the lattice ground around itself (latticeGround), so its
+// colliders are the same whichever tiles are resident. Same ids. Gusts are not supported in a world.
+std::vector<Collider> worldActorColliders(const Scene& scene, double time);
+
+// The tiles of the world whose plants `collider` may touch, ascending (y, x): those whose square its bounds overlap,
+// widened by a metre (the collision pass tests plants by their roots, which lie inside their tile).
+std::vector<TileCoord> tilesReached(const Scene& scene, const Collider& collider);
+
+// Whether a tile has an active field: its plants are still springing back from a contact.
+bool recovering(const WorldTile& tile);
 
 struct WorldTileStats {
     uint64_t generated = 0, evicted = 0, restored = 0; // tiles; restored: generated with kept state written back

@@ -3,6 +3,7 @@
 #include "gpu_test.h"
 
 #include "render/scene_gpu.h"
+#include "render/sequence_frame.h"
 #include "scene/camera_rig.h"
 #include "scene/scene_resources.h"
 #include "shared/gpu_layout.h"
@@ -145,5 +146,80 @@ TEST_F(GpuTest, WorldTilesMeetWithoutACrack) {
     uint32_t sky = 0;
     for (uint32_t label : images.labels) sky += (label >> gpu::kInstanceBits) == gpu::kSemanticSky;
     EXPECT_EQ(sky, 0u) << "the view is below the horizon: a sky pixel is a crack between tiles";
+    EXPECT_EQ(ctx->device.validationMessageCount(), 0u);
+}
+
+namespace {
+
+// A wide-wheeled rover drives a track into tile (0, 0) along y = 16, then leaves east (the small world's 40 m tiles, time step
+// 0.05 s). The camera flies beside the track, east to x = 140 and back 8 m further north, looking along the track on
+// the way back.
+// With load_radius 20 m (evict 25 m) tile (0, 0) is evicted while both are away (once its plants have recovered) and
+// generated again, from its kept state, for the camera's return; with 400 m every tile stays resident.
+Scene trackWorld(double loadRadius, float weight) {
+    nlohmann::json json = nlohmann::json::parse(R"({
+        "seed": 11,
+        "terrain": {"size": 40, "spacing": 1, "amplitude": 2, "feature_size": 50, "octaves": 3},
+        "vegetation": {"tile_size": 40, "field_size": 20},
+        "world": {"tiles": [4, 4], "view_distance": 20, "memory_budget_mib": 512},
+        "camera": {"path": {"points": [[18, 12], [140, 12], [140, 20], [18, 20]], "speed": 10, "height_above_ground": 2.5},
+                   "look_ahead": 10, "look_at_height_above_ground": 0, "fov_y_deg": 70},
+        "vehicles": [{"path": {"points": [[4, 16], [36, 16], [100, 16]], "speed": 4},
+                      "wheel_radius": 0.4, "wheel_width": 1.0, "track_width": 1.6, "wheel_base": 1.2}],
+        "render": {"shadow_map_size": 256, "shadow_distance": 20},
+        "lod": {"near": 4, "mid": 10, "far": 16, "band": 2},
+        "sequence": {"frames": 600, "time_step": 0.05}
+    })");
+    json["world"]["load_radius"] = loadRadius;
+    json["world"]["evict_radius"] = loadRadius + 5.0;
+    json["vehicles"][0]["weight"] = weight;
+    return parseScene(json, "track world");
+}
+
+struct TrackRun {
+    std::vector<FrameImages> frames;
+    WorldTileStats stats;
+    uint64_t contacts = 0;
+};
+
+TrackRun driveTrack(Context& ctx, double loadRadius, float weight, const std::vector<uint32_t>& frames) {
+    SceneResources r = buildSceneResources(trackWorld(loadRadius, weight), true, 2);
+    SceneGpu gpu = createSceneGpu(ctx, r, 1, SimulationMode::WhenSceneHasColliders);
+    EXPECT_TRUE(gpu.worldSimulation != nullptr);
+    OffscreenFrame target(ctx, kWidth, kHeight, 1);
+    TrackRun run;
+    for (uint32_t frame : frames) {
+        RigCameras cameras;
+        run.frames.push_back(renderSequenceFrame(gpu, target, r, kWidth, kHeight, frame, 0.0, std::nullopt, cameras));
+    }
+    run.stats = r.world->stats();
+    run.contacts = gpu.worldSimulation->contacts();
+    return run;
+}
+
+} // namespace
+
+// A track made in a tile survives the tile's eviction and generation again: the frames are bitwise those of a world
+// whose tiles all stay resident, and the track is there (the same frames without the rover's weight differ).
+TEST_F(GpuTest, WorldTrackSurvivesEvictionBitwiseAsIfResident) {
+    // 160: the camera is away east while the rover finishes its track; 470: the camera is back, looking along it
+    // (tile (0, 0) was evicted near tick 305 and made resident again near tick 404).
+    const std::vector<uint32_t> frames{160, 470};
+    const TrackRun streamed = driveTrack(*ctx, 20.0, 2.0f, frames);
+    const TrackRun resident = driveTrack(*ctx, 400.0, 2.0f, frames);
+    const TrackRun untouched = driveTrack(*ctx, 20.0, 0.0f, frames);
+    EXPECT_GT(streamed.stats.restored, 0u) << "tile (0, 0) must come back from its kept state";
+    EXPECT_EQ(resident.stats.evicted, 0u);
+    EXPECT_GT(streamed.contacts, 1000u);
+    EXPECT_EQ(streamed.contacts, resident.contacts);
+    for (size_t f = 0; f < frames.size(); ++f) {
+        EXPECT_EQ(streamed.frames[f].rgbaHalf, resident.frames[f].rgbaHalf) << "colour, frame " << frames[f];
+        EXPECT_EQ(streamed.frames[f].depth, resident.frames[f].depth) << "depth, frame " << frames[f];
+        EXPECT_EQ(streamed.frames[f].labels, resident.frames[f].labels) << "labels, frame " << frames[f];
+    }
+    uint64_t changed = 0;
+    for (size_t i = 0; i < streamed.frames[1].depth.size(); ++i)
+        changed += streamed.frames[1].depth[i] != untouched.frames[1].depth[i];
+    EXPECT_GT(changed, uint64_t(kWidth) * kHeight / 100) << "the track shows when the camera is back";
     EXPECT_EQ(ctx->device.validationMessageCount(), 0u);
 }

@@ -1,0 +1,133 @@
+#include "render/world_simulation.h"
+
+#include "common/error.h"
+#include "common/parallel_for.h"
+#include "render/scene_gpu.h"
+#include "render/sequence_frame.h"
+#include "render/vegetation_renderer.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace sward {
+
+WorldSimulation::TileSimulation::TileSimulation(Context& ctx, const Scene& scene, const VegetationTile& tile,
+                                                VegetationBuffers& buffers, uint32_t threads)
+    : world(tile, scene.vegetation, scene.interaction, threads), gpu(ctx, buffers) {}
+
+WorldSimulation::WorldSimulation(Context& ctx, SceneResources& resources, SceneRenderer& renderer, uint32_t threads)
+    : ctx_(ctx), resources_(resources), renderer_(renderer), threads_(resolveThreadCount(threads)) {
+    require(resources.world != nullptr && renderer.vegetation() != nullptr,
+            "WorldSimulation: needs a world whose vegetation is drawn");
+    resources.world->setBeforeEvict([this](WorldTile& tile) {
+        readBack(tile);
+        tiles_.erase(Key(tile.coord.y, tile.coord.x));
+        renderer_.removeTile(tile.coord); // uploaded again, from the kept state, if it comes back
+    });
+}
+
+WorldSimulation::~WorldSimulation() {
+    resources_.world->setBeforeEvict({});
+}
+
+// The tile's dynamic records live on the GPU while it is simulated: the CPU copy (what WorldTiles keeps and saves)
+// takes them, with the field activity, field by field (the buffer packs the fields in field order).
+void WorldSimulation::readBack(WorldTile& tile) {
+    const auto it = tiles_.find(Key(tile.coord.y, tile.coord.x));
+    if (it == tiles_.end()) return; // never simulated: the CPU copy is the GPU's
+    const std::vector<gpu::PlantDynamic> dynamics = it->second->gpu.readDynamics();
+    for (FieldVegetation& field : tile.vegetation.fields)
+        std::copy_n(dynamics.begin() + field.firstPlant, field.plantCount(), field.dynamicRecords.begin());
+    it->second->world.writeActivity(tile.vegetation);
+}
+
+std::vector<glm::dvec2> WorldSimulation::interestPoints(uint64_t tick) const {
+    // The left camera, as a world without actors loads around (renderSequenceFrame); its position does not depend on
+    // the image size.
+    std::vector<glm::dvec2> points{glm::dvec2(sequenceRig(resources_, 16, 16, uint32_t(tick)).left.position)};
+    const std::vector<glm::dvec2> actors =
+        actorPoints(resources_.scene, double(tick) * resources_.scene.sequence.timeStep);
+    points.insert(points.end(), actors.begin(), actors.end());
+    return points;
+}
+
+void WorldSimulation::prepare() {
+    const Scene& scene = resources_.scene;
+    WorldTiles& world = *resources_.world;
+    world.waitFor(interestPoints(tick_));
+    syncWorldTiles(renderer_, world);
+    // Each tile collides only the colliders that reach it, in the scene's order: its contacts do not depend on which
+    // other tiles are resident.
+    lastColliders_ = worldActorColliders(scene, double(tick_) * scene.sequence.timeStep);
+    reaching_.clear();
+    for (const Collider& collider : lastColliders_)
+        for (TileCoord coord : tilesReached(scene, collider)) {
+            require(world.find(coord) != nullptr,
+                    scene.source + ": at tick " + std::to_string(tick_) + " collider " + std::to_string(collider.id) +
+                        " reaches tile (" + std::to_string(coord.x) + ", " + std::to_string(coord.y) +
+                        "), which is not resident: raise 'world.load_radius'");
+            reaching_[Key(coord.y, coord.x)].push_back(collider);
+        }
+    // Simulations are made here, not while a tick is recorded: making one reads the GPU.
+    for (const auto& [key, colliders] : reaching_) simulationOf(TileCoord{key.second, key.first});
+    // A tile restored with plants still springing back (restoreState) recovers from this tick on.
+    for (TileCoord coord : world.residentTiles())
+        if (!tiles_.contains(Key(coord.y, coord.x)) && recovering(*world.find(coord))) simulationOf(coord);
+    prepared_ = tick_;
+}
+
+WorldSimulation::TileSimulation& WorldSimulation::simulationOf(TileCoord coord) {
+    std::unique_ptr<TileSimulation>& sim = tiles_[Key(coord.y, coord.x)];
+    if (!sim) {
+        const WorldTile* tile = resources_.world->find(coord);
+        require(tile != nullptr, "WorldSimulation: tile (" + std::to_string(coord.x) + ", " + std::to_string(coord.y) +
+                                     ") is not resident");
+        sim = std::make_unique<TileSimulation>(ctx_, resources_.scene, tile->vegetation,
+                                               renderer_.vegetation()->buffers(coord), threads_);
+        sim->world.resumeAt(tick_);
+    }
+    return *sim;
+}
+
+void WorldSimulation::runTicksBefore(uint64_t tick) {
+    while (tick_ < tick) {
+        prepare();
+        const uint32_t slot = uint32_t(tick_);
+        ctx_.submitter.immediate([&](VkCommandBuffer cmd) { recordNextTick(cmd, slot); });
+    }
+}
+
+void WorldSimulation::recordNextTick(VkCommandBuffer cmd, uint32_t slot) {
+    require(prepared_ == tick_, "WorldSimulation: tick " + std::to_string(tick_) + " was not prepared");
+    WorldTiles& world = *resources_.world;
+    for (auto& [key, sim] : tiles_) {
+        const auto it = reaching_.find(key);
+        const TickResult result =
+            sim->world.step(it == reaching_.end() ? std::span<const Collider>() : std::span<const Collider>(it->second));
+        sim->world.writeActivity(world.find(TileCoord{key.second, key.first})->vegetation);
+        contacts_ += result.contacts.size();
+        sim->gpu.record(cmd, result.contacts, result.activeFields, resources_.scene.interaction.recovery, slot);
+    }
+    prepared_.reset();
+    ++tick_;
+}
+
+void WorldSimulation::saveState(const std::string& path) {
+    WorldTiles& world = *resources_.world;
+    for (auto& [key, sim] : tiles_) readBack(*world.find(TileCoord{key.second, key.first}));
+    world.saveState(path, tick_);
+}
+
+uint64_t WorldSimulation::restoreState(const std::string& path) {
+    const uint64_t tick = resources_.world->restoreState(path);
+    // The resident tiles' CPU copies now hold the restored state: the GPU copies and simulations are dropped and made
+    // again from them by the next prepare().
+    tiles_.clear();
+    const std::vector<TileCoord> uploaded = renderer_.tiles();
+    for (TileCoord coord : uploaded) renderer_.removeTile(coord);
+    prepared_.reset();
+    tick_ = tick;
+    return tick;
+}
+
+} // namespace sward
