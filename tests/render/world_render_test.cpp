@@ -223,3 +223,31 @@ TEST_F(GpuTest, WorldTrackSurvivesEvictionBitwiseAsIfResident) {
     EXPECT_GT(changed, uint64_t(kWidth) * kHeight / 100) << "the track shows when the camera is back";
     EXPECT_EQ(ctx->device.validationMessageCount(), 0u);
 }
+
+// Save / restore covers the whole world: a run restored from the state saved at tick 200 (tracks in resident and
+// recovering tiles) renders frame 470 bitwise as the run that went on without stopping.
+TEST_F(GpuTest, WorldStateSavedMidTrackRestoresToTheSameFrames) {
+    const std::string path = ::testing::TempDir() + "/world-track.swardws";
+    FrameImages straight, restored;
+    {
+        SceneResources r = buildSceneResources(trackWorld(20.0, 2.0f), true, 2);
+        SceneGpu gpu = createSceneGpu(*ctx, r, 1, SimulationMode::WhenSceneHasColliders);
+        OffscreenFrame target(*ctx, kWidth, kHeight, 1);
+        gpu.worldSimulation->runTicksBefore(200);
+        gpu.worldSimulation->saveState(path);
+        RigCameras cameras;
+        straight = renderSequenceFrame(gpu, target, r, kWidth, kHeight, 470, 0.0, std::nullopt, cameras);
+    }
+    {
+        SceneResources r = buildSceneResources(trackWorld(20.0, 2.0f), true, 2);
+        SceneGpu gpu = createSceneGpu(*ctx, r, 1, SimulationMode::WhenSceneHasColliders);
+        OffscreenFrame target(*ctx, kWidth, kHeight, 1);
+        EXPECT_EQ(gpu.worldSimulation->restoreState(path), 200u);
+        RigCameras cameras;
+        restored = renderSequenceFrame(gpu, target, r, kWidth, kHeight, 470, 0.0, std::nullopt, cameras);
+    }
+    EXPECT_EQ(straight.rgbaHalf, restored.rgbaHalf);
+    EXPECT_EQ(straight.depth, restored.depth);
+    EXPECT_EQ(straight.labels, restored.labels);
+    EXPECT_EQ(ctx->device.validationMessageCount(), 0u);
+}
