@@ -40,8 +40,9 @@ inline PlantTouch touchResponse(const Collider& c, glm::vec3 q, float depth, glm
         break;
     }
     }
-    // Only solid bodies carry weight: air (gusts, downwash) bends, and a mower's weight is on its wheels.
-    if (c.kind == ColliderKind::Push && c.force > response.fellForce) {
+    // Only solid bodies carry weight: air (gusts, downwash) bends, and a mower's weight is on its wheels. A solid body
+    // fells by its weight or by bending the plant beyond what it takes.
+    if (c.kind == ColliderKind::Push && (c.force > response.fellForce || bend > response.maxBend)) {
         t.kind = gpu::kContactFell;
         t.push = dir * recovery.fellBend;
         return t;

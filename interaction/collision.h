@@ -14,7 +14,8 @@
 //              linear fall-off to half strength at the column's lower end;
 //   Mower      as Push, and cut byte = round(255 * cutHeight / plantHeight) clamped to 0..254 (no cut when
 //              cutHeight >= plantHeight);
-//   Fell       a Push collider whose force exceeds the category's fellForce: push = direction * fellBend.
+//   Fell       a Push collider whose force exceeds the category's fellForce, or whose bend exceeds its maxBend:
+//              push = direction * fellBend.
 // Several colliders on one plant combine in collider id order (ties: input order): the pushes are summed in that
 // order; Fell wins over Cut wins over Push; a Fell contact's push is the unit summed direction * fellBend (the first
 // felling collider's direction when the sum vanishes); other pushes are clamped to magnitude 0.95; the cut byte is

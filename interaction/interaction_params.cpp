@@ -10,6 +10,7 @@ namespace {
 void readCategory(JsonReader& in, CategoryInteraction& category) {
     category.fellForce = float(in.number("fell_force", category.fellForce, 0.0, 1e6));
     category.pushGain = float(in.number("push_gain", category.pushGain, 0.0, 1000.0));
+    if (in.has("max_bend")) category.maxBend = float(in.number("max_bend", 1.0, 0.01, 1e6));
     in.finish();
 }
 

@@ -109,6 +109,32 @@ TEST(Collision, HeavyWheelLeavesFelledPlantsThatStayDownFor1000Ticks) {
     EXPECT_TRUE(sim.world.activeFields().empty());
 }
 
+// The paper fells a plant whose "collision forces reach a defined maximum or [which] exceeds a maximum bend": a push
+// too light to fell by force fells a plant it bends beyond the category's max_bend, and only that plant.
+TEST(Collision, ALightPushBendingAPlantBeyondItsMaxBendFellsIt) {
+    const RecoveryParams recovery;
+    CategoryInteraction response; // fell force 0.6, push gain 2
+    response.maxBend = 0.4f;
+    const glm::vec3 base(0.0f), nearBase(0.15f, 0.0f, 0.0f);
+    // Force 0.3 < 0.6. The sphere (r 0.3, centre 0.3 m up, 0.1 m beside the stem) presses 0.2 m into a 0.5 m plant:
+    // bend 2 * 0.3 * 0.2 / 0.5 = 0.24; into the plant 0.15 m further on only 0.05 m: bend 0.06.
+    const Collider sphere = makeSphere(1, {-0.1f, 0.0f, 0.3f}, 0.3f, 0.3f);
+    const PlantTouch pressed = touchPlant(sphere, base, 0.5f, response, recovery);
+    EXPECT_EQ(pressed.kind, gpu::kContactPush) << "bend 0.24 is below max_bend 0.4";
+    response.maxBend = 0.2f;
+    const PlantTouch felled = touchPlant(sphere, base, 0.5f, response, recovery);
+    EXPECT_EQ(felled.kind, gpu::kContactFell) << "bend 0.24 is beyond max_bend 0.2";
+    EXPECT_NEAR(glm::length(felled.push), recovery.fellBend, 1e-5f);
+    EXPECT_GT(felled.push.x, 0.0f) << "felled away from the sphere";
+    EXPECT_EQ(touchPlant(sphere, nearBase, 0.5f, response, recovery).kind, gpu::kContactPush) << "bend 0.06";
+    response.maxBend = INFINITY; // the default: force alone decides, as before
+    EXPECT_EQ(touchPlant(sphere, base, 0.5f, response, recovery).kind, gpu::kContactPush);
+    Collider gust = sphere;
+    gust.kind = ColliderKind::Gust;
+    response.maxBend = 0.2f;
+    EXPECT_EQ(touchPlant(gust, base, 0.5f, response, recovery).kind, gpu::kContactPush) << "air never fells";
+}
+
 TEST(Collision, MowerLeavesShorterCutPlants) {
     const VegetationTile& tile = smallTile();
     Sim sim = makeSim(tile);

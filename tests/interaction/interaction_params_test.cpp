@@ -23,7 +23,7 @@ std::string errorOf(const char* json) {
 
 TEST(Interaction, ParamsParseWithDefaultsAndRejectUnknownKeys) {
     InteractionParams p =
-        parseInteractionParams(nlohmann::json::parse(R"({"categories": [{"fell_force": 2.5}, {"push_gain": 3}],
+        parseInteractionParams(nlohmann::json::parse(R"({"categories": [{"fell_force": 2.5}, {"push_gain": 3, "max_bend": 0.7}],
                                   "recovery": {"rest_ticks": 12, "stiffness": 20}})"),
                                "scene.json");
     EXPECT_EQ(p.categories[0].fellForce, 2.5f);
@@ -31,12 +31,15 @@ TEST(Interaction, ParamsParseWithDefaultsAndRejectUnknownKeys) {
     EXPECT_EQ(p.categories[1].pushGain, 3.0f);
     EXPECT_EQ(p.categories[1].fellForce, 0.6f);
     EXPECT_EQ(p.categories[2].fellForce, 0.8f);
+    EXPECT_EQ(p.categories[1].maxBend, 0.7f);
+    EXPECT_EQ(p.categories[0].maxBend, INFINITY) << "no bend limit unless the scene sets one";
     EXPECT_EQ(p.recovery.restTicks, 12u);
     EXPECT_EQ(p.recovery.stiffness, 20.0f);
     EXPECT_EQ(p.recovery.damping, RecoveryParams{}.damping);
     for (const char* bad :
          {R"({"colour": 1})", R"({"categories": [{"fel_force": 1}]})", R"({"recovery": {"rest_ticks": -1}})",
-          R"({"recovery": {"fell_bend": 2}})", R"({"categories": [{}, {}, {}, {}, {}]})"}) {
+          R"({"recovery": {"fell_bend": 2}})", R"({"categories": [{}, {}, {}, {}, {}]})",
+          R"({"categories": [{"max_bend": 0}]})"}) {
         try {
             parseInteractionParams(nlohmann::json::parse(bad), "scene.json");
             ADD_FAILURE() << bad;
