@@ -186,7 +186,8 @@ std::vector<std::string> exrChannelsToRead(const std::string& path, const Imf::C
 }
 
 
-ImageData loadExr(const std::string& path) {
+// `channel` empty: the channels exrChannelsToRead picks; else exactly that one.
+ImageData loadExr(const std::string& path, const std::string& channel) {
     MemoryIStream stream(path, readImageFileBytes(path));
     requireSafeExrHeaders(path, stream.bytes());
     try {
@@ -195,7 +196,11 @@ ImageData loadExr(const std::string& path) {
         const int64_t width = int64_t(window.max.x) - window.min.x + 1;
         const int64_t height = int64_t(window.max.y) - window.min.y + 1;
         requireEdges(path, uint64_t(std::max<int64_t>(width, 0)), uint64_t(std::max<int64_t>(height, 0)));
-        const std::vector<std::string> names = exrChannelsToRead(path, file.header().channels());
+        const Imf::ChannelList& list = file.header().channels();
+        require(channel.empty() || list.findChannel(channel),
+                "image '" + path + "' has no EXR channel '" + channel + "'");
+        const std::vector<std::string> names = channel.empty() ? exrChannelsToRead(path, list)
+                                                               : std::vector<std::string>{channel};
         ImageData image{.width = uint32_t(width),
                         .height = uint32_t(height),
                         .channels = uint32_t(names.size()),
@@ -238,8 +243,28 @@ std::vector<char> readImageFileBytes(const std::string& path) {
 ImageData loadImage(const std::string& path) {
     const std::string ext = lowerExtension(path);
     if (ext == "png") return loadPng(path);
-    if (ext == "exr") return loadExr(path);
+    if (ext == "exr") return loadExr(path, {});
     throw Error("image '" + path + "' has unsupported format '." + ext + "' (use .png or .exr)");
+}
+
+ImageData loadExrChannel(const std::string& path, const std::string& channel) {
+    require(lowerExtension(path) == "exr", "image '" + path + "' is not an OpenEXR file (channel '" + channel + "')");
+    return loadExr(path, channel);
+}
+
+std::vector<std::string> exrChannelNames(const std::string& path) {
+    require(lowerExtension(path) == "exr", "image '" + path + "' is not an OpenEXR file");
+    MemoryIStream stream(path, readImageFileBytes(path));
+    requireSafeExrHeaders(path, stream.bytes());
+    try {
+        Imf::InputFile file(stream);
+        std::vector<std::string> names;
+        for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
+            names.emplace_back(it.name());
+        return names;
+    } catch (const std::exception& e) {
+        throw Error("cannot read OpenEXR image '" + path + "': " + e.what());
+    }
 }
 
 } // namespace sward

@@ -26,6 +26,11 @@ inline constexpr uint32_t kMaxImageEdge = 32768;
 // float; channels R,G,B[,A], or a single channel such as Y or Z). Throws sward::Error naming the file and the
 // problem for a missing file, an unknown extension, a bit depth below 8, or a corrupt file.
 ImageData loadImage(const std::string& path);
+// One named channel of an .exr file (e.g. the instance image's 'tile' in a world), as one-channel float samples.
+// Throws sward::Error naming the file and the channel when the file has no such channel.
+ImageData loadExrChannel(const std::string& path, const std::string& channel);
+// The channel names of an .exr file, in the file's (alphabetical) order.
+std::vector<std::string> exrChannelNames(const std::string& path);
 // Largest image file read, in bytes (far above a 32768-pixel EXR's compressed size).
 inline constexpr uint64_t kMaxImageFileBytes = uint64_t(4) << 30;
 // The bytes of a regular image file of at most kMaxImageFileBytes; throws sward::Error naming the file otherwise.

@@ -73,12 +73,13 @@ std::optional<glm::dvec3> point(const std::optional<std::vector<double>>& v, con
     return glm::dvec3((*v)[0], (*v)[1], (*v)[2]);
 }
 
-// An image file as stored: EXR as float32, PNG as uint8 / uint16 (io/image_io.h reads samples normalised).
-py::array readImage(const std::string& path) {
+// An image file as stored: EXR as float32, PNG as uint8 / uint16 (io/image_io.h reads samples normalised). With
+// `channel`, that one channel of an EXR.
+py::array readImage(const std::string& path, const std::string& channel) {
     ImageData im;
     {
         py::gil_scoped_release release;
-        im = loadImage(path);
+        im = channel.empty() ? loadImage(path) : loadExrChannel(path, channel);
     }
     if (im.bitDepth == 32) return image(im.samples, im.width, im.height, im.channels);
     const float scale = im.bitDepth == 16 ? 65535.0f : 255.0f;
@@ -192,7 +193,8 @@ PYBIND11_MODULE(_sward, m) {
     py::register_exception<Error>(m, "Error", PyExc_RuntimeError);
     bindSession(m);
     m.def("write_dataset", &writeDataset);
-    m.def("read_image", &readImage);
+    m.def("read_image", &readImage, py::arg("path"), py::arg("channel") = "");
+    m.def("image_channels", &exrChannelNames);
     m.def("read_disparity", &readDisparityFile);
     m.def("read_calib", &readCalib);
     m.def("frame_file", [](const std::string& folder, uint32_t frame, const std::string& extension) {

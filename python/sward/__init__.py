@@ -142,6 +142,9 @@ class Dataset:
             item[kind] = _sward.read_image(self._file(kind, frame, extension))
         item["depth"] = item["depth"][..., 0] if item["depth"].ndim == 3 else item["depth"]
         item["instance"] = item["instance"].astype("uint32")  # ids < 2^24: exact in the file's float32
+        instance = self._file("instance", frame, ".exr")
+        if "tile" in _sward.image_channels(instance):  # a world: ids count within the tile it names
+            item["tile"] = _sward.read_image(instance, "tile").astype("uint32")
         if self.stereo:
             item["disparity"] = item["disparity"]
             item["disparity_pfm"] = _sward.read_disparity(self._file("disparity", frame, ".pfm"))

@@ -113,6 +113,18 @@ def test_save_and_restore_continue_bitwise(tmp_path):
     assert all(bitwise_equal(first[k], again[k]) for k in KINDS)
 
 
+def test_a_world_dataset_names_the_tile_of_each_plant_pixel(cli_dataset, tmp_path):
+    # Two tiles of the world side by side in view: x = 100 m is their border.
+    scene = scene_with(tmp_path, {**SMALL, "sequence.frames": 1, "world": {"tiles": [2, 2]},
+                                  "camera.position": [97, 46, 0], "camera.look_at": [104, 52, 0]})
+    subprocess.run([RENDER, str(scene), "--out", str(tmp_path / "out"), "--quiet"], check=True, capture_output=True)
+    item = sward.Dataset(tmp_path / "out")[0]
+    frame = sward.Simulator(scene).render()
+    assert bitwise_equal(item["tile"], frame["tile"].astype("uint32"))
+    assert {1, 2} <= set(np.unique(item["tile"]).tolist())  # tile index + 1: (0, 0) and (1, 0)
+    assert "tile" not in cli_dataset[1][0]  # one tile: no tile channel
+
+
 def test_set_camera_and_a_scene_dict(tmp_path):
     document = json.loads(scene_with(tmp_path, SMALL).read_text())
     sim = sward.Simulator(document, overrides={"vehicles": []})
