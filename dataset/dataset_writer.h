@@ -1,7 +1,8 @@
 // Dataset files written by sward-render (layout and conventions: docs/dataset-format.md).
 //
 // Per frame NNNNNN: left/ right/ (HDR colour EXR), depth/ (planar metres, +inf sky), disparity/ (EXR, PFM, KITTI
-// PNG), semantic/ (uint8 class PNG), instance/ (float EXR ids), preview/ preview_right/ (tonemapped PNG); stereo
+// PNG), semantic/ (uint8 class PNG), instance/ (float EXR ids), normal/ (camera-frame normals, float RGB EXR),
+// preview/ preview_right/ (tonemapped PNG); stereo
 // also depth_right/, disparity_right/ (EXR, PFM) and occlusion/ occlusion_right/ (dataset/occlusion.h).
 // Per dataset: dataset.json (the fingerprint, dataset/fingerprint.h), calib.txt, frames.jsonl, scene.json (a copy
 // of the scene file), classes.json, manifest.json (or manifest.shard-I-of-N.json). Names: dataset/naming.h.

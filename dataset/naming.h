@@ -17,6 +17,7 @@ inline constexpr const char* kDepthFolder = "depth";                // planar de
 inline constexpr const char* kDisparityFolder = "disparity";        // disparity EXR, PFM, KITTI PNG (stereo)
 inline constexpr const char* kSemanticFolder = "semantic";          // uint8 class PNG
 inline constexpr const char* kInstanceFolder = "instance";          // float instance id EXR
+inline constexpr const char* kNormalFolder = "normal";              // camera-frame surface normal, float RGB EXR
 inline constexpr const char* kPreviewFolder = "preview";            // tonemapped left PNG
 inline constexpr const char* kPreviewRightFolder = "preview_right"; // tonemapped right PNG (stereo)
 inline constexpr const char* kDepthRightFolder = "depth_right";         // the right view's planar depth EXR (stereo)

@@ -56,6 +56,7 @@ py::dict frameDict(const SessionFrame& f) {
     d["semantic"] = image(truth.semantic, w, h);
     d["instance"] = image(instance, w, h);
     if (!im.tiles.empty()) d["tile"] = image(im.tiles, w, h);
+    d["normal"] = image(im.normals, w, h, 3);
     d["preview"] = image(tonemapPreview(im.rgbaHalf, w, h), w, h, 3);
     if (f.baseline > 0.0) {
         d["right"] = colour(im.rightRgbaHalf, w, h);
@@ -202,7 +203,7 @@ PYBIND11_MODULE(_sward, m) {
     py::dict names;
     for (auto [key, value] : {std::pair{"left", kLeftFolder}, {"right", kRightFolder}, {"depth", kDepthFolder},
                               {"disparity", kDisparityFolder}, {"semantic", kSemanticFolder},
-                              {"instance", kInstanceFolder}, {"preview", kPreviewFolder},
+                              {"instance", kInstanceFolder}, {"normal", kNormalFolder}, {"preview", kPreviewFolder},
                               {"preview_right", kPreviewRightFolder}, {"calib", kCalibFile},
                               {"frame_log", kFrameLogFile}, {"manifest", kManifestFile}, {"dataset", kDatasetFile}})
         names[key] = value;

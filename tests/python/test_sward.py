@@ -16,7 +16,7 @@ import sward
 RENDER = os.environ["SWARD_RENDER"]
 # The GPU test scene, small: a stereo rig, a rover driving through the grass (tracks from tick 0).
 SMALL = {"render.resolution": [96, 64], "render.samples": 1, "sequence.frames": 3}
-KINDS = ["left", "right", "depth", "disparity", "semantic", "instance", "preview", "preview_right"]
+KINDS = ["left", "right", "depth", "disparity", "semantic", "instance", "normal", "preview", "preview_right"]
 
 
 def scene_with(tmp, changes):
@@ -65,6 +65,9 @@ def test_dataset_reader_reads_every_file_kind(cli_dataset):
     assert np.abs(item["disparity_kitti"] - item["disparity"]).max() <= 1 / 256  # KITTI: 1/256 pixel steps
     assert item["semantic"].dtype == np.uint8 and item["instance"].dtype == np.uint32
     assert item["preview"].shape == (64, 96, 3) and item["preview"].dtype == np.uint8
+    normal, hit = item["normal"], np.isfinite(item["depth"])
+    assert normal.shape == (64, 96, 3) and normal.dtype == np.float32
+    assert np.abs(np.linalg.norm(normal[hit], axis=-1) - 1).max() < 1e-5 and not normal[~hit].any()
     assert data.calib["width"] == 96 and data.info["fingerprint"]["resolution"] == "96x64"
     assert set(data.manifest["files"]) >= {"left/000002.exr", "disparity/000002.pfm", "frames.jsonl", "calib.txt"}
     with pytest.raises(IndexError):

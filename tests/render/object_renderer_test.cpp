@@ -94,6 +94,7 @@ protected:
                                             .mainSamples = VK_SAMPLE_COUNT_1_BIT,
                                             .truthDepthBits = VK_FORMAT_R32_UINT,
                                             .truthLabel = VK_FORMAT_R32G32_UINT,
+                                            .truthNormal = VK_FORMAT_R32G32B32A32_SFLOAT,
                                             .truthDepth = VK_FORMAT_D32_SFLOAT,
                                             .shadowDepth = VK_FORMAT_D32_SFLOAT};
         ObjectRenderer objectRenderer(*ctx, scene, terrain, formats);
