@@ -50,7 +50,7 @@ namespace {
 constexpr const char* kAllFolders[] = {
     kLeftFolder,      kRightFolder,          kDepthFolder,        kDisparityFolder,  kSemanticFolder,
     kInstanceFolder,  kPreviewFolder,        kPreviewRightFolder, kDepthRightFolder, kDisparityRightFolder,
-    kOcclusionFolder, kOcclusionRightFolder, kNormalFolder};
+    kOcclusionFolder, kOcclusionRightFolder, kNormalFolder,       kNormalRightFolder};
 
 bool isSwardTemporaryName(const std::string& name) {
     long pid = 0;
@@ -100,7 +100,7 @@ std::vector<std::string> DatasetWriter::directories() const {
                                      kInstanceFolder, kNormalFolder, kPreviewFolder};
     if (stereo_)
         dirs.insert(dirs.end(), {kRightFolder, kDisparityFolder, kPreviewRightFolder, kDepthRightFolder,
-                                 kDisparityRightFolder, kOcclusionFolder, kOcclusionRightFolder});
+                                 kDisparityRightFolder, kOcclusionFolder, kOcclusionRightFolder, kNormalRightFolder});
     return dirs;
 }
 
@@ -129,13 +129,12 @@ void DatasetWriter::check(const nlohmann::json& fingerprint, bool overwrite, uin
 
 uint64_t DatasetWriter::frameBytesUpperBound(uint32_t width, uint32_t height) const {
     // Raw bytes per pixel of each file: colour half RGBA, depth Y+Z, semantic, instance, normal float RGB, preview
-    // RGB; stereo adds
-    // right colour, disparity EXR, PFM, KITTI 16-bit PNG, right preview, right depth Y+Z, right disparity EXR and
-    // PFM, and the two occlusion masks. Deflate (EXR ZIP, PNG) can expand
+    // RGB; stereo adds right colour, disparity EXR, PFM, KITTI 16-bit PNG, right preview, right depth Y+Z, right
+    // disparity EXR and PFM, the two occlusion masks and the right normals. Deflate (EXR ZIP, PNG) can expand
     // incompressible data by up to 1/8 (stb's fixed Huffman codes); each file gets a row byte per line and 4 KiB
     // of headers and tables, and is rounded up to 4 KiB blocks plus one for the file system's own records.
     std::vector<uint64_t> bytesPerPixel = {8, 8, 1, 4, 12, 3};
-    if (stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {8, 4, 4, 2, 3, 8, 4, 4, 1, 1});
+    if (stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {8, 4, 4, 2, 3, 8, 4, 4, 1, 1, 12});
     constexpr uint64_t kBlock = 4096;
     uint64_t total = 0;
     for (uint64_t perPixel : bytesPerPixel) {
@@ -210,7 +209,8 @@ std::vector<std::string> DatasetWriter::frameFiles(uint32_t frame) const {
                       frameFile(kDisparityFolder, frame, ".pfm"), frameFile(kDisparityFolder, frame, ".png"),
                       frameFile(kPreviewRightFolder, frame, ".png"), frameFile(kDepthRightFolder, frame, ".exr"),
                       frameFile(kDisparityRightFolder, frame, ".exr"), frameFile(kDisparityRightFolder, frame, ".pfm"),
-                      frameFile(kOcclusionFolder, frame, ".png"), frameFile(kOcclusionRightFolder, frame, ".png")});
+                      frameFile(kOcclusionFolder, frame, ".png"), frameFile(kOcclusionRightFolder, frame, ".png"),
+                      frameFile(kNormalRightFolder, frame, ".exr")});
     return files;
 }
 
@@ -258,6 +258,7 @@ void DatasetWriter::writeStereoFiles(uint32_t frame, const FrameImages& images, 
               occlusionMaskPixels(visibilityInOtherView(w, h, disparity, rightDisparity, -1)));
     writePng8(path(kOcclusionRightFolder, ".png"), w, h, 1,
               occlusionMaskPixels(visibilityInOtherView(w, h, rightDisparity, disparity, +1)));
+    writeExr(path(kNormalRightFolder, ".exr"), w, h, 3, images.rightNormals);
 }
 
 void DatasetWriter::writeCalib(const Camera& left, double baseline, double minDepth) {

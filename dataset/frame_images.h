@@ -18,6 +18,8 @@ struct FrameImages {
     std::vector<uint16_t> rightRgbaHalf; // stereo only: the right view's colour
     std::vector<float> rightDepth;       // stereo only: the right view's truth pass, as depth
     std::vector<uint32_t> rightLabels;   // stereo only: the right view's truth pass, as labels
+    std::vector<float> rightNormals;     // stereo only: the right view's truth pass, as normals (in the right
+                                         // camera's axes, which are the left's: the rig is rectified)
 };
 
 } // namespace sward

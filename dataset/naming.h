@@ -24,6 +24,7 @@ inline constexpr const char* kDepthRightFolder = "depth_right";         // the r
 inline constexpr const char* kDisparityRightFolder = "disparity_right"; // right disparity EXR, PFM (stereo)
 inline constexpr const char* kOcclusionFolder = "occlusion";            // left pixels visible in the right view (stereo)
 inline constexpr const char* kOcclusionRightFolder = "occlusion_right"; // right pixels visible in the left view
+inline constexpr const char* kNormalRightFolder = "normal_right";       // the right view's normals (stereo)
 
 // Files of a dataset as a whole.
 inline constexpr const char* kCalibFile = "calib.txt";

@@ -63,6 +63,7 @@ py::dict frameDict(const SessionFrame& f) {
         d["disparity"] = image(truth.disparity, w, h);
         d["depth_right"] = image(im.rightDepth, w, h);
         d["disparity_right"] = image(truth.rightDisparity, w, h);
+        d["normal_right"] = image(im.rightNormals, w, h, 3);
         d["preview_right"] = image(tonemapPreview(im.rightRgbaHalf, w, h), w, h, 3);
     }
     return d;
@@ -203,7 +204,7 @@ PYBIND11_MODULE(_sward, m) {
     py::dict names;
     for (auto [key, value] : {std::pair{"left", kLeftFolder}, {"right", kRightFolder}, {"depth", kDepthFolder},
                               {"disparity", kDisparityFolder}, {"semantic", kSemanticFolder},
-                              {"instance", kInstanceFolder}, {"normal", kNormalFolder}, {"preview", kPreviewFolder},
+                              {"instance", kInstanceFolder}, {"normal", kNormalFolder}, {"normal_right", kNormalRightFolder}, {"preview", kPreviewFolder},
                               {"preview_right", kPreviewRightFolder}, {"calib", kCalibFile},
                               {"frame_log", kFrameLogFile}, {"manifest", kManifestFile}, {"dataset", kDatasetFile}})
         names[key] = value;

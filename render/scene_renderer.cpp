@@ -453,10 +453,19 @@ void splitLabels(const Buffer& pairs, uint64_t pixels, bool world, std::vector<u
     for (uint64_t i = 0; i < pixels; ++i) (*tiles)[i] = pair[2 * i + 1];
 }
 
+// The truth pass's normals without their unused w.
+std::vector<float> normalsXyz(const Buffer& xyzw, uint64_t pixels) {
+    const float* normal = reinterpret_cast<const float*>(xyzw.mapped());
+    std::vector<float> xyz(pixels * 3);
+    for (uint64_t i = 0; i < pixels; ++i)
+        for (uint64_t c = 0; c < 3; ++c) xyz[3 * i + c] = normal[4 * i + c];
+    return xyz;
+}
+
 } // namespace
 
 OffscreenFrame::~OffscreenFrame() {
-    for (Buffer* b : {&color_, &depth_, &labels_, &normals_, &rightColor_, &rightDepth_, &rightLabels_})
+    for (Buffer* b : {&color_, &depth_, &labels_, &normals_, &rightColor_, &rightDepth_, &rightLabels_, &rightNormals_})
         retireBuffer(ctx_, *b);
 }
 
@@ -473,6 +482,7 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
         rightColor_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
         rightDepth_ = createBuffer(ctx_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
         rightLabels_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+        rightNormals_ = createBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     }
     ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
         if (prologue) prologue(cmd);
@@ -486,6 +496,7 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
             rightMain_->recordReadback(cmd, 0, rightColor_);
             rightTruth_->recordReadback(cmd, 0, rightDepth_);
             rightTruth_->recordReadback(cmd, 1, rightLabels_);
+            rightTruth_->recordReadback(cmd, 2, rightNormals_);
         }
         transferToHostBarrier(cmd);
     });
@@ -495,16 +506,14 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
     std::memcpy(images.rgbaHalf.data(), color_.mapped(), pixels * 8);
     std::memcpy(images.depth.data(), depth_.mapped(), pixels * 4); // float bit patterns written by the shader
     splitLabels(labels_, pixels, renderer.world(), images.labels, &images.tiles);
-    const float* normal = reinterpret_cast<const float*>(normals_.mapped()); // xyzw per pixel, w unused
-    images.normals.resize(pixels * 3);
-    for (uint64_t i = 0; i < pixels; ++i)
-        for (uint64_t c = 0; c < 3; ++c) images.normals[3 * i + c] = normal[4 * i + c];
+    images.normals = normalsXyz(normals_, pixels);
     if (right) {
         images.rightRgbaHalf.resize(pixels * 4);
         std::memcpy(images.rightRgbaHalf.data(), rightColor_.mapped(), pixels * 8);
         images.rightDepth.resize(pixels);
         std::memcpy(images.rightDepth.data(), rightDepth_.mapped(), pixels * 4);
         splitLabels(rightLabels_, pixels, false, images.rightLabels, nullptr);
+        images.rightNormals = normalsXyz(rightNormals_, pixels);
     }
     return images;
 }

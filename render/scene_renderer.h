@@ -166,7 +166,7 @@ private:
     Context& ctx_;
     RenderTarget main_, truth_;
     std::unique_ptr<RenderTarget> rightMain_, rightTruth_; // created on the first stereo frame
-    Buffer color_, depth_, labels_, normals_, rightColor_, rightDepth_, rightLabels_;
+    Buffer color_, depth_, labels_, normals_, rightColor_, rightDepth_, rightLabels_, rightNormals_;
 };
 
 // Renders one frame into fresh targets (the renderer's sample count) and reads colour and depth back (waits).

@@ -142,9 +142,10 @@ class Dataset:
             item[kind] = _sward.read_image(self._file(kind, frame, extension))
         item["depth"] = item["depth"][..., 0] if item["depth"].ndim == 3 else item["depth"]
         item["instance"] = item["instance"].astype("uint32")  # ids < 2^24: exact in the file's float32
-        normal = self._file("normal", frame, ".exr")
-        if os.path.isfile(normal):  # datasets written before normals existed have none
-            item["normal"] = _sward.read_image(normal)  # HxWx3 float32: camera-frame x, y, z
+        for kind in ("normal", "normal_right") if self.stereo else ("normal",):
+            normal = self._file(kind, frame, ".exr")
+            if os.path.isfile(normal):  # datasets written before normals existed have none
+                item[kind] = _sward.read_image(normal)  # HxWx3 float32: camera-frame x, y, z
         if self.stereo:
             item["disparity"] = item["disparity"]
             item["disparity_pfm"] = _sward.read_disparity(self._file("disparity", frame, ".pfm"))

@@ -39,6 +39,7 @@ FrameImages tinyFrame(bool stereo) {
         images.rightRgbaHalf = images.rgbaHalf;
         images.rightDepth = images.depth;
         images.rightLabels = images.labels;
+        images.rightNormals = images.normals;
     }
     return images;
 }
@@ -51,8 +52,8 @@ TEST(DatasetWriter, FrameFilesAreNamedByTheNamingTable) {
     EXPECT_EQ(monoFiles.size(), 6u);
     EXPECT_EQ(monoFiles[0], frameFile(kLeftFolder, 7, ".exr"));
     const std::vector<std::string> stereoFiles = stereo.frameFiles(7);
-    EXPECT_EQ(stereoFiles.size(), 16u);
-    for (const char* file : {"normal/000007.exr", "disparity/000007.pfm", "disparity_right/000007.pfm",
+    EXPECT_EQ(stereoFiles.size(), 17u);
+    for (const char* file : {"normal/000007.exr", "normal_right/000007.exr", "disparity/000007.pfm", "disparity_right/000007.pfm",
                              "depth_right/000007.exr", "occlusion/000007.png", "occlusion_right/000007.png"})
         EXPECT_NE(std::find(stereoFiles.begin(), stereoFiles.end(), file), stereoFiles.end()) << file;
     EXPECT_EQ(mono.datasetFiles(), (std::vector<std::string>{kFrameLogFile, kSceneCopyFile, kClassesFile}));

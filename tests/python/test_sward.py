@@ -16,7 +16,8 @@ import sward
 RENDER = os.environ["SWARD_RENDER"]
 # The GPU test scene, small: a stereo rig, a rover driving through the grass (tracks from tick 0).
 SMALL = {"render.resolution": [96, 64], "render.samples": 1, "sequence.frames": 3}
-KINDS = ["left", "right", "depth", "disparity", "semantic", "instance", "normal", "preview", "preview_right"]
+KINDS = ["left", "right", "depth", "disparity", "semantic", "instance", "normal", "normal_right", "preview",
+         "preview_right"]
 
 
 def scene_with(tmp, changes):
@@ -54,6 +55,9 @@ def test_frames_equal_the_cli_files_bitwise(cli_dataset):
         for kind in KINDS:
             assert bitwise_equal(frame[kind], files[kind]), f"frame {index}: {kind}"
         assert frame["left"].dtype == np.float32 and frame["left"].shape == (64, 96, 4)
+        for depth, normal in ((frame["depth"], frame["normal"]), (frame["depth_right"], frame["normal_right"])):
+            hit = np.isfinite(depth)  # unit where a surface is seen, 0 for the sky
+            assert np.abs(np.linalg.norm(normal[hit], axis=-1) - 1).max() < 1e-5 and not normal[~hit].any()
     assert sim.validation_messages == 0
 
 
