@@ -47,9 +47,10 @@ void parseShard(const std::string& text, uint32_t& index, uint32_t& count) {
 namespace {
 
 // Every folder a dataset may have, whatever its rig: --overwrite clears them all.
-constexpr const char* kAllFolders[] = {kLeftFolder,       kRightFolder,          kDepthFolder,     kDisparityFolder,
-                                       kSemanticFolder,   kInstanceFolder,       kPreviewFolder,   kPreviewRightFolder,
-                                       kDepthRightFolder, kDisparityRightFolder, kOcclusionFolder, kOcclusionRightFolder};
+constexpr const char* kAllFolders[] = {
+    kLeftFolder,      kRightFolder,          kDepthFolder,        kDisparityFolder,  kSemanticFolder,
+    kInstanceFolder,  kPreviewFolder,        kPreviewRightFolder, kDepthRightFolder, kDisparityRightFolder,
+    kOcclusionFolder, kOcclusionRightFolder, kNormalFolder,       kNormalRightFolder};
 
 bool isSwardTemporaryName(const std::string& name) {
     long pid = 0;
@@ -95,10 +96,11 @@ constexpr const char* kUseOverwrite = "; use --overwrite to start over or choose
 DatasetWriter::DatasetWriter(std::string root, bool stereo) : root_(std::move(root)), stereo_(stereo) {}
 
 std::vector<std::string> DatasetWriter::directories() const {
-    std::vector<std::string> dirs = {kLeftFolder, kDepthFolder, kSemanticFolder, kInstanceFolder, kPreviewFolder};
+    std::vector<std::string> dirs = {kLeftFolder,     kDepthFolder,  kSemanticFolder,
+                                     kInstanceFolder, kNormalFolder, kPreviewFolder};
     if (stereo_)
         dirs.insert(dirs.end(), {kRightFolder, kDisparityFolder, kPreviewRightFolder, kDepthRightFolder,
-                                 kDisparityRightFolder, kOcclusionFolder, kOcclusionRightFolder});
+                                 kDisparityRightFolder, kOcclusionFolder, kOcclusionRightFolder, kNormalRightFolder});
     return dirs;
 }
 
@@ -126,13 +128,13 @@ void DatasetWriter::check(const nlohmann::json& fingerprint, bool overwrite, uin
 }
 
 uint64_t DatasetWriter::frameBytesUpperBound(uint32_t width, uint32_t height) const {
-    // Raw bytes per pixel of each file: colour half RGBA, depth Y+Z, semantic, instance, preview RGB; stereo adds
-    // right colour, disparity EXR, PFM, KITTI 16-bit PNG, right preview, right depth Y+Z, right disparity EXR and
-    // PFM, and the two occlusion masks. Deflate (EXR ZIP, PNG) can expand
+    // Raw bytes per pixel of each file: colour half RGBA, depth Y+Z, semantic, instance, normal float RGB, preview
+    // RGB; stereo adds right colour, disparity EXR, PFM, KITTI 16-bit PNG, right preview, right depth Y+Z, right
+    // disparity EXR and PFM, the two occlusion masks and the right normals. Deflate (EXR ZIP, PNG) can expand
     // incompressible data by up to 1/8 (stb's fixed Huffman codes); each file gets a row byte per line and 4 KiB
     // of headers and tables, and is rounded up to 4 KiB blocks plus one for the file system's own records.
-    std::vector<uint64_t> bytesPerPixel = {8, 8, 1, 4, 3};
-    if (stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {8, 4, 4, 2, 3, 8, 4, 4, 1, 1});
+    std::vector<uint64_t> bytesPerPixel = {8, 8, 1, 4, 12, 3};
+    if (stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {8, 4, 4, 2, 3, 8, 4, 4, 1, 1, 12});
     constexpr uint64_t kBlock = 4096;
     uint64_t total = 0;
     for (uint64_t perPixel : bytesPerPixel) {
@@ -197,17 +199,18 @@ std::string DatasetWriter::target(const std::string& relative) {
 }
 
 std::vector<std::string> DatasetWriter::frameFiles(uint32_t frame) const {
-    std::vector<std::string> files = {frameFile(kLeftFolder, frame, ".exr"), frameFile(kDepthFolder, frame, ".exr"),
-                                      frameFile(kSemanticFolder, frame, ".png"),
-                                      frameFile(kInstanceFolder, frame, ".exr"),
-                                      frameFile(kPreviewFolder, frame, ".png")};
+    std::vector<std::string> files = {
+        frameFile(kLeftFolder, frame, ".exr"),     frameFile(kDepthFolder, frame, ".exr"),
+        frameFile(kSemanticFolder, frame, ".png"), frameFile(kInstanceFolder, frame, ".exr"),
+        frameFile(kNormalFolder, frame, ".exr"),   frameFile(kPreviewFolder, frame, ".png")};
     if (stereo_)
         files.insert(files.end(),
                      {frameFile(kRightFolder, frame, ".exr"), frameFile(kDisparityFolder, frame, ".exr"),
                       frameFile(kDisparityFolder, frame, ".pfm"), frameFile(kDisparityFolder, frame, ".png"),
                       frameFile(kPreviewRightFolder, frame, ".png"), frameFile(kDepthRightFolder, frame, ".exr"),
                       frameFile(kDisparityRightFolder, frame, ".exr"), frameFile(kDisparityRightFolder, frame, ".pfm"),
-                      frameFile(kOcclusionFolder, frame, ".png"), frameFile(kOcclusionRightFolder, frame, ".png")});
+                      frameFile(kOcclusionFolder, frame, ".png"), frameFile(kOcclusionRightFolder, frame, ".png"),
+                      frameFile(kNormalRightFolder, frame, ".exr")});
     return files;
 }
 
@@ -233,6 +236,7 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
     writePng8(path(kSemanticFolder, ".png"), w, h, 1, truth.semantic);
     if (truth.tile.empty()) writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y"}, {truth.instance});
     else writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y", "tile"}, {truth.instance, truth.tile});
+    writeExr(path(kNormalFolder, ".exr"), w, h, 3, images.normals); // channels R, G, B = camera x, y, z
     writePng8(path(kPreviewFolder, ".png"), w, h, 3, tonemapPreview(images.rgbaHalf, w, h));
     if (stereo_) writeStereoFiles(frame, images, truth);
 }
@@ -254,6 +258,7 @@ void DatasetWriter::writeStereoFiles(uint32_t frame, const FrameImages& images, 
               occlusionMaskPixels(visibilityInOtherView(w, h, disparity, rightDisparity, -1)));
     writePng8(path(kOcclusionRightFolder, ".png"), w, h, 1,
               occlusionMaskPixels(visibilityInOtherView(w, h, rightDisparity, disparity, +1)));
+    writeExr(path(kNormalRightFolder, ".exr"), w, h, 3, images.rightNormals);
 }
 
 void DatasetWriter::writeCalib(const Camera& left, double baseline, double minDepth) {

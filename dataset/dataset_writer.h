@@ -1,8 +1,10 @@
 // Dataset files written by sward-render (layout and conventions: docs/dataset-format.md).
 //
 // Per frame NNNNNN: left/ right/ (HDR colour EXR), depth/ (planar metres, +inf sky), disparity/ (EXR, PFM, KITTI
-// PNG), semantic/ (uint8 class PNG), instance/ (float EXR ids), preview/ preview_right/ (tonemapped PNG); stereo
-// also depth_right/, disparity_right/ (EXR, PFM) and occlusion/ occlusion_right/ (dataset/occlusion.h).
+// PNG), semantic/ (uint8 class PNG), instance/ (float EXR ids), normal/ (camera-frame normals, float RGB EXR),
+// preview/ preview_right/ (tonemapped PNG); stereo
+// also depth_right/, disparity_right/ (EXR, PFM), normal_right/ and occlusion/ occlusion_right/
+// (dataset/occlusion.h).
 // Per dataset: dataset.json (the fingerprint, dataset/fingerprint.h), calib.txt, frames.jsonl, scene.json (a copy
 // of the scene file), classes.json, manifest.json (or manifest.shard-I-of-N.json). Names: dataset/naming.h.
 //
@@ -73,7 +75,7 @@ public:
 
 private:
     std::vector<std::string> directories() const;
-    // The stereo files of writeFrame: right colour, both views' disparity and depth, occlusion masks.
+    // The stereo files of writeFrame: right colour, both views' disparity and depth, occlusion masks, right normals.
     void writeStereoFiles(uint32_t frame, const FrameImages& images, const FrameTruth& truth);
     // The absolute path of `relative`, remembered as created by this run when no file of that name exists yet.
     std::string target(const std::string& relative);

@@ -13,9 +13,13 @@ struct FrameImages {
     std::vector<uint32_t> labels;   // (semantic class << 24) | instance id, see gpu::kSemantic*
     std::vector<uint32_t> tiles;    // worlds of several tiles only: the plant's tile label (y * tilesX + x + 1) per
                                     // pixel, 0 where no plant is; instance ids count within a tile
+    std::vector<float> normals;     // width*height*3: the drawn triangle's unit normal in the camera frame (x right,
+                                    // y down, z forward), facing the camera; 0,0,0 where nothing was hit
     std::vector<uint16_t> rightRgbaHalf; // stereo only: the right view's colour
     std::vector<float> rightDepth;       // stereo only: the right view's truth pass, as depth
     std::vector<uint32_t> rightLabels;   // stereo only: the right view's truth pass, as labels
+    std::vector<float> rightNormals;     // stereo only: the right view's truth pass, as normals (in the right
+                                         // camera's axes, which are the left's: the rig is rectified)
 };
 
 } // namespace sward

@@ -23,6 +23,8 @@ nlohmann::json datasetConventions() {
             {"image_rows", "top row first (PFM: bottom row first, as the format stores it)"},
             {"depth", "planar camera z of the surface; +inf for sky"},
             {"disparity", "f * B / Z of the left (reference) view; left x - d = right x; sky 0 (PFM +inf, KITTI 0)"},
+            {"normal", "unit geometric normal of the drawn triangle in camera axes (both views share them), facing "
+                       "the camera (n . view ray < 0); EXR R, G, B = x, y, z; sky 0, 0, 0"},
             {"rig", "rectified: identical intrinsics and orientation, right = left + baseline along camera x"},
             {"frame_time", "frame i shows simulation tick i, time i * sequence.time_step"},
             {"classes", "classes.json"}};

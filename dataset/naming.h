@@ -17,12 +17,14 @@ inline constexpr const char* kDepthFolder = "depth";                // planar de
 inline constexpr const char* kDisparityFolder = "disparity";        // disparity EXR, PFM, KITTI PNG (stereo)
 inline constexpr const char* kSemanticFolder = "semantic";          // uint8 class PNG
 inline constexpr const char* kInstanceFolder = "instance";          // float instance id EXR
+inline constexpr const char* kNormalFolder = "normal";              // camera-frame surface normal, float RGB EXR
 inline constexpr const char* kPreviewFolder = "preview";            // tonemapped left PNG
 inline constexpr const char* kPreviewRightFolder = "preview_right"; // tonemapped right PNG (stereo)
 inline constexpr const char* kDepthRightFolder = "depth_right";         // the right view's planar depth EXR (stereo)
 inline constexpr const char* kDisparityRightFolder = "disparity_right"; // right disparity EXR, PFM (stereo)
 inline constexpr const char* kOcclusionFolder = "occlusion";            // left pixels visible in the right view (stereo)
 inline constexpr const char* kOcclusionRightFolder = "occlusion_right"; // right pixels visible in the left view
+inline constexpr const char* kNormalRightFolder = "normal_right";       // the right view's normals (stereo)
 
 // Files of a dataset as a whole.
 inline constexpr const char* kCalibFile = "calib.txt";

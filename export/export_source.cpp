@@ -118,6 +118,9 @@ FrameTruth readFrameTruth(const ExportDataset& dataset, uint32_t frame) {
         truth.instance[i] = uint32_t(id);
     }
     for (size_t i = 0; i < pixels * 3; ++i) truth.rgb[i] = uint8_t(std::lround(preview.samples[i] * 255.0f));
+    std::error_code ec;
+    if (fs::is_regular_file(dataset.dir + "/" + frameFile(kNormalFolder, frame, ".exr"), ec))
+        truth.normal = readFrameImage(dataset, kNormalFolder, frame, ".exr", 3).samples;
     return truth;
 }
 

@@ -47,6 +47,8 @@ struct FrameTruth {
     std::vector<uint8_t> semantic;  // class id
     std::vector<uint32_t> instance; // instance id
     std::vector<uint8_t> rgb;       // the tonemapped left preview, 8-bit sRGB, 3 per pixel
+    std::vector<float> normal;      // unit normals in left camera axes, 3 per pixel; empty when the dataset has
+                                    // no normal/ files (written before normals existed)
 };
 FrameTruth readFrameTruth(const ExportDataset& dataset, uint32_t frame);
 

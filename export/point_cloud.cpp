@@ -27,6 +27,7 @@ std::string pointCloudPly(const FrameTruth& truth, const ExportCamera& camera, c
                           const std::string& comment) {
     std::string body;
     size_t count = 0;
+    const bool normals = !truth.normal.empty();
     for (uint32_t y = 0; y < truth.height; ++y)
         for (uint32_t x = 0; x < truth.width; ++x) {
             const size_t i = size_t(y) * truth.width + x;
@@ -40,13 +41,19 @@ std::string pointCloudPly(const FrameTruth& truth, const ExportCamera& camera, c
             body.append(reinterpret_cast<const char*>(&truth.rgb[i * 3]), 3);
             append(body, truth.semantic[i]);
             append(body, truth.instance[i]);
+            if (normals) {
+                const glm::dvec3 n = glm::dmat3(pose) *
+                                     glm::dvec3(truth.normal[3 * i], truth.normal[3 * i + 1], truth.normal[3 * i + 2]);
+                for (int c = 0; c < 3; ++c) append(body, float(n[c]));
+            }
             ++count;
         }
-    const std::string header = "ply\nformat binary_little_endian 1.0\ncomment " + comment +
-                               "\nelement vertex " + std::to_string(count) +
-                               "\nproperty double x\nproperty double y\nproperty double z\n"
-                               "property uchar red\nproperty uchar green\nproperty uchar blue\n"
-                               "property uchar class\nproperty uint instance\nend_header\n";
+    const std::string header =
+        "ply\nformat binary_little_endian 1.0\ncomment " + comment + "\nelement vertex " + std::to_string(count) +
+        "\nproperty double x\nproperty double y\nproperty double z\n"
+        "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+        "property uchar class\nproperty uint instance\n" +
+        (normals ? "property float nx\nproperty float ny\nproperty float nz\n" : "") + "end_header\n";
     return header + body;
 }
 

@@ -56,12 +56,14 @@ py::dict frameDict(const SessionFrame& f) {
     d["semantic"] = image(truth.semantic, w, h);
     d["instance"] = image(instance, w, h);
     if (!im.tiles.empty()) d["tile"] = image(im.tiles, w, h);
+    d["normal"] = image(im.normals, w, h, 3);
     d["preview"] = image(tonemapPreview(im.rgbaHalf, w, h), w, h, 3);
     if (f.baseline > 0.0) {
         d["right"] = colour(im.rightRgbaHalf, w, h);
         d["disparity"] = image(truth.disparity, w, h);
         d["depth_right"] = image(im.rightDepth, w, h);
         d["disparity_right"] = image(truth.rightDisparity, w, h);
+        d["normal_right"] = image(im.rightNormals, w, h, 3);
         d["preview_right"] = image(tonemapPreview(im.rightRgbaHalf, w, h), w, h, 3);
     }
     return d;
@@ -204,7 +206,7 @@ PYBIND11_MODULE(_sward, m) {
     py::dict names;
     for (auto [key, value] : {std::pair{"left", kLeftFolder}, {"right", kRightFolder}, {"depth", kDepthFolder},
                               {"disparity", kDisparityFolder}, {"semantic", kSemanticFolder},
-                              {"instance", kInstanceFolder}, {"preview", kPreviewFolder},
+                              {"instance", kInstanceFolder}, {"normal", kNormalFolder}, {"normal_right", kNormalRightFolder}, {"preview", kPreviewFolder},
                               {"preview_right", kPreviewRightFolder}, {"calib", kCalibFile},
                               {"frame_log", kFrameLogFile}, {"manifest", kManifestFile}, {"dataset", kDatasetFile}})
         names[key] = value;

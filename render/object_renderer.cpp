@@ -41,8 +41,11 @@ ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Ground& t
     indexCount_ = uint32_t(indices.size());
     if (empty()) return;
 
-    vertices_ = createBufferWithData(ctx, bytesOf(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    indices_ = createBufferWithData(ctx, bytesOf(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    // Storage too: the truth pass pulls whole triangles (object_truth.vert).
+    vertices_ = createBufferWithData(ctx, bytesOf(vertices),
+                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    indices_ = createBufferWithData(ctx, bytesOf(indices),
+                                    VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     const uint64_t align = ctx.device.properties().limits.minStorageBufferOffsetAlignment;
     transformsStride_ = (uint64_t(transformCount_) * sizeof(gpu::ObjectTransform) + align - 1) / align * align;
     transforms_ = createBuffer(ctx, transformsStride_ * gpu::kFrameDataSlots, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
@@ -71,17 +74,27 @@ ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Ground& t
         .specialization = {/* PASS= */ gpu::kPassMain},
     };
     mainPipeline_ = createGraphicsPipeline(ctx.device, desc, shadedLayout);
-    // Same vertices and rasterisation, ground-truth outputs (depth bits, label), one sample per pixel.
-    desc.fragmentShader = "object_truth.frag";
-    desc.colorFormats = {formats.truthDepthBits, formats.truthLabel};
-    desc.depthFormat = formats.truthDepth;
-    desc.samples = VK_SAMPLE_COUNT_1_BIT;
-    desc.specialization = {/* PASS= */ gpu::kPassTruth};
-    truthPipeline_ = createGraphicsPipeline(ctx.device, desc, layout);
+    // Same triangles and rasterisation, pulled from storage buffers so each vertex knows its triangle's normal
+    // (object_truth.vert); ground-truth outputs (depth bits, label, normal), one sample per pixel.
+    GraphicsPipelineDesc truth = desc;
+    truth.vertexShader = "object_truth.vert";
+    truth.fragmentShader = "object_truth.frag";
+    truth.vertexBindings = {};
+    truth.vertexAttributes = {};
+    truth.colorFormats = {formats.truthDepthBits, formats.truthLabel, formats.truthNormal};
+    truth.depthFormat = formats.truthDepth;
+    truth.samples = VK_SAMPLE_COUNT_1_BIT;
+    truth.specialization = {/* PASS= */ gpu::kPassTruth};
+    PipelineLayoutDesc truthLayout = layout; // + the pulled vertices and triangle list
+    for (uint32_t binding : {gpu::kBindingMeshVertices, gpu::kBindingMeshIndices})
+        truthLayout.bindings.push_back(
+            layoutBinding(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT));
+    truthPipeline_ = createGraphicsPipeline(ctx.device, truth, truthLayout);
     // Depth only from the sun, both faces and the terrain's bias: thin parts (mast, wheels) still cast shadows.
     desc.fragmentShader = "";
     desc.colorFormats = {};
     desc.depthFormat = formats.shadowDepth;
+    desc.samples = VK_SAMPLE_COUNT_1_BIT;
     desc.cullMode = VK_CULL_MODE_NONE;
     desc.specialization = {/* PASS= */ gpu::kPassShadow};
     desc.depthBias = -1.0f;
@@ -151,7 +164,12 @@ void ObjectRenderer::recordShadow(VkCommandBuffer cmd, const DescriptorBinding& 
 }
 
 void ObjectRenderer::recordTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot) {
-    if (!empty()) draw(cmd, truthPipeline_, {frame, transformsBinding(slot)});
+    if (empty()) return;
+    bindPipeline(cmd, truthPipeline_);
+    pushDescriptors(ctx_.device, cmd, truthPipeline_,
+                    {frame, transformsBinding(slot), storageBuffer(gpu::kBindingMeshVertices, vertices_.handle),
+                     storageBuffer(gpu::kBindingMeshIndices, indices_.handle)});
+    vkCmdDraw(cmd, indexCount_, 1, 0, 0); // non-indexed: the shader reads the triangle list
 }
 
 } // namespace sward

@@ -30,11 +30,15 @@ RenderTargetDesc mainPassTargetDesc(uint32_t width, uint32_t height, uint32_t sa
 RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height) {
     VkClearColorValue infinity{.uint32 = {gpu::kDepthInfinityBits, 0, 0, 0}};
     VkClearColorValue sky{.uint32 = {gpu::kSemanticSky << gpu::kInstanceBits, 0, 0, 0}};
+    VkClearColorValue noNormal{.float32 = {0.0f, 0.0f, 0.0f, 0.0f}};
+    // Normals in 32-bit floats: the dataset stores float32, and half floats would round a unit normal by 1e-3.
     return RenderTargetDesc{
         .width = width,
         .height = height,
         .samples = VK_SAMPLE_COUNT_1_BIT,
-        .colors = {{VK_FORMAT_R32_UINT, infinity}, {VK_FORMAT_R32G32_UINT, sky}}, // depth bits, (label, tile)
+        .colors = {{VK_FORMAT_R32_UINT, infinity},             // depth bits
+                   {VK_FORMAT_R32G32_UINT, sky},               // (label, tile)
+                   {VK_FORMAT_R32G32B32A32_SFLOAT, noNormal}}, // camera-frame normal, w unused
         .depthFormat = VK_FORMAT_D32_SFLOAT,
         .depthClear = 0.0f,
     };
@@ -83,6 +87,7 @@ VegetationPassFormats SceneRenderer::plantPassFormats() const {
                                  .mainSamples = mainDesc.samples,
                                  .truthDepthBits = truthDesc.colors[0].format,
                                  .truthLabel = truthDesc.colors[1].format,
+                                 .truthNormal = truthDesc.colors[2].format,
                                  .truthDepth = truthDesc.depthFormat,
                                  .shadowDepth = VK_FORMAT_D32_SFLOAT};
 }
@@ -144,14 +149,23 @@ void SceneRenderer::createPipelines(const Atlas* atlas, uint32_t instanceCapacit
         .samples = mainDesc.samples,
     };
     terrainPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, terrainLayout);
-    // Same vertices and rasterisation, ground-truth outputs, one sample per pixel.
-    terrainDesc.fragmentShader = "truth.frag";
-    terrainDesc.colorFormats = {truthDesc.colors[0].format, truthDesc.colors[1].format};
-    terrainDesc.samples = truthDesc.samples;
-    terrainDesc.specialization = {/* PASS= */ gpu::kPassTruth};
-    terrainTruthPipeline_ = createGraphicsPipeline(ctx.device, terrainDesc, layout);
+    // Same triangles and rasterisation, pulled from storage buffers so each vertex knows its triangle's normal
+    // (terrain_truth.vert); ground-truth outputs, one sample per pixel.
+    GraphicsPipelineDesc truthTerrain = terrainDesc;
+    truthTerrain.vertexShader = "terrain_truth.vert";
+    truthTerrain.fragmentShader = "truth.frag";
+    truthTerrain.vertexBindings = {};
+    truthTerrain.vertexAttributes = {};
+    truthTerrain.colorFormats = {truthDesc.colors[0].format, truthDesc.colors[1].format, truthDesc.colors[2].format};
+    truthTerrain.samples = truthDesc.samples;
+    PipelineLayoutDesc truthLayout = layout; // + the pulled vertices and triangle list
+    for (uint32_t binding : {gpu::kBindingMeshVertices, gpu::kBindingMeshIndices})
+        truthLayout.bindings.push_back(
+            layoutBinding(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT));
+    terrainTruthPipeline_ = createGraphicsPipeline(ctx.device, truthTerrain, truthLayout);
     terrainDesc.fragmentShader = "";
     terrainDesc.colorFormats = {};
+    terrainDesc.samples = VK_SAMPLE_COUNT_1_BIT;
     terrainDesc.cullMode = VK_CULL_MODE_NONE; // hills facing away from the sun still cast shadows
     terrainDesc.specialization = {/* PASS= */ gpu::kPassShadow};
     terrainDesc.depthBias = -1.0f; // reversed Z: push casters away from the sun
@@ -193,8 +207,11 @@ void SceneRenderer::addTile(TileCoord coord, const Ground& ground, const Vegetat
     require(!hasTile(coord), "SceneRenderer: the tile is resident already");
     TerrainTile tile;
     const GroundDrawMesh mesh = groundDrawMesh(ground);
-    tile.vertices = createBufferWithData(ctx_, bytesOf(mesh.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    tile.indices = createBufferWithData(ctx_, bytesOf(mesh.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    // Storage too: the truth pass pulls whole triangles (terrain_truth.vert).
+    tile.vertices = createBufferWithData(ctx_, bytesOf(mesh.vertices),
+                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    tile.indices = createBufferWithData(ctx_, bytesOf(mesh.indices),
+                                        VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     tile.indexCount = uint32_t(mesh.indices.size());
     tile.boundsMin = glm::dvec2(ground.boundsMin());
     tile.boundsMax = glm::dvec2(ground.boundsMax());
@@ -280,6 +297,12 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const Descr
                             {frame, shadowBinding(), sampledImage(gpu::kBindingCoverMap, tile.cover.view, coverSampler_),
                              sampledImage(gpu::kBindingGroundTextures, groundTextures_.view, groundSampler_)});
             pushConstants(cmd, pipeline, gpu::TerrainTileConstants{.coverRect = tile.coverRect});
+        } else if (pass == PlantPass::Truth) {
+            pushDescriptors(ctx_.device, cmd, pipeline,
+                            {frame, storageBuffer(gpu::kBindingMeshVertices, tile.vertices.handle),
+                             storageBuffer(gpu::kBindingMeshIndices, tile.indices.handle)});
+            vkCmdDraw(cmd, tile.indexCount, 1, 0, 0); // non-indexed: the shader reads the triangle list
+            continue;
         } else {
             pushDescriptors(ctx_.device, cmd, pipeline, {frame});
         }
@@ -414,6 +437,7 @@ OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, ui
     color_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     depth_ = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     labels_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    normals_ = createBuffer(ctx, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
 }
 
 namespace {
@@ -429,10 +453,20 @@ void splitLabels(const Buffer& pairs, uint64_t pixels, bool world, std::vector<u
     for (uint64_t i = 0; i < pixels; ++i) (*tiles)[i] = pair[2 * i + 1];
 }
 
+// The truth pass's normals without their unused w.
+std::vector<float> normalsXyz(const Buffer& xyzw, uint64_t pixels) {
+    const float* normal = reinterpret_cast<const float*>(xyzw.mapped());
+    std::vector<float> xyz(pixels * 3);
+    for (uint64_t i = 0; i < pixels; ++i)
+        for (uint64_t c = 0; c < 3; ++c) xyz[3 * i + c] = normal[4 * i + c];
+    return xyz;
+}
+
 } // namespace
 
 OffscreenFrame::~OffscreenFrame() {
-    for (Buffer* b : {&color_, &depth_, &labels_, &rightColor_, &rightDepth_, &rightLabels_}) retireBuffer(ctx_, *b);
+    for (Buffer* b : {&color_, &depth_, &labels_, &normals_, &rightColor_, &rightDepth_, &rightLabels_, &rightNormals_})
+        retireBuffer(ctx_, *b);
 }
 
 FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
@@ -448,6 +482,7 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
         rightColor_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
         rightDepth_ = createBuffer(ctx_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
         rightLabels_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+        rightNormals_ = createBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     }
     ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
         if (prologue) prologue(cmd);
@@ -456,10 +491,12 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
         main_.recordReadback(cmd, 0, color_);
         truth_.recordReadback(cmd, 0, depth_);
         truth_.recordReadback(cmd, 1, labels_);
+        truth_.recordReadback(cmd, 2, normals_);
         if (right) {
             rightMain_->recordReadback(cmd, 0, rightColor_);
             rightTruth_->recordReadback(cmd, 0, rightDepth_);
             rightTruth_->recordReadback(cmd, 1, rightLabels_);
+            rightTruth_->recordReadback(cmd, 2, rightNormals_);
         }
         transferToHostBarrier(cmd);
     });
@@ -469,12 +506,14 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
     std::memcpy(images.rgbaHalf.data(), color_.mapped(), pixels * 8);
     std::memcpy(images.depth.data(), depth_.mapped(), pixels * 4); // float bit patterns written by the shader
     splitLabels(labels_, pixels, renderer.world(), images.labels, &images.tiles);
+    images.normals = normalsXyz(normals_, pixels);
     if (right) {
         images.rightRgbaHalf.resize(pixels * 4);
         std::memcpy(images.rightRgbaHalf.data(), rightColor_.mapped(), pixels * 8);
         images.rightDepth.resize(pixels);
         std::memcpy(images.rightDepth.data(), rightDepth_.mapped(), pixels * 4);
         splitLabels(rightLabels_, pixels, false, images.rightLabels, nullptr);
+        images.rightNormals = normalsXyz(rightNormals_, pixels);
     }
     return images;
 }

@@ -4,9 +4,10 @@
 //   expansion   compute: cull clusters, choose LODs, write plant instances + indirect draws
 //   shadow      D32 sun shadow map (terrain + alpha-tested plants), orthographic, fitted in front of the camera
 //   main        RGBA16F linear HDR radiance, 1x or 4x MSAA (alpha-to-coverage), resolved by averaging
-//   truth       R32_UINT bit pattern of the planar depth in metres (+inf for sky), always 1x: the same
-//               geometry rasterised once at each pixel centre, so ground truth is exact and never a blend of
-//               two surfaces ("flying pixels"), whatever the colour pass's sample count.
+//   truth       R32_UINT bit pattern of the planar depth in metres (+inf for sky), R32G32_UINT (label, tile) and
+//               RGBA32F camera-frame triangle normal (0 for sky), always 1x: the same geometry rasterised once
+//               at each pixel centre, so ground truth is exact and never a blend of two surfaces ("flying
+//               pixels"), whatever the colour pass's sample count.
 #pragma once
 
 #include "vegetation/atlas.h"
@@ -165,7 +166,7 @@ private:
     Context& ctx_;
     RenderTarget main_, truth_;
     std::unique_ptr<RenderTarget> rightMain_, rightTruth_; // created on the first stereo frame
-    Buffer color_, depth_, labels_, rightColor_, rightDepth_, rightLabels_;
+    Buffer color_, depth_, labels_, normals_, rightColor_, rightDepth_, rightLabels_, rightNormals_;
 };
 
 // Renders one frame into fresh targets (the renderer's sample count) and reads colour and depth back (waits).

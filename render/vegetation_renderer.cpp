@@ -106,7 +106,7 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const A
     };
     mainPipeline_ = createGraphicsPipeline(ctx.device, plants, mainLayout);
     plants.fragmentShader = "plant_truth.frag";
-    plants.colorFormats = {formats.truthDepthBits, formats.truthLabel};
+    plants.colorFormats = {formats.truthDepthBits, formats.truthLabel, formats.truthNormal};
     plants.depthFormat = formats.truthDepth;
     plants.samples = VK_SAMPLE_COUNT_1_BIT;
     plants.alphaToCoverage = false;

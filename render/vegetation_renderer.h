@@ -39,7 +39,7 @@ struct BakedPlants {
 struct VegetationPassFormats {
     VkFormat mainColor, mainDepth;
     VkSampleCountFlagBits mainSamples;
-    VkFormat truthDepthBits, truthLabel, truthDepth; // truth colour attachments: depth bits, label
+    VkFormat truthDepthBits, truthLabel, truthNormal, truthDepth; // truth attachments: depth bits, label, normal
     VkFormat shadowDepth;
 };
 

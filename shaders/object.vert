@@ -4,7 +4,7 @@
 #include "shared/frame.glsl"
 #include "shared/object_layout.h"
 
-layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain, kPassTruth or kPassShadow
+layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain or kPassShadow (truth: object_truth.vert)
 
 layout(set = 0, binding = kBindingObjectTransforms, std430) readonly buffer TransformBlock {
     ObjectTransform transforms[];

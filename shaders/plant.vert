@@ -20,6 +20,7 @@ layout(location = 5) out float outHeightFraction;
 layout(location = 6) flat out float outRandom;
 layout(location = 7) flat out uint outLabel; // ground truth: (semantic class << 24) | instance id
 layout(location = 8) flat out uint outTile;  // ground truth: the tile's label (VegetationConstants::tile)
+layout(location = 9) flat out vec3 outNormal; // ground truth: the triangle's camera-frame normal (truthNormal)
 
 void main() {
     ExpandedPlant instance = instances[gl_InstanceIndex];
@@ -38,9 +39,17 @@ void main() {
                                                    : kSemanticVegetation + bitfieldExtract(instance.attributes, 0, 2);
         outLabel = (semantic << kInstanceBits) | (instancePlants[gl_InstanceIndex] + 1u);
         outTile = veg.tile.x;
+        // The whole triangle of this vertex (vertices 3t, 3t+1, 3t+2 of the instance), so the normal is the drawn
+        // triangle's own plane: bent cards are flat per triangle, not per plant.
+        uint first = uint(gl_VertexIndex) - uint(gl_VertexIndex) % 3u;
+        vec3 p0 = plantVertex(instance, push.lod, first).position;
+        vec3 p1 = plantVertex(instance, push.lod, first + 1u).position;
+        vec3 p2 = plantVertex(instance, push.lod, first + 2u).position;
+        outNormal = truthNormal(cross(p1 - p0, p2 - p0), p0);
     } else {
         outLabel = 0u;
         outTile = 0u;
+        outNormal = vec3(0.0);
     }
     gl_Position = (PASS == kPassShadow ? frame.shadowViewProj : frame.viewProj) * vec4(v.position, 1.0);
 }

@@ -3,7 +3,7 @@
 // Terrain: the static ground mesh (heightfield grid or the scene's glTF ground), positions already in world space.
 #include "shared/frame.glsl"
 
-layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain, kPassTruth or kPassShadow
+layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain or kPassShadow (truth: terrain_truth.vert)
 
 layout(location = 0) in vec4 inPosition;
 layout(location = 1) in vec4 inNormal;

@@ -145,6 +145,10 @@ class Dataset:
         instance = self._file("instance", frame, ".exr")
         if "tile" in _sward.image_channels(instance):  # a world: ids count within the tile it names
             item["tile"] = _sward.read_image(instance, "tile").astype("uint32")
+        for kind in ("normal", "normal_right") if self.stereo else ("normal",):
+            normal = self._file(kind, frame, ".exr")
+            if os.path.isfile(normal):  # datasets written before normals existed have none
+                item[kind] = _sward.read_image(normal)  # HxWx3 float32: camera-frame x, y, z
         if self.stereo:
             item["disparity"] = item["disparity"]
             item["disparity_pfm"] = _sward.read_disparity(self._file("disparity", frame, ".pfm"))

@@ -35,7 +35,7 @@ SWARD_CONST(uint, kFrameDataSlots, kFramesInFlight + 1u);
 
 // Render pass variant of the shaders shared by several passes (specialization constant PASS).
 SWARD_CONST(uint, kPassMain, 0u);   // colour, lit and shadowed
-SWARD_CONST(uint, kPassTruth, 1u);  // ground truth: depth bits and labels, one sample per pixel
+SWARD_CONST(uint, kPassTruth, 1u);  // ground truth: depth bits, labels, normals, one sample per pixel
 SWARD_CONST(uint, kPassShadow, 2u); // sun shadow map: depth only, seen from the sun
 
 // Descriptor binding slots of set 0 (push descriptors): the GLSL declarations and the C++ pipeline layouts and
@@ -54,6 +54,9 @@ SWARD_CONST(uint, kBindingInstancePlants, 6u);   // plant index per instance (pl
 SWARD_CONST(uint, kBindingBakedVertices, 4u);    // BakedVertex[] written by plant_bake.comp (it has no atlas)
 SWARD_CONST(uint, kBindingCoverMap, 7u);         // the vegetation's far cover (terrain.frag), main pass only
 SWARD_CONST(uint, kBindingGroundTextures, 8u);   // a mesh ground's base-colour textures (terrain.frag), main pass
+SWARD_CONST(uint, kBindingMeshVertices, 2u);     // truth pass: a mesh's vertices, pulled by terrain_truth.vert
+SWARD_CONST(uint, kBindingMeshIndices, 3u);      // (TerrainVertex[]) and object_truth.vert (ObjectVertex[]) / its
+                                                 // triangle list (uint[]), so a vertex sees its whole triangle
 
 // Vegetation expansion (vegetation_expand.comp), besides its constants at kBindingVegetation.
 SWARD_CONST(uint, kExpandBindingStatics, 0u);

@@ -34,10 +34,12 @@ FrameImages tinyFrame(bool stereo) {
     images.rgbaHalf.assign(8, 0x3c00); // 1.0
     images.depth = {2.0f, INFINITY};
     images.labels = {gpu::kSemanticGround << gpu::kInstanceBits, gpu::kSemanticSky << gpu::kInstanceBits};
+    images.normals = {0.6f, -0.48f, -0.64f, 0.0f, 0.0f, 0.0f}; // a unit normal facing the camera, then sky
     if (stereo) {
         images.rightRgbaHalf = images.rgbaHalf;
         images.rightDepth = images.depth;
         images.rightLabels = images.labels;
+        images.rightNormals = images.normals;
     }
     return images;
 }
@@ -47,12 +49,12 @@ FrameImages tinyFrame(bool stereo) {
 TEST(DatasetWriter, FrameFilesAreNamedByTheNamingTable) {
     const DatasetWriter mono("unused", false), stereo("unused", true);
     const std::vector<std::string> monoFiles = mono.frameFiles(7);
-    EXPECT_EQ(monoFiles.size(), 5u);
+    EXPECT_EQ(monoFiles.size(), 6u);
     EXPECT_EQ(monoFiles[0], frameFile(kLeftFolder, 7, ".exr"));
     const std::vector<std::string> stereoFiles = stereo.frameFiles(7);
-    EXPECT_EQ(stereoFiles.size(), 15u);
-    for (const char* file : {"disparity/000007.pfm", "disparity_right/000007.pfm", "depth_right/000007.exr",
-                             "occlusion/000007.png", "occlusion_right/000007.png"})
+    EXPECT_EQ(stereoFiles.size(), 17u);
+    for (const char* file : {"normal/000007.exr", "normal_right/000007.exr", "disparity/000007.pfm", "disparity_right/000007.pfm",
+                             "depth_right/000007.exr", "occlusion/000007.png", "occlusion_right/000007.png"})
         EXPECT_NE(std::find(stereoFiles.begin(), stereoFiles.end(), file), stereoFiles.end()) << file;
     EXPECT_EQ(mono.datasetFiles(), (std::vector<std::string>{kFrameLogFile, kSceneCopyFile, kClassesFile}));
     EXPECT_EQ(stereo.datasetFiles(),
@@ -72,6 +74,20 @@ TEST(DatasetWriter, WriteFrameWritesEveryListedFileAndTheClassBytes) {
     ASSERT_EQ(semantic.type(), CV_8UC1);
     EXPECT_EQ(semantic.at<uint8_t>(0, 0), gpu::kSemanticGround);
     EXPECT_EQ(semantic.at<uint8_t>(0, 1), gpu::kSemanticSky);
+}
+
+TEST(DatasetWriter, NormalFileReadsBackInOpenCvAsTheExactFloatNormals) {
+    const std::string dir = freshDir();
+    DatasetWriter writer(dir, false);
+    writer.begin({{"test", 1}}, false);
+    const FrameImages images = tinyFrame(false);
+    writer.writeFrame(0, images, Camera{}, 0.0);
+    // OpenCV reads EXR channels R, G, B as a 3-channel float image in its own B, G, R order.
+    const cv::Mat normal = cv::imread(dir + "/" + frameFile(kNormalFolder, 0, ".exr"), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(normal.type(), CV_32FC3);
+    for (int x = 0; x < 2; ++x)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_EQ(normal.at<cv::Vec3f>(0, x)[2 - c], images.normals[size_t(3 * x + c)]) << x << " " << c;
 }
 
 namespace {
@@ -128,7 +144,7 @@ TEST(DatasetWriter, OverwriteRemovesSwardFilesOnlyAndKeepsForeignOnes) {
     DatasetWriter fresh(dir, false); // mono now: the stereo folders go too
     fresh.begin({{"resolution", "8x8"}}, true);
     EXPECT_EQ(listing(dir), (std::vector<std::string>{"dataset.json", "depth", "instance", "left", "left/mine.txt",
-                                                      "notes.tmp", "preview", "semantic"}));
+                                                      "normal", "notes.tmp", "preview", "semantic"}));
 }
 
 TEST(DatasetWriter, BeginKeepsTheUsersTmpFilesAndRemovesDeadSwardTemporaries) {

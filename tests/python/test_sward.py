@@ -16,7 +16,8 @@ import sward
 RENDER = os.environ["SWARD_RENDER"]
 # The GPU test scene, small: a stereo rig, a rover driving through the grass (tracks from tick 0).
 SMALL = {"render.resolution": [96, 64], "render.samples": 1, "sequence.frames": 3}
-KINDS = ["left", "right", "depth", "disparity", "semantic", "instance", "preview", "preview_right"]
+KINDS = ["left", "right", "depth", "disparity", "semantic", "instance", "normal", "normal_right", "preview",
+         "preview_right"]
 
 
 def scene_with(tmp, changes):
@@ -54,6 +55,9 @@ def test_frames_equal_the_cli_files_bitwise(cli_dataset):
         for kind in KINDS:
             assert bitwise_equal(frame[kind], files[kind]), f"frame {index}: {kind}"
         assert frame["left"].dtype == np.float32 and frame["left"].shape == (64, 96, 4)
+        for depth, normal in ((frame["depth"], frame["normal"]), (frame["depth_right"], frame["normal_right"])):
+            hit = np.isfinite(depth)  # unit where a surface is seen, 0 for the sky
+            assert np.abs(np.linalg.norm(normal[hit], axis=-1) - 1).max() < 1e-5 and not normal[~hit].any()
     assert sim.validation_messages == 0
 
 
@@ -65,6 +69,9 @@ def test_dataset_reader_reads_every_file_kind(cli_dataset):
     assert np.abs(item["disparity_kitti"] - item["disparity"]).max() <= 1 / 256  # KITTI: 1/256 pixel steps
     assert item["semantic"].dtype == np.uint8 and item["instance"].dtype == np.uint32
     assert item["preview"].shape == (64, 96, 3) and item["preview"].dtype == np.uint8
+    normal, hit = item["normal"], np.isfinite(item["depth"])
+    assert normal.shape == (64, 96, 3) and normal.dtype == np.float32
+    assert np.abs(np.linalg.norm(normal[hit], axis=-1) - 1).max() < 1e-5 and not normal[~hit].any()
     assert data.calib["width"] == 96 and data.info["fingerprint"]["resolution"] == "96x64"
     assert set(data.manifest["files"]) >= {"left/000002.exr", "disparity/000002.pfm", "frames.jsonl", "calib.txt"}
     with pytest.raises(IndexError):

@@ -1,6 +1,6 @@
 // Scene objects on the GPU (vegetation/render/object_renderer.h): the default rover drawn on its own into the
 // main, truth and shadow passes, checked against its analytic geometry: visible where projected, exact planar
-// depth, the object label, and the shadow of a second object falling on it.
+// depth, the object label, the faces' normals, and the shadow of a second object falling on it.
 #include "common/half_float.h"
 #include "gpu_test.h"
 
@@ -56,6 +56,7 @@ std::string writePlate(const std::string& dir) {
 struct Images {
     std::vector<uint16_t> color;
     std::vector<uint32_t> depthBits, labels;
+    std::vector<glm::vec4> normals; // the truth pass's camera-frame normal per pixel, w unused
     glm::vec3 rgb(glm::ivec2 p) const {
         const size_t i = (size_t(p.y) * kWidth + size_t(p.x)) * 4;
         return {halfBitsToFloat(color[i]), halfBitsToFloat(color[i + 1]), halfBitsToFloat(color[i + 2])};
@@ -66,6 +67,7 @@ struct Images {
         return d;
     }
     uint32_t label(glm::ivec2 p) const { return labels[size_t(p.y) * kWidth + size_t(p.x)]; }
+    glm::dvec3 normal(glm::ivec2 p) const { return glm::dvec3(normals[size_t(p.y) * kWidth + size_t(p.x)]); }
 };
 
 class ObjectRenderTest : public GpuTest {
@@ -94,6 +96,7 @@ protected:
                                             .mainSamples = VK_SAMPLE_COUNT_1_BIT,
                                             .truthDepthBits = VK_FORMAT_R32_UINT,
                                             .truthLabel = VK_FORMAT_R32G32_UINT,
+                                            .truthNormal = VK_FORMAT_R32G32B32A32_SFLOAT,
                                             .truthDepth = VK_FORMAT_D32_SFLOAT,
                                             .shadowDepth = VK_FORMAT_D32_SFLOAT};
         ObjectRenderer objectRenderer(*ctx, scene, terrain, formats);
@@ -158,6 +161,9 @@ protected:
         });
         Images images;
         auto color = main.readback(0), depth = truth.readback(0), labels = truth.readback(1);
+        const auto normals = truth.readback(2);
+        images.normals.resize(normals.size() / 16);
+        std::memcpy(images.normals.data(), normals.data(), normals.size());
         images.color.resize(color.size() / 2);
         std::memcpy(images.color.data(), color.data(), color.size());
         images.depthBits.resize(depth.size() / 4);
@@ -248,4 +254,31 @@ TEST_F(ObjectRenderTest, SecondObjectShadowsTheRoverAndHasItsOwnLabel) {
     for (uint32_t label : shaded.labels) plate += label == objectLabel(1);
     EXPECT_GT(plate, 100u);
     EXPECT_EQ(shaded.label({int(kWidth) / 2, 0}), objectLabel(1));
+}
+
+TEST_F(ObjectRenderTest, ObjectNormalsAreTheirFacesPlanesInCameraAxes) {
+    const Images images = render(true);
+    // World direction `w` in the camera's axes (x right, y down, z forward).
+    auto inCamera = [&](glm::dvec3 w) { return glm::transpose(camera.worldFromCamera) * w; };
+    // The chassis' right side faces the camera in the south: world -y. The plate is seen from below: world -z.
+    const glm::ivec2 side = pixelOf({50.0, 50.0 - 0.22, kGround + 0.22});
+    ASSERT_EQ(images.label(side), objectLabel(0));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(images.normal(side)[c], inCamera({0, -1, 0})[c], 1e-5) << c;
+    size_t plate = 0;
+    for (uint32_t y = 0; y < kHeight; ++y)
+        for (uint32_t x = 0; x < kWidth; ++x) {
+            const glm::ivec2 p(x, y);
+            const glm::dvec3 n = images.normal(p);
+            if (images.label(p) == gpu::kSemanticSky << gpu::kInstanceBits) {
+                ASSERT_EQ(n, glm::dvec3(0.0)) << x << "," << y;
+                continue;
+            }
+            ASSERT_NEAR(glm::length(n), 1.0, 1e-5) << x << "," << y;
+            ASSERT_LT(glm::dot(n, inCamera(camera.ray(x + 0.5, y + 0.5))), 0.0)
+                << "faces the camera at " << x << "," << y;
+            if (images.label(p) != objectLabel(1)) continue;
+            ++plate;
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(n[c], inCamera({0, 0, -1})[c], 1e-5) << x << "," << y;
+        }
+    EXPECT_GT(plate, 100u);
 }

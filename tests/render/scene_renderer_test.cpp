@@ -1,10 +1,13 @@
-// Offscreen rendering: EXR files read back with OpenCV, checked against the analytic terrain.
+// Offscreen rendering: EXR files read back with OpenCV, checked against the analytic terrain; ground normals.
 #include "common/half_float.h"
 #include "gpu_test.h"
 
+#include "dataset/dataset_writer.h"
+#include "dataset/naming.h"
 #include "io/image_files.h"
-#include "scene/scene.h"
 #include "render/scene_renderer.h"
+#include "scene/scene.h"
+#include "shared/gpu_layout.h"
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -20,14 +23,17 @@ namespace {
 constexpr uint32_t kWidth = 320, kHeight = 240;
 
 // A small scene: 200 m terrain, camera 3 m above ground looking along +y at a slightly lower target.
-Scene testScene() {
-    return parseScene(nlohmann::json::parse(R"({
+nlohmann::json testSceneJson() {
+    return nlohmann::json::parse(R"({
         "seed": 11,
         "terrain": {"size": 200, "spacing": 2, "amplitude": 10, "feature_size": 80},
         "camera": {"position": [100, 20, 0], "height_above_ground": 3,
                    "look_at": [100, 120, 0], "look_at_height_above_ground": 0, "fov_y_deg": 60}
-    })"),
-                      "test scene");
+    })");
+}
+
+Scene testScene() {
+    return parseScene(testSceneJson(), "test scene");
 }
 
 class RenderTest : public GpuTest {
@@ -95,3 +101,58 @@ TEST_F(RenderTest, TwoRendersAreBitwiseIdentical) {
     EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * 4));
 }
 
+namespace {
+
+// Flat ground (amplitude 0) seen from 12 m up by a camera pitched down 31 degrees, turned off the world axes; sky
+// above the terrain's far edge.
+Scene flatGroundScene() {
+    nlohmann::json scene = testSceneJson();
+    scene["terrain"]["amplitude"] = 0;
+    scene["camera"]["position"] = {90, 80, 0};
+    scene["camera"]["height_above_ground"] = 12;
+    scene["camera"]["look_at"] = {106, 92, 0};
+    return parseScene(scene, "flat ground");
+}
+
+} // namespace
+
+TEST_F(RenderTest, FlatGroundNormalIsWorldUpInTheCameraFrameInTheReadBackFile) {
+    scene = flatGroundScene();
+    terrain = buildTerrain(scene);
+    camera = sceneCamera(scene, terrain, kWidth, kHeight);
+    const FrameImages frame = render(1);
+    const std::string dir = tempDir("normals");
+    DatasetWriter writer(dir, false);
+    writer.begin({{"test", 1}}, false);
+    writer.writeFrame(0, frame, camera, 0.0);
+    // OpenCV, not sward's reader: channels R, G, B (camera x, y, z) come back in OpenCV's B, G, R order.
+    const cv::Mat file = cv::imread(dir + "/" + frameFile(kNormalFolder, 0, ".exr"), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(file.type(), CV_32FC3);
+    ASSERT_EQ(file.cols, int(kWidth));
+    ASSERT_EQ(file.rows, int(kHeight));
+
+    // World up in the camera frame: row i of cameraFromWorld = camera axis i in world axes.
+    const glm::dvec3 up(camera.worldFromCamera[0].z, camera.worldFromCamera[1].z, camera.worldFromCamera[2].z);
+    ASSERT_LT(up.z, -0.5) << "the camera looks well down at the ground";
+    ASSERT_LT(-up.y, 0.9) << "so up is not the image's up";
+    uint32_t ground = 0, sky = 0;
+    for (uint32_t y = 0; y < kHeight; ++y)
+        for (uint32_t x = 0; x < kWidth; ++x) {
+            const size_t i = size_t(y) * kWidth + x;
+            const cv::Vec3f bgr = file.at<cv::Vec3f>(int(y), int(x));
+            const glm::vec3 n(bgr[2], bgr[1], bgr[0]);
+            ASSERT_EQ(std::memcmp(&n[0], &frame.normals[3 * i], 12), 0) << "the file holds the rendered bits";
+            const uint32_t semantic = frame.labels[i] >> gpu::kInstanceBits;
+            if (semantic == gpu::kSemanticSky) {
+                ASSERT_EQ(n, glm::vec3(0.0f)) << "sky at (" << x << "," << y << ")";
+                ++sky;
+                continue;
+            }
+            ASSERT_EQ(semantic, gpu::kSemanticGround);
+            ASSERT_NEAR(glm::length(glm::dvec3(n)), 1.0, 1e-5);
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(n[c], up[c], 1e-5) << "(" << x << "," << y << ") axis " << c;
+            ++ground;
+        }
+    EXPECT_GT(ground, kWidth * kHeight / 2);
+    EXPECT_GT(sky, 0u);
+}

@@ -1,12 +1,15 @@
 // Vegetation expansion and rendering on the GPU: LOD choice, culling, wind, determinism, ground truth.
 #include "gpu_test.h"
 
-#include "vegetation/records.h"
-#include "scene/scene.h"
 #include "render/scene_renderer.h"
 #include "render/vegetation_renderer.h"
+#include "scene/scene.h"
+#include "shared/gpu_layout.h"
+#include "vegetation/records.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 using namespace sward;
@@ -71,6 +74,69 @@ TEST_F(VegetationTest, PlantsStandInFrontOfTheTerrainInColourAndTruth) {
     ASSERT_GT(ground, bare.depth.size() / 3);
     EXPECT_GT(occluded, ground / 3) << "plants should cover much of the ground near the camera";
     EXPECT_NE(bare.rgbaHalf, grass.rgbaHalf);
+}
+
+namespace {
+
+// The camera-frame point of pixel (x, y) at planar depth d (pixel centres at +0.5, camera.h).
+glm::dvec3 backProject(const Camera& camera, uint32_t x, uint32_t y, double d) {
+    return {(x + 0.5 - camera.cx) / camera.fx * d, (y + 0.5 - camera.cy) / camera.fy * d, d};
+}
+
+// The plane through the 3x3 neighbourhood of (x, y): its unit normal from central differences, and the largest
+// distance of the nine points from that plane over the neighbourhood's size (0 for coplanar points).
+std::pair<glm::dvec3, double> neighbourhoodPlane(const Camera& camera, const FrameImages& frame, uint32_t x,
+                                                 uint32_t y) {
+    auto point = [&](uint32_t u, uint32_t v) {
+        return backProject(camera, u, v, frame.depth[size_t(v) * frame.width + u]);
+    };
+    const glm::dvec3 centre = point(x, y);
+    const glm::dvec3 across = point(x + 1, y) - point(x - 1, y), down = point(x, y + 1) - point(x, y - 1);
+    const glm::dvec3 n = glm::normalize(glm::cross(across, down));
+    double residual = 0.0;
+    for (uint32_t v = y - 1; v <= y + 1; ++v)
+        for (uint32_t u = x - 1; u <= x + 1; ++u)
+            residual = std::max(residual, std::abs(glm::dot(n, point(u, v) - centre)));
+    return {n, residual / std::max(glm::length(across), glm::length(down))};
+}
+
+} // namespace
+
+// Plants are alpha-tested cards: every plant pixel's normal is unit, faces the camera and is the plane the depth
+// image shows wherever a 3x3 neighbourhood of one plant is planar.
+TEST_F(VegetationTest, PlantNormalsAreUnitFaceTheCameraAndAgreeWithTheDepthImage) {
+    // Twice the fixture's resolution: more blades are several pixels wide.
+    const uint32_t width = 2 * kWidth, height = 2 * kHeight;
+    const Camera detailed = sceneCamera(scene, terrain, width, height);
+    const FrameImages frame = renderFrame(*ctx, *renderer(true, 1), detailed, 1.0);
+    ASSERT_EQ(frame.normals.size(), frame.depth.size() * 3);
+    uint32_t plants = 0, planar = 0;
+    double worst = 0.0;
+    for (uint32_t y = 1; y + 1 < height; ++y)
+        for (uint32_t x = 1; x + 1 < width; ++x) {
+            const size_t i = size_t(y) * width + x;
+            const uint32_t semantic = frame.labels[i] >> gpu::kInstanceBits;
+            if (semantic < gpu::kSemanticVegetation || semantic == gpu::kSemanticObject) continue;
+            ++plants;
+            const glm::dvec3 n(frame.normals[3 * i], frame.normals[3 * i + 1], frame.normals[3 * i + 2]);
+            ASSERT_NEAR(glm::length(n), 1.0, 1e-5) << "(" << x << "," << y << ")";
+            ASSERT_LT(glm::dot(n, backProject(detailed, x, y, 1.0)), 0.0)
+                << "faces the camera at (" << x << "," << y << ")";
+            bool onePlant = true;
+            for (uint32_t v = y - 1; v <= y + 1; ++v)
+                for (uint32_t u = x - 1; u <= x + 1; ++u)
+                    onePlant = onePlant && frame.labels[size_t(v) * width + u] == frame.labels[i];
+            if (!onePlant) continue;
+            auto [fitted, residual] = neighbourhoodPlane(detailed, frame, x, y);
+            if (residual > 1e-4) continue; // two cards of one plant, or a card seen edge-on
+            ++planar;
+            const double angle = std::acos(std::min(1.0, std::abs(glm::dot(fitted, n))));
+            worst = std::max(worst, angle);
+            EXPECT_LT(angle, 1e-3) << "(" << x << "," << y << ") depth-plane vs written normal";
+        }
+    std::printf("plant pixels %u, planar neighbourhoods %u, worst angle %.3g rad\n", plants, planar, worst);
+    EXPECT_GT(plants, width * height / 4);
+    EXPECT_GT(planar, 2000u) << "too few planar plant neighbourhoods to test";
 }
 
 TEST_F(VegetationTest, SameTimeIsBitwiseIdenticalAndWindMovesPlants) {

@@ -215,6 +215,7 @@ struct PlyPoint {
     double x, y, z;
     uint8_t rgb[3], label;
     uint32_t instance;
+    float normal[3];
 };
 
 // A PLY reader of its own: the header's properties must be exactly these, binary little-endian.
@@ -232,9 +233,10 @@ std::vector<PlyPoint> readPly(const std::string& path) {
             EXPECT_EQ(line, "format binary_little_endian 1.0");
         }
     }
-    EXPECT_EQ(properties, (std::vector<std::string>{"double x", "double y", "double z", "uchar red", "uchar green",
-                                                    "uchar blue", "uchar class", "uint instance"}));
-    const size_t stride = 3 * 8 + 3 + 1 + 4;
+    EXPECT_EQ(properties,
+              (std::vector<std::string>{"double x", "double y", "double z", "uchar red", "uchar green", "uchar blue",
+                                        "uchar class", "uint instance", "float nx", "float ny", "float nz"}));
+    const size_t stride = 3 * 8 + 3 + 1 + 4 + 3 * 4;
     EXPECT_EQ(bytes.size() - end - 11, count * stride);
     std::vector<PlyPoint> points(count);
     for (size_t i = 0; i < count; ++i) {
@@ -245,13 +247,14 @@ std::vector<PlyPoint> readPly(const std::string& path) {
         std::memcpy(points[i].rgb, p + 24, 3);
         points[i].label = uint8_t(p[27]);
         std::memcpy(&points[i].instance, p + 28, 4);
+        std::memcpy(points[i].normal, p + 32, 12);
     }
     return points;
 }
 
 } // namespace
 
-TEST(SwardExport, PlyPointsReprojectIntoTheLeftDepthWithTheirClassAndInstance) {
+TEST(SwardExport, PlyPointsReprojectIntoTheLeftDepthWithTheirClassInstanceAndNormal) {
     for (const char* frameOption : {"world", "camera"}) {
         const std::string out = exportTo("ply", std::string("--point-frame ") + frameOption);
         const Calib calib = middleburyCalib(dataset() + "/calib.txt");
@@ -262,14 +265,17 @@ TEST(SwardExport, PlyPointsReprojectIntoTheLeftDepthWithTheirClassAndInstance) {
             const cv::Mat semantic = readImage(dataset() + "/semantic/" + name + ".png");
             const cv::Mat instance = readImage(dataset() + "/instance/" + name + ".exr");
             const cv::Mat preview = readImage(dataset() + "/preview/" + name + ".png");
+            const cv::Mat normal = readImage(dataset() + "/normal/" + name + ".exr"); // B, G, R = z, y, x
             const std::array<double, 16> m = leftPose(frame);
             const bool world = std::string(frameOption) == "world";
             EXPECT_EQ(points.size(), size_t(cv::countNonZero(depth < std::numeric_limits<float>::infinity())));
             for (const PlyPoint& p : points) {
-                double c[3] = {p.x, p.y, p.z};
+                double c[3] = {p.x, p.y, p.z}, n[3] = {p.normal[0], p.normal[1], p.normal[2]};
                 if (world) { // camera = R^T (p - t)
                     const double d[3] = {p.x - m[3], p.y - m[7], p.z - m[11]};
                     for (int k = 0; k < 3; ++k) c[k] = m[k] * d[0] + m[4 + k] * d[1] + m[8 + k] * d[2];
+                    for (int k = 0; k < 3; ++k)
+                        n[k] = m[k] * p.normal[0] + m[4 + k] * p.normal[1] + m[8 + k] * p.normal[2];
                 }
                 const int u = int(std::lround(calib.f * c[0] / c[2] + calib.cx));
                 const int v = int(std::lround(calib.f * c[1] / c[2] + calib.cy));
@@ -280,6 +286,8 @@ TEST(SwardExport, PlyPointsReprojectIntoTheLeftDepthWithTheirClassAndInstance) {
                 const cv::Vec3b bgr = preview.at<cv::Vec3b>(v, u);
                 ASSERT_EQ(p.rgb[0], bgr[2]);
                 ASSERT_EQ(p.rgb[2], bgr[0]);
+                const cv::Vec3f zyx = normal.at<cv::Vec3f>(v, u);
+                for (int k = 0; k < 3; ++k) ASSERT_NEAR(n[k], zyx[2 - k], world ? 1e-6 : 0.0) << u << "," << v;
             }
         }
     }
