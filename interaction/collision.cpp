@@ -409,6 +409,7 @@ uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint3
 // and slots are reset for the next field.
 void CollisionPass::emitContacts(uint32_t f, const FieldVegetation& field, Scratch& s, FieldOutput& out) const {
     const uint32_t plantCount = field.plantCount();
+    out.contacts.reserve(s.sums.size());
     uint32_t k = 0;
     for (uint32_t word = 0; word * 64 < plantCount; ++word) {
         for (uint64_t bits = s.touched[word]; bits != 0; bits &= bits - 1) {
