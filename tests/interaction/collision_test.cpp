@@ -179,8 +179,9 @@ TEST(Collision, TenThousandCollidersAboveTheGrassCostNothing) {
 }
 
 // The pass's fast paths (cells under each collider, four stems at a time, spheres apart) against the definition:
-// every plant of a mixed meadow (three categories, each with its own gain and fell force) against every collider
-// with touchPlant, combined in (id, input) order with combineTouches. Every shape and kind, overlapping colliders.
+// every plant of a mixed meadow (three categories, each with its own gain and fell force, one with a maximum bend)
+// against every collider with touchPlant, combined in (id, input) order with combineTouches. Every shape and kind,
+// overlapping colliders.
 TEST(Collision, ContactsEqualThePerPlantDefinitionForEveryShapeKindAndCategory) {
     Ground ground(Heightfield(26, 26, 2.0f, glm::vec2(0.0f), std::vector<float>(26 * 26, 0.0f)));
     const VegetationParams vegetation = tileParams(50.0f);
@@ -191,6 +192,7 @@ TEST(Collision, ContactsEqualThePerPlantDefinitionForEveryShapeKindAndCategory) 
         params.categories[c].pushGain = 0.7f + 0.9f * float(c);
         params.categories[c].fellForce = 0.3f + 0.2f * float(c);
     }
+    params.categories[2].maxBend = 0.9f; // heavy bends fell the flowers too
     std::vector<Collider> colliders;
     for (uint32_t k = 0; k < 40; ++k) { // overlapping spheres of every kind, some heavy enough to fell
         const ColliderKind kind = std::array{ColliderKind::Push, ColliderKind::Gust, ColliderKind::Mower}[k % 3];
