@@ -4,14 +4,17 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace sward {
 
 // Round half away from zero. Truncating a non-negative float is floor, and a cast compiles to one instruction
-// where std::floor is a libm call on baseline x86-64; both are exact, so results are identical everywhere.
+// where std::floor is a libm call on baseline x86-64; both are exact, so results are identical everywhere. Adding
+// the half with v's sign gives the shaders' v >= 0 ? int(v + 0.5) : -int(-v + 0.5) bit for bit (negation and
+// round-to-nearest are symmetric, truncation is toward zero) without a branch, which random signs mispredict.
 inline int32_t roundHalfAway(float v) {
-    return v >= 0.0f ? int32_t(v + 0.5f) : -int32_t(-v + 0.5f);
+    return int32_t(v + std::copysign(0.5f, v));
 }
 
 // The largest code of a `bits`-bit snorm (32767 for 16 bits, 511 for 10), exact as a float. 2 <= bits <= 24.

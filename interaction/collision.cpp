@@ -9,6 +9,10 @@
 #include <chrono>
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 namespace sward {
 
 // --- Per plant ---------------------------------------------------------------------------------------------------
@@ -21,25 +25,27 @@ inline glm::vec2 awayDirection(glm::vec2 away) {
     return len2 > 1e-12f ? away / std::sqrt(len2) : glm::vec2(1.0f, 0.0f);
 }
 
-// The response to a penetration `depth` at stem point q, pushing along dir (the rules in collision.h). Shared by
-// touchPlant and the pass's sphere path, so both give identical bits.
-inline PlantTouch touchResponse(const Collider& c, glm::vec3 q, float depth, glm::vec2 dir, float height,
-                                const CategoryInteraction& response, const RecoveryParams& recovery) {
-    PlantTouch t;
-    float bend = 0.0f;
+// How far a penetration `depth` at stem point q bends the plant (the rules in collision.h).
+inline float bendOf(const Collider& c, glm::vec3 q, float depth, float height, const CategoryInteraction& response) {
     switch (c.kind) {
     case ColliderKind::Push:
     case ColliderKind::Gust:
     case ColliderKind::Mower:
-        bend = response.pushGain * c.force * depth / height;
-        break;
+        return response.pushGain * c.force * depth / height;
     case ColliderKind::Downwash: {
         float reach = c.centre.z - c.end.z;
         float below = reach > 0.0f ? std::clamp((c.centre.z - q.z) / reach, 0.0f, 1.0f) : 0.0f;
-        bend = response.pushGain * c.force * depth / c.radius * (1.0f - 0.5f * below);
-        break;
+        return response.pushGain * c.force * depth / c.radius * (1.0f - 0.5f * below);
     }
     }
+    return 0.0f;
+}
+
+// The touch of a plant bent by `bend` along dir (the rules in collision.h). Shared by touchPlant and the pass's
+// sphere paths, so all give identical bits.
+inline PlantTouch touchResponse(const Collider& c, float bend, glm::vec2 dir, float height,
+                                const CategoryInteraction& response, const RecoveryParams& recovery) {
+    PlantTouch t;
     // Only solid bodies carry weight: air (gusts, downwash) bends, and a mower's weight is on its wheels. A solid body
     // fells by its weight or by bending the plant beyond what it takes.
     if (c.kind == ColliderKind::Push && (c.force > response.fellForce || bend > response.maxBend)) {
@@ -67,7 +73,8 @@ PlantTouch touchPlant(const Collider& c, glm::vec3 base, float height, const Cat
     float sd = signedDistance(c, q);
     if (!(sd < 0.0f)) return {};
     axis = axisPoint(c, q);
-    return touchResponse(c, q, -sd, awayDirection({q.x - axis.x, q.y - axis.y}), height, response, recovery);
+    return touchResponse(c, bendOf(c, q, -sd, height, response), awayDirection({q.x - axis.x, q.y - axis.y}), height,
+                         response, recovery);
 }
 
 namespace {
@@ -119,12 +126,8 @@ gpu::PlantContact combineTouches(std::span<const PlantTouch> touches, const Reco
 
 struct CollisionPass::Scratch {
     static constexpr uint32_t kNone = ~0u;
-    // A row of sub-cells under one collider's footprint in one cluster: stems [begin, end) to test.
-    struct Run {
-        uint32_t rank, begin, end;
-    };
     std::vector<uint32_t> candidates;
-    std::vector<Run> runs;
+    std::array<std::vector<Run>, 2> runs; // of the field being tested and of the next one
     std::vector<uint32_t> slot;    // per plant of the field: its index in sums, or kNone
     std::vector<uint64_t> touched; // per plant of the field, one bit: has a touch (read back in plant order)
     std::vector<TouchSum> sums;
@@ -132,7 +135,10 @@ struct CollisionPass::Scratch {
 
 CollisionPass::CollisionPass(const VegetationTile& tile, const VegetationParams& vegetation,
                              const InteractionParams& params)
-    : tile_(&tile), index_(tile, vegetation), params_(params), outputs_(tile.fields.size()) {}
+    : tile_(&tile), index_(tile, vegetation), params_(params), outputs_(tile.fields.size()) {
+    for (uint32_t category = 0; category < pushGains_.size(); ++category)
+        pushGains_[category] = params.categories[category].pushGain;
+}
 
 CollisionPass::~CollisionPass() = default;
 CollisionPass::CollisionPass(CollisionPass&&) noexcept = default;
@@ -141,8 +147,14 @@ CollisionPass& CollisionPass::operator=(CollisionPass&&) noexcept = default;
 namespace {
 
 // Runs prefetched ahead of the one being tested: the plant index is far larger than the caches, and each run
-// is a separate miss that the hardware prefetcher cannot foresee.
-constexpr uint32_t kPrefetchRuns = 48;
+// is a separate miss that the hardware prefetcher cannot foresee. Four runs are about 20 lines, as many misses as
+// a core keeps in flight: measured on the 400 x 25 case, 48 runs cost 30 % more CPU time than 4 (prefetches
+// beyond the core's miss buffers wait in its load queue and stall the tests), none 40 % more, 2-8 about the same.
+constexpr uint32_t kPrefetchRuns = 4;
+
+// Fields per task of the worker pool: enough to overlap one field's fetches with the previous field's tests, few
+// enough to balance the load (400 fields make 50 tasks).
+constexpr uint32_t kFieldsPerTask = 8;
 
 // Asks for the cache lines of stems [begin, end) ahead of their use.
 inline void prefetchStems(const TileCollisionIndex::Stem* stems, uint32_t begin, uint32_t end) {
@@ -153,20 +165,29 @@ inline void prefetchStems(const TileCollisionIndex::Stem* stems, uint32_t begin,
 
 } // namespace
 
-void CollisionPass::collideField(uint32_t f, std::span<const Collider> colliders, Scratch& s, FieldOutput& out) const {
+// Step 1 for field f: its candidates and runs, into s.runs[buffer], with the first runs' stems on their way to the
+// cache. Returns whether any collider meets the field.
+bool CollisionPass::prepareField(uint32_t f, Scratch& s, uint32_t buffer, FieldOutput& out) const {
     const FieldVegetation& field = tile_->fields[f];
-    if (field.plantCount() == 0) return;
+    if (field.plantCount() == 0) return false;
     // The cluster table is read for every candidate below: fetch it while the BVH is searched.
     for (size_t offset = 0; offset < field.clusters.size() * sizeof(gpu::PlantCluster); offset += 64)
         __builtin_prefetch(reinterpret_cast<const char*>(field.clusters.data()) + offset);
     s.candidates.clear();
     bvh_.query({field.boundsMin, field.boundsMax}, s.candidates);
-    if (s.candidates.empty()) return;
+    if (s.candidates.empty()) return false;
     out.tested = true;
     const TileCollisionIndex::Field& index = index_.field(f);
     out.clustersTested = index.clustersWithPlants;
-    findCellRuns(field, index, s);
-    out.plantsTested = touchStems(index, field.plantCount(), colliders, s);
+    findCellRuns(field, index, s, s.runs[buffer]);
+    return true;
+}
+
+// Steps 2 and 3 for a field that prepareField found runs for in s.runs[buffer].
+void CollisionPass::finishField(uint32_t f, std::span<const Collider> colliders, Scratch& s, uint32_t buffer,
+                                FieldOutput& out) const {
+    const FieldVegetation& field = tile_->fields[f];
+    out.plantsTested = touchStems(index_.field(f), field.plantCount(), colliders, s.runs[buffer], s);
     if (s.sums.empty()) return;
     emitContacts(f, field, s, out);
 }
@@ -174,7 +195,7 @@ void CollisionPass::collideField(uint32_t f, std::span<const Collider> colliders
 // Step 1: the runs of stems under each candidate's footprint, candidates in rank (= id) order so each plant's
 // touches are summed in id order. Only clusters under the collider's box are visited.
 void CollisionPass::findCellRuns(const FieldVegetation& field, const TileCollisionIndex::Field& index,
-                                 Scratch& s) const {
+                                 const Scratch& s, std::vector<Run>& runs) const {
     constexpr uint32_t kSide = TileCollisionIndex::kCellsPerSide;
     const float invCell = 1.0f / index_.cellSize();
     const uint32_t perSide = tile_->clustersPerField;
@@ -182,7 +203,7 @@ void CollisionPass::findCellRuns(const FieldVegetation& field, const TileCollisi
     // Cluster boxes may reach a little beyond their grid squares (position rounding, plant extents): the margin
     // keeps the range of clusters visited conservative, the exact cluster box test below decides.
     const float margin = index.overhang + 1e-3f;
-    s.runs.clear();
+    runs.clear();
     for (uint32_t rank : s.candidates) {
         const Aabb& b = bvh_.bounds(rank);
         auto clusterCell = [&](float v, float o) {
@@ -211,63 +232,147 @@ void CollisionPass::findCellRuns(const FieldVegetation& field, const TileCollisi
                     const uint32_t row = k * kSide * kSide + cy * kSide;
                     __builtin_prefetch(&index.cellStart[row + x0]);
                     __builtin_prefetch(&index.cellStart[row + x1 + 1]);
-                    s.runs.push_back({rank, row + x0, row + x1 + 1}); // cell offsets; stem offsets below
+                    runs.push_back({rank, row + x0, row + x1 + 1}); // cell offsets; stem offsets below
                 }
             }
     }
     // The cell offsets were prefetched above: turn them into stem ranges, and start fetching the first stems.
     size_t kept = 0;
-    for (const Scratch::Run& cells : s.runs) {
+    for (const Run& cells : runs) {
         const uint32_t begin = index.cellStart[cells.begin], end = index.cellStart[cells.end];
         if (begin == end) continue;
         if (kept < kPrefetchRuns) prefetchStems(index.stems, begin, end);
-        s.runs[kept++] = {cells.rank, begin, end};
+        runs[kept++] = {cells.rank, begin, end};
     }
-    s.runs.resize(kept);
+    runs.resize(kept);
 }
 
-// Step 2: test the stems of every run; touches accumulate per plant in run (= rank) order. Returns the stems
-// tested.
+namespace {
+
+// What a collider's hull can reach in the xy plane: its box and, for a sphere, its disc (r2 = +inf otherwise).
+struct Footprint {
+    float minX, minY, maxX, maxY, centreX, centreY, r2;
+};
+
+// Bit j set when stem j of the four at `stems` lies in the footprint's box and strictly inside its disc: a
+// branch-free rejection of most tested stems. It rejects only stems the exact test below rejects too: that test's
+// squared distance adds dz * dz >= 0 to the same dx * dx + dy * dy, and a rounded sum never falls below a summand.
+inline uint32_t footprintMask4(const TileCollisionIndex::Stem* stems, const Footprint& f) {
+#if defined(__SSE2__)
+    const float* p = &stems->x;
+    const __m128 s0 = _mm_loadu_ps(p), s1 = _mm_loadu_ps(p + 4), s2 = _mm_loadu_ps(p + 8), s3 = _mm_loadu_ps(p + 12);
+    const __m128 a = _mm_unpacklo_ps(s0, s1), b = _mm_unpacklo_ps(s2, s3); // x0 x1 y0 y1, x2 x3 y2 y3
+    const __m128 x = _mm_movelh_ps(a, b), y = _mm_movehl_ps(b, a);
+    const __m128 inX = _mm_and_ps(_mm_cmpge_ps(x, _mm_set1_ps(f.minX)), _mm_cmple_ps(x, _mm_set1_ps(f.maxX)));
+    const __m128 inY = _mm_and_ps(_mm_cmpge_ps(y, _mm_set1_ps(f.minY)), _mm_cmple_ps(y, _mm_set1_ps(f.maxY)));
+    const __m128 dx = _mm_sub_ps(x, _mm_set1_ps(f.centreX)), dy = _mm_sub_ps(y, _mm_set1_ps(f.centreY));
+    const __m128 d2 = _mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy));
+    return uint32_t(_mm_movemask_ps(_mm_and_ps(_mm_and_ps(inX, inY), _mm_cmplt_ps(d2, _mm_set1_ps(f.r2)))));
+#else
+    uint32_t mask = 0;
+    for (uint32_t j = 0; j < 4; ++j) {
+        const float x = stems[j].x, y = stems[j].y, dx = x - f.centreX, dy = y - f.centreY;
+        const bool in = x >= f.minX && x <= f.maxX && y >= f.minY && y <= f.maxY && dx * dx + dy * dy < f.r2;
+        mask |= uint32_t(in) << j;
+    }
+    return mask;
+#endif
+}
+
+#if defined(__SSE2__)
+// touchStem's sphere test and bend (Push, Gust, Mower: bend = gain * force * depth / height) for four stems at
+// once: the square roots and divisions of a plant in contact are most of the pass, and one instruction computes
+// four of them. Every lane performs touchStem's operations in its order, each correctly rounded, so the bits are
+// the same. Bit j of `hits` is set when stem j (of those in `mask`) is touched.
+struct SphereLanes {
+    alignas(16) float bend[4], dirX[4], dirY[4], height[4];
+    uint32_t hits = 0;
+};
+
+inline __m128 select(__m128 condition, __m128 a, __m128 b) {
+    return _mm_or_ps(_mm_and_ps(condition, a), _mm_andnot_ps(condition, b));
+}
+
+inline SphereLanes sphereLanes4(const TileCollisionIndex::Stem* stems, uint32_t mask, const Collider& c,
+                                const Aabb& b, const float* heights, const float* gains) {
+    SphereLanes out;
+    alignas(16) float gain[4];
+    for (uint32_t j = 0; j < 4; ++j) {
+        out.height[j] = heights[stems[j].shape()];
+        gain[j] = gains[stems[j].category()];
+    }
+    const float* p = &stems->x;
+    const __m128 s0 = _mm_loadu_ps(p), s1 = _mm_loadu_ps(p + 4), s2 = _mm_loadu_ps(p + 8), s3 = _mm_loadu_ps(p + 12);
+    const __m128 a = _mm_unpacklo_ps(s0, s1), e = _mm_unpacklo_ps(s2, s3); // x0 x1 y0 y1, x2 x3 y2 y3
+    const __m128 x = _mm_movelh_ps(a, e), y = _mm_movehl_ps(e, a);
+    const __m128 z = _mm_movelh_ps(_mm_unpackhi_ps(s0, s1), _mm_unpackhi_ps(s2, s3));
+    const __m128 height = _mm_load_ps(out.height), top = _mm_add_ps(z, height);
+    // std::clamp(centre.z, z, top): below z -> z, else above top -> top.
+    const __m128 cz = _mm_set1_ps(c.centre.z);
+    const __m128 qz = select(_mm_cmplt_ps(cz, z), z, select(_mm_cmplt_ps(top, cz), top, cz));
+    const __m128 dx = _mm_sub_ps(x, _mm_set1_ps(c.centre.x)), dy = _mm_sub_ps(y, _mm_set1_ps(c.centre.y));
+    const __m128 dz = _mm_sub_ps(qz, cz);
+    const __m128 xy2 = _mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy));
+    const __m128 d2 = _mm_add_ps(xy2, _mm_mul_ps(dz, dz));
+    const __m128 sd = _mm_sub_ps(_mm_sqrt_ps(d2), _mm_set1_ps(c.radius));
+    __m128 in = _mm_and_ps(_mm_cmple_ps(z, _mm_set1_ps(b.max.z)), _mm_cmpge_ps(top, _mm_set1_ps(b.min.z)));
+    in = _mm_and_ps(in, _mm_cmplt_ps(d2, _mm_set1_ps(c.radius * c.radius)));
+    in = _mm_and_ps(in, _mm_cmplt_ps(sd, _mm_setzero_ps()));
+    out.hits = mask & uint32_t(_mm_movemask_ps(in));
+    const __m128 depth = _mm_xor_ps(sd, _mm_set1_ps(-0.0f));
+    const __m128 bend = _mm_div_ps(_mm_mul_ps(_mm_mul_ps(_mm_load_ps(gain), _mm_set1_ps(c.force)), depth), height);
+    // awayDirection: (dx, dy) / sqrt(len2), or (1, 0) on the axis.
+    const __m128 len = _mm_sqrt_ps(xy2), away = _mm_cmpgt_ps(xy2, _mm_set1_ps(1e-12f));
+    _mm_store_ps(out.bend, bend);
+    _mm_store_ps(out.dirX, select(away, _mm_div_ps(dx, len), _mm_set1_ps(1.0f)));
+    _mm_store_ps(out.dirY, select(away, _mm_div_ps(dy, len), _mm_setzero_ps()));
+    return out;
+}
+#endif
+
+} // namespace
+
+// How collider c touches stem p (kind 0: not at all). Spheres (the common case: gusts, wheels seen from far, feet)
+// are rejected with one squared distance before the general hull test.
+PlantTouch CollisionPass::touchStem(const Collider& c, const Aabb& b, const TileCollisionIndex::Stem& p) const {
+    if (p.x < b.min.x || p.x > b.max.x || p.y < b.min.y || p.y > b.max.y || p.z > b.max.z) return {};
+    const float height = index_.heights()[p.shape()];
+    if (p.z + height < b.min.z) return {};
+    const CategoryInteraction& response = params_.categories[p.category()];
+    if (c.shape != ColliderShape::Sphere) return touchPlant(c, {p.x, p.y, p.z}, height, response, params_.recovery);
+    // touchPlant for a sphere, with the distance it computes (glm::length: sqrt of (x*x + y*y) + z*z) shared with
+    // the rejection test.
+    const float qz = std::clamp(c.centre.z, p.z, p.z + height);
+    const float dx = p.x - c.centre.x, dy = p.y - c.centre.y, dz = qz - c.centre.z;
+    const float d2 = dx * dx + dy * dy + dz * dz;
+    if (d2 >= c.radius * c.radius) return {};
+    const float sd = std::sqrt(d2) - c.radius;
+    if (!(sd < 0.0f)) return {};
+    return touchResponse(c, bendOf(c, {p.x, p.y, qz}, -sd, height, response), awayDirection({dx, dy}), height,
+                         response, params_.recovery);
+}
+
+// Step 2: test the stems of every run, four at a time; touches accumulate per plant in run (= rank) order. Returns
+// the stems tested.
 uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint32_t plantCount,
-                                   std::span<const Collider> colliders, Scratch& s) const {
+                                   std::span<const Collider> colliders, std::span<const Run> runs,
+                                   Scratch& s) const {
     if (s.slot.size() < plantCount) s.slot.resize(plantCount, Scratch::kNone);
     if (s.touched.size() * 64 < plantCount) s.touched.resize(plantCount / 64 + 1, 0);
     const TileCollisionIndex::Stem* stems = index.stems;
-    const float* heights = index_.heights();
     uint64_t tested = 0;
-    for (size_t r = 0; r < s.runs.size(); ++r) {
-        if (r + kPrefetchRuns < s.runs.size())
-            prefetchStems(stems, s.runs[r + kPrefetchRuns].begin, s.runs[r + kPrefetchRuns].end);
-        const Scratch::Run run = s.runs[r];
+    for (size_t r = 0; r < runs.size(); ++r) {
+        if (r + kPrefetchRuns < runs.size())
+            prefetchStems(stems, runs[r + kPrefetchRuns].begin, runs[r + kPrefetchRuns].end);
+        const Run run = runs[r];
         tested += run.end - run.begin;
         const Aabb& b = bvh_.bounds(run.rank);
         const Collider& c = colliders[bvh_.inputIndex(run.rank)];
-        // Spheres (the common case: gusts, wheels seen from far, feet) are rejected with one squared distance
-        // before the general hull test.
         const bool sphere = c.shape == ColliderShape::Sphere;
-        const float r2 = c.radius * c.radius;
-        for (uint32_t i = run.begin; i < run.end; ++i) {
-            const TileCollisionIndex::Stem p = stems[i];
-            if (p.x < b.min.x || p.x > b.max.x || p.y < b.min.y || p.y > b.max.y || p.z > b.max.z) continue;
-            const float height = heights[p.shape()];
-            if (p.z + height < b.min.z) continue;
-            PlantTouch t;
-            if (sphere) {
-                // touchPlant for a sphere, with the distance it computes (glm::length: sqrt of (x*x + y*y) + z*z)
-                // shared with the rejection test.
-                const float qz = std::clamp(c.centre.z, p.z, p.z + height);
-                const float dx = p.x - c.centre.x, dy = p.y - c.centre.y, dz = qz - c.centre.z;
-                const float d2 = dx * dx + dy * dy + dz * dz;
-                if (d2 >= r2) continue;
-                const float sd = std::sqrt(d2) - c.radius;
-                if (!(sd < 0.0f)) continue;
-                t = touchResponse(c, {p.x, p.y, qz}, -sd, awayDirection({dx, dy}), height,
-                                  params_.categories[p.category()], params_.recovery);
-            } else {
-                t = touchPlant(c, {p.x, p.y, p.z}, height, params_.categories[p.category()], params_.recovery);
-                if (t.kind == 0) continue;
-            }
-            const uint32_t plant = p.plant();
+        const Footprint footprint{b.min.x, b.min.y, b.max.x, b.max.y, sphere ? c.centre.x : 0.0f,
+                                  sphere ? c.centre.y : 0.0f, sphere ? c.radius * c.radius : INFINITY};
+        // Groups of four may read up to three stems past the run (the index pads its end): their bits are dropped.
+        auto add = [&](uint32_t plant, const PlantTouch& t) {
             uint32_t& slot = s.slot[plant];
             if (slot == Scratch::kNone) {
                 slot = uint32_t(s.sums.size());
@@ -275,6 +380,28 @@ uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint3
                 s.sums.emplace_back();
             }
             s.sums[slot].add(t);
+        };
+        for (uint32_t i = run.begin; i < run.end; i += 4) {
+            uint32_t mask = footprintMask4(stems + i, footprint);
+            if (run.end - i < 4) mask &= (1u << (run.end - i)) - 1u;
+            if (mask == 0) continue;
+#if defined(__SSE2__)
+            if (sphere && c.kind != ColliderKind::Downwash) {
+                const SphereLanes lanes = sphereLanes4(stems + i, mask, c, b, index_.heights(), pushGains_.data());
+                for (uint32_t hits = lanes.hits; hits != 0; hits &= hits - 1) {
+                    const uint32_t j = uint32_t(std::countr_zero(hits));
+                    const TileCollisionIndex::Stem& p = stems[i + j];
+                    add(p.plant(), touchResponse(c, lanes.bend[j], {lanes.dirX[j], lanes.dirY[j]}, lanes.height[j],
+                                                 params_.categories[p.category()], params_.recovery));
+                }
+                continue;
+            }
+#endif
+            for (; mask != 0; mask &= mask - 1) {
+                const TileCollisionIndex::Stem& p = stems[i + uint32_t(std::countr_zero(mask))];
+                const PlantTouch t = touchStem(c, b, p);
+                if (t.kind != 0) add(p.plant(), t);
+            }
         }
     }
     return tested;
@@ -284,6 +411,7 @@ uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint3
 // and slots are reset for the next field.
 void CollisionPass::emitContacts(uint32_t f, const FieldVegetation& field, Scratch& s, FieldOutput& out) const {
     const uint32_t plantCount = field.plantCount();
+    out.contacts.reserve(s.sums.size());
     uint32_t k = 0;
     for (uint32_t word = 0; word * 64 < plantCount; ++word) {
         for (uint64_t bits = s.touched[word]; bits != 0; bits &= bits - 1) {
@@ -314,14 +442,26 @@ void CollisionPass::collideFields(std::span<const Collider> colliders, uint32_t 
     }
     if (bvh_.size() == 0) return;
     const uint32_t fieldCount = uint32_t(outputs_.size());
-    const uint32_t used = std::min(threads, std::max(fieldCount, 1u));
+    const uint32_t used = std::min(threads, std::max((fieldCount + kFieldsPerTask - 1) / kFieldsPerTask, 1u));
     if (scratch_.size() < used) scratch_.resize(used);
     if (!pool_ || pool_->threads() != used) {
         pool_.reset();
         pool_ = std::make_unique<ParallelFor>(used);
     }
-    pool_->run(fieldCount,
-               [&](uint32_t f, uint32_t worker) { collideField(f, colliders, scratch_[worker], outputs_[f]); });
+    // Each task is a few consecutive fields, and one field's runs are found, and their stems fetched, while the
+    // previous field's are tested: the plant index is far larger than the caches, and the fetches overlap with the
+    // work instead of stalling it at every field's start.
+    const uint32_t tasks = (fieldCount + kFieldsPerTask - 1) / kFieldsPerTask;
+    pool_->run(tasks, [&](uint32_t task, uint32_t worker) {
+        Scratch& s = scratch_[worker];
+        const uint32_t first = task * kFieldsPerTask, last = std::min(first + kFieldsPerTask, fieldCount);
+        bool pending = false;
+        for (uint32_t f = first; f <= last; ++f) {
+            const bool ready = f < last && prepareField(f, s, f & 1u, outputs_[f]);
+            if (pending) finishField(f - 1, colliders, s, (f - 1) & 1u, outputs_[f - 1]);
+            pending = ready;
+        }
+    });
 }
 
 // The field slots in field order: the result is the same for any thread count and schedule.

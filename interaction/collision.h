@@ -28,6 +28,7 @@
 
 #include "shared/gpu_layout.h"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -89,12 +90,20 @@ private:
         uint64_t plantsTested = 0;
         bool tested = false;
     };
+    // A row of sub-cells under one collider's footprint in one cluster: stems [begin, end) to test.
+    struct Run {
+        uint32_t rank, begin, end;
+    };
     struct Scratch;
     // The steps of one field's collision, in order (collision.cpp tells how each keeps the result deterministic).
-    void collideField(uint32_t f, std::span<const Collider> colliders, Scratch& scratch, FieldOutput& out) const;
-    void findCellRuns(const FieldVegetation& field, const TileCollisionIndex::Field& index, Scratch& s) const;
+    bool prepareField(uint32_t f, Scratch& scratch, uint32_t buffer, FieldOutput& out) const;
+    void finishField(uint32_t f, std::span<const Collider> colliders, Scratch& scratch, uint32_t buffer,
+                     FieldOutput& out) const;
+    void findCellRuns(const FieldVegetation& field, const TileCollisionIndex::Field& index, const Scratch& s,
+                      std::vector<Run>& runs) const;
+    PlantTouch touchStem(const Collider& c, const Aabb& box, const TileCollisionIndex::Stem& stem) const;
     uint64_t touchStems(const TileCollisionIndex::Field& index, uint32_t plantCount,
-                        std::span<const Collider> colliders, Scratch& s) const;
+                        std::span<const Collider> colliders, std::span<const Run> runs, Scratch& s) const;
     void emitContacts(uint32_t f, const FieldVegetation& field, Scratch& s, FieldOutput& out) const;
     void collideFields(std::span<const Collider> colliders, uint32_t threads);
     CollisionResult mergeFields(std::span<const Collider> colliders) const;
@@ -102,6 +111,7 @@ private:
     const VegetationTile* tile_;
     TileCollisionIndex index_;
     InteractionParams params_;
+    std::array<float, gpu::kMaxPlantCategories> pushGains_{}; // categories[c].pushGain by c, read per plant
     ColliderBvh bvh_;
     std::vector<FieldOutput> outputs_;
     std::vector<Scratch> scratch_;      // one per thread, kept between ticks

@@ -35,7 +35,7 @@ TileCollisionIndex::TileCollisionIndex(const VegetationTile& tile, const Vegetat
     // transparent huge pages: a tick touches a few lines in each of hundreds of fields, and a TLB miss per field
     // (4 KiB pages, nested paging in a VM) costs as much as the lines themselves.
     constexpr size_t kHuge = size_t(2) << 20;
-    const size_t used = total * sizeof(Stem) + totalCells * sizeof(uint32_t);
+    const size_t used = (total + kPaddingStems) * sizeof(Stem) + totalCells * sizeof(uint32_t);
     const size_t bytes = std::max<size_t>((used + kHuge - 1) / kHuge * kHuge, kHuge);
     stems_.reset(static_cast<Stem*>(std::aligned_alloc(kHuge, bytes)));
     require(stems_ != nullptr, "out of memory for the collision index (" + std::to_string(bytes) + " bytes)");
@@ -47,7 +47,8 @@ TileCollisionIndex::TileCollisionIndex(const VegetationTile& tile, const Vegetat
     bool any = false;
     std::vector<uint32_t> cellOf, fill;
     size_t first = 0;
-    uint32_t* cells = reinterpret_cast<uint32_t*>(stems_.get() + total);
+    std::fill_n(stems_.get() + total, kPaddingStems, Stem{});
+    uint32_t* cells = reinterpret_cast<uint32_t*>(stems_.get() + total + kPaddingStems);
     for (size_t f = 0; f < tile.fields.size(); ++f) {
         const FieldVegetation& field = tile.fields[f];
         Field& out = fields_[f];

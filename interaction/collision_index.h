@@ -21,6 +21,8 @@ class TileCollisionIndex {
 public:
     static constexpr uint32_t kCellsPerSide = 8;
     static constexpr uint32_t kMaxFieldPlants = 1u << 22;
+    // Zero stems after the last field's, so the pass may read groups of four stems past the end of any run.
+    static constexpr uint32_t kPaddingStems = 3;
     struct Stem {
         float x, y, z;  // base position (decodePlantPosition), metres
         uint32_t packed; // bits 0-21 plant index within the field's records, 22-23 category, 24-31 size byte

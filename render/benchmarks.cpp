@@ -5,6 +5,7 @@
 #include "engine/render_target.h"
 #include "engine/timestamps.h"
 #include "interaction/interaction.h"
+#include "interaction/state_file.h"
 #include "render/interaction_gpu.h"
 #include "render/scene_gpu.h"
 #include "render/vegetation_buffers.h"
@@ -167,10 +168,15 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
 
 namespace {
 
+// FNV-1a 64 of a vector's bytes.
+template <class T> uint64_t bytesHash(const std::vector<T>& values) {
+    return fnv1a64({reinterpret_cast<const uint8_t*>(values.data()), values.size() * sizeof(T)});
+}
+
 // One measured tick of benchCollide.
 struct CollideTick {
     double cpuMs = 0.0, cpuTimeMs = 0.0, uploadMs = 0.0, gpuMs = 0.0;
-    uint64_t uploadBytes = 0, dispatches = 0;
+    uint64_t uploadBytes = 0, dispatches = 0, contactsHash = 0;
     size_t contacts = 0, activeFields = 0;
     double total() const { return cpuMs + uploadMs + gpuMs; }
 };
@@ -226,6 +232,7 @@ public:
         t.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         t.cpuTimeMs = double(std::clock() - cpuStart) * 1000.0 / CLOCKS_PER_SEC;
         t.contacts = r.contacts.size();
+        t.contactsHash = bytesHash(r.contacts);
         t.activeFields = r.activeFields.size();
         if (!gpu) return t;
         const InteractionGpuStats before = gpu->stats();
@@ -268,15 +275,18 @@ template <class Figure> double medianOf(const std::vector<CollideTick>& ticks, F
 nlohmann::json measureFields(CollideBench& bench, InteractionWorld& world, uint32_t fields, const CollideBenchOptions& options) {
     std::vector<CollideTick> measured;
     std::vector<Collider> colliders;
+    std::vector<uint64_t> hashes; // of every tick's contacts, warm-up included: a check that they never change
     for (uint32_t i = 0; i < options.warmup + options.ticks; ++i) {
         colliders = circlingSpheres(bench.tile, fields, options.radius, world.tick());
         CollideTick t = bench.runTick(world, colliders);
+        hashes.push_back(t.contactsHash);
         if (i >= options.warmup) measured.push_back(t);
     }
     return {
         {"fields", fields},
         {"colliders", colliders.size()},
         {"contacts", uint64_t(medianOf(measured, [](const CollideTick& t) { return t.contacts; }))},
+        {"contacts_fnv1a", bytesHash(hashes)},
         {"active_fields", uint64_t(medianOf(measured, [](const CollideTick& t) { return t.activeFields; }))},
         {"cpu_collision_ms", medianOf(measured, [](const CollideTick& t) { return t.cpuMs; })},
         {"cpu_collision_cpu_time_ms", medianOf(measured, [](const CollideTick& t) { return t.cpuTimeMs; })},
@@ -351,15 +361,16 @@ nlohmann::json benchCollide(const CollideBenchOptions& options) {
 
 std::string collideTable(const nlohmann::json& result) {
     std::string out = "fields  colliders  contacts  cpu_collision_ms  (cpu time)  upload_bytes  upload_ms  "
-                      "gpu_recovery_ms  gpu_ms_per_field  total_ms\n";
+                      "gpu_recovery_ms  gpu_ms_per_field  total_ms  contacts_fnv1a\n";
     char line[256];
     for (const nlohmann::json& r : result.at("results")) {
-        std::snprintf(line, sizeof(line), "%6u  %9u  %8.0f  %16.3f  %10.3f  %12.0f  %9.3f  %15.3f  %16.4f  %8.3f\n",
+        std::snprintf(line, sizeof(line), "%6u  %9u  %8.0f  %16.3f  %10.3f  %12.0f  %9.3f  %15.3f  %16.4f  %8.3f  %016llx\n",
                       r.at("fields").get<uint32_t>(), r.at("colliders").get<uint32_t>(), double(r.at("contacts").get<uint64_t>()),
                       r.at("cpu_collision_ms").get<double>(), r.at("cpu_collision_cpu_time_ms").get<double>(),
                       double(r.at("upload_bytes").get<uint64_t>()),
                       r.at("upload_ms").get<double>(), r.at("gpu_recovery_ms").get<double>(),
-                      r.at("gpu_recovery_ms_per_field").get<double>(), r.at("total_ms").get<double>());
+                      r.at("gpu_recovery_ms_per_field").get<double>(), r.at("total_ms").get<double>(),
+                      (unsigned long long)r.at("contacts_fnv1a").get<uint64_t>());
         out += line;
     }
     return out;

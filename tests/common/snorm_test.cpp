@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
 #include <cstdint>
 
 using namespace sward;
@@ -17,6 +19,23 @@ TEST(Snorm, PacksWithRoundingHalfAwayFromZeroAndClamps) {
     EXPECT_EQ(packSnorm(-0.5f / 511.0f, 10), 0x3ffu) << "half a step rounds away from zero";
     EXPECT_EQ(roundHalfAway(2.5f), 3);
     EXPECT_EQ(roundHalfAway(-2.5f), -3);
+}
+
+// roundHalfAway adds a signed half without branching; recovery.glsl branches on the sign. They must agree bitwise,
+// above all at and next to the halves, and on both zeros.
+TEST(Snorm, RoundingEqualsTheShadersBranchingFormAtEveryHalfAndBetween) {
+    auto shaders = [](float x) { return x >= 0.0f ? int32_t(x + 0.5f) : -int32_t(-x + 0.5f); };
+    EXPECT_EQ(roundHalfAway(-0.0f), 0);
+    EXPECT_EQ(roundHalfAway(0.0f), 0);
+    for (int32_t k = -40000; k <= 40000; ++k) {
+        const float half = float(k) + 0.5f;
+        for (float v : {half, std::nextafter(half, -1e9f), std::nextafter(half, 1e9f), float(k),
+                         std::nextafter(float(k), -1e9f), std::nextafter(float(k), 1e9f)})
+            ASSERT_EQ(roundHalfAway(v), shaders(v)) << v;
+    }
+    for (uint32_t bits = 0; bits < 0x47800000u; bits += 4099) // every magnitude below 65536, both signs
+        for (float v : {std::bit_cast<float>(bits), -std::bit_cast<float>(bits)})
+            ASSERT_EQ(roundHalfAway(v), shaders(v)) << v;
 }
 
 TEST(Snorm, EveryCodeRoundTripsInBothDivisionModes) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -175,6 +176,73 @@ TEST(Collision, TenThousandCollidersAboveTheGrassCostNothing) {
         best = std::min(best, r.stats.cpuMs);
     }
     std::printf("[ perf ] 10,000 idle colliders: %.3f ms per tick (best of 20)\n", best);
+}
+
+// The pass's fast paths (cells under each collider, four stems at a time, spheres apart) against the definition:
+// every plant of a mixed meadow (three categories, each with its own gain and fell force, one with a maximum bend)
+// against every collider with touchPlant, combined in (id, input) order with combineTouches. Every shape and kind,
+// overlapping colliders.
+TEST(Collision, ContactsEqualThePerPlantDefinitionForEveryShapeKindAndCategory) {
+    Ground ground(Heightfield(26, 26, 2.0f, glm::vec2(0.0f), std::vector<float>(26 * 26, 0.0f)));
+    const VegetationParams vegetation = tileParams(50.0f);
+    const VegetationTile tile = generateTile(ground, GrassMap(1, 1, 3, {1.0f, 1.0f, 1.0f}, "mixed meadow"),
+                                             vegetation, {}, 2);
+    InteractionParams params;
+    for (uint32_t c = 0; c < params.categories.size(); ++c) {
+        params.categories[c].pushGain = 0.7f + 0.9f * float(c);
+        params.categories[c].fellForce = 0.3f + 0.2f * float(c);
+    }
+    params.categories[2].maxBend = 0.9f; // heavy bends fell the flowers too
+    std::vector<Collider> colliders;
+    for (uint32_t k = 0; k < 40; ++k) { // overlapping spheres of every kind, some heavy enough to fell
+        const ColliderKind kind = std::array{ColliderKind::Push, ColliderKind::Gust, ColliderKind::Mower}[k % 3];
+        const glm::vec3 centre{3.0f + 1.1f * float(k), 4.0f + 0.37f * float(k * k % 97), 0.1f + 0.02f * float(k % 9)};
+        Collider sphere = makeSphere(k / 2, centre, 0.3f + 0.05f * float(k % 7), 0.2f + 0.1f * float(k % 6), kind);
+        colliders.push_back(kind == ColliderKind::Mower ? makeMower(sphere, 0.02f * float(k % 5)) : sphere);
+    }
+    colliders.push_back(makeSphere(7, {12.0f, 20.0f, 0.2f}, 1.5f, 0.5f)); // big, over several cells and clusters
+    colliders.push_back(makeCapsule(50, {20, 30, 0.3f}, {24, 31, 0.4f}, 0.5f, 0.9f));
+    colliders.push_back(makeBox(51, {35, 12, 0.1f}, {0.8f, 0.4f, 0.2f}, glm::mat3(1.0f), 0.4f));
+    colliders.push_back(makeDownwash(52, {40, 40, 2.0f}, 1.2f, 2.5f, 0.6f));
+
+    InteractionWorld world(tile, vegetation, params, 2);
+    const TickResult result = world.step(colliders);
+
+    std::vector<uint32_t> order(colliders.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t a, uint32_t b) { return colliders[a].id < colliders[b].id; });
+    std::vector<gpu::PlantContact> expected;
+    std::vector<PlantTouch> touches;
+    for (uint32_t f = 0; f < tile.fields.size(); ++f) {
+        const FieldVegetation& field = tile.fields[f];
+        for (uint32_t i = 0; i < field.plantCount(); ++i) {
+            const PlantInstance plant = decodePlantStatic(field.staticRecords[i]);
+            const glm::vec3 base = decodePlantPosition(field.staticRecords[i], field.origin, field.positionStep);
+            const float height =
+                vegetation.categories[plant.category].height * float(plant.size) / gpu::kPlantSizeDivisor;
+            touches.clear();
+            for (uint32_t c : order) {
+                const CategoryInteraction& response = params.categories[plant.category];
+                const PlantTouch t = touchPlant(colliders[c], base, height, response, params.recovery);
+                if (t.kind != 0) touches.push_back(t);
+            }
+            if (touches.empty()) continue;
+            gpu::PlantContact contact = combineTouches(touches, params.recovery);
+            contact.plant = field.firstPlant + i;
+            contact.field = f;
+            expected.push_back(contact);
+        }
+    }
+    std::array<uint32_t, 4> kinds{};
+    for (const gpu::PlantContact& c : expected) ++kinds[c.flags & 3u];
+    EXPECT_GT(kinds[gpu::kContactPush], 500u);
+    EXPECT_GT(kinds[gpu::kContactCut], 50u);
+    EXPECT_GT(kinds[gpu::kContactFell], 50u);
+    ASSERT_EQ(result.contacts.size(), expected.size());
+    for (size_t i = 0; i < expected.size(); ++i)
+        ASSERT_TRUE(sameBytes(std::span(&result.contacts[i], 1), std::span(&expected[i], 1)))
+            << "contact " << i << " of plant " << expected[i].plant;
 }
 
 TEST(Collision, IdenticalContactsWithOneAndFourThreads) {
