@@ -30,9 +30,9 @@ uint fanCorner(uint k) {
     return j == 0u ? 0u : k / 3u + j;
 }
 
-// Corner i of a cell's cut-out polygon, in cell uv (u right, v down).
-vec2 cutoutCorner(AtlasCellGpu cell, uint i) {
-    vec4 pair = cell.cutout[i >> 1];
+// Corner i of cell `cell`'s cut-out polygon, in cell uv (u right, v down).
+vec2 cutoutCorner(uint cell, uint i) {
+    vec4 pair = cells[cell].cutout[i >> 1];
     return (i & 1u) == 0u ? pair.xy : pair.zw;
 }
 
@@ -45,7 +45,8 @@ struct PlantQuad {
     vec4 uvRect;
 };
 
-PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, out AtlasCellGpu cell) {
+// `cell` returns the plant's atlas cell (an index: reading the whole cell with its polygon per vertex is a cost).
+PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, out uint cell) {
     PlantQuad q;
     q.base = instance.positionHeight.xyz;
     q.height = instance.positionHeight.w;
@@ -54,10 +55,11 @@ PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, out AtlasCellGp
     uint variant = bitfieldExtract(instance.attributes, 2, 6) % max(veg.atlasColumns[category], 1u);
     float orientation = float(bitfieldExtract(instance.attributes, 8, 8)) * (6.2831853 / 256.0);
     q.random = float(bitfieldExtract(instance.attributes, 16, 8)) * (1.0 / 255.0);
-    cell = cells[category * veg.counts.w + variant];
-    q.width = q.height * cell.baseAspect.z;
-    q.baseAspect = cell.baseAspect.xyz;
-    q.uvRect = cell.uvRect;
+    cell = category * veg.counts.w + variant;
+    vec4 baseAspect = cells[cell].baseAspect;
+    q.width = q.height * baseAspect.z;
+    q.baseAspect = baseAspect.xyz;
+    q.uvRect = cells[cell].uvRect;
 
     if (lod == kLodFar) {
         // Faces the camera: upright when seen from the side, lying towards the camera when seen from above.
@@ -99,7 +101,7 @@ vec3 quadPoint(PlantQuad q, vec2 corner, out float fraction) {
 PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex) {
     const bool cutout = veg.options.x >= 3u && lod != kLodFar;
     const uint perQuad = cutout ? 3u * (veg.options.x - 2u) : kVerticesPerQuad;
-    AtlasCellGpu cell;
+    uint cell;
     PlantQuad q = plantQuad(instance, lod, vertexIndex / perQuad, cell);
     float fraction;
     if (!cutout) {
