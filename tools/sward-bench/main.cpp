@@ -55,10 +55,12 @@ int main(int argc, char** argv) {
            "--cutout-corners",
            [&frame](const std::vector<std::string>& values) {
                frame.cutoutCorners.clear();
-               for (const std::string& text : values)
+               for (const std::string& text : values) {
+                   if (text == "0") continue; // whole quads only
                    frame.cutoutCorners.push_back(uint32_t(sward::parseUnsigned(text, 4, 8, "--cutout-corners")));
+               }
            },
-           "Cut-out variants (corners per polygon, 4..8) measured against whole quads (repeatable; default 4 6 8)")
+           "Cut-out variants (corners per polygon, 4..8; 0: none) measured against whole quads (repeatable; default 4 6 8)")
         ->type_name("UINT");
     frm->add_option("--device", frame.device, "Vulkan device name substring");
     frm->add_option("--json", json, "Also write the figures as a JSON object to this file");
