@@ -249,6 +249,7 @@ void Device::createDevice(const DeviceOptions& options) {
     VkPhysicalDeviceFeatures2 supported{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &supported12};
     vkGetPhysicalDeviceFeatures2(physical_, &supported);
     drawIndirectCount_ = supported12.drawIndirectCount;
+    pipelineStatistics_ = supported.features.pipelineStatisticsQuery;
 
     VkPhysicalDeviceVulkan13Features features13{
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
@@ -273,6 +274,7 @@ void Device::createDevice(const DeviceOptions& options) {
             .drawIndirectFirstInstance = supported.features.drawIndirectFirstInstance,
             .depthClamp = supported.features.depthClamp,
             .samplerAnisotropy = supported.features.samplerAnisotropy,
+            .pipelineStatisticsQuery = supported.features.pipelineStatisticsQuery, // benchmarks
             .fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics,
             .shaderInt16 = supported.features.shaderInt16,
         },

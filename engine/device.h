@@ -77,6 +77,7 @@ public:
     bool hostOwned() const { return !owned_; } // made by the application (HostVulkan)
     bool validationEnabled() const { return validation_; }
     bool supportsDrawIndirectCount() const { return drawIndirectCount_; }
+    bool supportsPipelineStatistics() const { return pipelineStatistics_; } // for benchmarks (pipeline_statistics.h)
 
     // Number of validation messages (warnings and errors) seen so far. Tests and tools treat any as failure.
     uint32_t validationMessageCount() const { return validationMessages_.load(); }
@@ -107,6 +108,7 @@ private:
     std::string name_, driver_;
     bool validation_ = false;
     bool drawIndirectCount_ = false;
+    bool pipelineStatistics_ = false;
     bool owned_ = true; // false: the host's instance and device (HostVulkan), left alive
     std::atomic<uint32_t> validationMessages_{0};
 };

@@ -2,6 +2,7 @@
 
 #include "common/parallel_for.h"
 #include "engine/context.h"
+#include "engine/pipeline_statistics.h"
 #include "engine/render_target.h"
 #include "engine/timestamps.h"
 #include "interaction/interaction.h"
@@ -17,6 +18,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <ctime>
 #include <map>
@@ -33,6 +35,11 @@ double median(std::vector<double> values) {
     std::sort(values.begin(), values.end());
     return values.empty() ? 0.0 : values[values.size() / 2];
 }
+nlohmann::json medians(const std::map<std::string, std::vector<double>>& series) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [name, values] : series) out[name] = median(values);
+    return out;
+}
 
 // Uniform grass (every plant costs the same, so figures compare between runs) over a `tileSize` tile, independent
 // of example files.
@@ -47,6 +54,123 @@ VegetationParams uniformGrassParams(float tileSize, float density, const char* w
 const GrassMap& uniformGrassMap() {
     static const GrassMap map(1, 1, 3, {0.0f, 1.0f, 0.0f}, "uniform grass");
     return map;
+}
+
+// What a statistics-counting frame found: the plant draws' figures per pass and the plant pixels of the truth image.
+struct PassCounts {
+    std::vector<std::pair<std::string, DrawStatistics>> plants; // "shadow.near", ..., "main.far", ..., "truth.far"
+    uint64_t coveredPixels = 0;
+
+    // Sums of the ranges whose name starts with `prefix` ("main" or "main.far", ...).
+    DrawStatistics sum(const std::string& prefix) const {
+        DrawStatistics total;
+        for (const auto& [name, s] : plants)
+            if (name.compare(0, prefix.size(), prefix) == 0) {
+                total.inputAssemblyPrimitives += s.inputAssemblyPrimitives;
+                total.clippingPrimitives += s.clippingPrimitives;
+                total.fragmentInvocations += s.fragmentInvocations;
+            }
+        return total;
+    }
+    uint64_t lanes(const std::string& pass) const { return sum(pass).fragmentInvocations; }
+};
+
+// Pixels whose ground-truth label is a plant (a vegetation category, felled or cut): where the nearest surface at the
+// pixel centre is a plant, in the same 1-sample truth pass that writes the dataset's masks.
+uint64_t plantPixels(const std::vector<uint8_t>& labelPairs) {
+    uint64_t covered = 0;
+    for (size_t i = 0; i + 8 <= labelPairs.size(); i += 8) {
+        uint32_t label;
+        std::memcpy(&label, &labelPairs[i], 4);
+        const uint32_t semantic = label >> gpu::kInstanceBits;
+        covered += (semantic >= gpu::kSemanticVegetation && semantic < gpu::kSemanticVegetation + gpu::kMaxPlantCategories) ||
+                   semantic == gpu::kSemanticFelled || semantic == gpu::kSemanticCut;
+    }
+    return covered;
+}
+
+// One timed frame in two submissions: the expansion, then the draw passes; with `statistics`, the plant draws are
+// counted by pipeline statistics (lavapipe crashes on a statistics query in a command buffer that also dispatches
+// compute). The queries only count, the images are those of one SceneRenderer::record(); but on lavapipe passes
+// with queries active ran markedly slower (the shadow pass 2-3x), so a counted frame is never a timed one.
+std::vector<std::pair<std::string, double>> timedFrame(Context& ctx, SceneRenderer& renderer, RenderTarget& main,
+                                                       RenderTarget& truth, const Camera& camera, uint32_t frame,
+                                                       GpuTimers& timers, PipelineStatistics* statistics,
+                                                       PassCounts& counts) {
+    const SceneRenderer::View view{&camera, &main, &truth};
+    VkCommandBuffer cmd = ctx.submitter.begin();
+    timers.reset(cmd);
+    renderer.recordExpansion(cmd, {&view, 1}, 0.0, frame, &timers);
+    ctx.submitter.wait(ctx.submitter.submit(cmd));
+    std::vector<std::pair<std::string, double>> times = timers.read();
+
+    cmd = ctx.submitter.begin();
+    timers.reset(cmd);
+    if (statistics) statistics->reset(cmd);
+    renderer.vegetation()->setStatistics(statistics);
+    renderer.recordViews(cmd, {&view, 1}, 0.0, frame, &timers, /* expand= */ false);
+    renderer.vegetation()->setStatistics(nullptr);
+    ctx.submitter.wait(ctx.submitter.submit(cmd));
+    for (auto& pass : timers.read()) times.push_back(pass);
+    if (!statistics) return times;
+    counts.plants = statistics->read();
+    counts.coveredPixels = plantPixels(truth.readback(1));
+    return times;
+}
+
+// Per pass and per LOD of the pass: triangles in / after clipping and fragment-shader invocations of the plant draws,
+// and (main, truth) invocations per plant pixel of the image.
+nlohmann::json fragmentFigures(const PassCounts& counts) {
+    auto figures = [&](const std::string& name, bool perPixel) {
+        const DrawStatistics s = counts.sum(name);
+        nlohmann::json out = {{"triangles", s.inputAssemblyPrimitives},
+                              {"triangles_after_clipping", s.clippingPrimitives},
+                              {"fragment_invocations", s.fragmentInvocations}};
+        if (perPixel)
+            out["lanes_per_covered_pixel"] =
+                counts.coveredPixels ? double(s.fragmentInvocations) / double(counts.coveredPixels) : 0.0;
+        return out;
+    };
+    nlohmann::json out = nlohmann::json::object();
+    for (const char* pass : {"shadow", "main", "truth"}) {
+        const bool perPixel = std::string(pass) != "shadow";
+        out[pass] = figures(pass, perPixel);
+        for (const char* lod : {"near", "mid", "far"})
+            out[pass][lod] = figures(std::string(pass) + "." + lod, perPixel);
+    }
+    return out;
+}
+
+// The images of the latest frame: resolved colour, truth depth bits, truth labels.
+std::array<std::vector<uint8_t>, 3> frameImages(RenderTarget& main, RenderTarget& truth) {
+    return {main.readback(0), truth.readback(0), truth.readback(1)};
+}
+
+// Pixels whose `bytes`-byte values differ between two images of the same size.
+uint64_t differingPixels(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, size_t bytes) {
+    uint64_t n = 0;
+    for (size_t i = 0; i + bytes <= std::min(a.size(), b.size()); i += bytes)
+        n += std::memcmp(&a[i], &b[i], bytes) != 0;
+    return n;
+}
+
+// A cut-out variant against whole quads, same run: its passes and plant draws, the ratios of main-pass lanes and
+// time, and the pixels whose colour, depth bits or label differ from the whole-quad image.
+nlohmann::json cutoutFigures(const PassCounts& counts, const std::map<std::string, std::vector<double>>& passes,
+                             const std::array<std::vector<uint8_t>, 3>& images, const PassCounts& quadCounts,
+                             const std::map<std::string, std::vector<double>>& quadPasses,
+                             const std::array<std::vector<uint8_t>, 3>& quadImages) {
+    const double mainMs = median(passes.at("main")), quadMainMs = median(quadPasses.at("main"));
+    return {
+        {"pass_ms", medians(passes)},
+        {"plant_draws", fragmentFigures(counts)},
+        {"covered_pixels", counts.coveredPixels},
+        {"main_lanes_ratio", double(counts.lanes("main")) / double(std::max<uint64_t>(quadCounts.lanes("main"), 1))},
+        {"main_ms_ratio", quadMainMs > 0.0 ? mainMs / quadMainMs : 0.0},
+        {"pixels_differing", {{"colour", differingPixels(images[0], quadImages[0], 8)},
+                              {"depth", differingPixels(images[1], quadImages[1], 4)},
+                              {"label", differingPixels(images[2], quadImages[2], 8)}}},
+    };
 }
 
 } // namespace
@@ -109,7 +233,7 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
     RenderTarget main(ctx, mainPassTargetDesc(options.width, options.height, options.samples));
     RenderTarget truth(ctx, truthPassTargetDesc(options.width, options.height));
     GpuTimers timers(ctx.device, 8);
-    auto timed = [&](const std::function<void(VkCommandBuffer)>& record) {
+    auto timed = [&](const std::function<void(VkCommandBuffer)>& record) { // one submission
         VkCommandBuffer cmd = ctx.submitter.begin();
         timers.reset(cmd);
         record(cmd);
@@ -117,14 +241,29 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
         return timers.read();
     };
 
-    // Full frames: every pass, timed. The first frame warms up caches and pipelines and is not counted.
-    std::map<std::string, std::vector<double>> passes;
-    for (uint32_t i = 0; i <= options.frames; ++i) {
-        auto times = timed([&](VkCommandBuffer cmd) { renderer.record(cmd, main, &truth, camera, 0.0, i, &timers); });
-        if (i > 0)
-            for (auto& [name, ms] : times) passes[name].push_back(ms);
-    }
+    // Full frames: every pass, timed, with whole quads (variant 0) and with each cut-out corner count, interleaved so
+    // all see the same machine state. The first frame of each warms up caches and pipelines and is not timed; it is
+    // the one whose plant draws are counted.
     VegetationRenderer& vegetation = *renderer.vegetation();
+    PipelineStatistics statistics(ctx.device, 16); // 3 passes x 3 LODs of the one tile
+    std::vector<uint32_t> variants = {0};
+    variants.insert(variants.end(), options.cutoutCorners.begin(), options.cutoutCorners.end());
+    std::vector<PassCounts> counts(variants.size());
+    std::vector<std::map<std::string, std::vector<double>>> passes(variants.size());
+    std::vector<std::array<std::vector<uint8_t>, 3>> images(variants.size());
+    for (uint32_t i = 0; i <= options.frames; ++i)
+        for (size_t v = 0; v < variants.size(); ++v) {
+            vegetation.setCutout(variants[v]);
+            auto times = timedFrame(ctx, renderer, main, truth, camera, i, timers, i == 0 ? &statistics : nullptr,
+                                    counts[v]);
+            if (i > 0)
+                for (auto& [name, ms] : times) passes[v][name].push_back(ms);
+            if (i == options.frames) images[v] = frameImages(main, truth);
+        }
+    vegetation.setCutout(0);
+    nlohmann::json cutouts = nlohmann::json::object();
+    for (size_t v = 1; v < variants.size(); ++v)
+        cutouts[std::to_string(variants[v])] = cutoutFigures(counts[v], passes[v], images[v], counts[0], passes[0], images[0]);
     BakedPlants baked = vegetation.bake(0);
 
     // Expansion overhead: expansion + main pass against the same main pass drawing the same quads from the
@@ -143,12 +282,10 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
     gpu::ExpansionStats stats = baked.stats;
     vegetation.destroyBaked(baked);
 
-    nlohmann::json passMs = nlohmann::json::object();
-    for (auto& [name, values] : passes) passMs[name] = median(values);
-    double expansionMs = median(passes["expansion"]);
+    double expansionMs = median(passes[0].at("expansion"));
     double frameMs = median(dynamicMs), staticFrameMs = median(staticMs);
     return {
-        {"pass_ms", passMs},
+        {"pass_ms", medians(passes[0])},
         {"plants_drawn_per_lod", {stats.instances.x, stats.instances.y, stats.instances.z}},
         {"plants_considered", stats.info.z},
         {"plants_total", plantsTotal},
@@ -158,6 +295,10 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
         {"frame_ms", frameMs},
         {"static_frame_ms", staticFrameMs},
         {"expansion_overhead_ratio", staticFrameMs > 0.0 ? frameMs / staticFrameMs : 0.0},
+        {"plant_draws", fragmentFigures(counts[0])},
+        {"covered_pixels", counts[0].coveredPixels},
+        {"covered_fraction", double(counts[0].coveredPixels) / (double(options.width) * options.height)},
+        {"cutout", cutouts},
         {"device", ctx.device.name()},
         {"width", options.width},
         {"height", options.height},

@@ -31,13 +31,20 @@ struct FrameBenchOptions {
     uint32_t samples = 4;
     uint32_t frames = 5;              // measured frames per figure (medians are reported)
     std::string device;
+    std::vector<uint32_t> cutoutCorners = {4, 6, 8}; // cut-out variants measured against whole quads (4..8 each)
 };
 
 // Renders the scene and reports GPU pass times and expansion figures. Keys: pass_ms (pass -> median ms),
 // plants_drawn_per_lod [near, mid, far], plants_considered, plants_total, clusters_visible, clusters_total,
 // expansion_plants_per_second, frame_ms (expansion + main + resolve), static_frame_ms (main + resolve drawing
 // the same quads from a pre-expanded static buffer), expansion_overhead_ratio (frame_ms / static_frame_ms),
-// device, width, height, samples.
+// plant_draws (per pass "shadow", "main", "truth" and per LOD of each, "near", "mid", "far": triangles,
+// triangles_after_clipping, fragment_invocations from pipeline statistics of the plant draws alone, counted in the
+// untimed warm-up frame; main and truth also lanes_per_covered_pixel = invocations / covered_pixels),
+// covered_pixels (pixels whose ground-truth label is a plant: vegetation, felled or cut), covered_fraction, cutout
+// (per corner count of options.cutoutCorners: pass_ms, plant_draws, covered_pixels, main_lanes_ratio and
+// main_ms_ratio against whole quads, pixels_differing {colour, depth, label} from the whole-quad image), device,
+// width, height, samples.
 nlohmann::json benchFrame(const FrameBenchOptions& options);
 
 struct CollideBenchOptions {

@@ -376,8 +376,20 @@ void SceneRenderer::record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget
     recordViews(cmd, {&view, 1}, timeSeconds, frameIndex, timers);
 }
 
+void SceneRenderer::recordExpansion(VkCommandBuffer cmd, std::span<const View> views, double timeSeconds,
+                                    uint32_t frameIndex, GpuTimers* timers) {
+    require(!views.empty() && views.size() <= kMaxViews, "a frame has one or two views");
+    if (!vegetation_) return;
+    const Camera& reference = *views[0].camera;
+    if (timers) timers->begin(cmd, "expansion");
+    std::array<glm::vec4, 5> planes =
+        views.size() == 2 ? stereoFrustumPlanes(reference, *views[1].camera) : reference.frustumPlanes();
+    vegetation_->expand(cmd, reference, timeSeconds, frameIndex % gpu::kFrameDataSlots, &planes);
+    if (timers) timers->end(cmd);
+}
+
 void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views, double timeSeconds,
-                                uint32_t frameIndex, GpuTimers* timers) {
+                                uint32_t frameIndex, GpuTimers* timers, bool expand) {
     require(!views.empty() && views.size() <= kMaxViews, "a frame has one or two views");
     const Camera& reference = *views[0].camera;
     const uint32_t dataSlot = frameIndex % gpu::kFrameDataSlots; // objects' and vegetation's per-frame data
@@ -386,13 +398,7 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
     DescriptorBinding frame = frameBinding(firstSlot), shadow = shadowBinding();
     if (objects_) objects_->update(timeSeconds, dataSlot);
 
-    if (vegetation_) {
-        if (timers) timers->begin(cmd, "expansion");
-        std::array<glm::vec4, 5> planes =
-            views.size() == 2 ? stereoFrustumPlanes(reference, *views[1].camera) : reference.frustumPlanes();
-        vegetation_->expand(cmd, reference, timeSeconds, dataSlot, &planes);
-        if (timers) timers->end(cmd);
-    }
+    if (expand) recordExpansion(cmd, views, timeSeconds, frameIndex, timers);
 
     if (timers) timers->begin(cmd, "shadow");
     shadowMap_->begin(cmd);

@@ -74,8 +74,13 @@ public:
     // view. The vegetation is expanded once — LODs, cross-fades and billboard orientation from views[0]'s
     // position, culling against the union of the frusta — and the sun shadow map is rendered once, so both
     // eyes see exactly the same geometry and shadows (a stereo matcher must not be shown two scenes).
+    // `expand` false: the expansion is left out, recorded before by recordExpansion() for the same views, time and
+    // frame (benchmarks count pipeline statistics in a command buffer without compute: lavapipe crashes otherwise).
     void recordViews(VkCommandBuffer cmd, std::span<const View> views, double timeSeconds, uint32_t frameIndex,
-                     GpuTimers* timers = nullptr);
+                     GpuTimers* timers = nullptr, bool expand = true);
+    // The expansion recordViews() would record for these views, alone.
+    void recordExpansion(VkCommandBuffer cmd, std::span<const View> views, double timeSeconds, uint32_t frameIndex,
+                         GpuTimers* timers = nullptr);
 
     // Benchmark variant: expansion (unless `baked` is given) and the main pass only, no shadow or truth pass.
     // With `baked`, the plants are drawn from those static vertices instead of this frame's expansion.

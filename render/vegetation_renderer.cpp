@@ -1,6 +1,7 @@
 #include "render/vegetation_renderer.h"
 
 #include "engine/barriers.h"
+#include "vegetation/atlas_cutout.h"
 
 #include <algorithm>
 #include <cstring>
@@ -144,11 +145,19 @@ void VegetationRenderer::uploadAtlas(const Atlas& atlas) {
             auto uv = desc.cellUvRect(r, c);
             const AtlasCell& cell = desc.rows[r].cells[c];
             cells[r * maxColumns + c] = {glm::vec4(uv[0], uv[1], uv[2], uv[3]),
-                                         glm::vec4(cell.baseU, cell.baseV, cell.aspect, 0.0f)};
+                                         glm::vec4(cell.baseU, cell.baseV, cell.aspect, 0.0f), {}};
         }
-    atlasCells_ = createBufferWithData(
-        ctx_, {reinterpret_cast<const uint8_t*>(cells.data()), cells.size() * sizeof(gpu::AtlasCellGpu)},
-        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    // The polygons are fitted once here, for every corner count, so switching costs only an upload.
+    for (uint32_t corners = 0; corners <= gpu::kMaxCutoutCorners; ++corners) {
+        if (corners > 0 && corners < 4) continue;
+        const std::vector<CutoutPolygon> polygons =
+            corners == 0 ? std::vector<CutoutPolygon>(cells.size(), fullCellPolygon()) : atlasCutouts(atlas, corners);
+        cellTables_[corners] = cells;
+        for (size_t i = 0; i < cells.size(); ++i)
+            for (uint32_t k = 0; k < gpu::kMaxCutoutCorners / 2; ++k)
+                cellTables_[corners][i].cutout[k] = glm::vec4(polygons[i].corners[2 * k], polygons[i].corners[2 * k + 1]);
+    }
+    uploadCellTable();
 
     const uint32_t levels = uint32_t(atlas.mips.size());
     std::vector<std::span<const uint8_t>> data;
@@ -159,6 +168,21 @@ void VegetationRenderer::uploadAtlas(const Atlas& atlas) {
         data);
 
     atlasSampler_ = createLinearSampler(ctx_, levels);
+}
+
+void VegetationRenderer::uploadCellTable() {
+    const std::vector<gpu::AtlasCellGpu>& table = cellTables_[cutoutCorners_];
+    if (atlasCells_.handle) retireBuffer(ctx_, atlasCells_); // frames in flight may still read the old one
+    atlasCells_ = createBufferWithData(
+        ctx_, {reinterpret_cast<const uint8_t*>(table.data()), table.size() * sizeof(gpu::AtlasCellGpu)},
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+}
+
+void VegetationRenderer::setCutout(uint32_t corners) {
+    require(corners == 0 || (corners >= 4 && corners <= gpu::kMaxCutoutCorners), "cut-outs have 4..8 corners (0: off)");
+    if (corners == cutoutCorners_) return;
+    cutoutCorners_ = corners;
+    uploadCellTable();
 }
 
 DescriptorBinding VegetationRenderer::atlasCellsBinding() const {
@@ -219,6 +243,7 @@ void VegetationRenderer::writeConstants(const Tile& tile, const Camera& camera, 
     const WorldParams& w = scene_.world;
     if (w.enabled && w.tilesX * w.tilesY > 1)
         c.tile = glm::uvec4(uint32_t(tile.coord.y) * w.tilesX + uint32_t(tile.coord.x) + 1u, 0u, 0u, 0u);
+    c.options = glm::uvec4(cutoutCorners_, 0u, 0u, 0u);
     std::memcpy(tile.constants.mapped() + (slot % gpu::kFrameDataSlots) * constantsStride_, &c, sizeof c);
 }
 
@@ -273,7 +298,7 @@ void VegetationRenderer::expandTile(VkCommandBuffer cmd, const Tile& tile, uint3
                      storageBuffer(gpu::kScanBindingDraws, tile.draws.handle),
                      storageBuffer(gpu::kScanBindingStats, tile.stats.handle),
                      storageBuffer(gpu::kScanBindingCursor, cursor_.handle)});
-    pushConstants(cmd, scanPipeline_, gpu::ScanConstants{.clusterCount = b.clusterCount, .capacity = capacity_, .firstTile = firstTile ? 1u : 0u});
+    pushConstants(cmd, scanPipeline_, gpu::ScanConstants{.clusterCount = b.clusterCount, .capacity = capacity_, .firstTile = firstTile ? 1u : 0u, .cutoutCorners = cutoutCorners_});
     vkCmdDispatch(cmd, 1, 1, 1); // one workgroup scans every cluster
     computeToComputeBarrier(cmd);
 
@@ -288,6 +313,8 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
     bindPipeline(cmd, pipeline);
     DescriptorBinding instances = storageBuffer(gpu::kBindingPlantInstances, instances_.handle);
     DescriptorBinding plants = storageBuffer(gpu::kBindingInstancePlants, instancePlants_.handle);
+    const char* passName = pass == PlantPass::Main ? "main" : pass == PlantPass::Truth ? "truth" : "shadow";
+    static const char* const kLodNames[gpu::kLodCount] = {".near", ".mid", ".far"};
     for (const auto& [key, tile] : tiles_) {
         if (!tile->expanded) continue;
         if (pass == PlantPass::Main)
@@ -299,8 +326,10 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
                             {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(), plants});
         for (uint32_t lod = 0; lod < gpu::kLodCount; ++lod) {
             pushConstants(cmd, pipeline, lod);
+            if (statistics_) statistics_->begin(cmd, std::string(passName) + kLodNames[lod]);
             vkCmdDrawIndirect(cmd, tile->draws.handle, lod * sizeof(VkDrawIndirectCommand), 1,
                               sizeof(VkDrawIndirectCommand));
+            if (statistics_) statistics_->end(cmd);
         }
     }
 }
@@ -334,9 +363,9 @@ BakedPlants VegetationRenderer::bake(uint32_t slot) {
              .pushConstantSize = sizeof(gpu::BakeConstants),
              .pushConstantStages = cs});
     BakedPlants baked{.stats = readStats()};
-    const uint32_t verticesPerPlant[gpu::kLodCount] = {gpu::kVerticesPerQuad * gpu::kQuadsNear,
-                                                       gpu::kVerticesPerQuad * gpu::kQuadsMid,
-                                                       gpu::kVerticesPerQuad * gpu::kQuadsFar};
+    const uint32_t verticesPerPlant[gpu::kLodCount] = {gpu::plantVertexCount(gpu::kLodNear, cutoutCorners_),
+                                                       gpu::plantVertexCount(gpu::kLodMid, cutoutCorners_),
+                                                       gpu::plantVertexCount(gpu::kLodFar, cutoutCorners_)};
     uint32_t kept = std::min(baked.stats.instances.w, capacity_);
     for (uint32_t lod = 0, first = 0; lod < gpu::kLodCount; ++lod) {
         uint32_t count = std::min(baked.stats.instances[int(lod)], kept - std::min(kept, first));

@@ -5,7 +5,8 @@
 //             -> scan (one workgroup: exclusive prefix sums in cluster order -> offsets + 3 indirect draws)
 //             -> write pass (same choices; instances written at offset + rank: a fixed, deterministic order)
 //   draw()    three vkCmdDrawIndirect (near 4 quads, mid 2 quads, far 1 billboard) into the current pass:
-//             main colour (alpha-to-coverage at 4x MSAA, alpha test at 1x), ground truth or sun shadow map.
+//             main colour (alpha-to-coverage at 4x MSAA, alpha test at 1x), ground truth or sun shadow map;
+//             with setCutout(N), near and mid quads as fans over their atlas cell's cut-out polygon.
 // The tiles share one instance pool: each scan starts where the previous tile's ended (a GPU-side cursor), so the
 // pool is sized by what a frame shows, not by the number of resident tiles. A tile whose clusters are all culled
 // adds nothing, so a frame is the same whether tiles out of sight are resident or not.
@@ -14,6 +15,7 @@
 #include "vegetation/atlas.h"
 #include "world/camera.h"
 #include "engine/context.h"
+#include "engine/pipeline_statistics.h"
 #include "engine/pipelines.h"
 #include "scene/scene.h"
 #include "render/vegetation_buffers.h"
@@ -80,6 +82,15 @@ public:
     void drawBaked(VkCommandBuffer cmd, const BakedPlants& baked, const DescriptorBinding& frame,
                    const DescriptorBinding& shadowMap, uint32_t slot);
     void destroyBaked(BakedPlants& baked);
+    // Cut-out quads (vegetation/atlas_cutout.h): with `corners` 4..8, near and mid quads are drawn as their atlas
+    // cell's cut-out polygon of that many corners, so their transparent margins are not rasterised; 0: whole quads
+    // (the default: see docs/benchmarks.md, "Fragment work", for why). Used by the next expand() and its bake().
+    void setCutout(uint32_t corners);
+    uint32_t cutoutCorners() const { return cutoutCorners_; }
+    // Benchmarks: while set, draw() wraps each tile's draw of each LOD in a statistics range named after the pass
+    // and the LOD ("main.near", "truth.far", "shadow.mid", ...). The command buffers draw() then records into must
+    // not dispatch compute (lavapipe crashes).
+    void setStatistics(PipelineStatistics* statistics) { statistics_ = statistics; }
     // Live changes from the viewer's panel; used by the next expand().
     void setWindAndLod(const WindParams& wind, const LodParams& lod) {
         scene_.wind = wind;
@@ -108,6 +119,7 @@ private:
     using TileKey = std::pair<int32_t, int32_t>; // (y, x): the map iterates in the frame's tile order
 
     void uploadAtlas(const Atlas& atlas);
+    void uploadCellTable(); // cellTables_[cutoutCorners_]
     void writeConstants(const Tile& tile, const Camera& camera, double timeSeconds, uint32_t slot,
                         const std::array<glm::vec4, 5>& planes);
     void expandTile(VkCommandBuffer cmd, const Tile& tile, uint32_t slot, bool firstTile);
@@ -131,6 +143,10 @@ private:
     Pipeline mainPipeline_, truthPipeline_, shadowPipeline_;
     Pipeline bakePipeline_, staticPipeline_; // created on first use (benchmarks, tests)
     VegetationPassFormats formats_;
+    PipelineStatistics* statistics_ = nullptr;
+    uint32_t cutoutCorners_ = 0;
+    // The atlas cell table with each cut-out corner count's polygons (index = corners; 0: the whole cells).
+    std::array<std::vector<gpu::AtlasCellGpu>, gpu::kMaxCutoutCorners + 1> cellTables_;
 };
 
 } // namespace sward

@@ -13,7 +13,7 @@ layout(push_constant) uniform Push { BakeConstants push; };
 void main() {
     uint i = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * kComputeGroupSize;
     if (i >= push.vertexCount) return;
-    uint verticesPerPlant = kVerticesPerQuad * (push.lod == kLodNear ? kQuadsNear : push.lod == kLodMid ? kQuadsMid : kQuadsFar);
+    uint verticesPerPlant = plantVertexCount(push.lod, veg.options.x);
     ExpandedPlant instance = instances[push.firstInstance + i / verticesPerPlant];
     PlantVertex v = plantVertex(instance, push.lod, i % verticesPerPlant);
     baked[push.firstVertex + i] = BakedVertex(vec4(v.position, v.heightFraction), vec4(v.uv, v.random, 0.0),

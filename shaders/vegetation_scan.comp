@@ -57,11 +57,10 @@ void main() {
         running += counts;
     }
     if (lane < kLodCount) {
-        const uint quads[kLodCount] = uint[](kQuadsNear, kQuadsMid, kQuadsFar);
         uint base = lodBase[lane];
         uint count = total[lane];
         uint kept = base >= push.capacity ? 0u : min(count, push.capacity - base);
-        draws[lane] = DrawIndirectCommand(kVerticesPerQuad * quads[lane], kept, 0u, base);
+        draws[lane] = DrawIndirectCommand(plantVertexCount(lane, push.cutoutCorners), kept, 0u, base);
     }
     barrier();
     if (lane == 0u) {

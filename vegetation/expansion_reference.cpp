@@ -94,45 +94,84 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
     return out;
 }
 
-std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cameraPosition,
-                                              glm::vec3 cellBaseAspect) {
-    static const glm::vec2 corners[6] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}};
-    static const glm::vec2 nearQuads[4] = {{0.0f, 0.0f}, {1.5707963f, 0.0f}, {0.7853982f, 0.95f}, {3.9269908f, 0.95f}};
-    static const glm::vec2 midQuads[2] = {{0.0f, 0.6f}, {4.712389f, 0.6f}};
-    const uint32_t quads = lod == gpu::kLodNear ? gpu::kQuadsNear : lod == gpu::kLodMid ? gpu::kQuadsMid : gpu::kQuadsFar;
-    glm::vec3 base(plant.positionHeight);
-    float height = plant.positionHeight.w;
-    glm::vec3 up = decodeOctahedral(plant.up);
-    float orientation = float((plant.attributes >> 8) & 0xffu) * (6.2831853f / 256.0f);
-    float width = height * cellBaseAspect.z;
-    glm::vec2 tip = glm::unpackHalf2x16(plant.tip);
-    std::vector<glm::vec3> vertices;
-    for (uint32_t v = 0; v < gpu::kVerticesPerQuad * quads; ++v) {
-        uint32_t quad = v / gpu::kVerticesPerQuad;
-        glm::vec2 corner = corners[v % gpu::kVerticesPerQuad];
-        glm::vec3 side, rise;
-        if (lod == gpu::kLodFar) {
-            glm::vec3 toCamera = glm::normalize(cameraPosition - base);
-            side = glm::cross(up, toCamera);
-            if (glm::dot(side, side) < 1e-4f) side = glm::vec3(std::cos(orientation), std::sin(orientation), 0.0f);
-            side = glm::normalize(side);
-            rise = glm::normalize(glm::cross(toCamera, side));
-        } else {
-            glm::vec2 angleTilt = lod == gpu::kLodNear ? nearQuads[quad] : midQuads[quad];
-            float angle = orientation + angleTilt.x;
-            glm::vec3 horizontal(std::cos(angle), std::sin(angle), 0.0f);
-            side = glm::normalize(horizontal - up * glm::dot(horizontal, up));
-            glm::vec3 normal = glm::cross(side, up);
-            rise = glm::normalize(up * std::cos(angleTilt.y) + normal * std::sin(angleTilt.y));
-        }
+namespace {
+
+// One quad of a plant (plant_vertex.glsl's PlantQuad): frame, size and bend.
+struct ReferenceQuad {
+    glm::vec3 base, side, rise, up;
+    float height, width;
+    glm::vec2 tip;
+    glm::vec3 baseAspect;
+
+    // quadPoint(): the bent point at corner (x across, y up).
+    glm::vec3 point(glm::vec2 corner) const {
         float cellV = 1.0f - corner.y;
-        float along = (cellBaseAspect.y - cellV) * height;
-        float fraction = cellBaseAspect.y > 0.0f ? along / (cellBaseAspect.y * std::max(height, 1e-6f)) : 0.0f;
-        glm::vec3 position = base + side * (width * (corner.x - cellBaseAspect.x)) + rise * along;
+        float along = (baseAspect.y - cellV) * height;
+        float fraction = baseAspect.y > 0.0f ? along / (baseAspect.y * std::max(height, 1e-6f)) : 0.0f;
+        glm::vec3 position = base + side * (width * (corner.x - baseAspect.x)) + rise * along;
         float bend = fraction * fraction;
         float drop = height * (1.0f - std::sqrt(std::max(1.0f - glm::dot(tip, tip), 0.0f)));
-        position += glm::vec3(tip * height, 0.0f) * bend - up * (drop * bend);
-        vertices.push_back(position);
+        return position + glm::vec3(tip * height, 0.0f) * bend - up * (drop * bend);
+    }
+};
+
+ReferenceQuad referenceQuad(const gpu::ExpandedPlant& plant, uint32_t lod, uint32_t quad, glm::vec3 cameraPosition,
+                            glm::vec3 cellBaseAspect) {
+    static const glm::vec2 nearQuads[4] = {{0.0f, 0.0f}, {1.5707963f, 0.0f}, {0.7853982f, 0.95f}, {3.9269908f, 0.95f}};
+    static const glm::vec2 midQuads[2] = {{0.0f, 0.6f}, {4.712389f, 0.6f}};
+    ReferenceQuad q;
+    q.base = glm::vec3(plant.positionHeight);
+    q.height = plant.positionHeight.w;
+    q.up = decodeOctahedral(plant.up);
+    q.width = q.height * cellBaseAspect.z;
+    q.tip = glm::unpackHalf2x16(plant.tip);
+    q.baseAspect = cellBaseAspect;
+    float orientation = float((plant.attributes >> 8) & 0xffu) * (6.2831853f / 256.0f);
+    if (lod == gpu::kLodFar) {
+        glm::vec3 toCamera = glm::normalize(cameraPosition - q.base);
+        q.side = glm::cross(q.up, toCamera);
+        if (glm::dot(q.side, q.side) < 1e-4f) q.side = glm::vec3(std::cos(orientation), std::sin(orientation), 0.0f);
+        q.side = glm::normalize(q.side);
+        q.rise = glm::normalize(glm::cross(toCamera, q.side));
+    } else {
+        glm::vec2 angleTilt = lod == gpu::kLodNear ? nearQuads[quad] : midQuads[quad];
+        float angle = orientation + angleTilt.x;
+        glm::vec3 horizontal(std::cos(angle), std::sin(angle), 0.0f);
+        q.side = glm::normalize(horizontal - q.up * glm::dot(horizontal, q.up));
+        glm::vec3 normal = glm::cross(q.side, q.up);
+        q.rise = glm::normalize(q.up * std::cos(angleTilt.y) + normal * std::sin(angleTilt.y));
+    }
+    return q;
+}
+
+// Corner (x across, y up) of cut-out fan vertex k (plant_vertex.glsl: fanCorner, cutoutCorner, kFullQuadFan).
+glm::vec2 cutoutFanCorner(const gpu::ExpandedPlant& plant, const CutoutPolygon& cutout, uint32_t k) {
+    static const glm::vec2 fullQuad[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    const uint32_t j = k % 3u, corner = j == 0u ? 0u : k / 3u + j;
+    if ((plant.fade >> 24) != 255u) return fullQuad[std::min(corner, 3u)];
+    const glm::vec2 uv = cutout.corners[corner];
+    const float random = float((plant.attributes >> 16) & 0xffu) * (1.0f / 255.0f);
+    return {random > 0.5f ? 1.0f - uv.x : uv.x, 1.0f - uv.y};
+}
+
+} // namespace
+
+std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cameraPosition,
+                                              glm::vec3 cellBaseAspect, const CutoutPolygon* cutout,
+                                              uint32_t cutoutCorners) {
+    static const glm::vec2 corners[6] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}};
+    const bool fan = cutout && cutoutCorners >= 4 && lod != gpu::kLodFar;
+    const uint32_t perQuad = fan ? 3 * (cutoutCorners - 2) : gpu::kVerticesPerQuad;
+    std::vector<glm::vec3> vertices;
+    for (uint32_t v = 0; v < gpu::plantVertexCount(lod, fan ? cutoutCorners : 0u); ++v) {
+        const ReferenceQuad q = referenceQuad(plant, lod, v / perQuad, cameraPosition, cellBaseAspect);
+        if (!fan) {
+            vertices.push_back(q.point(corners[v % perQuad]));
+            continue;
+        }
+        // Between the quad's bottom and top edges, as the shader places a polygon corner.
+        const glm::vec2 at = cutoutFanCorner(plant, *cutout, v % perQuad);
+        vertices.push_back(glm::mix(q.point({at.x, 0.0f}), q.point({at.x, 1.0f}), at.y));
     }
     return vertices;
 }

@@ -4,6 +4,7 @@
 // and transcendental precision may differ on a GPU), which the tests allow for.
 #pragma once
 
+#include "vegetation/atlas_cutout.h"
 #include "vegetation/vegetation_params.h"
 #include "vegetation/vegetation_tile.h"
 #include "world/camera.h"
@@ -26,9 +27,12 @@ struct ReferenceExpansion {
 ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationParams& vegetation, const LodParams& lod,
                                    const WindParams& wind, const Camera& camera, double time);
 
-// The 6 * quads(lod) vertex positions of one expanded plant (plant_vertex.glsl), for an atlas cell with
-// base (baseU, baseV) and width / height `aspect`.
+// The gpu::plantVertexCount(lod, cutoutCorners) vertex positions of one expanded plant (plant_vertex.glsl), for an
+// atlas cell with base (baseU, baseV) and width / height `aspect`; with `cutout` and cutoutCorners (4..8), near and
+// mid quads as fans over that cut-out polygon of the cell (atlasCutouts(atlas, cutoutCorners); cut plants: the whole
+// quad).
 std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cameraPosition,
-                                              glm::vec3 cellBaseAspect);
+                                              glm::vec3 cellBaseAspect, const CutoutPolygon* cutout = nullptr,
+                                              uint32_t cutoutCorners = 0);
 
 } // namespace sward

@@ -95,6 +95,24 @@ SWARD_CONST(uint, kQuadsNear, 4u);
 SWARD_CONST(uint, kQuadsMid, 2u);
 SWARD_CONST(uint, kQuadsFar, 1u);
 SWARD_CONST(uint, kVerticesPerQuad, 6u);
+// Cut-out quads (vegetation/atlas_cutout.h): near and mid quads drawn as their atlas cell's convex polygon of n
+// corners (3 <= n <= kMaxCutoutCorners, chosen at run time: VegetationConstants::options.x), a fan of n - 2
+// triangles. The polygon holds every texel with alpha > 0 of mip levels 0..kCutoutMaxLevel, grown by
+// kCutoutMarginTexels texels of its level. Far billboards stay whole quads: most are smaller than a pixel.
+SWARD_CONST(uint, kMaxCutoutCorners, 8u);
+SWARD_CONST(uint, kCutoutMaxLevel, 4u);
+SWARD_CONST(float, kCutoutMarginTexels, 2.0);
+
+// Vertices drawn per plant in `lod` (the draws' vertex count per instance): whole quads, or with cutoutCorners >= 3
+// a fan over the cut-out polygon per near and mid quad. The same text is a GLSL and a C++ function.
+#ifdef __cplusplus
+constexpr
+#endif
+uint plantVertexCount(uint lod, uint cutoutCorners) {
+    uint quads = lod == kLodNear ? kQuadsNear : lod == kLodMid ? kQuadsMid : kQuadsFar;
+    return quads * (cutoutCorners >= 3u && lod != kLodFar ? 3u * (cutoutCorners - 2u) : kVerticesPerQuad);
+}
+
 // Largest horizontal tip offset of an expanded plant (interaction bend + wind), in plant heights: a blade
 // bends, it does not stretch (1 would lay the tip on the ground).
 SWARD_CONST(float, kMaxTipOffset, 0.95);
@@ -110,6 +128,7 @@ struct VegetationConstants {
     uvec4 counts;          // x clusters, y clusters per field, z instance capacity, w atlas max columns
     uvec4 atlasColumns;    // variants (atlas columns) per category
     uvec4 tile;            // x: the tile's ground-truth label in a world of several tiles (y * tilesX + x + 1), else 0
+    uvec4 options;         // x: cut-out corners (>= 3: near and mid quads drawn as their cell's polygon; 0: off)
 };
 
 // One expanded plant in one level of detail (storage buffer written by vegetation_expand.comp).
@@ -126,6 +145,7 @@ struct ExpandedPlant {
 struct AtlasCellGpu {
     vec4 uvRect;         // u0, v0, u1, v1
     vec4 baseAspect;     // x base u, y base v (cell uv of the plant base), z width / height, w unused
+    vec4 cutout[kMaxCutoutCorners / 2u]; // the cut-out polygon's corners in cell uv (u right, v down), two per vec4
 };
 
 // One pre-expanded plant vertex (plant_bake.comp -> plant_static.vert), for baselines and reference tests.
@@ -158,7 +178,7 @@ struct ScanConstants {
     uint clusterCount;
     uint capacity; // instance capacity of the frame's pool: draws keep instances below it
     uint firstTile; // 1: the frame's first tile, whose instances start at 0 (the cursor is only written)
-    uint pad;
+    uint cutoutCorners; // as VegetationConstants::options.x: the draws' vertex counts follow it
 };
 
 // Bake pass parameters (push constants of plant_bake.comp): one dispatch per level of detail.
@@ -166,7 +186,7 @@ struct BakeConstants {
     uint lod;
     uint firstInstance;
     uint firstVertex; // output offset
-    uint vertexCount; // instances * kVerticesPerQuad * quads of the lod
+    uint vertexCount; // instances * plantVertexCount(lod, cutout corners)
 };
 
 // Expansion statistics written by the scan (storage buffer), for benchmarks and the viewer.
@@ -180,9 +200,9 @@ struct ExpansionStats {
 static_assert(sizeof(FrameConstants) == 4 * 64 + 11 * 16);
 static_assert(sizeof(TerrainTileConstants) == 16);
 static_assert(sizeof(DebugLineVertex) == 32);
-static_assert(sizeof(VegetationConstants) == 13 * 16);
+static_assert(sizeof(VegetationConstants) == 14 * 16);
 static_assert(sizeof(ExpandedPlant) == 32);
-static_assert(sizeof(AtlasCellGpu) == 32);
+static_assert(sizeof(AtlasCellGpu) == 32 + 8 * kMaxCutoutCorners);
 static_assert(sizeof(ExpansionStats) == 32);
 static_assert(sizeof(BakedVertex) == 48);
 static_assert(sizeof(PlantContact) == 16);

@@ -14,6 +14,8 @@ const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), 
 // leaning ones; mid: two crossed quads leaning apart. The lean is what covers the ground seen from above.
 const vec2 kNearQuads[4] = vec2[](vec2(0.0, 0.0), vec2(1.5707963, 0.0), vec2(0.7853982, 0.95), vec2(3.9269908, 0.95));
 const vec2 kMidQuads[2] = vec2[](vec2(0.0, 0.6), vec2(4.712389, 0.6));
+// The whole quad as a fan (corners x across, y up): (0, 1, 2), (0, 2, 3), then empty triangles (0, 3, 3).
+const vec2 kFullQuadFan[4] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 1));
 
 struct PlantVertex {
     vec3 position;        // world, metres
@@ -22,55 +24,110 @@ struct PlantVertex {
     float random;         // the plant's random value
 };
 
-PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex) {
-    uint quad = vertexIndex / 6u;
-    vec2 corner = kCorners[vertexIndex % 6u];
+// Corner of fan vertex k: triangle k / 3 of a fan over a polygon is (0, t + 1, t + 2).
+uint fanCorner(uint k) {
+    uint j = k % 3u;
+    return j == 0u ? 0u : k / 3u + j;
+}
 
-    vec3 base = instance.positionHeight.xyz;
-    float height = instance.positionHeight.w;
-    vec3 up = octahedralDecode(instance.up);
+// Corner i of cell `cell`'s cut-out polygon, in cell uv (u right, v down).
+vec2 cutoutCorner(uint cell, uint i) {
+    vec4 pair = cells[cell].cutout[i >> 1];
+    return (i & 1u) == 0u ? pair.xy : pair.zw;
+}
+
+// The quad of one plant in one LOD: its frame, size and bend, so that any point of its cell can be placed on it.
+struct PlantQuad {
+    vec3 base, side, rise, up;
+    float height, width, cutFraction, random;
+    vec2 tip;
+    vec3 baseAspect; // the cell's base u, base v, aspect
+    vec4 uvRect;
+};
+
+// `cell` returns the plant's atlas cell (an index: reading the whole cell with its polygon per vertex is a cost).
+PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, out uint cell) {
+    PlantQuad q;
+    q.base = instance.positionHeight.xyz;
+    q.height = instance.positionHeight.w;
+    q.up = octahedralDecode(instance.up);
     uint category = bitfieldExtract(instance.attributes, 0, 2);
     uint variant = bitfieldExtract(instance.attributes, 2, 6) % max(veg.atlasColumns[category], 1u);
     float orientation = float(bitfieldExtract(instance.attributes, 8, 8)) * (6.2831853 / 256.0);
-    float random = float(bitfieldExtract(instance.attributes, 16, 8)) * (1.0 / 255.0);
-    AtlasCellGpu cell = cells[category * veg.counts.w + variant];
-    float width = height * cell.baseAspect.z;
+    q.random = float(bitfieldExtract(instance.attributes, 16, 8)) * (1.0 / 255.0);
+    cell = category * veg.counts.w + variant;
+    vec4 baseAspect = cells[cell].baseAspect;
+    q.width = q.height * baseAspect.z;
+    q.baseAspect = baseAspect.xyz;
+    q.uvRect = cells[cell].uvRect;
 
-    vec3 side, rise;
     if (lod == kLodFar) {
         // Faces the camera: upright when seen from the side, lying towards the camera when seen from above.
-        vec3 toCamera = normalize(veg.cameraPosition.xyz - base);
-        side = cross(up, toCamera);
-        if (dot(side, side) < 1e-4) side = vec3(cos(orientation), sin(orientation), 0.0);
-        side = normalize(side);
-        rise = normalize(cross(toCamera, side));
+        vec3 toCamera = normalize(veg.cameraPosition.xyz - q.base);
+        q.side = cross(q.up, toCamera);
+        if (dot(q.side, q.side) < 1e-4) q.side = vec3(cos(orientation), sin(orientation), 0.0);
+        q.side = normalize(q.side);
+        q.rise = normalize(cross(toCamera, q.side));
     } else {
         vec2 angleTilt = lod == kLodNear ? kNearQuads[quad] : kMidQuads[quad];
         float angle = orientation + angleTilt.x;
         vec3 horizontal = vec3(cos(angle), sin(angle), 0.0);
-        side = normalize(horizontal - up * dot(horizontal, up));
-        vec3 normal = cross(side, up);
-        rise = normalize(up * cos(angleTilt.y) + normal * sin(angleTilt.y));
+        q.side = normalize(horizontal - q.up * dot(horizontal, q.up));
+        vec3 normal = cross(q.side, q.up);
+        q.rise = normalize(q.up * cos(angleTilt.y) + normal * sin(angleTilt.y));
     }
+    q.cutFraction = float(instance.fade >> 24) * (1.0 / 255.0); // height is already cut to this fraction
+    q.tip = unpackHalf2x16(instance.tip);
+    return q;
+}
 
+// The point of the quad at corner (x across, y up, 0..1), bent. The bend grows with the square of the height
+// fraction, so only the quad's corners lie on the bent blade; its edges are straight.
+vec3 quadPoint(PlantQuad q, vec2 corner, out float fraction) {
     // Cell v runs downwards; the plant base sits at (baseU, baseV) of the cell.
     float cellV = 1.0 - corner.y;
-    float cutFraction = float(instance.fade >> 24) * (1.0 / 255.0); // height is already cut to this fraction
-    float along = (cell.baseAspect.y - cellV) * height;
-    float fraction = cell.baseAspect.y > 0.0 ? along / (cell.baseAspect.y * max(height, 1e-6)) : 0.0;
-    vec3 position = base + side * (width * (corner.x - cell.baseAspect.x)) + rise * along;
+    float along = (q.baseAspect.y - cellV) * q.height;
+    fraction = q.baseAspect.y > 0.0 ? along / (q.baseAspect.y * max(q.height, 1e-6)) : 0.0;
+    vec3 position = q.base + q.side * (q.width * (corner.x - q.baseAspect.x)) + q.rise * along;
 
     // Bend: the tip moves by tip * height horizontally and drops so the blade keeps its length; lower
     // vertices follow quadratically (a cantilever bends most near the tip).
-    vec2 tip = unpackHalf2x16(instance.tip);
     float bend = fraction * fraction;
-    float drop = height * (1.0 - sqrt(max(1.0 - dot(tip, tip), 0.0)));
-    position += vec3(tip * height, 0.0) * bend - up * (drop * bend);
+    float drop = q.height * (1.0 - sqrt(max(1.0 - dot(q.tip, q.tip), 0.0)));
+    position += vec3(q.tip * q.height, 0.0) * bend - q.up * (drop * bend);
+    return position;
+}
 
-    // Cut plants show the lower part of the texture (stalks), not a squashed plant.
-    float u = (random > 0.5) ? 1.0 - corner.x : corner.x; // mirror half of the plants for variety
-    float v = 1.0 - (1.0 - cellV) * cutFraction;
-    return PlantVertex(position, mix(cell.uvRect.xy, cell.uvRect.zw, vec2(u, v)), fraction, random);
+PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex) {
+    const bool cutout = veg.options.x >= 3u && lod != kLodFar;
+    const uint perQuad = cutout ? 3u * (veg.options.x - 2u) : kVerticesPerQuad;
+    uint cell;
+    PlantQuad q = plantQuad(instance, lod, vertexIndex / perQuad, cell);
+    float fraction;
+    if (!cutout) {
+        vec2 corner = kCorners[vertexIndex % 6u];
+        vec3 position = quadPoint(q, corner, fraction);
+        // Cut plants show the lower part of the texture (stalks), not a squashed plant.
+        float u = (q.random > 0.5) ? 1.0 - corner.x : corner.x; // mirror half of the plants for variety
+        float v = 1.0 - corner.y * q.cutFraction;
+        return PlantVertex(position, mix(q.uvRect.xy, q.uvRect.zw, vec2(u, v)), fraction, q.random);
+    }
+    // Cut-out: corner (x across, y up) of a point of the cell's polygon; cut plants, which stretch the lower part of
+    // their texture over the quad, keep the whole quad (a fan of two triangles and empty ones).
+    uint corner = fanCorner(vertexIndex % perQuad);
+    vec2 at, uv;
+    if ((instance.fade >> 24) == 255u) {
+        uv = cutoutCorner(cell, corner);
+        at = vec2((q.random > 0.5) ? 1.0 - uv.x : uv.x, 1.0 - uv.y);
+    } else {
+        at = kFullQuadFan[min(corner, 3u)];
+        uv = vec2((q.random > 0.5) ? 1.0 - at.x : at.x, 1.0 - at.y * q.cutFraction);
+    }
+    // On the quad's plane between its bottom and top edges: exactly where the whole quad shows that texel.
+    float bottomFraction, topFraction;
+    vec3 bottom = quadPoint(q, vec2(at.x, 0.0), bottomFraction), top = quadPoint(q, vec2(at.x, 1.0), topFraction);
+    return PlantVertex(mix(bottom, top, at.y), mix(q.uvRect.xy, q.uvRect.zw, uv), mix(bottomFraction, topFraction, at.y),
+                       q.random);
 }
 
 #endif

@@ -1,6 +1,7 @@
 // GPU expansion against the CPU reference, LOD distribution, wind off, empty and full grass maps.
 #include "gpu_test.h"
 
+#include "vegetation/atlas_cutout.h"
 #include "vegetation/expansion_reference.h"
 #include "io/image_files.h"
 #include "scene/scene.h"
@@ -58,17 +59,18 @@ double coverage(const FrameImages& bare, const FrameImages& grass) {
     return ground ? double(covered) / double(ground) : 0.0;
 }
 
-} // namespace
-
-TEST_F(GpuTest, ExpansionMatchesTheCpuReference) {
+// Expands on the GPU and checks instances and baked vertices (whole quads, or cut-out fans) against the CPU reference.
+void expectExpansionMatchesTheCpuReference(Context* ctx, uint32_t cutoutCorners) {
     SceneSetup s(smallFieldJson());
     Camera camera = s.camera();
     const double time = 0.7;
     ReferenceExpansion reference = referenceExpand(s.tile, s.scene.vegetation, s.scene.lod, s.scene.wind, camera, time);
     SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_1_BIT, &s.tile, &s.atlas);
-    renderFrame(*ctx, renderer, camera, time);
     VegetationRenderer& vegetation = *renderer.vegetation();
+    vegetation.setCutout(cutoutCorners);
+    renderFrame(*ctx, renderer, camera, time);
     gpu::ExpansionStats stats = vegetation.readStats();
+    const std::vector<CutoutPolygon> polygons = atlasCutouts(s.atlas, cutoutCorners ? cutoutCorners : 4);
 
     ASSERT_GT(reference.lods[0].size(), 0u);
     ASSERT_GT(reference.lods[1].size(), 0u);
@@ -82,7 +84,6 @@ TEST_F(GpuTest, ExpansionMatchesTheCpuReference) {
     auto vertices = readAll<gpu::BakedVertex>(*ctx, baked.vertices, baked.vertexCount);
     vegetation.destroyBaked(baked);
 
-    const uint32_t perPlant[3] = {24, 12, 6};
     size_t index = 0, vertex = 0, checked = 0;
     for (uint32_t lod = 0; lod < 3; ++lod) {
         for (const gpu::ExpandedPlant& expected : reference.lods[lod]) {
@@ -98,8 +99,9 @@ TEST_F(GpuTest, ExpansionMatchesTheCpuReference) {
             uint32_t variant = ((actual.attributes >> 2) & 63u) % uint32_t(s.atlas.desc.rows[category].cells.size());
             const AtlasCell& cell = s.atlas.desc.rows[category].cells[variant];
             auto corners = referencePlantVertices(actual, lod, glm::vec3(camera.position),
-                                                  glm::vec3(cell.baseU, cell.baseV, cell.aspect));
-            ASSERT_EQ(corners.size(), perPlant[lod]);
+                                                  glm::vec3(cell.baseU, cell.baseV, cell.aspect),
+                                                  &polygons[category * s.atlas.desc.maxColumns() + variant], cutoutCorners);
+            ASSERT_EQ(corners.size(), gpu::plantVertexCount(lod, cutoutCorners));
             for (const glm::vec3& p : corners) {
                 ASSERT_LT(glm::distance(glm::vec3(vertices[vertex].positionFraction), p), 1e-4f) << "vertex " << vertex;
                 ++vertex;
@@ -109,6 +111,15 @@ TEST_F(GpuTest, ExpansionMatchesTheCpuReference) {
     }
     EXPECT_EQ(vertex, vertices.size());
     EXPECT_GT(checked, 100u);
+}
+
+} // namespace
+
+TEST_F(GpuTest, ExpansionMatchesTheCpuReference) { expectExpansionMatchesTheCpuReference(ctx.get(), 0); }
+
+TEST_F(GpuTest, CutoutExpansionMatchesTheCpuReferenceForFourAndEightCorners) {
+    expectExpansionMatchesTheCpuReference(ctx.get(), 4);
+    expectExpansionMatchesTheCpuReference(ctx.get(), 8);
 }
 
 TEST_F(GpuTest, LodShiftsFromNearToFarAsTheCameraRecedes) {

@@ -200,3 +200,34 @@ TEST_F(VegetationTest, ClusterCullingSkipsWhatTheCameraCannotSee) {
     EXPECT_EQ(up.info.x, 0u) << "looking at the sky, no cluster is visible";
     EXPECT_EQ(up.instances.w, 0u);
 }
+
+// Cut-out quads rasterise other triangles over the same planes: a pixel's surface, and so its label, stays the same
+// unless a texel kept by the alpha test fell outside the polygon (a mip coarser than kCutoutMaxLevel, see
+// vegetation/atlas_cutout.h), while interpolated depth and colour may change in their last bits. Where the alpha
+// test sits right at its threshold, that last bit may also let another quad of the same plant win the pixel: its
+// label is the same, its depth a few centimetres off.
+TEST_F(VegetationTest, CutoutsKeepThePlantPixelsAndTheirDepthToRounding) {
+    for (uint32_t samples : {1u, 4u}) {
+        auto r = renderer(true, samples);
+        FrameImages quads = renderFrame(*ctx, *r, camera);
+        r->vegetation()->setCutout(8);
+        FrameImages cut = renderFrame(*ctx, *r, camera);
+        size_t plants = 0, labelsDiffer = 0, depthBitsDiffer = 0, otherSurface = 0;
+        for (size_t i = 0; i < quads.labels.size(); ++i) {
+            const uint32_t semantic = quads.labels[i] >> gpu::kInstanceBits;
+            plants += semantic >= gpu::kSemanticVegetation && semantic < gpu::kSemanticObject;
+            if (quads.labels[i] != cut.labels[i]) {
+                ++labelsDiffer;
+                continue;
+            }
+            if (!std::isfinite(quads.depth[i])) continue;
+            depthBitsDiffer += quads.depth[i] != cut.depth[i];
+            otherSurface += std::abs(quads.depth[i] - cut.depth[i]) > 1e-5f * quads.depth[i];
+        }
+        std::printf("%ux: %zu plant pixels; labels differ at %zu, depth bits at %zu, by more than 1e-5 at %zu\n",
+                    samples, plants, labelsDiffer, depthBitsDiffer, otherSurface);
+        ASSERT_GT(plants, quads.labels.size() / 4);
+        EXPECT_LE(labelsDiffer, plants / 1000) << samples << "x";
+        EXPECT_LE(otherSurface, plants / 1000) << samples << "x";
+    }
+}

@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
 
     sward::FrameBenchOptions frame;
     std::string resolution = "1024x768";
-    CLI::App* frm = app.add_subcommand("frame", "Render a scene and time the GPU passes and the expansion overhead");
+    CLI::App* frm = app.add_subcommand("frame", "Render a scene: GPU pass times, fragment lanes per covered pixel, cut-out quads against whole quads, expansion overhead");
     frm->add_option("scene", frame.scenePath, "Scene JSON (default: examples/meadow.json)");
     frm->add_option("--allow-assets", frame.allowAssets,
                     "Also read the scene's assets from this folder (repeatable; default: the scene's folder only)");
@@ -51,6 +51,17 @@ int main(int argc, char** argv) {
                      });
     sward::addSamples(*frm, frame.samples, "MSAA samples (1 or 4)");
     sward::addUnsigned(*frm, "--frames", frame.frames, 1, 10000, "Measured frames per figure (medians)");
+    frm->add_option_function<std::vector<std::string>>(
+           "--cutout-corners",
+           [&frame](const std::vector<std::string>& values) {
+               frame.cutoutCorners.clear();
+               for (const std::string& text : values) {
+                   if (text == "0") continue; // whole quads only
+                   frame.cutoutCorners.push_back(uint32_t(sward::parseUnsigned(text, 4, 8, "--cutout-corners")));
+               }
+           },
+           "Cut-out variants (corners per polygon, 4..8; 0: none) measured against whole quads (repeatable; default 4 6 8)")
+        ->type_name("UINT");
     frm->add_option("--device", frame.device, "Vulkan device name substring");
     frm->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
