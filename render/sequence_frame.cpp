@@ -59,7 +59,8 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
     if (gpu.worldSimulation) { // the tiles around the camera and the actors, generated before the frame
         gpu.worldSimulation->runTicksBefore(frame);
         require(gpu.worldSimulation->nextTick() == frame,
-                "frame " + std::to_string(frame) + " comes after tick " + std::to_string(gpu.worldSimulation->nextTick()));
+                "frame " + std::to_string(frame) + " cannot be rendered: the world's simulation is at tick " +
+                    std::to_string(gpu.worldSimulation->nextTick()) + " and never goes back (restore a saved state)");
         gpu.worldSimulation->prepare();
         tick = [&](VkCommandBuffer cmd) { gpu.worldSimulation->recordNextTick(cmd, frame); };
     } else if (r.world) { // every tile within load_radius of the camera, generated before the frame: deterministic
