@@ -7,7 +7,6 @@
 #include "render/vegetation_renderer.h"
 
 #include <algorithm>
-#include <cstring>
 
 namespace sward {
 
