@@ -26,8 +26,9 @@ constexpr SemanticClass kClasses[] = {
     {gpu::kSemanticObject, "object", "object", {220, 20, 60}},
     {gpu::kSemanticFelled, "felled", "vegetation", {170, 120, 200}},
     {gpu::kSemanticCut, "cut", "vegetation", {250, 170, 160}},
+    {gpu::kSemanticTurf, "turf", "ground", {60, 160, 70}},
 };
-static_assert(std::size(kClasses) == 5 + gpu::kMaxPlantCategories, "one entry per vegetation category");
+static_assert(std::size(kClasses) == 6 + gpu::kMaxPlantCategories, "one entry per vegetation category");
 
 } // namespace
 

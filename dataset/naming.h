@@ -46,8 +46,8 @@ std::string frameFile(const char* folder, uint32_t frame, const char* extension)
 // One semantic class of semantic/NNNNNN.png, as gpu::kSemantic* numbers it.
 struct SemanticClass {
     uint32_t id;       // the pixel value (gpu::kSemantic*)
-    const char* name;  // "sky", "ground", "vegetation category 0", ..., "object", "felled", "cut"
-    const char* group; // the broad class: "sky", "ground", "vegetation" (2..5, felled, cut) or "object"
+    const char* name;  // "sky", "ground", "vegetation category 0", ..., "object", "felled", "cut", "turf"
+    const char* group; // the broad class: "sky", "ground" (ground, turf), "vegetation" (2..5, felled, cut) or "object"
     uint8_t colour[3]; // sRGB colour for pictures and point clouds (classes.json)
 };
 

@@ -245,6 +245,7 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
     // all see the same machine state. The first frame of each warms up caches and pipelines and is not timed; it is
     // the one whose plant draws are counted.
     VegetationRenderer& vegetation = *renderer.vegetation();
+    const Atlas atlas = options.cutoutCorners.empty() ? Atlas{} : buildAtlas(resources.scene); // createSceneGpu let go of it
     PipelineStatistics statistics(ctx.device, 16); // 3 passes x 3 LODs of the one tile
     std::vector<uint32_t> variants = {0};
     variants.insert(variants.end(), options.cutoutCorners.begin(), options.cutoutCorners.end());
@@ -253,14 +254,14 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
     std::vector<std::array<std::vector<uint8_t>, 3>> images(variants.size());
     for (uint32_t i = 0; i <= options.frames; ++i)
         for (size_t v = 0; v < variants.size(); ++v) {
-            vegetation.setCutout(variants[v]);
+            vegetation.setCutout(variants[v], atlas);
             auto times = timedFrame(ctx, renderer, main, truth, camera, i, timers, i == 0 ? &statistics : nullptr,
                                     counts[v]);
             if (i > 0)
                 for (auto& [name, ms] : times) passes[v][name].push_back(ms);
             if (i == options.frames) images[v] = frameImages(main, truth);
         }
-    vegetation.setCutout(0);
+    vegetation.setCutout(0, atlas);
     nlohmann::json cutouts = nlohmann::json::object();
     for (size_t v = 1; v < variants.size(); ++v)
         cutouts[std::to_string(variants[v])] = cutoutFigures(counts[v], passes[v], images[v], counts[0], passes[0], images[0]);

@@ -158,10 +158,14 @@ void SceneRenderer::createPipelines(const Atlas* atlas, uint32_t instanceCapacit
     truthTerrain.vertexAttributes = {};
     truthTerrain.colorFormats = {truthDesc.colors[0].format, truthDesc.colors[1].format, truthDesc.colors[2].format};
     truthTerrain.samples = truthDesc.samples;
-    PipelineLayoutDesc truthLayout = layout; // + the pulled vertices and triangle list
+    PipelineLayoutDesc truthLayout = layout; // + the pulled vertices and triangle list, the cover map (turf labels)
     for (uint32_t binding : {gpu::kBindingMeshVertices, gpu::kBindingMeshIndices})
         truthLayout.bindings.push_back(
             layoutBinding(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT));
+    truthLayout.bindings.push_back(
+        layoutBinding(gpu::kBindingCoverMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
+    truthLayout.pushConstantSize = sizeof(gpu::TerrainTileConstants);
+    truthLayout.pushConstantStages = VK_SHADER_STAGE_FRAGMENT_BIT;
     terrainTruthPipeline_ = createGraphicsPipeline(ctx.device, truthTerrain, truthLayout);
     terrainDesc.fragmentShader = "";
     terrainDesc.colorFormats = {};
@@ -292,15 +296,17 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const Descr
         const double dx = std::max({0.0, tile.boundsMin.x - reference.x, reference.x - tile.boundsMax.x});
         const double dy = std::max({0.0, tile.boundsMin.y - reference.y, reference.y - tile.boundsMax.y});
         if (std::sqrt(dx * dx + dy * dy) > viewDistance_) continue;
+        const DescriptorBinding cover = sampledImage(gpu::kBindingCoverMap, tile.cover.view, coverSampler_);
         if (pass == PlantPass::Main) {
             pushDescriptors(ctx_.device, cmd, pipeline,
-                            {frame, shadowBinding(), sampledImage(gpu::kBindingCoverMap, tile.cover.view, coverSampler_),
+                            {frame, shadowBinding(), cover,
                              sampledImage(gpu::kBindingGroundTextures, groundTextures_.view, groundSampler_)});
             pushConstants(cmd, pipeline, gpu::TerrainTileConstants{.coverRect = tile.coverRect});
         } else if (pass == PlantPass::Truth) {
             pushDescriptors(ctx_.device, cmd, pipeline,
                             {frame, storageBuffer(gpu::kBindingMeshVertices, tile.vertices.handle),
-                             storageBuffer(gpu::kBindingMeshIndices, tile.indices.handle)});
+                             storageBuffer(gpu::kBindingMeshIndices, tile.indices.handle), cover});
+            pushConstants(cmd, pipeline, gpu::TerrainTileConstants{.coverRect = tile.coverRect});
             vkCmdDraw(cmd, tile.indexCount, 1, 0, 0); // non-indexed: the shader reads the triangle list
             continue;
         } else {

@@ -147,16 +147,13 @@ void VegetationRenderer::uploadAtlas(const Atlas& atlas) {
             cells[r * maxColumns + c] = {glm::vec4(uv[0], uv[1], uv[2], uv[3]),
                                          glm::vec4(cell.baseU, cell.baseV, cell.aspect, 0.0f), {}};
         }
-    // The polygons are fitted once here, for every corner count, so switching costs only an upload.
-    for (uint32_t corners = 0; corners <= gpu::kMaxCutoutCorners; ++corners) {
-        if (corners > 0 && corners < 4) continue;
-        const std::vector<CutoutPolygon> polygons =
-            corners == 0 ? std::vector<CutoutPolygon>(cells.size(), fullCellPolygon()) : atlasCutouts(atlas, corners);
-        cellTables_[corners] = cells;
-        for (size_t i = 0; i < cells.size(); ++i)
-            for (uint32_t k = 0; k < gpu::kMaxCutoutCorners / 2; ++k)
-                cellTables_[corners][i].cutout[k] = glm::vec4(polygons[i].corners[2 * k], polygons[i].corners[2 * k + 1]);
-    }
+    // Whole quads only: cut-out polygons are fitted by setCutout when a caller asks for them (they are off by
+    // default, and fitting every corner count costs more than the rest of the upload).
+    const CutoutPolygon full = fullCellPolygon();
+    cellTables_[0] = cells;
+    for (gpu::AtlasCellGpu& cell : cellTables_[0])
+        for (uint32_t k = 0; k < gpu::kMaxCutoutCorners / 2; ++k)
+            cell.cutout[k] = glm::vec4(full.corners[2 * k], full.corners[2 * k + 1]);
     uploadCellTable();
 
     const uint32_t levels = uint32_t(atlas.mips.size());
@@ -178,9 +175,18 @@ void VegetationRenderer::uploadCellTable() {
         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 
-void VegetationRenderer::setCutout(uint32_t corners) {
+void VegetationRenderer::setCutout(uint32_t corners, const Atlas& atlas) {
     require(corners == 0 || (corners >= 4 && corners <= gpu::kMaxCutoutCorners), "cut-outs have 4..8 corners (0: off)");
     if (corners == cutoutCorners_) return;
+    std::vector<gpu::AtlasCellGpu>& table = cellTables_[corners];
+    if (table.empty()) { // fitted once per corner count, then switching costs only an upload
+        const std::vector<CutoutPolygon> polygons = atlasCutouts(atlas, corners);
+        require(polygons.size() == cellTables_[0].size(), "setCutout: not the atlas this renderer was made with");
+        table = cellTables_[0];
+        for (size_t i = 0; i < table.size(); ++i)
+            for (uint32_t k = 0; k < gpu::kMaxCutoutCorners / 2; ++k)
+                table[i].cutout[k] = glm::vec4(polygons[i].corners[2 * k], polygons[i].corners[2 * k + 1]);
+    }
     cutoutCorners_ = corners;
     uploadCellTable();
 }

@@ -85,7 +85,8 @@ public:
     // Cut-out quads (vegetation/atlas_cutout.h): with `corners` 4..8, near and mid quads are drawn as their atlas
     // cell's cut-out polygon of that many corners, so their transparent margins are not rasterised; 0: whole quads
     // (the default: see docs/benchmarks.md, "Fragment work", for why). Used by the next expand() and its bake().
-    void setCutout(uint32_t corners);
+    // `atlas` is the one the renderer was made with: its polygons are fitted on the first use of a corner count.
+    void setCutout(uint32_t corners, const Atlas& atlas);
     uint32_t cutoutCorners() const { return cutoutCorners_; }
     // Benchmarks: while set, draw() wraps each tile's draw of each LOD in a statistics range named after the pass
     // and the LOD ("main.near", "truth.far", "shadow.mid", ...). The command buffers draw() then records into must

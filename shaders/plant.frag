@@ -23,13 +23,15 @@ void main() {
     }
     vec3 up = normalize(inUp);
     vec3 albedo = texel.rgb * mix(0.8, 1.15, inRandom);
+    uint state = bitfieldExtract(inFade, 17, 4);
+    // Flattened blades show their paler undersides and bruised, straw-coloured stems.
+    if (state == kPlantStateFelled) albedo = mix(albedo, dot(albedo, vec3(0.2126, 0.7152, 0.0722)) * vec3(1.5, 1.35, 0.7), 0.4);
     // Viewer overlays (sward-view): LOD bands, and the plants the interaction has moved (paper Figure 7).
     if ((frame.debug.x & kDebugLodColors) != 0u) {
         uint lod = bitfieldExtract(inFade, 21, 2); // set by plant.vert
         albedo = (lod == kLodNear ? vec3(0.9, 0.15, 0.1) : lod == kLodMid ? vec3(0.15, 0.8, 0.1) : vec3(0.15, 0.3, 0.95)) *
                  (0.6 + 0.4 * texel.g);
     }
-    uint state = bitfieldExtract(inFade, 17, 4);
     if ((frame.debug.x & kDebugUpdatedPlants) != 0u && state != kPlantStateRest)
         albedo = state == kPlantStateRecovering ? vec3(1.0, 0.55, 0.05) : state == kPlantStateFelled ? vec3(0.9, 0.05, 0.05)
                                                                                                     : vec3(0.7, 0.1, 0.9);

@@ -1,15 +1,15 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Terrain shading: a mesh ground's material colour and texture, or soil / dry-grass albedo varied by slope and height, sun
-// (Lambert) + hemispherical ambient. Beyond the far LOD limit, where the plants have dissolved, the ground takes
-// the vegetation's look from the cover map (vegetation/cover_map.h), lit as the plants are, so the meadow goes on
-// in colour instead of ending in a bare band.
+// Terrain shading: a mesh ground's material colour and texture, or soil albedo varied by slope, sun (Lambert) +
+// hemispherical ambient. Under dense vegetation the ground is turf (gpu_layout.h, turfFraction): the sward's low
+// base, coloured from the cover map (vegetation/cover_map.h), so the meadow is closed seen from above. Beyond the
+// far LOD limit, where the plants have dissolved, the ground takes the vegetation's look from the cover map, lit
+// as the plants are, so the meadow goes on in colour instead of ending in a bare band.
 #include "shared/frame.glsl"
+#include "shared/ground_cover.glsl"
 #include "shared/shadow.glsl"
 
-layout(set = 0, binding = kBindingCoverMap) uniform sampler2D coverMap;
 layout(set = 0, binding = kBindingGroundTextures) uniform sampler2DArray groundTextures;
-layout(push_constant) uniform Push { TerrainTileConstants tile; };
 
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inNormal;
@@ -29,6 +29,8 @@ const float kPlantOcclusion = 0.77;
 const float kCoverDepth = 1.1;
 // Mean sunlit fraction of the plant surface seen from afar: the plants shade each other and the ground between them.
 const float kPlantSunlit = 0.95;
+// Turf: the sward's base is darker than the plants' mean (older leaves, litter, shade of the blades above).
+const float kTurfShade = 0.55;
 
 // Fraction of the ground the far cover hides at `world`, seen from the camera.
 float hiddenFraction(float area, vec3 world) {
@@ -38,38 +40,65 @@ float hiddenFraction(float area, vec3 world) {
 }
 
 // How much of the pixel the far cover takes: 0 inside the plants' range, rising over their dissolve band exactly
-// as their dither removes them (plants use the same 3D distance to the camera). uv: `world` in the cover's tile.
-float coverWeight(vec3 world, vec2 uv) {
-    if (tile.coverRect.z == 0.0) return 0.0;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 0.0;
+// as their dither removes them (plants use the same 3D distance to the camera).
+float coverWeight(vec3 world) {
     float start = frame.coverBand.x - 0.5 * frame.coverBand.y;
     return clamp((distance(world, frame.cameraPosition.xyz) - start) / max(frame.coverBand.y, 1e-3), 0.0, 1.0);
+}
+
+// PCG's output permutation (Jarzynski and Olano, "Hash Functions for GPU Rendering", 2020).
+uint pcgHash(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// Value noise in [0, 1] on a lattice of `cell` metres: integer hashing (no sin), the same on every device.
+float latticeNoise(vec2 xy, float cell) {
+    vec2 p = xy / cell, i = floor(p), f = p - i;
+    uvec2 c = uvec2(ivec2(i));
+    float n00 = float(pcgHash(c.x + pcgHash(c.y)) >> 8) * (1.0 / 16777216.0);
+    float n10 = float(pcgHash(c.x + 1u + pcgHash(c.y)) >> 8) * (1.0 / 16777216.0);
+    float n01 = float(pcgHash(c.x + pcgHash(c.y + 1u)) >> 8) * (1.0 / 16777216.0);
+    float n11 = float(pcgHash(c.x + 1u + pcgHash(c.y + 1u)) >> 8) * (1.0 / 16777216.0);
+    f = f * f * (3.0 - 2.0 * f);
+    return mix(mix(n00, n10, f.x), mix(n01, n11, f.x), f.y);
+}
+
+// Brightness of the turf around `world`: clumps of a few decimetres and short shoots of a few centimetres; the
+// fine octave fades where a pixel covers more than it (no shimmer in the distance).
+float turfGrain(vec3 world) {
+    float footprint = length(fwidth(world.xy));
+    float fine = mix(latticeNoise(world.xy, 0.035), 0.5, clamp(footprint / 0.035 - 0.5, 0.0, 1.0));
+    return 0.65 + 0.45 * latticeNoise(world.xy, 0.3) + 0.35 * (fine - 0.5);
+}
+
+// plant.frag's light for a plant standing along the ground normal (up_normal_blend aside).
+vec3 plantLight(vec3 n, float shadow) {
+    float sun = clamp(dot(n, frame.sunDirection.xyz) * 0.6 + 0.4, 0.0, 1.0) * shadow * kPlantSunlit;
+    return frame.sunRadiance.rgb * sun + ambientLight(n) * kPlantOcclusion;
 }
 
 void main() {
     vec3 n = normalize(inNormal);
     float slope = 1.0 - n.z;
-    // Dark turf: under the vegetation the ground reads as the dense base of the sward, not as bare soil.
     vec3 soil = vec3(0.16, 0.12, 0.07);
-    vec3 turf = vec3(0.07, 0.10, 0.03);
+    vec3 compact = vec3(0.07, 0.10, 0.03);
     // Low-frequency variation from position only (no texture): keeps large flat areas from looking uniform.
     float variation = 0.5 + 0.5 * sin(inWorld.x * 0.071 + 1.3 * sin(inWorld.y * 0.053));
-    vec3 albedo = mix(turf, soil, clamp(slope * 4.0 + 0.25 * variation, 0.0, 1.0));
+    vec3 albedo = mix(compact, soil, clamp(slope * 4.0 + 0.25 * variation, 0.0, 1.0));
     // A mesh ground is drawn with its materials' base colours, times their textures.
     if (inAlbedo.a > 0.0) albedo = inAlbedo.rgb;
     if (inUvLayer.z >= 0.0) albedo *= texture(groundTextures, vec3(inUvLayer.xy, round(inUvLayer.z))).rgb;
     float shadow = sunShadow(inWorld);
     float sun = max(dot(n, frame.sunDirection.xyz), 0.0) * shadow;
     vec3 color = albedo * (frame.sunRadiance.rgb * sun + ambientLight(n));
-    vec2 uv = (inWorld.xy - tile.coverRect.xy) * tile.coverRect.z;
-    float weight = coverWeight(inWorld, uv);
-    if (weight > 0.0) {
-        // The texture's v runs north to south (top row north), as the grass map's.
-        vec4 cover = texture(coverMap, vec2(uv.x, 1.0 - uv.y));
-        // plant.frag's light for a plant standing along the ground normal (up_normal_blend aside).
-        float plantSun = clamp(dot(n, frame.sunDirection.xyz) * 0.6 + 0.4, 0.0, 1.0) * shadow * kPlantSunlit;
-        vec3 plantLight = frame.sunRadiance.rgb * plantSun + ambientLight(n) * kPlantOcclusion;
-        color = mix(color, cover.rgb * kPlantBrightness * plantLight, weight * hiddenFraction(cover.a, inWorld));
-    }
+    vec2 uv = coverUv(inWorld);
+    vec4 cover = groundCover(uv);
+    float turf = turfFraction(cover.a);
+    if (turf > 0.0) color = mix(color, cover.rgb * (kTurfShade * turfGrain(inWorld)) * plantLight(n, shadow), turf);
+    float weight = inCoverTile(uv) ? coverWeight(inWorld) : 0.0;
+    if (weight > 0.0)
+        color = mix(color, cover.rgb * kPlantBrightness * plantLight(n, shadow), weight * hiddenFraction(cover.a, inWorld));
     outColor = vec4(color, 1.0);
 }

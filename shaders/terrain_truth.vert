@@ -10,6 +10,7 @@
 layout(set = 0, binding = kBindingMeshVertices, std430) readonly buffer VertexBlock { TerrainVertex vertices[]; };
 layout(set = 0, binding = kBindingMeshIndices, std430) readonly buffer IndexBlock { uint indices[]; };
 
+layout(location = 0) out vec3 outWorld; // truth.frag's turf label
 layout(location = 2) out float outViewDepth;
 layout(location = 5) flat out vec3 outNormal; // camera frame, unit, facing the camera
 
@@ -20,6 +21,7 @@ void main() {
     vec3 p2 = vertices[indices[first + 2u]].positionHeight.xyz;
     vec4 world = vec4(vertices[indices[gl_VertexIndex]].positionHeight.xyz, 1.0);
     gl_Position = frame.viewProj * world;
+    outWorld = world.xyz;
     outViewDepth = (frame.view * world).z;
     outNormal = truthNormal(cross(p1 - p0, p2 - p0), p0);
 }

@@ -8,6 +8,7 @@
   gis/dem.tif         a GeoTIFF heightmap (UTM 33N, 2 m pixels, float32 metres) of a known analytic surface
   gis/landcover.tif   a GeoTIFF of ESA WorldCover class codes over the scene's 500 m vegetation tile, whose
                       south-west corner is the DEM's south-west sample (4 m pixels, byte)
+  tracks/grass.png    the grass map of examples/tracks: meadow west of x = 40 m, bare soil east of it
 
 The surfaces are closed-form functions below; tests compare what sward builds from these files with them. The
 GeoTIFFs are written by GDAL's own gdal_translate from ASCII grids. Usage: make-example-data.py OUT_DIR
@@ -196,14 +197,27 @@ def write_gis(folder):
         translate(os.path.join(tmp, "landcover.asc"), os.path.join(folder, "landcover.tif"), "Byte")
 
 
+# tracks: a 75 m meadow whose eastern part is bare soil, 0.5 m per texel; channels ferns, grass, flowers.
+TRACKS_SIZE, TRACKS_TEXELS, TRACKS_BARE_FROM = 75.0, 150, 40.0
+
+
+def tracks_pixel(i, r):
+    x = (i + 0.5) * TRACKS_SIZE / TRACKS_TEXELS
+    y = (TRACKS_TEXELS - r - 0.5) * TRACKS_SIZE / TRACKS_TEXELS  # row 0 is north
+    meadow = min(max((TRACKS_BARE_FROM - x) / 2.0, 0.0), 1.0)  # a 2 m wide edge
+    flowers = 0.5 + 0.5 * math.sin(0.9 * x) * math.sin(0.7 * y)
+    return (0, round(235 * meadow), round(200 * meadow * flowers))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: make-example-data.py OUT_DIR")
     out = sys.argv[1]
-    for sub in ("hills", "gis"):
+    for sub in ("hills", "gis", "tracks"):
         os.makedirs(os.path.join(out, sub), exist_ok=True)
     write_hills(os.path.join(out, "hills", "hills.gltf"))
     write_gis(os.path.join(out, "gis"))
+    write_png_rgb(os.path.join(out, "tracks", "grass.png"), TRACKS_TEXELS, TRACKS_TEXELS, tracks_pixel)
 
 
 if __name__ == "__main__":

@@ -80,7 +80,8 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
                 float len = glm::length(tip);
                 if (len > gpu::kMaxTipOffset) tip *= gpu::kMaxTipOffset / len;
                 uint32_t cutByte = (field.dynamicRecords[i].state >> 24) & 0xffu;
-                uint32_t fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 65535.0f + 0.5f) | (cutByte << 24);
+                uint32_t fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 65535.0f + 0.5f) | (motion.state << 17) |
+                                (cutByte << 24);
                 gpu::ExpandedPlant expanded{glm::vec4(position, height), plant.up, plant.attributes,
                                             glm::packHalf2x16(tip), fade};
                 out.lods[choice.lodA].push_back(expanded);
@@ -133,6 +134,16 @@ ReferenceQuad referenceQuad(const gpu::ExpandedPlant& plant, uint32_t lod, uint3
         if (glm::dot(q.side, q.side) < 1e-4f) q.side = glm::vec3(std::cos(orientation), std::sin(orientation), 0.0f);
         q.side = glm::normalize(q.side);
         q.rise = glm::normalize(glm::cross(toCamera, q.side));
+    } else if (((plant.fade >> 17) & 0xfu) == gpu::kPlantStateFelled) {
+        // plant_vertex.glsl's felledQuad: across the lay direction, fanned, leaning kFelledLean along it.
+        const uint32_t quads = lod == gpu::kLodNear ? gpu::kQuadsNear : gpu::kQuadsMid;
+        glm::vec2 lay = glm::dot(q.tip, q.tip) > 1e-8f ? glm::normalize(q.tip)
+                                                       : glm::vec2(std::cos(orientation), std::sin(orientation));
+        float spread = gpu::kFelledSpread * (2.0f * float(quad) / float(quads - 1u) - 1.0f);
+        glm::vec3 horizontal = glm::vec3(-lay.y, lay.x, 0.0f) * std::cos(spread) + glm::vec3(lay, 0.0f) * std::sin(spread);
+        q.side = glm::normalize(horizontal - q.up * glm::dot(horizontal, q.up));
+        q.rise = glm::normalize(q.up * std::cos(gpu::kFelledLean) + glm::cross(q.side, q.up) * std::sin(gpu::kFelledLean));
+        q.tip = glm::vec2(0.0f);
     } else {
         glm::vec2 angleTilt = lod == gpu::kLodNear ? nearQuads[quad] : midQuads[quad];
         float angle = orientation + angleTilt.x;

@@ -34,6 +34,7 @@ SWARD_CONST(uint, kSemanticVegetation, 2u); // + category index (0..3): standing
 SWARD_CONST(uint, kSemanticObject, 8u);     // glTF scene objects (the rover, ...)
 SWARD_CONST(uint, kSemanticFelled, 9u);     // felled plants: tyre tracks
 SWARD_CONST(uint, kSemanticCut, 10u);       // mowed plants
+SWARD_CONST(uint, kSemanticTurf, 11u);      // ground under dense vegetation: the turf layer (turfFraction >= 0.5)
 SWARD_CONST(uint, kInstanceBits, 24u);      // instance id: 0 sky / ground, plant index + 1, kInstanceObjectBase + object
 SWARD_CONST(uint, kInstanceObjectBase, 16000000u);
 // The id space's two disjoint ranges: plant ids 1 .. kInstanceObjectBase - 1, object ids kInstanceObjectBase ..
@@ -116,6 +117,28 @@ uint plantVertexCount(uint lod, uint cutoutCorners) {
 // Largest horizontal tip offset of an expanded plant (interaction bend + wind), in plant heights: a blade
 // bends, it does not stretch (1 would lay the tip on the ground).
 SWARD_CONST(float, kMaxTipOffset, 0.95);
+// A felled plant (PlantDynamic state kPlantStateFelled) lies along its push: its near and mid quads turn across
+// the lay direction (fanned by kFelledSpread radians either side) and lean this far from its up axis, so the plant
+// is a mat of blades showing their faces from above, as flattened grass in a tyre track does.
+SWARD_CONST(float, kFelledLean, 1.35);
+SWARD_CONST(float, kFelledSpread, 0.35);
+
+// Turf (issue 18, "dense from above"): under vegetation the ground is drawn as the low, dense base of the sward
+// (leaf litter, short shoots), coloured from the cover map, so a view from above sees a closed meadow between the
+// plants instead of bare soil. How much of the ground it covers follows the cover map's S (m^2 of plant side area
+// per m^2 of ground, vegetation/cover_map.h): none below kTurfAreaBare, all of it from kTurfAreaFull. The colour
+// pass blends soil and turf by this fraction; the truth pass labels a ground pixel kSemanticTurf where it is at
+// least one half. The same text is a GLSL and a C++ function (smoothstep written out).
+SWARD_CONST(float, kTurfAreaBare, 0.05);
+SWARD_CONST(float, kTurfAreaFull, 0.25);
+#ifdef __cplusplus
+constexpr
+#endif
+float turfFraction(float coverArea) {
+    float t = (coverArea - kTurfAreaBare) / (kTurfAreaFull - kTurfAreaBare);
+    t = t < 0.0f ? 0.0f : t > 1.0f ? 1.0f : t;
+    return t * t * (3.0f - 2.0f * t);
+}
 
 // Per-frame constants of the vegetation expansion (uniform buffer).
 struct VegetationConstants {

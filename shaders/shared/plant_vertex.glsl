@@ -45,6 +45,20 @@ struct PlantQuad {
     vec4 uvRect;
 };
 
+// Quad `quad` of `quads` of a felled plant (gpu_layout.h, kFelledLean): across the lay direction (the push that
+// felled it, `tip`), fanned evenly over +-kFelledSpread, leaning kFelledLean towards the tip; the lean is its whole
+// bend. Mirrored by vegetation/expansion_reference.cpp.
+PlantQuad felledQuad(PlantQuad q, vec2 tip, float orientation, uint quads, uint quad) {
+    vec2 lay = dot(tip, tip) > 1e-8 ? normalize(tip) : vec2(cos(orientation), sin(orientation));
+    float spread = kFelledSpread * (2.0 * float(quad) / float(quads - 1u) - 1.0);
+    vec3 horizontal = vec3(-lay.y, lay.x, 0.0) * cos(spread) + vec3(lay, 0.0) * sin(spread);
+    q.side = normalize(horizontal - q.up * dot(horizontal, q.up));
+    vec3 along = cross(q.side, q.up); // towards +lay
+    q.rise = normalize(q.up * cos(kFelledLean) + along * sin(kFelledLean));
+    q.tip = vec2(0.0);
+    return q;
+}
+
 // `cell` returns the plant's atlas cell (an index: reading the whole cell with its polygon per vertex is a cost).
 PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, out uint cell) {
     PlantQuad q;
@@ -60,6 +74,7 @@ PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, out uint cell) 
     q.width = q.height * baseAspect.z;
     q.baseAspect = baseAspect.xyz;
     q.uvRect = cells[cell].uvRect;
+    q.cutFraction = float(instance.fade >> 24) * (1.0 / 255.0); // height is already cut to this fraction
 
     if (lod == kLodFar) {
         // Faces the camera: upright when seen from the side, lying towards the camera when seen from above.
@@ -68,6 +83,8 @@ PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, out uint cell) 
         if (dot(q.side, q.side) < 1e-4) q.side = vec3(cos(orientation), sin(orientation), 0.0);
         q.side = normalize(q.side);
         q.rise = normalize(cross(toCamera, q.side));
+    } else if (bitfieldExtract(instance.fade, 17, 4) == kPlantStateFelled) {
+        return felledQuad(q, unpackHalf2x16(instance.tip), orientation, lod == kLodNear ? 4u : 2u, quad);
     } else {
         vec2 angleTilt = lod == kLodNear ? kNearQuads[quad] : kMidQuads[quad];
         float angle = orientation + angleTilt.x;
@@ -76,7 +93,6 @@ PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, out uint cell) 
         vec3 normal = cross(q.side, q.up);
         q.rise = normalize(q.up * cos(angleTilt.y) + normal * sin(angleTilt.y));
     }
-    q.cutFraction = float(instance.fade >> 24) * (1.0 / 255.0); // height is already cut to this fraction
     q.tip = unpackHalf2x16(instance.tip);
     return q;
 }

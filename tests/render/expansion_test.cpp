@@ -67,7 +67,7 @@ void expectExpansionMatchesTheCpuReference(Context* ctx, uint32_t cutoutCorners)
     ReferenceExpansion reference = referenceExpand(s.tile, s.scene.vegetation, s.scene.lod, s.scene.wind, camera, time);
     SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_1_BIT, &s.tile, &s.atlas);
     VegetationRenderer& vegetation = *renderer.vegetation();
-    vegetation.setCutout(cutoutCorners);
+    vegetation.setCutout(cutoutCorners, s.atlas);
     renderFrame(*ctx, renderer, camera, time);
     gpu::ExpansionStats stats = vegetation.readStats();
     const std::vector<CutoutPolygon> polygons = atlasCutouts(s.atlas, cutoutCorners ? cutoutCorners : 4);

@@ -210,7 +210,7 @@ TEST_F(VegetationTest, CutoutsKeepThePlantPixelsAndTheirDepthToRounding) {
     for (uint32_t samples : {1u, 4u}) {
         auto r = renderer(true, samples);
         FrameImages quads = renderFrame(*ctx, *r, camera);
-        r->vegetation()->setCutout(8);
+        r->vegetation()->setCutout(8, atlas);
         FrameImages cut = renderFrame(*ctx, *r, camera);
         size_t plants = 0, labelsDiffer = 0, depthBitsDiffer = 0, otherSurface = 0;
         for (size_t i = 0; i < quads.labels.size(); ++i) {
