@@ -246,7 +246,7 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
     // the one whose plant draws are counted.
     VegetationRenderer& vegetation = *renderer.vegetation();
     const Atlas atlas = options.cutoutCorners.empty() ? Atlas{} : buildAtlas(resources.scene); // createSceneGpu let go of it
-    PipelineStatistics statistics(ctx.device, 16); // 3 passes x 3 LODs of the one tile
+    PipelineStatistics statistics(ctx.device, 3 * (gpu::kMaxShadowCascades + 2)); // 3 LODs of the one tile: per shadow cascade, main, truth
     std::vector<uint32_t> variants = {0};
     variants.insert(variants.end(), options.cutoutCorners.begin(), options.cutoutCorners.end());
     std::vector<PassCounts> counts(variants.size());

@@ -97,7 +97,7 @@ void SceneRenderer::createPipelines(const Atlas* atlas, uint32_t instanceCapacit
     const Scene& scene = scene_;
     uint64_t align = ctx.device.properties().limits.minUniformBufferOffsetAlignment;
     constantsStride_ = (sizeof(gpu::FrameConstants) + align - 1) / align * align;
-    constants_ = createBuffer(ctx, constantsStride_ * gpu::kFrameDataSlots * kMaxViews,
+    constants_ = createBuffer(ctx, constantsStride_ * gpu::kFrameDataSlots * kSlotsPerFrame,
                               VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryIntent::Upload);
 
     RenderTargetDesc mainDesc = mainPassTargetDesc(1, 1, samples_);
@@ -116,9 +116,15 @@ void SceneRenderer::createPipelines(const Atlas* atlas, uint32_t instanceCapacit
     terrainLayout.pushConstantStages = VK_SHADER_STAGE_FRAGMENT_BIT;
     coverSampler_ = createLinearSampler(ctx, 1);
 
-    // Sun shadow map: always present (1x1 and disabled when shadow_map_size is 0) so bindings stay valid.
+    // Sun shadow map: the cascades' square maps in a row, always present (1x1 and disabled when shadow_map_size is
+    // 0) so bindings stay valid.
     uint32_t shadowSize = std::max(scene.render.shadowMapSize, 1u);
-    shadowMap_ = std::make_unique<RenderTarget>(ctx, RenderTargetDesc{.width = shadowSize,
+    const uint32_t cascades = uint32_t(shadowSplits(shadowCascadeParams()).size());
+    require(uint64_t(shadowSize) * cascades <= ctx.device.properties().limits.maxImageDimension2D,
+            scene.source + ": 'render.shadow_map_size' x the shadow cascades (" + std::to_string(shadowSize) + " x " +
+                std::to_string(cascades) + ") exceeds this device's largest image (" +
+                std::to_string(ctx.device.properties().limits.maxImageDimension2D) + " texels)");
+    shadowMap_ = std::make_unique<RenderTarget>(ctx, RenderTargetDesc{.width = shadowSize * cascades,
                                                                       .height = shadowSize,
                                                                       .depthFormat = VK_FORMAT_D32_SFLOAT,
                                                                       .depthClear = 0.0f,
@@ -240,7 +246,8 @@ void SceneRenderer::removeTile(TileCoord coord) {
     if (vegetation_) vegetation_->removeTile(coord);
 }
 
-void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Camera& shadowCamera, double timeSeconds) {
+void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Camera& shadowCamera, double timeSeconds,
+                                   int shadowDraw) {
     gpu::FrameConstants c{};
     glm::dmat4 viewProj = camera.viewProjection();
     c.viewProj = glm::mat4(viewProj);
@@ -255,35 +262,76 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Ca
     c.viewport = glm::vec4(float(camera.width), float(camera.height), 1.0f / float(camera.width), 1.0f / float(camera.height));
     c.timeParams = glm::vec4(float(timeSeconds), 0.0f, 0.0f, 0.0f);
 
-    // Sun shadow map: an orthographic box around the first shadowDistance metres in front of the camera,
-    // snapped to whole texels in light space so it does not shimmer as the camera moves.
-    const float size = float(std::max(scene_.render.shadowMapSize, 1u));
-    const double radius = 0.5 * scene_.render.shadowDistance * 1.15;
-    glm::dvec3 forward = shadowCamera.worldFromCamera[2];
-    glm::dvec3 center = shadowCamera.position + forward * (0.5 * scene_.render.shadowDistance);
-    glm::dvec3 toSun = glm::dvec3(scene_.sun.direction());
-    glm::dvec3 up = std::abs(toSun.z) > 0.99 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
-    glm::dmat4 lightView = glm::lookAt(glm::dvec3(0.0), -toSun, up); // rotation only
-    glm::dvec4 centerLight = lightView * glm::dvec4(center, 1.0);
-    double texel = 2.0 * radius / size;
-    centerLight.x = std::floor(centerLight.x / texel) * texel;
-    centerLight.y = std::floor(centerLight.y / texel) * texel;
-    // Depth range: from above the highest terrain (plus plants) to below the lowest, along the light ray.
-    double reach = radius + double(terrainMaxHeight_ - terrainMinHeight_) + 50.0;
-    glm::dmat4 ortho(0.0);
-    ortho[0][0] = 1.0 / radius;
-    ortho[1][1] = 1.0 / radius;
-    ortho[2][2] = 1.0 / (2.0 * reach); // view z in [-(c+reach), -(c-reach)] -> depth 1 .. 0 (reversed)
-    ortho[3][0] = -centerLight.x / radius;
-    ortho[3][1] = -centerLight.y / radius;
-    ortho[3][2] = 0.5 - centerLight.z / (2.0 * reach);
-    ortho[3][3] = 1.0;
-    c.shadowViewProj = glm::mat4(ortho * lightView);
+    // Sun shadows: the cascades fitted to the reference camera, the same for both views of a stereo pair.
+    const std::vector<ShadowCascade> cascades = shadowCascades(shadowCamera);
     const bool shadows = scene_.render.shadowMapSize > 0;
-    c.shadowParams = glm::vec4(shadows ? 1.0f : 0.0f, float(0.05 / (2.0 * reach)), 1.0f / size, 0.0f);
+    const float count = float(cascades.size());
+    c.shadowParams = glm::vec4(shadows ? count : 0.0f, 1.0f / count, 1.0f / float(std::max(scene_.render.shadowMapSize, 1u)), 0.0f);
+    for (size_t k = 0; k < cascades.size(); ++k) {
+        c.shadowCascades[k] = glm::mat4(cascades[k].viewProj);
+        c.shadowEnds[int(k)] = float(cascades[k].end);
+        c.shadowBias[int(k)] = float(cascades[k].depthBias);
+    }
+    c.shadowOrigin = glm::vec4(glm::vec3(shadowCamera.position), 1.0f);
+    if (shadowDraw >= 0) c.shadowViewProj = c.shadowCascades[shadowDraw];
     c.debug = glm::uvec4(debugFlags_, 0u, 0u, 0u);
     c.coverBand = glm::vec4(scene_.lod.farLimit, scene_.lod.band, 0.0f, 0.0f);
     std::memcpy(constants_.mapped() + slot * constantsStride_, &c, sizeof c);
+}
+
+ShadowCascadeParams SceneRenderer::shadowCascadeParams() const {
+    return ShadowCascadeParams{.cascades = scene_.render.shadowCascades,
+                               .firstDistance = scene_.render.shadowDistance,
+                               .lastDistance = double(scene_.lod.farLimit) + double(scene_.lod.band),
+                               .mapSize = std::max(scene_.render.shadowMapSize, 1u),
+                               .heightRange = double(terrainMaxHeight_ - terrainMinHeight_)};
+}
+
+std::vector<ShadowCascade> SceneRenderer::shadowCascades(const Camera& camera) const {
+    return fitShadowCascades(camera, glm::dvec3(scene_.sun.direction()), shadowCascadeParams());
+}
+
+namespace {
+
+// Plant LODs whose distance range (with their cross-fade bands) comes within `margin` of [begin, end]: the plants
+// that can shade a receiver of that shell. Bit l: LOD l.
+uint32_t lodsReaching(const LodParams& lod, double begin, double end, double margin) {
+    const double half = 0.5 * lod.band;
+    const double from[gpu::kLodCount] = {0.0, lod.nearToMid - half, lod.midToFar - half};
+    const double to[gpu::kLodCount] = {lod.nearToMid + half, lod.midToFar + half, lod.farLimit + half};
+    uint32_t mask = 0;
+    for (uint32_t l = 0; l < gpu::kLodCount; ++l)
+        if (from[l] <= end + margin && to[l] >= begin - margin) mask |= 1u << l;
+    return mask;
+}
+
+} // namespace
+
+void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, const Camera& reference, uint32_t firstSlot,
+                                     uint32_t dataSlot, double timeSeconds, GpuTimers* timers) {
+    if (timers) timers->begin(cmd, "shadow");
+    shadowMap_->begin(cmd);
+    if (scene_.render.shadowMapSize > 0) {
+        const std::vector<ShadowCascade> cascades = shadowCascades(reference);
+        const uint32_t size = scene_.render.shadowMapSize;
+        for (uint32_t k = 0; k < cascades.size(); ++k) {
+            const uint32_t slot = firstSlot + kMaxViews + k;
+            writeConstants(slot, reference, reference, timeSeconds, int(k));
+            const VkViewport viewport{float(k * size), 0.0f, float(size), float(size), 0.0f, 1.0f};
+            const VkRect2D scissor{{int32_t(k * size), 0}, {size, size}};
+            vkCmdSetViewport(cmd, 0, 1, &viewport);
+            vkCmdSetScissor(cmd, 0, 1, &scissor);
+            const DescriptorBinding frame = frameBinding(slot);
+            drawTerrain(cmd, PlantPass::Shadow, frame, reference.position);
+            if (objects_) objects_->recordShadow(cmd, frame, dataSlot);
+            if (vegetation_)
+                vegetation_->draw(cmd, PlantPass::Shadow, frame, shadowBinding(), dataSlot,
+                                  lodsReaching(scene_.lod, cascades[k].begin, cascades[k].end,
+                                               shadowCascadeParams().casterMargin));
+        }
+    }
+    shadowMap_->end(cmd);
+    if (timers) timers->end(cmd);
 }
 
 void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame,
@@ -399,22 +447,14 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
     require(!views.empty() && views.size() <= kMaxViews, "a frame has one or two views");
     const Camera& reference = *views[0].camera;
     const uint32_t dataSlot = frameIndex % gpu::kFrameDataSlots; // objects' and vegetation's per-frame data
-    const uint32_t firstSlot = dataSlot * kMaxViews;             // frame constants: one per view
+    const uint32_t firstSlot = dataSlot * kSlotsPerFrame;        // frame constants: views, then shadow cascades
     for (uint32_t v = 0; v < views.size(); ++v) writeConstants(firstSlot + v, *views[v].camera, reference, timeSeconds);
-    DescriptorBinding frame = frameBinding(firstSlot), shadow = shadowBinding();
+    const DescriptorBinding shadow = shadowBinding();
     if (objects_) objects_->update(timeSeconds, dataSlot);
 
     if (expand) recordExpansion(cmd, views, timeSeconds, frameIndex, timers);
 
-    if (timers) timers->begin(cmd, "shadow");
-    shadowMap_->begin(cmd);
-    if (scene_.render.shadowMapSize > 0) {
-        drawTerrain(cmd, PlantPass::Shadow, frame, reference.position);
-        if (objects_) objects_->recordShadow(cmd, frame, dataSlot);
-        if (vegetation_) vegetation_->draw(cmd, PlantPass::Shadow, frame, shadow, dataSlot);
-    }
-    shadowMap_->end(cmd);
-    if (timers) timers->end(cmd);
+    recordShadowPass(cmd, reference, firstSlot, dataSlot, timeSeconds, timers);
 
     for (uint32_t v = 0; v < views.size(); ++v) {
         const uint32_t slot = firstSlot + v;
@@ -433,14 +473,14 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
 void SceneRenderer::recordMainOnly(VkCommandBuffer cmd, RenderTarget& main, const Camera& camera, double timeSeconds,
                                    uint32_t frameIndex, GpuTimers* timers, const BakedPlants* baked) {
     const uint32_t slot = frameIndex % gpu::kFrameDataSlots;
-    writeConstants(slot * kMaxViews, camera, camera, timeSeconds);
+    writeConstants(slot * kSlotsPerFrame, camera, camera, timeSeconds);
     if (objects_) objects_->update(timeSeconds, slot);
     if (vegetation_ && !baked) {
         if (timers) timers->begin(cmd, "expansion");
         vegetation_->expand(cmd, camera, timeSeconds, slot);
         if (timers) timers->end(cmd);
     }
-    recordMainPass(cmd, main, slot * kMaxViews, slot, camera.position, timers, baked);
+    recordMainPass(cmd, main, slot * kSlotsPerFrame, slot, camera.position, timers, baked);
 }
 
 OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples)

@@ -2,7 +2,8 @@
 //
 // Passes per frame (see docs/architecture.md):
 //   expansion   compute: cull clusters, choose LODs, write plant instances + indirect draws
-//   shadow      D32 sun shadow map (terrain + alpha-tested plants), orthographic, fitted in front of the camera
+//   shadow      D32 cascaded sun shadow maps side by side (terrain + objects + alpha-tested plants), orthographic,
+//               fitted around distance shells of the camera's frustum (world/sun_shadow.h)
 //   main        RGBA16F linear HDR radiance, 1x or 4x MSAA (alpha-to-coverage), resolved by averaging
 //   truth       R32_UINT bit pattern of the planar depth in metres (+inf for sky), R32G32_UINT (label, tile) and
 //               RGBA32F camera-frame triangle normal (0 for sky), always 1x: the same geometry rasterised once
@@ -21,6 +22,7 @@
 #include "engine/render_target.h"
 #include "scene/scene.h"
 #include "render/vegetation_renderer.h"
+#include "world/sun_shadow.h"
 
 #include <cmath>
 #include <functional>
@@ -120,8 +122,15 @@ private:
 
     void createPipelines(const Atlas* atlas, uint32_t instanceCapacity);
     VegetationPassFormats plantPassFormats() const;
-    // Frame constants of `camera`, with the shadow map fitted in front of `shadowCamera`.
-    void writeConstants(uint32_t slot, const Camera& camera, const Camera& shadowCamera, double timeSeconds);
+    // Frame constants of `camera`, with the shadow cascades fitted to `shadowCamera`; `shadowDraw` >= 0 makes the
+    // slot the one the shadow pass draws cascade `shadowDraw` with.
+    void writeConstants(uint32_t slot, const Camera& camera, const Camera& shadowCamera, double timeSeconds,
+                        int shadowDraw = -1);
+    // The shadow pass: each cascade into its tile of the shadow map, with the plants' LODs that can reach it.
+    void recordShadowPass(VkCommandBuffer cmd, const Camera& reference, uint32_t firstSlot, uint32_t dataSlot,
+                          double timeSeconds, GpuTimers* timers);
+    ShadowCascadeParams shadowCascadeParams() const;
+    std::vector<ShadowCascade> shadowCascades(const Camera& camera) const;
     // The tiles' ground within the view distance of `reference`; the main pass binds each tile's cover.
     void drawTerrain(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame, const glm::dvec3& reference);
     // `frameSlot`: frame-constants slot (frame x view); `slot`: vegetation constants slot (frame).
@@ -139,7 +148,9 @@ private:
     double viewDistance_ = INFINITY; // world.view_distance in a world
     float terrainMinHeight_ = 0.0f, terrainMaxHeight_ = 0.0f;
     const Ground* objectGround_ = nullptr; // what objects stand on (one-tile scenes)
-    Buffer constants_; // gpu::kFrameDataSlots * kMaxViews slots of FrameConstants, host-visible
+    // Frame constants per data slot: one per view, then one per shadow cascade (the shadow pass's draws).
+    static constexpr uint32_t kSlotsPerFrame = kMaxViews + gpu::kMaxShadowCascades;
+    Buffer constants_; // gpu::kFrameDataSlots * kSlotsPerFrame slots of FrameConstants, host-visible
     uint64_t constantsStride_ = 0;
     Pipeline terrainPipeline_, terrainTruthPipeline_, terrainShadowPipeline_, skyPipeline_;
     std::unique_ptr<RenderTarget> shadowMap_;

@@ -314,7 +314,7 @@ void VegetationRenderer::expandTile(VkCommandBuffer cmd, const Tile& tile, uint3
 }
 
 void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame,
-                              const DescriptorBinding& shadowMap, uint32_t slot) {
+                              const DescriptorBinding& shadowMap, uint32_t slot, uint32_t lodMask) {
     const Pipeline& pipeline = pass == PlantPass::Main ? mainPipeline_ : pass == PlantPass::Truth ? truthPipeline_ : shadowPipeline_;
     bindPipeline(cmd, pipeline);
     DescriptorBinding instances = storageBuffer(gpu::kBindingPlantInstances, instances_.handle);
@@ -331,6 +331,7 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
             pushDescriptors(ctx_.device, cmd, pipeline,
                             {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(), plants});
         for (uint32_t lod = 0; lod < gpu::kLodCount; ++lod) {
+            if (!(lodMask & (1u << lod))) continue;
             pushConstants(cmd, pipeline, lod);
             if (statistics_) statistics_->begin(cmd, std::string(passName) + kLodNames[lod]);
             vkCmdDrawIndirect(cmd, tile->draws.handle, lod * sizeof(VkDrawIndirectCommand), 1,

@@ -70,9 +70,10 @@ public:
     void expand(VkCommandBuffer cmd, const Camera& camera, double timeSeconds, uint32_t slot,
                 const std::array<glm::vec4, 5>* cullPlanes = nullptr);
     // Records the plant draws into the current rendering pass. `frame` is the frame-constants binding;
-    // `shadowMap` is the sampled sun shadow map for the main pass (ignored otherwise).
+    // `shadowMap` is the sampled sun shadow map for the main pass (ignored otherwise). `lodMask`: bit l draws LOD l
+    // (the shadow pass leaves out the LODs that cannot reach a cascade).
     void draw(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame, const DescriptorBinding& shadowMap,
-              uint32_t slot);
+              uint32_t slot, uint32_t lodMask = (1u << gpu::kLodCount) - 1u);
 
     // Statistics of the latest expansion, summed over the tiles (reads back; waits for the GPU). info.w: 0.
     gpu::ExpansionStats readStats();

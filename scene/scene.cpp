@@ -157,6 +157,7 @@ void readRender(JsonReader r, RenderParams& render) {
     if (render.samples != 1 && render.samples != 4) r.fail(r.name("samples") + " must be 1 or 4");
     render.shadowMapSize = uint32_t(r.integer("shadow_map_size", render.shadowMapSize, 0, 8192));
     render.shadowDistance = r.numberF("shadow_distance", render.shadowDistance, 1.0, 2000.0);
+    render.shadowCascades = uint32_t(r.integer("shadow_cascades", render.shadowCascades, 1, gpu::kMaxShadowCascades));
     r.finish();
 }
 

@@ -89,7 +89,8 @@ struct RenderParams {
     uint32_t width = 1280, height = 720;
     uint32_t samples = 4; // 1 or 4
     uint32_t shadowMapSize = 2048; // texels per edge; 0 disables sun shadows
-    float shadowDistance = 60.0f;  // metres in front of the camera covered by the shadow map
+    float shadowDistance = 60.0f;  // metres from the camera covered by the first (finest) shadow cascade
+    uint32_t shadowCascades = 3;   // cascades up to lod.far + lod.band (world/sun_shadow.h); 1..kMaxShadowCascades
 };
 
 struct Scene {

@@ -43,6 +43,11 @@ SWARD_CONST(uint, kInstanceObjectBase, 16000000u);
 SWARD_CONST(uint, kMaxPlantInstances, kInstanceObjectBase - 1u);
 SWARD_CONST(uint, kMaxObjectInstances, (1u << kInstanceBits) - kInstanceObjectBase);
 
+// Sun shadow cascades (world/sun_shadow.h): at most this many, each blending into the next (the last into no
+// shadow) over the last kShadowBlend of its distance range, so no cascade edge shows.
+SWARD_CONST(uint, kMaxShadowCascades, 4u);
+SWARD_CONST(float, kShadowBlend, 0.15);
+
 // Per-frame constants (uniform buffer, set 0 binding 0).
 struct FrameConstants {
     mat4 viewProj;       // world -> clip (reversed Z, infinite far plane)
@@ -56,10 +61,15 @@ struct FrameConstants {
     vec4 groundAmbient;  // rgb radiance from below the horizon
     vec4 viewport;       // width, height, 1/width, 1/height
     vec4 timeParams;     // x simulation time in seconds, yzw reserved
-    mat4 shadowViewProj; // world -> sun shadow map clip space (orthographic, reversed Z)
-    vec4 shadowParams;   // x enabled (0/1), y depth bias, z 1/shadow map size, w unused
+    mat4 shadowViewProj; // shadow pass: world -> clip space of the cascade this draw renders (its own frame slot)
+    vec4 shadowParams;   // x cascades (0: no sun shadows), y 1 / cascades, z 1 / cascade map size, w unused
     uvec4 debug;         // x kDebug* flags (sward-view overlays; 0 for renders), yzw unused
     vec4 coverBand;      // x lod.far, y lod.band (the plants' dissolve band around it), zw unused
+    // Cascaded sun shadows (world/sun_shadow.h, shadow.glsl): cascade k is tile k of a row of square maps.
+    mat4 shadowCascades[kMaxShadowCascades]; // world -> cascade k's clip space (orthographic, reversed Z)
+    vec4 shadowEnds;     // far end of cascade k: distance to shadowOrigin
+    vec4 shadowBias;     // cascade k's depth bias (5 cm along the light)
+    vec4 shadowOrigin;   // xyz the reference (left) camera, so both views of a stereo pair pick the same cascade
 };
 
 // Per-tile constants of the terrain's main pass (push constants of terrain.frag): each tile has its own cover map.
@@ -220,7 +230,7 @@ struct ExpansionStats {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameConstants) == 4 * 64 + 11 * 16);
+static_assert(sizeof(FrameConstants) == (4 + kMaxShadowCascades) * 64 + 14 * 16);
 static_assert(sizeof(TerrainTileConstants) == 16);
 static_assert(sizeof(DebugLineVertex) == 32);
 static_assert(sizeof(VegetationConstants) == 14 * 16);

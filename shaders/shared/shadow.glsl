@@ -1,4 +1,7 @@
-// Sun shadow lookup (kBindingShadowMap of the shading passes): 4 hardware-PCF taps on a reversed-Z shadow map.
+// Cascaded sun shadows (kBindingShadowMap of the shading passes; world/sun_shadow.h fits the cascades): cascade k
+// is tile k of a row of square reversed-Z maps, looked up with 4 hardware-PCF taps. A point uses the cascade whose
+// distance shell holds it (distance to the reference camera, so a stereo pair's two views agree), blending into the
+// next cascade over the last kShadowBlend of the shell and, after the last, into no shadow: no edge anywhere.
 #ifndef SWARD_SHADOW_GLSL
 #define SWARD_SHADOW_GLSL
 
@@ -6,20 +9,33 @@
 
 layout(set = 0, binding = kBindingShadowMap) uniform sampler2DShadow shadowMap;
 
-float sunShadow(vec3 world) {
-    if (frame.shadowParams.x == 0.0) return 1.0;
-    vec4 clip = frame.shadowViewProj * vec4(world, 1.0);
-    vec3 ndc = clip.xyz / clip.w;
-    vec2 uv = ndc.xy * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
-    float reference = ndc.z + frame.shadowParams.y; // reversed Z: larger is closer to the sun
+float cascadeShadow(uint k, vec3 world) {
+    vec3 ndc = (frame.shadowCascades[k] * vec4(world, 1.0)).xyz; // orthographic: w = 1
     float texel = frame.shadowParams.z;
-    float lit = 0.0;
-    lit += texture(shadowMap, vec3(uv + vec2(-0.5, -0.5) * texel, reference));
-    lit += texture(shadowMap, vec3(uv + vec2(0.5, -0.5) * texel, reference));
-    lit += texture(shadowMap, vec3(uv + vec2(-0.5, 0.5) * texel, reference));
-    lit += texture(shadowMap, vec3(uv + vec2(0.5, 0.5) * texel, reference));
+    // The fit holds every receiver inside its map; the clamp keeps the taps off the neighbouring tile regardless.
+    vec2 uv = clamp(ndc.xy * 0.5 + 0.5, vec2(texel), vec2(1.0 - texel));
+    uv.x = (float(k) + uv.x) * frame.shadowParams.y;
+    vec2 tap = vec2(0.5 * texel * frame.shadowParams.y, 0.5 * texel);
+    float reference = ndc.z + frame.shadowBias[k]; // reversed Z: larger is closer to the sun
+    float lit = texture(shadowMap, vec3(uv + vec2(-tap.x, -tap.y), reference));
+    lit += texture(shadowMap, vec3(uv + vec2(tap.x, -tap.y), reference));
+    lit += texture(shadowMap, vec3(uv + vec2(-tap.x, tap.y), reference));
+    lit += texture(shadowMap, vec3(uv + vec2(tap.x, tap.y), reference));
     return lit * 0.25;
+}
+
+float sunShadow(vec3 world) {
+    uint count = uint(frame.shadowParams.x);
+    float d = distance(world, frame.shadowOrigin.xyz);
+    uint k = 0u;
+    while (k < count && d > frame.shadowEnds[k]) ++k;
+    if (k == count) return 1.0;
+    float begin = k == 0u ? 0.0 : frame.shadowEnds[k - 1u];
+    float blendFrom = frame.shadowEnds[k] - kShadowBlend * (frame.shadowEnds[k] - begin);
+    float lit = cascadeShadow(k, world);
+    if (d <= blendFrom) return lit;
+    float next = k + 1u < count ? cascadeShadow(k + 1u, world) : 1.0;
+    return mix(lit, next, (d - blendFrom) / (frame.shadowEnds[k] - blendFrom));
 }
 
 #endif

@@ -123,8 +123,12 @@ protected:
         ortho[0][0] = ortho[1][1] = 1.0 / radius;
         ortho[2][2] = 1.0 / (2.0 * reach);
         ortho[3] = glm::dvec4(-centre.x / radius, -centre.y / radius, 0.5 - centre.z / (2.0 * reach), 1.0);
-        c.shadowViewProj = glm::mat4(ortho * lightView);
-        c.shadowParams = glm::vec4(1.0f, float(0.05 / (2.0 * reach)), float(1.0 / size), 0.0f);
+        c.shadowViewProj = glm::mat4(ortho * lightView); // one cascade reaching far beyond the scene
+        c.shadowCascades[0] = c.shadowViewProj;
+        c.shadowParams = glm::vec4(1.0f, 1.0f, float(1.0 / size), 0.0f);
+        c.shadowEnds = glm::vec4(1e6f);
+        c.shadowBias = glm::vec4(float(0.05 / (2.0 * reach)));
+        c.shadowOrigin = c.cameraPosition;
         Buffer constants = createBuffer(*ctx, sizeof c, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryIntent::Upload);
         std::memcpy(constants.mapped(), &c, sizeof c);
 

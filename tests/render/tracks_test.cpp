@@ -14,6 +14,7 @@
 #include <cstdlib>
 
 using namespace sward;
+using sward::test::GpuTest;
 using sward::test::tempDir;
 
 namespace {

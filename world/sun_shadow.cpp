@@ -1,0 +1,90 @@
+#include "world/sun_shadow.h"
+
+#include "common/error.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sward {
+
+std::vector<double> shadowSplits(const ShadowCascadeParams& params) {
+    require(params.cascades >= 1 && params.firstDistance > 0.0, "shadow cascades: at least one, first distance > 0");
+    if (params.firstDistance >= params.lastDistance || params.cascades == 1) return {params.firstDistance};
+    std::vector<double> ends(params.cascades);
+    const double ratio = params.lastDistance / params.firstDistance;
+    for (uint32_t k = 0; k < params.cascades; ++k)
+        ends[k] = params.firstDistance * std::pow(ratio, double(k) / double(params.cascades - 1));
+    ends.back() = params.lastDistance; // exact, whatever pow rounded to
+    return ends;
+}
+
+namespace {
+
+// Cosine of the widest angle between the view axis and a ray through the image: one of the corners. From the
+// intrinsics alone (camera axes), so it is the same number however the camera is turned.
+double widestCosine(const Camera& camera) {
+    double widest = 1.0;
+    for (const double u : {0.0, double(camera.width)})
+        for (const double v : {0.0, double(camera.height)}) {
+            const glm::dvec3 ray((u - camera.cx) / camera.fx, (v - camera.cy) / camera.fy, 1.0);
+            widest = std::min(widest, 1.0 / glm::length(ray));
+        }
+    return widest;
+}
+
+// Radius and centre (along the view axis) of a sphere holding every point of the frustum at distances [a, b]
+// from the camera. The farthest points from an axis point are the shell's corners (on the widest rays) and its
+// ends on the axis: the centre balances the near and far corners, kept within the shell.
+glm::dvec2 shellSphere(double a, double b, double cosWidest) {
+    const double c = std::clamp((a + b) / (2.0 * cosWidest), 0.0, b);
+    auto toCorner = [&](double r) { return std::sqrt(std::max(r * r + c * c - 2.0 * r * c * cosWidest, 0.0)); };
+    return {std::max({toCorner(a), toCorner(b), std::abs(a - c), std::abs(b - c)}), c};
+}
+
+// Orthographic reversed-Z projection of the light-space box centred on `center` (light view axes), half-edge
+// `radius` across, +-`reach` along the light.
+glm::dmat4 orthoReversed(const glm::dvec3& center, double radius, double reach) {
+    glm::dmat4 ortho(0.0);
+    ortho[0][0] = 1.0 / radius;
+    ortho[1][1] = 1.0 / radius;
+    ortho[2][2] = 1.0 / (2.0 * reach); // view z in [-(c+reach), -(c-reach)] -> depth 1 .. 0 (reversed)
+    ortho[3][0] = -center.x / radius;
+    ortho[3][1] = -center.y / radius;
+    ortho[3][2] = 0.5 - center.z / (2.0 * reach);
+    ortho[3][3] = 1.0;
+    return ortho;
+}
+
+} // namespace
+
+std::vector<ShadowCascade> fitShadowCascades(const Camera& camera, const glm::dvec3& toSun,
+                                             const ShadowCascadeParams& params) {
+    require(params.mapSize >= 1, "shadow cascades: a map of at least one texel");
+    const std::vector<double> ends = shadowSplits(params);
+    const glm::dvec3 up = std::abs(toSun.z) > 0.99 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+    const glm::dmat4 lightView = glm::lookAt(glm::dvec3(0.0), -toSun, up); // rotation only
+    const glm::dvec3 forward = camera.worldFromCamera[2];
+    const double cosWidest = widestCosine(camera);
+    std::vector<ShadowCascade> cascades(ends.size());
+    for (size_t k = 0; k < ends.size(); ++k) {
+        ShadowCascade& cascade = cascades[k];
+        cascade.begin = k == 0 ? 0.0 : ends[k - 1];
+        cascade.end = ends[k];
+        const glm::dvec2 sphere = shellSphere(cascade.begin, cascade.end, cosWidest);
+        cascade.radius = sphere.x + params.casterMargin;
+        glm::dvec3 center = glm::dvec3(lightView * glm::dvec4(camera.position + forward * sphere.y, 1.0));
+        const double texel = 2.0 * cascade.radius / double(params.mapSize);
+        center.x = std::floor(center.x / texel) * texel;
+        center.y = std::floor(center.y / texel) * texel;
+        // Depth: from above the highest ground (plus plants and objects) to below the lowest, along the light.
+        const double reach = cascade.radius + params.heightRange + 50.0;
+        cascade.viewProj = orthoReversed(center, cascade.radius, reach) * lightView;
+        // 5 cm, or 1.5 texels where texels are larger: a texel's depth spans its slope across it (acne otherwise).
+        cascade.depthBias = std::max(0.05, 1.5 * texel) / (2.0 * reach);
+    }
+    return cascades;
+}
+
+} // namespace sward
