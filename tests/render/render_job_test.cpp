@@ -140,7 +140,8 @@ TEST(Dataset, SemanticAndInstanceMasksMatchTheDepth) {
             ASSERT_EQ(plant, id > 0.0f) << "plants and only plants carry plant ids, at " << x << "," << y;
             ASSERT_EQ(id, std::floor(id));
         }
-    EXPECT_GT(classes[sward::gpu::kSemanticGround], 0);
+    // The meadow's ground under its plants is turf (a ground class, depth and no instance like bare ground).
+    EXPECT_GT(classes[sward::gpu::kSemanticGround] + classes[sward::gpu::kSemanticTurf], 0);
     EXPECT_GT(classes[3], 1000) << "grass";
 }
 
