@@ -116,19 +116,6 @@ void SceneRenderer::createPipelines(const Atlas* atlas, uint32_t instanceCapacit
     terrainLayout.pushConstantStages = VK_SHADER_STAGE_FRAGMENT_BIT;
     coverSampler_ = createLinearSampler(ctx, 1);
 
-    // Sun shadow map: the cascades' square maps in a row, always present (1x1 and disabled when shadow_map_size is
-    // 0) so bindings stay valid.
-    uint32_t shadowSize = std::max(scene.render.shadowMapSize, 1u);
-    const uint32_t cascades = uint32_t(shadowSplits(shadowCascadeParams()).size());
-    require(uint64_t(shadowSize) * cascades <= ctx.device.properties().limits.maxImageDimension2D,
-            scene.source + ": 'render.shadow_map_size' x the shadow cascades (" + std::to_string(shadowSize) + " x " +
-                std::to_string(cascades) + ") exceeds this device's largest image (" +
-                std::to_string(ctx.device.properties().limits.maxImageDimension2D) + " texels)");
-    shadowMap_ = std::make_unique<RenderTarget>(ctx, RenderTargetDesc{.width = shadowSize * cascades,
-                                                                      .height = shadowSize,
-                                                                      .depthFormat = VK_FORMAT_D32_SFLOAT,
-                                                                      .depthClear = 0.0f,
-                                                                      .sampleDepth = true});
     VkSamplerCreateInfo shadowSampler{
         .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
         .magFilter = VK_FILTER_LINEAR,
@@ -184,6 +171,7 @@ void SceneRenderer::createPipelines(const Atlas* atlas, uint32_t instanceCapacit
 
     if (atlas)
         vegetation_ = std::make_unique<VegetationRenderer>(ctx, scene, *atlas, plantPassFormats(), instanceCapacity);
+    createShadowMap(); // after the vegetation: its LODs place the cascades
     skyPipeline_ = createGraphicsPipeline(ctx.device,
                                           {.vertexShader = "sky.vert",
                                            .fragmentShader = "sky.frag",
@@ -265,26 +253,54 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Ca
     // Sun shadows: the cascades fitted to the reference camera, the same for both views of a stereo pair.
     const std::vector<ShadowCascade> cascades = shadowCascades(shadowCamera);
     const bool shadows = scene_.render.shadowMapSize > 0;
-    const float count = float(cascades.size());
-    c.shadowParams = glm::vec4(shadows ? count : 0.0f, 1.0f / count, 1.0f / float(std::max(scene_.render.shadowMapSize, 1u)), 0.0f);
+    const glm::uvec2 extent = shadowMapExtent(shadowCascadeParams());
+    c.shadowParams = glm::vec4(shadows ? float(cascades.size()) : 0.0f, 0.0f, 0.0f, 0.0f);
     for (size_t k = 0; k < cascades.size(); ++k) {
         c.shadowCascades[k] = glm::mat4(cascades[k].viewProj);
+        c.shadowTiles[k] = glm::vec4(float(cascades[k].mapOffset) / float(extent.x), float(cascades[k].mapSize) / float(extent.x),
+                                     float(cascades[k].mapSize) / float(extent.y), 1.0f / float(cascades[k].mapSize));
         c.shadowEnds[int(k)] = float(cascades[k].end);
         c.shadowBias[int(k)] = float(cascades[k].depthBias);
     }
     c.shadowOrigin = glm::vec4(glm::vec3(shadowCamera.position), 1.0f);
-    if (shadowDraw >= 0) c.shadowViewProj = c.shadowCascades[shadowDraw];
+    if (shadowDraw >= 0) {
+        const ShadowCascade& drawn = cascades[size_t(shadowDraw)];
+        const double reach = shadowCascadeParams().casterMargin;
+        c.shadowViewProj = c.shadowCascades[shadowDraw];
+        c.shadowParams.y = float(std::max(drawn.firstReceiver - reach, 0.0));
+        c.shadowParams.z = float(drawn.end + reach);
+    }
     c.debug = glm::uvec4(debugFlags_, 0u, 0u, 0u);
     c.coverBand = glm::vec4(scene_.lod.farLimit, scene_.lod.band, 0.0f, 0.0f);
     std::memcpy(constants_.mapped() + slot * constantsStride_, &c, sizeof c);
+}
+
+void SceneRenderer::createShadowMap() {
+    // Sun shadow map: the cascades' square maps in a row, always present (1x1 and disabled when shadow_map_size is
+    // 0) so bindings stay valid.
+    const glm::uvec2 shadowExtent = shadowMapExtent(shadowCascadeParams());
+    const uint32_t largest = ctx_.device.properties().limits.maxImageDimension2D;
+    require(shadowExtent.x <= largest, scene_.source + ": 'render.shadow_map_size' " +
+                                           std::to_string(scene_.render.shadowMapSize) + " with " +
+                                           std::to_string(scene_.render.shadowCascades) +
+                                           " 'render.shadow_cascades' needs a " + std::to_string(shadowExtent.x) +
+                                           " texel wide shadow image; this device's largest is " + std::to_string(largest));
+    shadowMap_ = std::make_unique<RenderTarget>(ctx_, RenderTargetDesc{.width = shadowExtent.x,
+                                                                      .height = shadowExtent.y,
+                                                                      .depthFormat = VK_FORMAT_D32_SFLOAT,
+                                                                      .depthClear = 0.0f,
+                                                                      .sampleDepth = true});
 }
 
 ShadowCascadeParams SceneRenderer::shadowCascadeParams() const {
     return ShadowCascadeParams{.cascades = scene_.render.shadowCascades,
                                .firstDistance = scene_.render.shadowDistance,
                                .lastDistance = double(scene_.lod.farLimit) + double(scene_.lod.band),
+                               .farPlantsFrom = vegetation_ ? double(scene_.lod.midToFar) - 0.5 * double(scene_.lod.band) : 0.0,
                                .mapSize = std::max(scene_.render.shadowMapSize, 1u),
-                               .heightRange = double(terrainMaxHeight_ - terrainMinHeight_)};
+                               .casterMargin = shadowCasterReach(scene_.sun.direction().z),
+                               .heightRange = double(terrainMaxHeight_ - terrainMinHeight_),
+                               .blend = double(gpu::kShadowBlend)};
 }
 
 std::vector<ShadowCascade> SceneRenderer::shadowCascades(const Camera& camera) const {
@@ -313,12 +329,12 @@ void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, const Camera& referenc
     shadowMap_->begin(cmd);
     if (scene_.render.shadowMapSize > 0) {
         const std::vector<ShadowCascade> cascades = shadowCascades(reference);
-        const uint32_t size = scene_.render.shadowMapSize;
         for (uint32_t k = 0; k < cascades.size(); ++k) {
             const uint32_t slot = firstSlot + kMaxViews + k;
             writeConstants(slot, reference, reference, timeSeconds, int(k));
-            const VkViewport viewport{float(k * size), 0.0f, float(size), float(size), 0.0f, 1.0f};
-            const VkRect2D scissor{{int32_t(k * size), 0}, {size, size}};
+            const uint32_t size = cascades[k].mapSize, offset = cascades[k].mapOffset;
+            const VkViewport viewport{float(offset), 0.0f, float(size), float(size), 0.0f, 1.0f};
+            const VkRect2D scissor{{int32_t(offset), 0}, {size, size}};
             vkCmdSetViewport(cmd, 0, 1, &viewport);
             vkCmdSetScissor(cmd, 0, 1, &scissor);
             const DescriptorBinding frame = frameBinding(slot);
@@ -326,7 +342,7 @@ void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, const Camera& referenc
             if (objects_) objects_->recordShadow(cmd, frame, dataSlot);
             if (vegetation_)
                 vegetation_->draw(cmd, PlantPass::Shadow, frame, shadowBinding(), dataSlot,
-                                  lodsReaching(scene_.lod, cascades[k].begin, cascades[k].end,
+                                  lodsReaching(scene_.lod, cascades[k].firstReceiver, cascades[k].end,
                                                shadowCascadeParams().casterMargin));
         }
     }
@@ -409,10 +425,12 @@ void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint
     DescriptorBinding frame = frameBinding(frameSlot), shadow = shadowBinding();
     if (timers) timers->begin(cmd, "main");
     main.begin(cmd);
-    drawTerrain(cmd, PlantPass::Main, frame, reference);
+    // Objects and plants first, the ground after them: the ground's samples they hide fail the early depth test
+    // and are never shaded (the turf and far-cover shading is the main pass's most expensive per fragment).
     if (objects_) objects_->recordMain(cmd, frame, shadow, slot);
     if (vegetation_ && baked) vegetation_->drawBaked(cmd, *baked, frame, shadow, slot);
     else if (vegetation_) vegetation_->draw(cmd, PlantPass::Main, frame, shadow, slot);
+    drawTerrain(cmd, PlantPass::Main, frame, reference);
     // Sky last: the depth test (GREATER_OR_EQUAL against the far-plane clear) shades only uncovered pixels.
     bindPipeline(cmd, skyPipeline_);
     pushDescriptors(ctx_.device, cmd, skyPipeline_, {frame});

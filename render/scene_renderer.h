@@ -130,6 +130,7 @@ private:
     void recordShadowPass(VkCommandBuffer cmd, const Camera& reference, uint32_t firstSlot, uint32_t dataSlot,
                           double timeSeconds, GpuTimers* timers);
     ShadowCascadeParams shadowCascadeParams() const;
+    void createShadowMap();
     std::vector<ShadowCascade> shadowCascades(const Camera& camera) const;
     // The tiles' ground within the view distance of `reference`; the main pass binds each tile's cover.
     void drawTerrain(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame, const glm::dvec3& reference);

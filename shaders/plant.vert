@@ -24,6 +24,16 @@ layout(location = 9) flat out vec3 outNormal; // ground truth: the triangle's ca
 
 void main() {
     ExpandedPlant instance = instances[gl_InstanceIndex];
+    if (PASS == kPassShadow) {
+        // Only the plants that can shade this cascade's shell (shadowParams.yz: its distances widened by the
+        // casters' reach): the others land outside the clip volume, so their triangles are culled before
+        // rasterisation and each plant costs raster work in one or two cascades, not in all.
+        float d = distance(instance.positionHeight.xyz, frame.shadowOrigin.xyz);
+        if (d < frame.shadowParams.y || d > frame.shadowParams.z) {
+            gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+            return;
+        }
+    }
     PlantVertex v = plantVertex(instance, push.lod, uint(gl_VertexIndex));
     outUv = v.uv;
     outWorld = v.position;

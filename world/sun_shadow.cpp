@@ -9,15 +9,40 @@
 
 namespace sward {
 
+double shadowCasterReach(double sunUp) {
+    const double up = std::clamp(sunUp, 0.0, 1.0);
+    const double across = std::sqrt(1.0 - up * up);
+    return 3.0 + std::min(1.5 * across / std::max(up, 1e-6), 37.0);
+}
+
+namespace {
+
+// `count` shell ends from `first` geometrically up to `last` (just `last` when first >= last or count is 1).
+std::vector<double> geometricEnds(uint32_t count, double first, double last) {
+    if (first >= last || count <= 1) return {last};
+    std::vector<double> ends(count);
+    for (uint32_t k = 0; k < count; ++k) ends[k] = first * std::pow(last / first, double(k) / double(count - 1));
+    ends.back() = last; // exact, whatever pow rounded to
+    return ends;
+}
+
+} // namespace
+
 std::vector<double> shadowSplits(const ShadowCascadeParams& params) {
     require(params.cascades >= 1 && params.firstDistance > 0.0, "shadow cascades: at least one, first distance > 0");
-    if (params.firstDistance >= params.lastDistance || params.cascades == 1) return {params.firstDistance};
-    std::vector<double> ends(params.cascades);
-    const double ratio = params.lastDistance / params.firstDistance;
-    for (uint32_t k = 0; k < params.cascades; ++k)
-        ends[k] = params.firstDistance * std::pow(ratio, double(k) / double(params.cascades - 1));
-    ends.back() = params.lastDistance; // exact, whatever pow rounded to
-    return ends;
+    if (params.cascades == 1) return {params.firstDistance};
+    const double farSplit = params.farPlantsFrom - params.casterMargin - 1.0;
+    if (params.cascades >= 2 && farSplit >= 1.0 && farSplit < params.lastDistance) {
+        std::vector<double> ends = geometricEnds(params.cascades - 1, std::min(params.firstDistance, farSplit), farSplit);
+        ends.push_back(params.lastDistance);
+        return ends;
+    }
+    if (params.firstDistance >= params.lastDistance) return {params.firstDistance};
+    return geometricEnds(params.cascades, params.firstDistance, params.lastDistance);
+}
+
+glm::uvec2 shadowMapExtent(const ShadowCascadeParams& params) {
+    return {uint32_t(shadowSplits(params).size()) * params.mapSize, params.mapSize};
 }
 
 namespace {
@@ -70,12 +95,16 @@ std::vector<ShadowCascade> fitShadowCascades(const Camera& camera, const glm::dv
     std::vector<ShadowCascade> cascades(ends.size());
     for (size_t k = 0; k < ends.size(); ++k) {
         ShadowCascade& cascade = cascades[k];
+        cascade.mapSize = params.mapSize;
+        cascade.mapOffset = uint32_t(k) * params.mapSize;
         cascade.begin = k == 0 ? 0.0 : ends[k - 1];
         cascade.end = ends[k];
-        const glm::dvec2 sphere = shellSphere(cascade.begin, cascade.end, cosWidest);
+        const double previousBegin = k < 2 ? 0.0 : ends[k - 2];
+        cascade.firstReceiver = k == 0 ? 0.0 : cascade.begin - params.blend * (cascade.begin - previousBegin);
+        const glm::dvec2 sphere = shellSphere(cascade.firstReceiver, cascade.end, cosWidest);
         cascade.radius = sphere.x + params.casterMargin;
         glm::dvec3 center = glm::dvec3(lightView * glm::dvec4(camera.position + forward * sphere.y, 1.0));
-        const double texel = 2.0 * cascade.radius / double(params.mapSize);
+        const double texel = 2.0 * cascade.radius / double(cascade.mapSize);
         center.x = std::floor(center.x / texel) * texel;
         center.y = std::floor(center.y / texel) * texel;
         // Depth: from above the highest ground (plus plants and objects) to below the lowest, along the light.

@@ -62,11 +62,14 @@ struct FrameConstants {
     vec4 viewport;       // width, height, 1/width, 1/height
     vec4 timeParams;     // x simulation time in seconds, yzw reserved
     mat4 shadowViewProj; // shadow pass: world -> clip space of the cascade this draw renders (its own frame slot)
-    vec4 shadowParams;   // x cascades (0: no sun shadows), y 1 / cascades, z 1 / cascade map size, w unused
+    vec4 shadowParams;   // x cascades (0: no sun shadows); shadow pass: yz the distances of the plants that can shade
+                         // the drawn cascade (plant.vert culls the others), w unused
     uvec4 debug;         // x kDebug* flags (sward-view overlays; 0 for renders), yzw unused
     vec4 coverBand;      // x lod.far, y lod.band (the plants' dissolve band around it), zw unused
     // Cascaded sun shadows (world/sun_shadow.h, shadow.glsl): cascade k is tile k of a row of square maps.
     mat4 shadowCascades[kMaxShadowCascades]; // world -> cascade k's clip space (orthographic, reversed Z)
+    vec4 shadowTiles[kMaxShadowCascades];    // cascade k's tile in the shadow image: x u offset, y u scale, z v scale,
+                                             // w one texel in the tile's own uv
     vec4 shadowEnds;     // far end of cascade k: distance to shadowOrigin
     vec4 shadowBias;     // cascade k's depth bias (5 cm along the light)
     vec4 shadowOrigin;   // xyz the reference (left) camera, so both views of a stereo pair pick the same cascade
@@ -230,7 +233,7 @@ struct ExpansionStats {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameConstants) == (4 + kMaxShadowCascades) * 64 + 14 * 16);
+static_assert(sizeof(FrameConstants) == (4 + kMaxShadowCascades) * 64 + (14 + kMaxShadowCascades) * 16);
 static_assert(sizeof(TerrainTileConstants) == 16);
 static_assert(sizeof(DebugLineVertex) == 32);
 static_assert(sizeof(VegetationConstants) == 14 * 16);

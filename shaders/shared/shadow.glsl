@@ -1,6 +1,6 @@
 // Cascaded sun shadows (kBindingShadowMap of the shading passes; world/sun_shadow.h fits the cascades): cascade k
-// is tile k of a row of square reversed-Z maps, looked up with 4 hardware-PCF taps. A point uses the cascade whose
-// distance shell holds it (distance to the reference camera, so a stereo pair's two views agree), blending into the
+// is tile k (FrameConstants::shadowTiles) of a row of square reversed-Z maps, looked up with 4 hardware-PCF taps.
+// A point uses the cascade whose distance shell holds it (distance to the reference camera, so a stereo pair's two views agree), blending into the
 // next cascade over the last kShadowBlend of the shell and, after the last, into no shadow: no edge anywhere.
 #ifndef SWARD_SHADOW_GLSL
 #define SWARD_SHADOW_GLSL
@@ -11,11 +11,11 @@ layout(set = 0, binding = kBindingShadowMap) uniform sampler2DShadow shadowMap;
 
 float cascadeShadow(uint k, vec3 world) {
     vec3 ndc = (frame.shadowCascades[k] * vec4(world, 1.0)).xyz; // orthographic: w = 1
-    float texel = frame.shadowParams.z;
+    vec4 tile = frame.shadowTiles[k];
     // The fit holds every receiver inside its map; the clamp keeps the taps off the neighbouring tile regardless.
-    vec2 uv = clamp(ndc.xy * 0.5 + 0.5, vec2(texel), vec2(1.0 - texel));
-    uv.x = (float(k) + uv.x) * frame.shadowParams.y;
-    vec2 tap = vec2(0.5 * texel * frame.shadowParams.y, 0.5 * texel);
+    vec2 uv = clamp(ndc.xy * 0.5 + 0.5, vec2(tile.w), vec2(1.0 - tile.w));
+    uv = vec2(tile.x + uv.x * tile.y, uv.y * tile.z);
+    vec2 tap = 0.5 * tile.w * tile.yz;
     float reference = ndc.z + frame.shadowBias[k]; // reversed Z: larger is closer to the sun
     float lit = texture(shadowMap, vec3(uv + vec2(-tap.x, -tap.y), reference));
     lit += texture(shadowMap, vec3(uv + vec2(tap.x, -tap.y), reference));

@@ -125,7 +125,8 @@ protected:
         ortho[3] = glm::dvec4(-centre.x / radius, -centre.y / radius, 0.5 - centre.z / (2.0 * reach), 1.0);
         c.shadowViewProj = glm::mat4(ortho * lightView); // one cascade reaching far beyond the scene
         c.shadowCascades[0] = c.shadowViewProj;
-        c.shadowParams = glm::vec4(1.0f, 1.0f, float(1.0 / size), 0.0f);
+        c.shadowParams = glm::vec4(1.0f, 0.0f, 0.0f, 0.0f);
+        c.shadowTiles[0] = glm::vec4(0.0f, 1.0f, 1.0f, float(1.0 / size));
         c.shadowEnds = glm::vec4(1e6f);
         c.shadowBias = glm::vec4(float(0.05 / (2.0 * reach)));
         c.shadowOrigin = c.cameraPosition;

@@ -31,9 +31,32 @@ TEST(SunShadow, CascadesStartAtTheShadowDistanceAndEndWhereThePlantsEnd) {
     EXPECT_EQ(ends.front(), 50.0);
     EXPECT_EQ(ends.back(), 154.0);
     EXPECT_NEAR(ends[1], std::sqrt(50.0 * 154.0), 1e-9); // geometric between the two
+    // The maps lie side by side in one row.
+    EXPECT_EQ(shadowMapExtent(meadowParams()), glm::uvec2(3 * 2048, 2048));
+    const Camera camera = Camera::lookAt({0, 0, 2}, {10, 10, 0}, {0, 0, 1}, 60.0, 640, 480);
+    const std::vector<ShadowCascade> cascades = fitShadowCascades(camera, kToSun, meadowParams());
+    EXPECT_EQ(cascades[2].mapOffset, 4096u);
+    EXPECT_EQ(cascades[2].mapSize, 2048u);
+    ShadowCascadeParams single = meadowParams();
+    single.cascades = 1;
+    EXPECT_EQ(shadowSplits(single), std::vector<double>{50.0});
     ShadowCascadeParams reachesFar = meadowParams();
     reachesFar.firstDistance = 200.0;
     EXPECT_EQ(shadowSplits(reachesFar), std::vector<double>{200.0});
+}
+
+TEST(SunShadow, FarBillboardsFallIntoTheLastCascadeAlone) {
+    // Far billboards from 38 m, casters reach 4 m: the cascades before the last end 1 m short of 38 - 4 m.
+    ShadowCascadeParams params = meadowParams();
+    params.farPlantsFrom = 38.0;
+    params.casterMargin = 4.0;
+    EXPECT_EQ(shadowSplits(params), (std::vector<double>{33.0, 154.0})); // shadow_distance 50 reaches beyond it
+    params.firstDistance = 20.0;
+    const std::vector<double> ends = shadowSplits(params);
+    ASSERT_EQ(ends.size(), 3u);
+    EXPECT_EQ(ends[0], 20.0);
+    EXPECT_EQ(ends[1], 33.0);
+    EXPECT_EQ(ends[2], 154.0);
 }
 
 TEST(SunShadow, EveryPointOfTheFrustumLiesInsideTheMapOfItsShell) {
@@ -47,14 +70,15 @@ TEST(SunShadow, EveryPointOfTheFrustumLiesInsideTheMapOfItsShell) {
                 for (double v = 0.0; v <= 720.0; v += 90.0)
                     for (double t = 0.0; t <= 1.0; t += 0.125) {
                         const glm::dvec3 ray = glm::normalize(camera.ray(u, v));
-                        const glm::dvec3 p = camera.position + ray * (cascade.begin + t * (cascade.end - cascade.begin));
-                        const glm::dvec3 texel = mapTexel(cascade, p, params.mapSize);
+                        const glm::dvec3 p =
+                            camera.position + ray * (cascade.firstReceiver + t * (cascade.end - cascade.firstReceiver));
+                        const glm::dvec3 texel = mapTexel(cascade, p, cascade.mapSize);
                         // Inside by more than the caster margin (the radius holds it beyond the shell).
-                        const double margin = params.casterMargin / (2.0 * cascade.radius) * params.mapSize - 1.0;
+                        const double margin = params.casterMargin / (2.0 * cascade.radius) * cascade.mapSize - 1.0;
                         EXPECT_GT(texel.x, margin);
-                        EXPECT_LT(texel.x, params.mapSize - margin);
+                        EXPECT_LT(texel.x, cascade.mapSize - margin);
                         EXPECT_GT(texel.y, margin);
-                        EXPECT_LT(texel.y, params.mapSize - margin);
+                        EXPECT_LT(texel.y, cascade.mapSize - margin);
                         EXPECT_GT(texel.z, 0.0);
                         EXPECT_LT(texel.z, 1.0);
                     }
@@ -71,7 +95,7 @@ TEST(SunShadow, AMapKeepsItsTexelSizeAndGridAsTheCameraMovesAndTurns) {
     for (size_t k = 0; k < ca.size(); ++k) {
         EXPECT_EQ(ca[k].radius, cb[k].radius);
         // The same world point falls at the same place within its texel in both maps: the grid did not slide.
-        const glm::dvec3 ta = mapTexel(ca[k], p, params.mapSize), tb = mapTexel(cb[k], p, params.mapSize);
+        const glm::dvec3 ta = mapTexel(ca[k], p, ca[k].mapSize), tb = mapTexel(cb[k], p, cb[k].mapSize);
         EXPECT_NEAR(ta.x - std::floor(ta.x + 1e-7), tb.x - std::floor(tb.x + 1e-7), 1e-5) << "cascade " << k;
         EXPECT_NEAR(ta.y - std::floor(ta.y + 1e-7), tb.y - std::floor(tb.y + 1e-7), 1e-5) << "cascade " << k;
     }
