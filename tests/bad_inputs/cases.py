@@ -345,6 +345,13 @@ CASES = [
     Case("resolution 0 in the scene", "sward-render", scene_with(set_key(["render", "resolution"], [0, 10])), 1,
          r"resolution"),
     Case("sequence.frames 0", "sward-render", scene_with(set_key(["sequence", "frames"], 0)), 1, r"frames"),
+    Case("render.shadow_cascades 5", "sward-render", scene_with(set_key(["render", "shadow_cascades"], 5)), 1,
+         r"'render\.shadow_cascades' must be"),
+    Case("shadow image wider than the device's largest", "sward-render",
+         scene_with(lambda s, env: (set_key(["render", "shadow_map_size"], 8192)(s, env),
+                                    set_key(["render", "shadow_cascades"], 4)(s, env),
+                                    set_key(["render", "shadow_distance"], 2)(s, env))[0]), 1,
+         r"'render\.shadow_map_size' 8192 with 4 'render\.shadow_cascades' needs a 32768 texel wide shadow image"),
     Case("sequence.frames 2,000,000", "sward-render", scene_with(set_key(["sequence", "frames"], 2000000)), 1,
          r"frames"),
     Case("fov_y_deg 1e400", "sward-render", scene_with(lambda s, env: (
