@@ -7,6 +7,7 @@
 // as the plants are, so the meadow goes on in colour instead of ending in a bare band.
 #include "shared/frame.glsl"
 #include "shared/ground_cover.glsl"
+#include "shared/pcg_hash.glsl"
 #include "shared/shadow.glsl"
 
 layout(set = 0, binding = kBindingGroundTextures) uniform sampler2DArray groundTextures;
@@ -46,21 +47,14 @@ float coverWeight(vec3 world) {
     return clamp((distance(world, frame.cameraPosition.xyz) - start) / max(frame.coverBand.y, 1e-3), 0.0, 1.0);
 }
 
-// PCG's output permutation (Jarzynski and Olano, "Hash Functions for GPU Rendering", 2020).
-uint pcgHash(uint v) {
-    uint state = v * 747796405u + 2891336453u;
-    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
 // Value noise in [0, 1] on a lattice of `cell` metres: integer hashing (no sin), the same on every device.
 float latticeNoise(vec2 xy, float cell) {
     vec2 p = xy / cell, i = floor(p), f = p - i;
     uvec2 c = uvec2(ivec2(i));
-    float n00 = float(pcgHash(c.x + pcgHash(c.y)) >> 8) * (1.0 / 16777216.0);
-    float n10 = float(pcgHash(c.x + 1u + pcgHash(c.y)) >> 8) * (1.0 / 16777216.0);
-    float n01 = float(pcgHash(c.x + pcgHash(c.y + 1u)) >> 8) * (1.0 / 16777216.0);
-    float n11 = float(pcgHash(c.x + 1u + pcgHash(c.y + 1u)) >> 8) * (1.0 / 16777216.0);
+    float n00 = unitFromHash(pcgHash(c.x + pcgHash(c.y)));
+    float n10 = unitFromHash(pcgHash(c.x + 1u + pcgHash(c.y)));
+    float n01 = unitFromHash(pcgHash(c.x + pcgHash(c.y + 1u)));
+    float n11 = unitFromHash(pcgHash(c.x + 1u + pcgHash(c.y + 1u)));
     f = f * f * (3.0 - 2.0 * f);
     return mix(mix(n00, n10, f.x), mix(n01, n11, f.x), f.y);
 }

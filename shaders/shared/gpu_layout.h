@@ -43,8 +43,8 @@ SWARD_CONST(uint, kInstanceObjectBase, 16000000u);
 SWARD_CONST(uint, kMaxPlantInstances, kInstanceObjectBase - 1u);
 SWARD_CONST(uint, kMaxObjectInstances, (1u << kInstanceBits) - kInstanceObjectBase);
 
-// Sun shadow cascades (world/sun_shadow.h): at most this many, each blending into the next (the last into no
-// shadow) over the last kShadowBlend of its distance range, so no cascade edge shows.
+// Sun shadow cascades (world/sun_shadow.h): at most this many, each dithering into the next (the last fading into
+// no shadow) over the last kShadowBlend of its distance range, so no cascade edge shows.
 SWARD_CONST(uint, kMaxShadowCascades, 4u);
 SWARD_CONST(float, kShadowBlend, 0.15);
 

@@ -1,11 +1,13 @@
 // Cascaded sun shadows (kBindingShadowMap of the shading passes; world/sun_shadow.h fits the cascades): cascade k
 // is tile k (FrameConstants::shadowTiles) of a row of square reversed-Z maps, looked up with 4 hardware-PCF taps.
-// A point uses the cascade whose distance shell holds it (distance to the reference camera, so a stereo pair's two views agree), blending into the
-// next cascade over the last kShadowBlend of the shell and, after the last, into no shadow: no edge anywhere.
+// A point uses the cascade whose distance shell holds it (distance to the reference camera, so a stereo pair's two
+// views agree); over the last kShadowBlend of a shell it dithers into the next cascade and, after the last, fades
+// into no shadow: no edge anywhere.
 #ifndef SWARD_SHADOW_GLSL
 #define SWARD_SHADOW_GLSL
 
 #include "config.h"
+#include "pcg_hash.glsl"
 
 layout(set = 0, binding = kBindingShadowMap) uniform sampler2DShadow shadowMap;
 
@@ -32,10 +34,15 @@ float sunShadow(vec3 world) {
     if (k == count) return 1.0;
     float begin = k == 0u ? 0.0 : frame.shadowEnds[k - 1u];
     float blendFrom = frame.shadowEnds[k] - kShadowBlend * (frame.shadowEnds[k] - begin);
+    float t = clamp((d - blendFrom) / (frame.shadowEnds[k] - blendFrom), 0.0, 1.0);
+    bool last = k + 1u == count;
+    // In a blend band a point takes the next cascade with probability t, by a hash of its 1 cm cell (both views of a
+    // stereo pair decide alike): one lookup per fragment. A CPU driver runs both sides of a branch, so blending two
+    // lookups would cost every fragment eight taps.
+    ivec3 cell = ivec3(floor(world * 100.0));
+    if (!last && t > unitFromHash(pcgHash(uint(cell.x) + pcgHash(uint(cell.y) + pcgHash(uint(cell.z)))))) ++k;
     float lit = cascadeShadow(k, world);
-    if (d <= blendFrom) return lit;
-    float next = k + 1u < count ? cascadeShadow(k + 1u, world) : 1.0;
-    return mix(lit, next, (d - blendFrom) / (frame.shadowEnds[k] - blendFrom));
+    return last ? mix(lit, 1.0, t) : lit;
 }
 
 #endif
