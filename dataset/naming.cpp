@@ -27,8 +27,9 @@ constexpr SemanticClass kClasses[] = {
     {gpu::kSemanticFelled, "felled", "vegetation", {170, 120, 200}},
     {gpu::kSemanticCut, "cut", "vegetation", {250, 170, 160}},
     {gpu::kSemanticTurf, "turf", "ground", {60, 160, 70}},
+    {gpu::kSemanticTrack, "track", "ground", {90, 60, 40}},
 };
-static_assert(std::size(kClasses) == 6 + gpu::kMaxPlantCategories, "one entry per vegetation category");
+static_assert(std::size(kClasses) == 7 + gpu::kMaxPlantCategories, "one entry per vegetation category");
 
 } // namespace
 

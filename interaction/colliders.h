@@ -30,6 +30,15 @@ struct Aabb {
     }
 };
 
+// Ruts a collider presses into the ground it rolls or slides over (interaction/ground_tracks.h); depth 0: none.
+// With a tread, the rut's floor rises by treadDepth between lugs: a groove every treadPitch metres along the
+// direction the collider moves, half a pitch wide.
+struct RutParams {
+    float depth = 0.0f;      // metres below the ground where the hull rests on it
+    float treadPitch = 0.0f; // metres between lugs; 0: a smooth rut
+    float treadDepth = 0.0f; // metres, at most depth
+};
+
 struct Collider {
     uint32_t id = 0; // stable identity: several colliders on one plant combine in id order
     ColliderShape shape = ColliderShape::Sphere;
@@ -41,6 +50,7 @@ struct Collider {
     glm::mat3 rotation{1.0f};    // box: columns are its axes in world space (orthonormal)
     float force = 0.5f;          // dimensionless push strength; also the weight compared with fell thresholds
     float cutHeight = 0.0f;      // mower: metres above the plant base
+    RutParams rut;               // push colliders only: the ruts it leaves in the ground
 };
 
 // Factories; each requires finite arguments, radius / half extents > 0 and force >= 0 (asserted).

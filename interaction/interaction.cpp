@@ -69,18 +69,20 @@ std::vector<gpu::PlantDynamic> InteractionWorld::initialDynamics() const {
     return dynamics;
 }
 
-void InteractionWorld::saveState(const std::string& path, std::span<const gpu::PlantDynamic> dynamics) const {
+void InteractionWorld::saveState(const std::string& path, std::span<const gpu::PlantDynamic> dynamics,
+                                 const TrackBlocks& tracks) const {
     require(dynamics.size() == plantCount_,
             path + ": cannot save the interaction state: " + std::to_string(dynamics.size()) +
                 " dynamic records given, the tile has " + std::to_string(plantCount_) + " plants");
     InteractionState state{.tick = tick_,
                            .fieldActive = active_,
                            .lastContactTick = lastContact_,
-                           .dynamics = {dynamics.begin(), dynamics.end()}};
+                           .dynamics = {dynamics.begin(), dynamics.end()},
+                           .tracks = tracks};
     saveInteractionState(path, state);
 }
 
-std::vector<gpu::PlantDynamic> InteractionWorld::restoreState(const std::string& path) {
+InteractionState InteractionWorld::restoreState(const std::string& path) {
     InteractionState state = loadInteractionState(path);
     require(state.fieldActive.size() == active_.size() && state.dynamics.size() == plantCount_,
             path + ": the interaction state belongs to another tile (" + std::to_string(state.fieldActive.size()) +
@@ -89,7 +91,7 @@ std::vector<gpu::PlantDynamic> InteractionWorld::restoreState(const std::string&
     tick_ = state.tick;
     active_ = std::move(state.fieldActive);
     lastContact_ = std::move(state.lastContactTick);
-    return std::move(state.dynamics);
+    return state;
 }
 
 void simulateOnCpu(std::vector<gpu::PlantDynamic>& dynamics, const TickResult& result,

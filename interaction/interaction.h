@@ -50,13 +50,14 @@ public:
     // Every plant's dynamic record as generated (the tile's record-buffer order): the state at tick 0.
     std::vector<gpu::PlantDynamic> initialDynamics() const;
 
-    // Writes tick, field activity and the given dynamic records (the GPU's, read back; plantCount() of them)
-    // atomically to path. Throws sward::Error naming the file.
-    void saveState(const std::string& path, std::span<const gpu::PlantDynamic> dynamics) const;
-    // Loads a state written by saveState for this tile, restores tick and field activity and returns the dynamic
-    // records to upload. Throws sward::Error naming the file if it is invalid or belongs to another tile; the world
-    // is unchanged then.
-    std::vector<gpu::PlantDynamic> restoreState(const std::string& path);
+    // Writes tick, field activity, the given dynamic records (the GPU's, read back; plantCount() of them) and the
+    // ground's ruts atomically to path. Throws sward::Error naming the file.
+    void saveState(const std::string& path, std::span<const gpu::PlantDynamic> dynamics,
+                   const TrackBlocks& tracks) const;
+    // Loads a state written by saveState for this tile, restores tick and field activity and returns the state:
+    // its dynamic records to upload and its ruts. Throws sward::Error naming the file if it is invalid or belongs to
+    // another tile; the world is unchanged then.
+    InteractionState restoreState(const std::string& path);
 
 private:
     const VegetationTile* tile_;

@@ -7,6 +7,7 @@
 #include "shared/gpu_layout.h"
 
 #include <bit>
+#include <cmath>
 #include <cassert>
 #include <cstring>
 #include <filesystem>
@@ -21,11 +22,13 @@ constexpr char kMagic[8] = {'S', 'W', 'A', 'R', 'D', 'S', 'T', '1'};
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8;
 constexpr size_t kFieldBytes = 4 + 8;
 constexpr size_t kChecksumBytes = 8;
-// The largest valid state: a tile of kMaxFieldsPerTileSide^2 fields and as many plants as there are plant ids. A
-// longer file is refused from its length, before it is read into memory.
-constexpr uint64_t kMaxStateBytes = kHeaderBytes +
-                                    uint64_t(kMaxFieldsPerTileSide) * kMaxFieldsPerTileSide * kFieldBytes +
-                                    uint64_t(gpu::kMaxPlantInstances) * sizeof(gpu::PlantDynamic) + kChecksumBytes;
+constexpr size_t kTrackBlockBytes = 4 + 4 + sizeof(float) * gpu::kTrackBlockCells * gpu::kTrackBlockCells;
+// The largest valid state: a tile of kMaxFieldsPerTileSide^2 fields, as many plants as there are plant ids and
+// kMaxTrackBlocks blocks of ruts. A longer file is refused from its length, before it is read into memory.
+constexpr uint64_t kMaxStateBytes =
+    kHeaderBytes + uint64_t(kMaxFieldsPerTileSide) * kMaxFieldsPerTileSide * kFieldBytes +
+    uint64_t(gpu::kMaxPlantInstances) * sizeof(gpu::PlantDynamic) + 4 + kMaxTrackBlocks * kTrackBlockBytes +
+    kChecksumBytes;
 
 // x86-64 and every target sward builds for are little-endian, so native byte copies are the file format.
 static_assert(std::endian::native == std::endian::little);
@@ -46,6 +49,38 @@ void putDynamics(std::vector<uint8_t>& out, std::span<const gpu::PlantDynamic> d
     const size_t at = out.size();
     out.resize(at + dynamics.size_bytes());
     if (!dynamics.empty()) std::memcpy(out.data() + at, dynamics.data(), dynamics.size_bytes());
+}
+
+void putTracks(std::vector<uint8_t>& out, const TrackBlocks& tracks) {
+    require(tracks.size() <= kMaxTrackBlocks, "the ground tracks have more than " + std::to_string(kMaxTrackBlocks) +
+                                                  " blocks: too many for a state file");
+    put(out, uint32_t(tracks.size()));
+    for (const auto& [key, block] : tracks) {
+        put(out, key.x);
+        put(out, key.y);
+        const size_t at = out.size();
+        out.resize(at + block.size() * sizeof(float));
+        std::memcpy(out.data() + at, block.data(), block.size() * sizeof(float));
+    }
+}
+
+// The track section at `at` (its size checked): a block count, then the blocks ascending (y, x), depths >= 0.
+TrackBlocks readTracks(const std::vector<uint8_t>& bytes, size_t at, const std::string& what) {
+    const uint32_t count = get<uint32_t>(bytes, at); // loadInteractionState checked the size
+    at += 4;
+    TrackBlocks tracks;
+    for (uint32_t k = 0; k < count; ++k, at += kTrackBlockBytes) {
+        const TrackBlockKey key{get<int32_t>(bytes, at), get<int32_t>(bytes, at + 4)};
+        require(tracks.empty() || tracks.rbegin()->first < key,
+                what + "track block " + std::to_string(k) + " is out of order (blocks ascend by y, then x)");
+        TrackBlock block(gpu::kTrackBlockCells * gpu::kTrackBlockCells);
+        std::memcpy(block.data(), bytes.data() + at + 8, block.size() * sizeof(float));
+        for (float d : block)
+            require(std::isfinite(d) && d >= 0.0f, what + "track block " + std::to_string(k) + " has a rut depth " +
+                                                       std::to_string(d) + " (must be finite and >= 0)");
+        tracks.emplace_hint(tracks.end(), key, std::move(block));
+    }
+    return tracks;
 }
 
 // The whole file, refused from its length when longer than `maxBytes` (before it is read into memory).
@@ -102,6 +137,7 @@ void saveInteractionState(const std::string& path, const InteractionState& state
         put(bytes, state.lastContactTick[f]);
     }
     putDynamics(bytes, state.dynamics);
+    putTracks(bytes, state.tracks);
     put(bytes, fnv1a64(bytes));
 
     writeBytesAtomically(path, bytes.data(), bytes.size());
@@ -119,13 +155,16 @@ InteractionState loadInteractionState(const std::string& path) {
     const uint64_t available = bytes.size() - kHeaderBytes - kChecksumBytes;
     const bool fits = uint64_t(fields) * kFieldBytes <= available &&
                       plants <= (available - uint64_t(fields) * kFieldBytes) / sizeof(gpu::PlantDynamic);
-    const uint64_t expected =
-        fits ? kHeaderBytes + uint64_t(fields) * kFieldBytes + plants * sizeof(gpu::PlantDynamic) + kChecksumBytes : 0;
-    require(fits, what + "truncated (" + std::to_string(bytes.size()) + " bytes for " + std::to_string(fields) +
-                      " fields and " + std::to_string(plants) + " plants)");
+    const uint64_t tracksAt = kHeaderBytes + uint64_t(fields) * kFieldBytes + plants * sizeof(gpu::PlantDynamic);
+    require(fits && tracksAt + 4 <= bytes.size() - kChecksumBytes,
+            what + "truncated (" + std::to_string(bytes.size()) + " bytes for " + std::to_string(fields) +
+                " fields and " + std::to_string(plants) + " plants)");
+    const uint64_t blocks = get<uint32_t>(bytes, size_t(tracksAt));
+    const uint64_t expected = tracksAt + 4 + blocks * kTrackBlockBytes + kChecksumBytes;
     require(expected == bytes.size(), what + "size " + std::to_string(bytes.size()) + " bytes, expected " +
-                                          std::to_string(expected) + " for " + std::to_string(fields) + " fields and " +
-                                          std::to_string(plants) + " plants");
+                                          std::to_string(expected) + " for " + std::to_string(fields) + " fields, " +
+                                          std::to_string(plants) + " plants and " + std::to_string(blocks) +
+                                          " track blocks");
     requireChecksum(bytes, what);
 
     InteractionState state;
@@ -141,6 +180,7 @@ InteractionState loadInteractionState(const std::string& path) {
     }
     state.dynamics.resize(plants);
     if (plants > 0) std::memcpy(state.dynamics.data(), bytes.data() + at, plants * sizeof(gpu::PlantDynamic));
+    state.tracks = readTracks(bytes, at + plants * sizeof(gpu::PlantDynamic), what);
     return state;
 }
 

@@ -6,6 +6,8 @@
 //   uint32 version (kStateFileVersion), uint32 field count, uint64 tick, uint64 plant count
 //   per field: uint32 active (0 or 1), uint64 last contact tick
 //   per plant: gpu::PlantDynamic (uint32 bend, uint32 state), in the tile's record-buffer order
+//   uint32 track block count (interaction/ground_tracks.h), per block ascending (y, x):
+//     int32 x, int32 y, float rut depth of its kTrackBlockCells^2 own lattice vertices, row after row
 //   uint64 FNV-1a 64 of every byte before it
 // Written to "<path>.tmp" and renamed over path, so a crash never leaves a half-written state behind.
 //
@@ -20,6 +22,7 @@
 // written and checked like the tile state file.
 #pragma once
 
+#include "interaction/ground_tracks.h"
 #include "interaction/tile_state.h"
 
 #include "shared/plant_layout.h"
@@ -31,13 +34,16 @@
 
 namespace sward {
 
-inline constexpr uint32_t kStateFileVersion = 1;
+inline constexpr uint32_t kStateFileVersion = 2; // 2: ground tracks
+// Most rut blocks a state file holds (269 MB of them, 42,000 m^2 of ruts).
+inline constexpr uint64_t kMaxTrackBlocks = uint64_t(1) << 16;
 
 struct InteractionState {
     uint64_t tick = 0;                       // the next tick to simulate
     std::vector<uint8_t> fieldActive;        // per field, 0 or 1
     std::vector<uint64_t> lastContactTick;   // per field, parallel to fieldActive
     std::vector<gpu::PlantDynamic> dynamics; // every plant of the tile
+    TrackBlocks tracks;                      // the ruts pressed into the ground (GroundTracks::blocks)
 };
 
 // FNV-1a 64 of a byte range.

@@ -3,6 +3,7 @@
 #include "vegetation/atlas_colour.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 
 namespace sward {
@@ -123,6 +124,46 @@ GroundTextureArray groundTextureArray(const Ground& ground) {
 
 GroundDrawMesh groundDrawMesh(const Ground& ground) {
     return ground.heightfield() ? heightfieldDrawMesh(*ground.heightfield()) : meshDrawMesh(*ground.mesh());
+}
+
+namespace {
+
+// The draw mesh's three vertex indices of the triangle under xy (clamped into the ground).
+std::array<uint32_t, 3> drawTriangleAt(const Ground& ground, const GroundDrawMesh& mesh, glm::vec2 xy) {
+    xy = glm::clamp(xy, ground.boundsMin(), ground.boundsMax());
+    if (const Heightfield* h = ground.heightfield()) {
+        // The cell and half Heightfield::height() interpolates: split along (i, j)-(i+1, j+1).
+        const float u = std::clamp((xy.x - h->origin().x) / h->spacing(), 0.0f, float(h->columns() - 1));
+        const float v = std::clamp((xy.y - h->origin().y) / h->spacing(), 0.0f, float(h->rows() - 1));
+        const uint32_t i = std::min(uint32_t(u), h->columns() - 2), j = std::min(uint32_t(v), h->rows() - 2);
+        const uint32_t p00 = j * h->columns() + i, p10 = p00 + 1, p01 = p00 + h->columns(), p11 = p01 + 1;
+        return u - float(i) >= v - float(j) ? std::array{p00, p10, p11} : std::array{p00, p11, p01};
+    }
+    const std::optional<SurfacePoint> s = ground.surface(xy);
+    const uint32_t t = s ? s->triangle : 0; // a hole in the mesh: any triangle's attributes will do
+    return {mesh.indices[3 * t], mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]};
+}
+
+} // namespace
+
+gpu::TerrainVertex groundVertexAt(const Ground& ground, const GroundDrawMesh& mesh, glm::vec2 xy) {
+    const auto [ia, ib, ic] = drawTriangleAt(ground, mesh, xy);
+    const gpu::TerrainVertex &a = mesh.vertices[ia], &b = mesh.vertices[ib], &c = mesh.vertices[ic];
+    const glm::dvec2 pa(a.positionHeight), pb(b.positionHeight), pc(c.positionHeight), p(xy);
+    const double area = (pb.x - pa.x) * (pc.y - pa.y) - (pb.y - pa.y) * (pc.x - pa.x);
+    double w0 = 1.0, w1 = 0.0;
+    if (area != 0.0) {
+        w0 = ((pb.x - p.x) * (pc.y - p.y) - (pb.y - p.y) * (pc.x - p.x)) / area;
+        w1 = ((pc.x - p.x) * (pa.y - p.y) - (pc.y - p.y) * (pa.x - p.x)) / area;
+    }
+    const float fa = float(w0), fb = float(w1), fc = float(1.0 - w0 - w1);
+    auto mix = [&](glm::vec4 ga, glm::vec4 gb, glm::vec4 gc) { return ga * fa + gb * fb + gc * fc; };
+    gpu::TerrainVertex out;
+    out.positionHeight = glm::vec4(xy, ground.height(xy), 0.0f);
+    out.normal = glm::vec4(glm::normalize(glm::vec3(mix(a.normal, b.normal, c.normal))), 0.0f);
+    out.albedo = mix(a.albedo, b.albedo, c.albedo);
+    out.uvLayer = glm::vec4(glm::vec2(mix(a.uvLayer, b.uvLayer, c.uvLayer)), a.uvLayer.z, 0.0f); // one layer per triangle
+    return out;
 }
 
 } // namespace sward

@@ -20,6 +20,12 @@ struct GroundDrawMesh {
 
 GroundDrawMesh groundDrawMesh(const Ground& ground);
 
+// The drawn ground's vertex attributes at world `xy` (clamped into the ground): the smooth normal, material colour
+// and texture coordinate interpolated over the triangle of `mesh` (groundDrawMesh(ground)) under xy, as the
+// rasteriser interpolates them, and the height ground.height(xy). What a rut patch (render/track_renderer.h) is
+// drawn with where the ground is unpressed, so it matches the ground around it.
+gpu::TerrainVertex groundVertexAt(const Ground& ground, const GroundDrawMesh& mesh, glm::vec2 xy);
+
 // A mesh ground's base-colour textures as one array image: every texture resampled (bilinear, in linear light)
 // to size x size texels, sRGB RGBA8, with a box-filtered mip chain. Without textures: one white 1x1 layer, so
 // the binding is always valid.

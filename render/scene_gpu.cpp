@@ -26,13 +26,15 @@ SceneGpu createSceneGpu(Context& ctx, SceneResources& resources, uint32_t sample
     resources.cover.reset();
     const bool simulate = mode == SimulationMode::Always ||
                           (mode == SimulationMode::WhenSceneHasColliders && sceneHasColliders(resources.scene));
-    if (tile && gpu.renderer->vegetation() && simulate) {
-        gpu.simulation = std::make_unique<Simulation>(ctx, resources.scene, resources.terrain, *tile,
-                                                      gpu.renderer->vegetation()->buffers());
+    const bool plants = tile && gpu.renderer->vegetation();
+    // Without plants the colliders still press ruts into the ground, if any asks for them.
+    if (simulate && (plants || sceneMakesRuts(resources.scene))) {
+        gpu.simulation = std::make_unique<Simulation>(ctx, resources.scene, resources.terrain, plants ? tile : nullptr,
+                                                      plants ? &gpu.renderer->vegetation()->buffers() : nullptr);
         gpu.simulation->setObjectModels(&resources.models);
-    } else {
-        resources.tile.reset(); // uploaded; only the collision pass reads the CPU copy
+        gpu.renderer->setGroundTracks(&gpu.simulation->tracks(), &resources.terrain);
     }
+    if (!plants || !gpu.simulation) resources.tile.reset(); // uploaded; only the collision pass reads the CPU copy
     return gpu;
 }
 

@@ -4,6 +4,7 @@
 #include "engine/timestamps.h"
 #include "render/ground_mesh.h"
 #include "render/object_renderer.h"
+#include "render/track_renderer.h"
 #include "render/vegetation_renderer.h"
 #include "shared/config.h"
 #include "shared/gpu_layout.h"
@@ -160,6 +161,8 @@ void SceneRenderer::createPipelines(const Atlas* atlas, uint32_t instanceCapacit
     truthLayout.pushConstantSize = sizeof(gpu::TerrainTileConstants);
     truthLayout.pushConstantStages = VK_SHADER_STAGE_FRAGMENT_BIT;
     terrainTruthPipeline_ = createGraphicsPipeline(ctx.device, truthTerrain, truthLayout);
+    if (sceneMakesRuts(scene))
+        tracks_ = std::make_unique<TrackRenderer>(ctx, terrainDesc, terrainLayout, truthTerrain, truthLayout);
     terrainDesc.fragmentShader = "";
     terrainDesc.colorFormats = {};
     terrainDesc.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -171,7 +174,8 @@ void SceneRenderer::createPipelines(const Atlas* atlas, uint32_t instanceCapacit
 
     if (atlas)
         vegetation_ = std::make_unique<VegetationRenderer>(ctx, scene, *atlas, plantPassFormats(), instanceCapacity);
-    createShadowMap(); // after the vegetation: its LODs place the cascades
+    shadowParams_ = makeShadowCascadeParams(); // after the vegetation: its LODs place the cascades
+    createShadowMap();
     skyPipeline_ = createGraphicsPipeline(ctx.device,
                                           {.vertexShader = "sky.vert",
                                            .fragmentShader = "sky.frag",
@@ -189,6 +193,7 @@ SceneRenderer::~SceneRenderer() {
     for (TileCoord coord : tiles()) removeTile(coord);
     vegetation_.reset();
     objects_.reset();
+    tracks_.reset();
     shadowMap_.reset();
     vkDestroySampler(ctx_.vk(), shadowSampler_, nullptr);
     vkDestroySampler(ctx_.vk(), coverSampler_, nullptr);
@@ -234,7 +239,7 @@ void SceneRenderer::removeTile(TileCoord coord) {
     if (vegetation_) vegetation_->removeTile(coord);
 }
 
-void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Camera& shadowCamera, double timeSeconds,
+void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const ShadowFit& shadow, double timeSeconds,
                                    int shadowDraw) {
     gpu::FrameConstants c{};
     glm::dmat4 viewProj = camera.viewProjection();
@@ -251,9 +256,9 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Ca
     c.timeParams = glm::vec4(float(timeSeconds), 0.0f, 0.0f, 0.0f);
 
     // Sun shadows: the cascades fitted to the reference camera, the same for both views of a stereo pair.
-    const std::vector<ShadowCascade> cascades = shadowCascades(shadowCamera);
+    const std::vector<ShadowCascade>& cascades = shadow.cascades;
     const bool shadows = scene_.render.shadowMapSize > 0;
-    const glm::uvec2 extent = shadowMapExtent(shadowCascadeParams());
+    const glm::uvec2 extent = shadowMapExtent(shadowParams_);
     c.shadowParams = glm::vec4(shadows ? float(cascades.size()) : 0.0f, 0.0f, 0.0f, 0.0f);
     for (size_t k = 0; k < cascades.size(); ++k) {
         c.shadowCascades[k] = glm::mat4(cascades[k].viewProj);
@@ -262,10 +267,10 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Ca
         c.shadowEnds[int(k)] = float(cascades[k].end);
         c.shadowBias[int(k)] = float(cascades[k].depthBias);
     }
-    c.shadowOrigin = glm::vec4(glm::vec3(shadowCamera.position), 1.0f);
+    c.shadowOrigin = glm::vec4(glm::vec3(shadow.origin), 1.0f);
     if (shadowDraw >= 0) {
         const ShadowCascade& drawn = cascades[size_t(shadowDraw)];
-        const double reach = shadowCascadeParams().casterMargin;
+        const double reach = shadowParams_.casterMargin;
         c.shadowViewProj = c.shadowCascades[shadowDraw];
         c.shadowParams.y = float(std::max(drawn.firstReceiver - reach, 0.0));
         c.shadowParams.z = float(drawn.end + reach);
@@ -278,7 +283,7 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Ca
 void SceneRenderer::createShadowMap() {
     // Sun shadow map: the cascades' square maps in a row, always present (1x1 and disabled when shadow_map_size is
     // 0) so bindings stay valid.
-    const glm::uvec2 shadowExtent = shadowMapExtent(shadowCascadeParams());
+    const glm::uvec2 shadowExtent = shadowMapExtent(shadowParams_);
     const uint32_t largest = ctx_.device.properties().limits.maxImageDimension2D;
     require(shadowExtent.x <= largest, scene_.source + ": 'render.shadow_map_size' " +
                                            std::to_string(scene_.render.shadowMapSize) + " with " +
@@ -292,7 +297,7 @@ void SceneRenderer::createShadowMap() {
                                                                       .sampleDepth = true});
 }
 
-ShadowCascadeParams SceneRenderer::shadowCascadeParams() const {
+ShadowCascadeParams SceneRenderer::makeShadowCascadeParams() const {
     return ShadowCascadeParams{.cascades = scene_.render.shadowCascades,
                                .firstDistance = scene_.render.shadowDistance,
                                .lastDistance = double(scene_.lod.farLimit) + double(scene_.lod.band),
@@ -303,8 +308,8 @@ ShadowCascadeParams SceneRenderer::shadowCascadeParams() const {
                                .blend = double(gpu::kShadowBlend)};
 }
 
-std::vector<ShadowCascade> SceneRenderer::shadowCascades(const Camera& camera) const {
-    return fitShadowCascades(camera, glm::dvec3(scene_.sun.direction()), shadowCascadeParams());
+SceneRenderer::ShadowFit SceneRenderer::fitShadows(const Camera& reference) const {
+    return {fitShadowCascades(reference, glm::dvec3(scene_.sun.direction()), shadowParams_), reference.position};
 }
 
 namespace {
@@ -323,15 +328,15 @@ uint32_t lodsReaching(const LodParams& lod, double begin, double end, double mar
 
 } // namespace
 
-void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, const Camera& reference, uint32_t firstSlot,
-                                     uint32_t dataSlot, double timeSeconds, GpuTimers* timers) {
+void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, const Camera& reference, const ShadowFit& shadow,
+                                     uint32_t firstSlot, uint32_t dataSlot, double timeSeconds, GpuTimers* timers) {
     if (timers) timers->begin(cmd, "shadow");
     shadowMap_->begin(cmd);
     if (scene_.render.shadowMapSize > 0) {
-        const std::vector<ShadowCascade> cascades = shadowCascades(reference);
+        const std::vector<ShadowCascade>& cascades = shadow.cascades;
         for (uint32_t k = 0; k < cascades.size(); ++k) {
             const uint32_t slot = firstSlot + kMaxViews + k;
-            writeConstants(slot, reference, reference, timeSeconds, int(k));
+            writeConstants(slot, reference, shadow, timeSeconds, int(k));
             const uint32_t size = cascades[k].mapSize, offset = cascades[k].mapOffset;
             const VkViewport viewport{float(offset), 0.0f, float(size), float(size), 0.0f, 1.0f};
             const VkRect2D scissor{{int32_t(offset), 0}, {size, size}};
@@ -343,7 +348,7 @@ void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, const Camera& referenc
             if (vegetation_)
                 vegetation_->draw(cmd, PlantPass::Shadow, frame, shadowBinding(), dataSlot,
                                   lodsReaching(scene_.lod, cascades[k].firstReceiver, cascades[k].end,
-                                               shadowCascadeParams().casterMargin));
+                                               shadowParams_.casterMargin));
         }
     }
     shadowMap_->end(cmd);
@@ -352,35 +357,48 @@ void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, const Camera& referenc
 
 void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame,
                                 const glm::dvec3& reference) {
-    const Pipeline& pipeline = pass == PlantPass::Main    ? terrainPipeline_
+    // With ruts the ground has holes where their patches lie (render/track_renderer.h); not in the shadow pass.
+    const bool ruts = tracks_ && tracks_->active() && pass != PlantPass::Shadow;
+    const Pipeline& pipeline = ruts                       ? tracks_->holedGround(pass)
+                               : pass == PlantPass::Main  ? terrainPipeline_
                                : pass == PlantPass::Truth ? terrainTruthPipeline_
                                                           : terrainShadowPipeline_;
     bindPipeline(cmd, pipeline);
+    const DescriptorBinding textures = sampledImage(gpu::kBindingGroundTextures, groundTextures_.view, groundSampler_);
     for (const auto& [key, tile] : tiles_) {
         const double dx = std::max({0.0, tile.boundsMin.x - reference.x, reference.x - tile.boundsMax.x});
         const double dy = std::max({0.0, tile.boundsMin.y - reference.y, reference.y - tile.boundsMax.y});
         if (std::sqrt(dx * dx + dy * dy) > viewDistance_) continue;
         const DescriptorBinding cover = sampledImage(gpu::kBindingCoverMap, tile.cover.view, coverSampler_);
+        const gpu::TerrainTileConstants constants{.coverRect = tile.coverRect};
         if (pass == PlantPass::Main) {
-            pushDescriptors(ctx_.device, cmd, pipeline,
-                            {frame, shadowBinding(), cover,
-                             sampledImage(gpu::kBindingGroundTextures, groundTextures_.view, groundSampler_)});
-            pushConstants(cmd, pipeline, gpu::TerrainTileConstants{.coverRect = tile.coverRect});
+            if (ruts) pushDescriptors(ctx_.device, cmd, pipeline, {frame, shadowBinding(), cover, textures, tracks_->tableBinding()});
+            else pushDescriptors(ctx_.device, cmd, pipeline, {frame, shadowBinding(), cover, textures});
+            pushConstants(cmd, pipeline, constants);
         } else if (pass == PlantPass::Truth) {
-            pushDescriptors(ctx_.device, cmd, pipeline,
-                            {frame, storageBuffer(gpu::kBindingMeshVertices, tile.vertices.handle),
-                             storageBuffer(gpu::kBindingMeshIndices, tile.indices.handle), cover});
-            pushConstants(cmd, pipeline, gpu::TerrainTileConstants{.coverRect = tile.coverRect});
+            const DescriptorBinding vertices = storageBuffer(gpu::kBindingMeshVertices, tile.vertices.handle);
+            const DescriptorBinding indices = storageBuffer(gpu::kBindingMeshIndices, tile.indices.handle);
+            if (ruts) pushDescriptors(ctx_.device, cmd, pipeline, {frame, vertices, indices, cover, tracks_->tableBinding()});
+            else pushDescriptors(ctx_.device, cmd, pipeline, {frame, vertices, indices, cover});
+            pushConstants(cmd, pipeline, constants);
             vkCmdDraw(cmd, tile.indexCount, 1, 0, 0); // non-indexed: the shader reads the triangle list
-            continue;
         } else {
             pushDescriptors(ctx_.device, cmd, pipeline, {frame});
         }
-        VkDeviceSize offset = 0;
-        vkCmdBindVertexBuffers(cmd, 0, 1, &tile.vertices.handle, &offset);
-        vkCmdBindIndexBuffer(cmd, tile.indices.handle, 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cmd, tile.indexCount, 1, 0, 0, 0);
+        if (pass != PlantPass::Truth) {
+            VkDeviceSize offset = 0;
+            vkCmdBindVertexBuffers(cmd, 0, 1, &tile.vertices.handle, &offset);
+            vkCmdBindIndexBuffer(cmd, tile.indices.handle, 0, VK_INDEX_TYPE_UINT32);
+            vkCmdDrawIndexed(cmd, tile.indexCount, 1, 0, 0, 0);
+        }
+        if (!ruts) continue; // ruts: a one-tile scene, the patches over its ground
+        if (pass == PlantPass::Main) tracks_->drawMain(cmd, frame, shadowBinding(), cover, textures, constants);
+        else tracks_->drawTruth(cmd, frame, cover, constants);
     }
+}
+
+void SceneRenderer::setGroundTracks(const GroundTracks* tracks, const Ground* ground) {
+    if (tracks_) tracks_->setSource(tracks, ground);
 }
 
 // Half floats: linear filtering of 16-bit float textures is mandatory in Vulkan, of 32-bit ones is not.
@@ -466,13 +484,15 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
     const Camera& reference = *views[0].camera;
     const uint32_t dataSlot = frameIndex % gpu::kFrameDataSlots; // objects' and vegetation's per-frame data
     const uint32_t firstSlot = dataSlot * kSlotsPerFrame;        // frame constants: views, then shadow cascades
-    for (uint32_t v = 0; v < views.size(); ++v) writeConstants(firstSlot + v, *views[v].camera, reference, timeSeconds);
+    const ShadowFit shadowFit = fitShadows(reference); // once per frame: both views and every cascade's draw use it
+    for (uint32_t v = 0; v < views.size(); ++v) writeConstants(firstSlot + v, *views[v].camera, shadowFit, timeSeconds);
     const DescriptorBinding shadow = shadowBinding();
     if (objects_) objects_->update(timeSeconds, dataSlot);
+    if (tracks_) tracks_->update(cmd);
 
     if (expand) recordExpansion(cmd, views, timeSeconds, frameIndex, timers);
 
-    recordShadowPass(cmd, reference, firstSlot, dataSlot, timeSeconds, timers);
+    recordShadowPass(cmd, reference, shadowFit, firstSlot, dataSlot, timeSeconds, timers);
 
     for (uint32_t v = 0; v < views.size(); ++v) {
         const uint32_t slot = firstSlot + v;
@@ -491,7 +511,7 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
 void SceneRenderer::recordMainOnly(VkCommandBuffer cmd, RenderTarget& main, const Camera& camera, double timeSeconds,
                                    uint32_t frameIndex, GpuTimers* timers, const BakedPlants* baked) {
     const uint32_t slot = frameIndex % gpu::kFrameDataSlots;
-    writeConstants(slot * kSlotsPerFrame, camera, camera, timeSeconds);
+    writeConstants(slot * kSlotsPerFrame, camera, fitShadows(camera), timeSeconds);
     if (objects_) objects_->update(timeSeconds, slot);
     if (vegetation_ && !baked) {
         if (timers) timers->begin(cmd, "expansion");
@@ -499,98 +519,6 @@ void SceneRenderer::recordMainOnly(VkCommandBuffer cmd, RenderTarget& main, cons
         if (timers) timers->end(cmd);
     }
     recordMainPass(cmd, main, slot * kSlotsPerFrame, slot, camera.position, timers, baked);
-}
-
-OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples)
-    : ctx_(ctx), main_(ctx, mainPassTargetDesc(width, height, samples)), truth_(ctx, truthPassTargetDesc(width, height)) {
-    uint64_t pixels = uint64_t(width) * height;
-    color_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-    depth_ = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-    labels_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-    normals_ = createBuffer(ctx, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-}
-
-namespace {
-
-// The truth pass's (label, tile) pairs: labels always, the tile labels for a world of several tiles.
-void splitLabels(const Buffer& pairs, uint64_t pixels, bool world, std::vector<uint32_t>& labels,
-                 std::vector<uint32_t>* tiles) {
-    const uint32_t* pair = reinterpret_cast<const uint32_t*>(pairs.mapped());
-    labels.resize(pixels);
-    for (uint64_t i = 0; i < pixels; ++i) labels[i] = pair[2 * i];
-    if (!world || !tiles) return;
-    tiles->resize(pixels);
-    for (uint64_t i = 0; i < pixels; ++i) (*tiles)[i] = pair[2 * i + 1];
-}
-
-// The truth pass's normals without their unused w.
-std::vector<float> normalsXyz(const Buffer& xyzw, uint64_t pixels) {
-    const float* normal = reinterpret_cast<const float*>(xyzw.mapped());
-    std::vector<float> xyz(pixels * 3);
-    for (uint64_t i = 0; i < pixels; ++i)
-        for (uint64_t c = 0; c < 3; ++c) xyz[3 * i + c] = normal[4 * i + c];
-    return xyz;
-}
-
-} // namespace
-
-OffscreenFrame::~OffscreenFrame() {
-    for (Buffer* b : {&color_, &depth_, &labels_, &normals_, &rightColor_, &rightDepth_, &rightLabels_, &rightNormals_})
-        retireBuffer(ctx_, *b);
-}
-
-FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
-                                   const std::function<void(VkCommandBuffer)>& prologue, const Camera* right) {
-    const RenderTargetDesc& desc = main_.desc();
-    require(camera.width == desc.width && camera.height == desc.height, "camera and frame sizes differ");
-    require(!right || (right->width == desc.width && right->height == desc.height), "left and right sizes differ");
-    require(renderer.samples() == uint32_t(desc.samples), "renderer and frame sample counts differ");
-    const uint64_t pixels = uint64_t(desc.width) * desc.height;
-    if (right && !rightMain_) {
-        rightMain_ = std::make_unique<RenderTarget>(ctx_, desc);
-        rightTruth_ = std::make_unique<RenderTarget>(ctx_, truth_.desc());
-        rightColor_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-        rightDepth_ = createBuffer(ctx_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-        rightLabels_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-        rightNormals_ = createBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-    }
-    ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
-        if (prologue) prologue(cmd);
-        SceneRenderer::View views[2] = {{&camera, &main_, &truth_}, {right, rightMain_.get(), rightTruth_.get()}};
-        renderer.recordViews(cmd, {views, right ? 2u : 1u}, timeSeconds, frameIndex);
-        main_.recordReadback(cmd, 0, color_);
-        truth_.recordReadback(cmd, 0, depth_);
-        truth_.recordReadback(cmd, 1, labels_);
-        truth_.recordReadback(cmd, 2, normals_);
-        if (right) {
-            rightMain_->recordReadback(cmd, 0, rightColor_);
-            rightTruth_->recordReadback(cmd, 0, rightDepth_);
-            rightTruth_->recordReadback(cmd, 1, rightLabels_);
-            rightTruth_->recordReadback(cmd, 2, rightNormals_);
-        }
-        transferToHostBarrier(cmd);
-    });
-    FrameImages images{.width = desc.width, .height = desc.height};
-    images.rgbaHalf.resize(pixels * 4);
-    images.depth.resize(pixels);
-    std::memcpy(images.rgbaHalf.data(), color_.mapped(), pixels * 8);
-    std::memcpy(images.depth.data(), depth_.mapped(), pixels * 4); // float bit patterns written by the shader
-    splitLabels(labels_, pixels, renderer.world(), images.labels, &images.tiles);
-    images.normals = normalsXyz(normals_, pixels);
-    if (right) {
-        images.rightRgbaHalf.resize(pixels * 4);
-        std::memcpy(images.rightRgbaHalf.data(), rightColor_.mapped(), pixels * 8);
-        images.rightDepth.resize(pixels);
-        std::memcpy(images.rightDepth.data(), rightDepth_.mapped(), pixels * 4);
-        splitLabels(rightLabels_, pixels, false, images.rightLabels, nullptr);
-        images.rightNormals = normalsXyz(rightNormals_, pixels);
-    }
-    return images;
-}
-
-FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, double timeSeconds) {
-    OffscreenFrame frame(ctx, camera.width, camera.height, renderer.samples());
-    return frame.render(renderer, camera, timeSeconds, 0);
 }
 
 } // namespace sward

@@ -34,7 +34,9 @@
 namespace sward {
 
 class GpuTimers;
+class GroundTracks;
 class ObjectRenderer;
+class TrackRenderer;
 struct ObjectModel;
 struct BakedPlants;
 
@@ -104,6 +106,10 @@ public:
     uint32_t tileCount() const { return uint32_t(tiles_.size()); }
     std::vector<TileCoord> tiles() const; // (y, x) order
 
+    // The ruts to draw (a scene whose colliders press them, sceneMakesRuts), pressed into `ground`; both must outlive
+    // the renderer. Each frame uploads the blocks changed since the last one.
+    void setGroundTracks(const GroundTracks* tracks, const Ground* ground);
+
     VegetationRenderer* vegetation() { return vegetation_.get(); }
     ObjectRenderer* objects() { return objects_.get(); } // null when the scene has no objects
     uint32_t samples() const { return samples_; }
@@ -122,16 +128,21 @@ private:
 
     void createPipelines(const Atlas* atlas, uint32_t instanceCapacity);
     VegetationPassFormats plantPassFormats() const;
-    // Frame constants of `camera`, with the shadow cascades fitted to `shadowCamera`; `shadowDraw` >= 0 makes the
-    // slot the one the shadow pass draws cascade `shadowDraw` with.
-    void writeConstants(uint32_t slot, const Camera& camera, const Camera& shadowCamera, double timeSeconds,
+    // The frame's sun shadow cascades, fitted once to the reference camera (both views of a stereo pair use them).
+    struct ShadowFit {
+        std::vector<ShadowCascade> cascades;
+        glm::dvec3 origin{0.0}; // the reference camera's position: each point's cascade follows its distance to it
+    };
+    ShadowFit fitShadows(const Camera& reference) const;
+    // Frame constants of `camera` with the frame's shadow cascades; `shadowDraw` >= 0 makes the slot the one the
+    // shadow pass draws cascade `shadowDraw` with.
+    void writeConstants(uint32_t slot, const Camera& camera, const ShadowFit& shadow, double timeSeconds,
                         int shadowDraw = -1);
     // The shadow pass: each cascade into its tile of the shadow map, with the plants' LODs that can reach it.
-    void recordShadowPass(VkCommandBuffer cmd, const Camera& reference, uint32_t firstSlot, uint32_t dataSlot,
-                          double timeSeconds, GpuTimers* timers);
-    ShadowCascadeParams shadowCascadeParams() const;
+    void recordShadowPass(VkCommandBuffer cmd, const Camera& reference, const ShadowFit& shadow, uint32_t firstSlot,
+                          uint32_t dataSlot, double timeSeconds, GpuTimers* timers);
+    ShadowCascadeParams makeShadowCascadeParams() const;
     void createShadowMap();
-    std::vector<ShadowCascade> shadowCascades(const Camera& camera) const;
     // The tiles' ground within the view distance of `reference`; the main pass binds each tile's cover.
     void drawTerrain(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame, const glm::dvec3& reference);
     // `frameSlot`: frame-constants slot (frame x view); `slot`: vegetation constants slot (frame).
@@ -155,12 +166,14 @@ private:
     uint64_t constantsStride_ = 0;
     Pipeline terrainPipeline_, terrainTruthPipeline_, terrainShadowPipeline_, skyPipeline_;
     std::unique_ptr<RenderTarget> shadowMap_;
+    ShadowCascadeParams shadowParams_; // fixed once the vegetation is known
     VkSampler shadowSampler_ = VK_NULL_HANDLE;
     VkSampler coverSampler_ = VK_NULL_HANDLE;
     Image groundTextures_; // a mesh ground's base-colour textures (one white layer without any)
     VkSampler groundSampler_ = VK_NULL_HANDLE;
     std::unique_ptr<VegetationRenderer> vegetation_;
     std::unique_ptr<ObjectRenderer> objects_;
+    std::unique_ptr<TrackRenderer> tracks_; // a scene whose colliders press ruts
     uint32_t debugFlags_ = 0;
     Overlay overlay_;
 };

@@ -80,8 +80,7 @@ void Session::setColliders(std::vector<Collider> colliders) {
 
 void Session::saveState(const std::string& path) {
     if (gpu_.worldSimulation) return gpu_.worldSimulation->saveState(path);
-    Simulation& sim = simulation("save_state");
-    sim.world().saveState(path, sim.gpu().readDynamics());
+    simulation("save_state").saveState(path);
 }
 
 void Session::restoreState(const std::string& path) {
@@ -92,9 +91,9 @@ void Session::restoreState(const std::string& path) {
         return;
     }
     Simulation& sim = simulation("restore_state");
-    sim.gpu().writeDynamics(sim.world().restoreState(path));
-    require(sim.world().tick() < UINT32_MAX, "restore_state: the saved tick is beyond the last frame");
-    next_ = uint32_t(sim.world().tick());
+    sim.restoreState(path);
+    require(sim.nextTick() < UINT32_MAX, "restore_state: the saved tick is beyond the last frame");
+    next_ = uint32_t(sim.nextTick());
 }
 
 Simulation& Session::simulation(const char* what) {

@@ -5,6 +5,19 @@
 
 namespace sward {
 
+RutParams parseRut(JsonReader& r, ColliderKind kind) {
+    RutParams rut;
+    rut.depth = r.numberF("rut_depth", 0.0f, 0.0, 1.0);
+    rut.treadPitch = r.numberF("tread_pitch", 0.0f, 0.0, 10.0);
+    rut.treadDepth = r.numberF("tread_depth", 0.0f, 0.0, 1.0);
+    if (rut.depth > 0.0f && kind != ColliderKind::Push)
+        r.fail(r.name("rut_depth") + " applies to push colliders only (wheels, feet, hulls)");
+    if (rut.treadDepth > rut.depth) r.fail(r.name("tread_depth") + " must not exceed 'rut_depth'");
+    if (rut.treadDepth > 0.0f && rut.treadPitch <= 0.0f)
+        r.fail(r.name("tread_depth") + " needs a 'tread_pitch' above 0 (the metres between lugs)");
+    return rut;
+}
+
 Collider parseColliderShape(JsonReader& r) {
     const auto shape = ColliderShape(r.choice("shape", 0, {"sphere", "capsule", "box"}));
     const auto kind = ColliderKind(r.choice("kind", 0, {"push", "gust", "downwash", "mower"}));
@@ -15,6 +28,7 @@ Collider parseColliderShape(JsonReader& r) {
     const float length = r.numberF("length", downwash ? 2.0f : 1.0f, downwash ? 0.01 : 0.0, 1000.0);
     const glm::vec3 half(r.vector<3>("half_extents", glm::dvec3(0.5), 0.0, 1000.0));
     const float cutHeight = r.numberF("cut_height", 0.1f, 0.0, 10.0);
+    const RutParams rut = parseRut(r, kind);
     if (downwash) return makeDownwash(0, glm::vec3(0.0f), radius, length, force);
     Collider collider;
     if (shape == ColliderShape::Sphere)
@@ -23,6 +37,7 @@ Collider parseColliderShape(JsonReader& r) {
         collider = makeCapsule(0, glm::vec3(-0.5f * length, 0, 0), glm::vec3(0.5f * length, 0, 0), radius, force, kind);
     else
         collider = makeBox(0, glm::vec3(0.0f), half, glm::mat3(1.0f), force, kind);
+    collider.rut = rut;
     return kind == ColliderKind::Mower ? makeMower(collider, cutHeight) : collider;
 }
 

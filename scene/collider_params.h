@@ -1,5 +1,5 @@
 // The keys that describe a collider's shape ("shape", "kind", "radius", "force", "length", "half_extents",
-// "cut_height"; docs/scene-format.md), shared by the scene's moving colliders (scene/vehicles.h) and the colliders a
+// "cut_height", and its ruts; docs/scene-format.md), shared by the scene's moving colliders (scene/vehicles.h) and the colliders a
 // program places at each tick (the Python module's set_colliders).
 #pragma once
 
@@ -14,6 +14,10 @@
 namespace sward {
 
 class JsonReader;
+
+// The ruts a push collider leaves ("rut_depth", "tread_pitch", "tread_depth"; all 0 by default: none). Errors name
+// the key: a rut on a collider that is not a push, a tread deeper than the rut, a tread without a pitch.
+RutParams parseRut(JsonReader& r, ColliderKind kind);
 
 // A collider of the shape `r` describes, centred at the origin (a capsule along x, a box axis-aligned), id 0.
 // Reads the shape keys only; the caller finishes `r`.

@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "common/json_reader.h"
+#include "scene/collider_params.h"
 #include "world/ground.h"
 
 #include <cmath>
@@ -33,6 +34,7 @@ ObjectColliderParams parseCollider(JsonReader r) {
     c.offset = glm::vec3(r.vector<3>("offset", glm::dvec3(c.offset), -1000.0, 1000.0));
     c.force = r.numberF("force", c.force, 0.0, 1e6);
     c.cutHeight = r.numberF("cut_height", c.cutHeight, 0.0, 10.0);
+    c.rut = parseRut(r, c.kind);
     r.finish();
     return c;
 }
@@ -217,6 +219,7 @@ std::vector<Collider> objectColliders(const std::vector<ObjectParams>& objects, 
                     c = makeBox(id, at(centre), p.halfExtents * scale, glm::mat3(glm::dmat3(x, y, z)), p.force, p.kind);
                 }
                 if (p.kind == ColliderKind::Mower) c = makeMower(c, p.cutHeight);
+                c.rut = p.rut;
             }
             colliders.push_back(c);
         }

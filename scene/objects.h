@@ -37,6 +37,7 @@ struct ObjectColliderParams {
     glm::vec3 offset{0.0f};      // collider centre in the node frame
     float force = 0.5f;          // push strength; above a category's fell force the plants stay flat
     float cutHeight = 0.1f;      // mower: metres above the plant base
+    RutParams rut;               // push: the ruts it leaves in the ground (none by default)
 };
 
 struct ObjectParams {

@@ -328,6 +328,17 @@ bool sceneHasColliders(const Scene& scene) {
     return false;
 }
 
+bool sceneMakesRuts(const Scene& scene) {
+    for (const VehicleParams& vehicle : scene.actors.vehicles)
+        if (vehicle.rut.depth > 0.0f) return true;
+    for (const MovingColliderParams& moving : scene.actors.colliders)
+        if (moving.collider.rut.depth > 0.0f) return true;
+    for (const ObjectParams& object : scene.objects)
+        for (const ObjectColliderParams& collider : object.colliders)
+            if (collider.rut.depth > 0.0f) return true;
+    return false;
+}
+
 void parseResolution(const std::string& text, uint32_t& width, uint32_t& height) {
     const std::string what = "bad resolution '" + text + "'";
     const size_t x = text.find_first_of("xX");

@@ -147,6 +147,8 @@ std::vector<Collider> sceneColliders(const Scene& scene, const std::vector<Objec
                                      const Ground& terrain, uint64_t tick);
 // True when anything in the scene can touch the vegetation (the interaction simulation must run).
 bool sceneHasColliders(const Scene& scene);
+// True when a collider of the scene presses ruts into the ground (RutParams::depth > 0).
+bool sceneMakesRuts(const Scene& scene);
 
 // Largest image a command-line resolution may ask for: each side at most kMaxImageSide pixels and at most
 // kMaxImagePixels pixels in all (8192x8192 or 16384x4096: several GiB of render targets and readback already).

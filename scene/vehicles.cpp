@@ -35,6 +35,7 @@ std::vector<Collider> wheelColliders(const VehicleParams& vehicle, const std::ve
         glm::vec3 half = wheels[w].axle * (0.5f * std::max(vehicle.wheelWidth - 2.0f * vehicle.wheelRadius, 0.0f));
         colliders.push_back(makeCapsule(uint32_t(1000 * (index + 1) + w), wheels[w].centre - half,
                                         wheels[w].centre + half, vehicle.wheelRadius, vehicle.weight));
+        colliders.back().rut = vehicle.rut;
     }
     return colliders;
 }
@@ -78,6 +79,7 @@ VehicleParams parseVehicle(JsonReader r) {
     v.wheelWidth = r.numberF("wheel_width", v.wheelWidth, 0.01, 5.0);
     v.weight = r.numberF("weight", v.weight, 0.0, 1e6);
     v.sink = r.numberF("sink", v.sink, 0.0, 1.0);
+    v.rut = parseRut(r, ColliderKind::Push);
     r.finish();
     return v;
 }

@@ -23,6 +23,7 @@ struct VehicleParams {
     float wheelWidth = 0.12f;     // metres
     float weight = 2.0f;          // collider force: above a category's fell_force the wheels leave a track
     float sink = 0.02f;           // metres the wheels press into the sward below the terrain surface
+    RutParams rut;                // the ruts the wheels leave in the ground (none by default)
 };
 
 struct MovingColliderParams {

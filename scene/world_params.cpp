@@ -74,6 +74,9 @@ void checkWorldScene(const Scene& scene) {
     if (!wholeMultiple(v.worldOrigin.x, t.spacing) || !wholeMultiple(v.worldOrigin.y, t.spacing))
         fail("in a world 'vegetation.world_origin' must be a whole multiple of 'terrain.spacing' (" +
              formatNumber(t.spacing) + " m), so the tiles' terrain grids lie on one lattice");
+    if (sceneMakesRuts(scene))
+        fail("ruts ('rut_depth') in a world are not supported yet: ground tracks are drawn on a one-tile scene's "
+             "ground");
     const WorldParams& w = scene.world;
     const double extent = double(std::max(w.tilesX, w.tilesY)) * v.tileSize;
     if (extent > kMaxWorldExtent)

@@ -13,6 +13,7 @@ layout(set = 0, binding = kBindingMeshIndices, std430) readonly buffer IndexBloc
 layout(location = 0) out vec3 outWorld; // truth.frag's turf label
 layout(location = 2) out float outViewDepth;
 layout(location = 5) flat out vec3 outNormal; // camera frame, unit, facing the camera
+layout(location = 6) out float outRut;         // unpressed (ruts: track.vert)
 
 void main() {
     uint first = uint(gl_VertexIndex) - uint(gl_VertexIndex) % 3u;
@@ -24,4 +25,5 @@ void main() {
     outWorld = world.xyz;
     outViewDepth = (frame.view * world).z;
     outNormal = truthNormal(cross(p1 - p0, p2 - p0), p0);
+    outRut = 0.0;
 }

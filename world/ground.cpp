@@ -212,7 +212,7 @@ std::optional<SurfacePoint> Ground::meshSurface(glm::vec2 xy) const {
         if (best && z <= best->height) continue;
         glm::dvec3 n = glm::cross(b - a, c - a);
         if (n.z < 0.0) n = -n; // winding-independent: ground faces up
-        best = SurfacePoint{z, glm::vec3(n / std::sqrt(glm::dot(n, n))), plantable_[t] != 0};
+        best = SurfacePoint{z, glm::vec3(n / std::sqrt(glm::dot(n, n))), plantable_[t] != 0, t};
     }
     return best;
 }

@@ -21,6 +21,7 @@ struct SurfacePoint {
     float height;          // world z of the ground at the queried xy, metres
     glm::vec3 normal;      // unit normal of the ground triangle there, pointing up (z > 0)
     bool plantable = true; // vegetation may grow here (GroundSelection)
+    uint32_t triangle = 0; // a mesh ground: the index of the triangle hit (a heightfield: 0)
 };
 
 // A base-colour texture of a ground mesh: 8-bit sRGB RGBA, top row first (glTF: uv (0, 0) is the top left).

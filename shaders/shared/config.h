@@ -56,7 +56,9 @@ SWARD_CONST(uint, kBindingCoverMap, 7u);         // the vegetation's far cover (
 SWARD_CONST(uint, kBindingGroundTextures, 8u);   // a mesh ground's base-colour textures (terrain.frag), main pass
 SWARD_CONST(uint, kBindingMeshVertices, 2u);     // truth pass: a mesh's vertices, pulled by terrain_truth.vert
 SWARD_CONST(uint, kBindingMeshIndices, 3u);      // (TerrainVertex[]) and object_truth.vert (ObjectVertex[]) / its
-                                                 // triangle list (uint[]), so a vertex sees its whole triangle
+                                                 // triangle list (uint[]), so a vertex sees its whole triangle;
+                                                 // a rut patch's TerrainVertex[] (track.vert)
+SWARD_CONST(uint, kBindingTrackTable, 9u);       // the blocks drawn as rut patches (ground_tracks.glsl)
 
 // Vegetation expansion (vegetation_expand.comp), besides its constants at kBindingVegetation.
 SWARD_CONST(uint, kExpandBindingStatics, 0u);

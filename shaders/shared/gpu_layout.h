@@ -35,6 +35,7 @@ SWARD_CONST(uint, kSemanticObject, 8u);     // glTF scene objects (the rover, ..
 SWARD_CONST(uint, kSemanticFelled, 9u);     // felled plants: tyre tracks
 SWARD_CONST(uint, kSemanticCut, 10u);       // mowed plants
 SWARD_CONST(uint, kSemanticTurf, 11u);      // ground under dense vegetation: the turf layer (turfFraction >= 0.5)
+SWARD_CONST(uint, kSemanticTrack, 12u);     // ground pressed into a rut by a wheel (rut depth >= kTrackLabelDepth)
 SWARD_CONST(uint, kInstanceBits, 24u);      // instance id: 0 sky / ground, plant index + 1, kInstanceObjectBase + object
 SWARD_CONST(uint, kInstanceObjectBase, 16000000u);
 // The id space's two disjoint ranges: plant ids 1 .. kInstanceObjectBase - 1, object ids kInstanceObjectBase ..
@@ -152,6 +153,31 @@ float turfFraction(float coverArea) {
     t = t < 0.0f ? 0.0f : t > 1.0f ? 1.0f : t;
     return t * t * (3.0f - 2.0f * t);
 }
+
+// Ground tracks (issue 18, interaction/ground_tracks.h): ruts pressed into the ground live on a world-wide lattice
+// of kTrackCell metres, vertex (i, j) at (i, j) * kTrackCell, in blocks of kTrackBlockCells x kTrackBlockCells
+// vertices (block (bx, by) owns i in [bx, bx + 1) * kTrackBlockCells). A block holding any rut is drawn as a fine
+// patch of the ground (track.vert) of kTrackPatchVertices^2 vertices: its own, the next block's first row and column
+// (the shared edge), and one ring beyond, so neighbouring patches and the coarse ground around them overlap and
+// never leave a crack. The coarse ground discards its fragments inside such blocks (ground_tracks.glsl). A ground
+// point whose rut is at least kTrackLabelDepth deep is labelled kSemanticTrack.
+SWARD_CONST(float, kTrackCell, 0.025);
+SWARD_CONST(uint, kTrackBlockCells, 32u);
+SWARD_CONST(uint, kTrackPatchVertices, kTrackBlockCells + 3u);
+SWARD_CONST(float, kTrackLabelDepth, 0.002);
+// Slot of block (x, y) in the GPU's open-addressing table of patched blocks (linear probing from here; the table
+// size is a power of two). The same text is a GLSL and a C++ function.
+#ifdef __cplusplus
+constexpr
+#endif
+uint trackBlockHash(int x, int y) {
+    uint h = uint(x) * 0x9E3779B1u ^ (uint(y) + 0x7F4A7C15u) * 0x85EBCA77u;
+    h ^= h >> 15u;
+    h *= 0x2C1B3C6Du;
+    return h ^ (h >> 12u);
+}
+// An empty slot of that table holds this key (no block lies there: it would be 10^8 km away).
+SWARD_CONST(int, kTrackEmptyKey, -2147483647 - 1);
 
 // Per-frame constants of the vegetation expansion (uniform buffer).
 struct VegetationConstants {

@@ -30,11 +30,11 @@ TEST(StateFile, SaveRestoreContinueIsBitwiseIdenticalToAnUninterruptedRun) {
         straight.step(c);
         first.step(c);
     }
-    first.world.saveState(path, first.dynamics);
+    first.world.saveState(path, first.dynamics, {});
     EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
 
     Sim resumed = makeSim(tile);
-    resumed.dynamics = resumed.world.restoreState(path);
+    resumed.dynamics = resumed.world.restoreState(path).dynamics;
     EXPECT_EQ(resumed.world.tick(), 60u);
     EXPECT_EQ(resumed.world.activeFields(), straight.world.activeFields());
     for (uint32_t t = 60; t < 150; ++t) {
@@ -52,7 +52,7 @@ TEST(StateFile, CorruptTruncatedOrForeignFilesAreErrorsNamingTheFile) {
     const auto dir = tempDir();
     const std::string path = (dir / "state.bin").string();
     InteractionWorld world(tile, tileParams(50), {});
-    world.saveState(path, world.initialDynamics());
+    world.saveState(path, world.initialDynamics(), {});
     std::vector<char> good;
     {
         std::ifstream in(path, std::ios::binary);
@@ -110,6 +110,6 @@ TEST(StateFile, AFileLongerThanAnyValidStateIsRefusedBeforeItIsRead) {
         ADD_FAILURE() << "no error";
     } catch (const Error& e) {
         EXPECT_EQ(std::string(e.what()), path + ": not a valid interaction state file: 4294967296 bytes, more than the "
-                                                "largest valid state (140582944 bytes)");
+                                                "largest valid state (409542692 bytes)");
     }
 }

@@ -207,11 +207,11 @@ TEST_F(GpuTest, SaveRestoreContinueOnTheGpuIsBitwiseIdentical) {
         tick(straight, straightGpu);
         tick(first, resumedGpu);
     }
-    first.saveState(path, resumedGpu.readDynamics());
+    first.saveState(path, resumedGpu.readDynamics(), {});
     // A new world and a scrambled GPU state: the restore must bring back everything.
     InteractionWorld resumed(tile, scene.vegetation, params, 2);
     resumedGpu.writeDynamics(resumed.initialDynamics());
-    resumedGpu.writeDynamics(resumed.restoreState(path));
+    resumedGpu.writeDynamics(resumed.restoreState(path).dynamics);
     EXPECT_EQ(resumed.tick(), 45u);
     for (int t = 45; t < 120; ++t) {
         tick(straight, straightGpu);

@@ -166,7 +166,7 @@ void Viewer::rebuild(const Scene& sceneIn, bool keepInteraction) {
     std::string stateFile;
     if (keepInteraction && state_ && state_->gpu.simulation) {
         stateFile = (std::filesystem::temp_directory_path() / ("sward-view-" + std::to_string(getpid()) + ".state")).string();
-        state_->gpu.simulation->world().saveState(stateFile, state_->gpu.simulation->gpu().readDynamics());
+        state_->gpu.simulation->saveState(stateFile);
     }
     ctx_.submitter.waitIdle();
     state_.reset();
@@ -176,7 +176,7 @@ void Viewer::rebuild(const Scene& sceneIn, bool keepInteraction) {
     if (!keepInteraction) scene.vegetation.densityMultiplier = panel_.density;
     state_ = loadSceneState(ctx_, scene, samples());
     if (!stateFile.empty() && state_->gpu.simulation) {
-        state_->gpu.simulation->gpu().writeDynamics(state_->gpu.simulation->world().restoreState(stateFile));
+        state_->gpu.simulation->restoreState(stateFile);
         std::filesystem::remove(stateFile);
     }
     state_->gpu.renderer->setMainPassOverlay([this](VkCommandBuffer cmd, const DescriptorBinding& frame) {
@@ -391,7 +391,7 @@ void Viewer::updatePanel() {
     if (sim) {
         panel_.tick = sim->nextTick();
         panel_.simulationSeconds = double(sim->nextTick()) * state_->resources.scene.sequence.timeStep;
-        panel_.activeFieldCount = sim->world().activeFields().size();
+        panel_.activeFieldCount = sim->hasPlants() ? sim->world().activeFields().size() : 0;
         panel_.contacts = sim->lastTick().contacts.size();
         panel_.collisionMs = sim->lastTick().stats.cpuMs;
     }
@@ -429,7 +429,7 @@ void Viewer::buildOverlay(const Camera& camera) {
     Simulation* sim = state_->gpu.simulation.get();
     if (panel_.activeFields && state_->resources.tile) {
         std::vector<uint8_t> active(state_->resources.tile->fields.size(), 0);
-        if (sim)
+        if (sim && sim->hasPlants())
             for (uint32_t f : sim->world().activeFields()) active[f] = 1;
         // Just above the canopy: at the ground the grass would hide the outlines.
         overlay.fields(*state_->resources.tile, state_->resources.terrain, active, eye, 200.0f, 1.1f * canopyHeight());

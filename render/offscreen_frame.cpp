@@ -1,0 +1,105 @@
+// OffscreenFrame and renderFrame (declared in render/scene_renderer.h): frames rendered into targets of their own
+// and read back to host images.
+#include "render/scene_renderer.h"
+
+#include "common/half_float.h"
+#include "engine/barriers.h"
+#include "shared/gpu_layout.h"
+
+#include <cstring>
+
+namespace sward {
+
+OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples)
+    : ctx_(ctx), main_(ctx, mainPassTargetDesc(width, height, samples)), truth_(ctx, truthPassTargetDesc(width, height)) {
+    uint64_t pixels = uint64_t(width) * height;
+    color_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    depth_ = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    labels_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    normals_ = createBuffer(ctx, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+}
+
+namespace {
+
+// The truth pass's (label, tile) pairs: labels always, the tile labels for a world of several tiles.
+void splitLabels(const Buffer& pairs, uint64_t pixels, bool world, std::vector<uint32_t>& labels,
+                 std::vector<uint32_t>* tiles) {
+    const uint32_t* pair = reinterpret_cast<const uint32_t*>(pairs.mapped());
+    labels.resize(pixels);
+    for (uint64_t i = 0; i < pixels; ++i) labels[i] = pair[2 * i];
+    if (!world || !tiles) return;
+    tiles->resize(pixels);
+    for (uint64_t i = 0; i < pixels; ++i) (*tiles)[i] = pair[2 * i + 1];
+}
+
+// The truth pass's normals without their unused w.
+std::vector<float> normalsXyz(const Buffer& xyzw, uint64_t pixels) {
+    const float* normal = reinterpret_cast<const float*>(xyzw.mapped());
+    std::vector<float> xyz(pixels * 3);
+    for (uint64_t i = 0; i < pixels; ++i)
+        for (uint64_t c = 0; c < 3; ++c) xyz[3 * i + c] = normal[4 * i + c];
+    return xyz;
+}
+
+} // namespace
+
+OffscreenFrame::~OffscreenFrame() {
+    for (Buffer* b : {&color_, &depth_, &labels_, &normals_, &rightColor_, &rightDepth_, &rightLabels_, &rightNormals_})
+        retireBuffer(ctx_, *b);
+}
+
+FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
+                                   const std::function<void(VkCommandBuffer)>& prologue, const Camera* right) {
+    const RenderTargetDesc& desc = main_.desc();
+    require(camera.width == desc.width && camera.height == desc.height, "camera and frame sizes differ");
+    require(!right || (right->width == desc.width && right->height == desc.height), "left and right sizes differ");
+    require(renderer.samples() == uint32_t(desc.samples), "renderer and frame sample counts differ");
+    const uint64_t pixels = uint64_t(desc.width) * desc.height;
+    if (right && !rightMain_) {
+        rightMain_ = std::make_unique<RenderTarget>(ctx_, desc);
+        rightTruth_ = std::make_unique<RenderTarget>(ctx_, truth_.desc());
+        rightColor_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+        rightDepth_ = createBuffer(ctx_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+        rightLabels_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+        rightNormals_ = createBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    }
+    ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
+        if (prologue) prologue(cmd);
+        SceneRenderer::View views[2] = {{&camera, &main_, &truth_}, {right, rightMain_.get(), rightTruth_.get()}};
+        renderer.recordViews(cmd, {views, right ? 2u : 1u}, timeSeconds, frameIndex);
+        main_.recordReadback(cmd, 0, color_);
+        truth_.recordReadback(cmd, 0, depth_);
+        truth_.recordReadback(cmd, 1, labels_);
+        truth_.recordReadback(cmd, 2, normals_);
+        if (right) {
+            rightMain_->recordReadback(cmd, 0, rightColor_);
+            rightTruth_->recordReadback(cmd, 0, rightDepth_);
+            rightTruth_->recordReadback(cmd, 1, rightLabels_);
+            rightTruth_->recordReadback(cmd, 2, rightNormals_);
+        }
+        transferToHostBarrier(cmd);
+    });
+    FrameImages images{.width = desc.width, .height = desc.height};
+    images.rgbaHalf.resize(pixels * 4);
+    images.depth.resize(pixels);
+    std::memcpy(images.rgbaHalf.data(), color_.mapped(), pixels * 8);
+    std::memcpy(images.depth.data(), depth_.mapped(), pixels * 4); // float bit patterns written by the shader
+    splitLabels(labels_, pixels, renderer.world(), images.labels, &images.tiles);
+    images.normals = normalsXyz(normals_, pixels);
+    if (right) {
+        images.rightRgbaHalf.resize(pixels * 4);
+        std::memcpy(images.rightRgbaHalf.data(), rightColor_.mapped(), pixels * 8);
+        images.rightDepth.resize(pixels);
+        std::memcpy(images.rightDepth.data(), rightDepth_.mapped(), pixels * 4);
+        splitLabels(rightLabels_, pixels, false, images.rightLabels, nullptr);
+        images.rightNormals = normalsXyz(rightNormals_, pixels);
+    }
+    return images;
+}
+
+FrameImages renderFrame(Context& ctx, SceneRenderer& renderer, const Camera& camera, double timeSeconds) {
+    OffscreenFrame frame(ctx, camera.width, camera.height, renderer.samples());
+    return frame.render(renderer, camera, timeSeconds, 0);
+}
+
+} // namespace sward

@@ -1,0 +1,72 @@
+// TrackRenderer: draws the ruts of GroundTracks (interaction/ground_tracks.h) as real geometry, in colour and in
+// ground truth, exactly where they were pressed.
+//
+// Every track block holding a rut is drawn as a fine patch of the ground (track.vert): a grid of
+// gpu::kTrackPatchVertices^2 vertices at the ground's height minus the rut, with the coarse ground's normal (tilted
+// by the rut's slope), colour and texture coordinate at each vertex, so where the ground is unpressed the patch is
+// the ground. The coarse ground is then drawn with holes: its fragments inside a patched block are discarded
+// (ground_tracks.glsl looks the block up in an open-addressing table). Patches reach one lattice cell into their
+// neighbours, so no crack opens along a block's edge. Without any rut nothing here is drawn or looked up: the ground
+// keeps its plain pipelines and idle ground costs nothing.
+//
+// update() records the upload of the blocks changed since the last frame (vkCmdUpdateBuffer into the frame's
+// command buffer: only the touched blocks' vertices, ordered after the frames before it). The sun shadow pass draws
+// the coarse ground without holes: a rut lies at most its depth below it, within the shadow bias of 5 cm or more
+// (world/sun_shadow.h), so ruts up to that depth are lit as the ground around them.
+#pragma once
+
+#include "engine/context.h"
+#include "engine/pipelines.h"
+#include "interaction/ground_tracks.h"
+#include "render/ground_mesh.h"
+#include "render/vegetation_renderer.h" // PlantPass
+
+#include <map>
+
+namespace sward {
+
+class TrackRenderer {
+public:
+    // `main` / `truth`: the terrain's main and truth pipelines (terrain.vert + terrain.frag, terrain_truth.vert +
+    // truth.frag) with their layouts; the patches and the holed ground are drawn with the same state.
+    TrackRenderer(Context& ctx, const GraphicsPipelineDesc& main, const PipelineLayoutDesc& mainLayout,
+                  const GraphicsPipelineDesc& truth, const PipelineLayoutDesc& truthLayout);
+    ~TrackRenderer();
+    TrackRenderer(const TrackRenderer&) = delete;
+    TrackRenderer& operator=(const TrackRenderer&) = delete;
+
+    // The ruts to draw and the ground they are pressed into; both must outlive the renderer.
+    void setSource(const GroundTracks* tracks, const Ground* ground);
+    // Records the upload of every block changed since the last call. Outside any rendering pass.
+    void update(VkCommandBuffer cmd);
+
+    bool active() const { return blockCount_ > 0; } // some rut is drawn
+    uint32_t blockCount() const { return blockCount_; }
+    // The coarse ground's pipeline for the main or truth pass, with holes where patches lie (active() only), and
+    // the table binding it needs beside the terrain's own.
+    const Pipeline& holedGround(PlantPass pass) const { return pass == PlantPass::Main ? holedMain_ : holedTruth_; }
+    DescriptorBinding tableBinding() const;
+    // Draw every patch into the current main / truth pass, with the terrain's bindings for that pass (less its mesh
+    // buffers) and the tile's push constants.
+    void drawMain(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& shadow,
+                  const DescriptorBinding& cover, const DescriptorBinding& textures, const gpu::TerrainTileConstants& tile);
+    void drawTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& cover,
+                   const gpu::TerrainTileConstants& tile);
+
+private:
+    void uploadBlock(VkCommandBuffer cmd, uint32_t slot, TrackBlockKey key);
+    void uploadTable(VkCommandBuffer cmd);
+    void reserve(uint32_t blocks);
+
+    Context& ctx_;
+    const GroundTracks* tracks_ = nullptr;
+    const Ground* ground_ = nullptr;
+    GroundDrawMesh mesh_; // the coarse ground's attributes, interpolated at patch vertices
+    uint64_t generation_ = ~uint64_t(0), seen_ = 0; // of the tracks last uploaded
+    std::map<TrackBlockKey, uint32_t> slots_; // block -> its patch's instance
+    uint32_t blockCount_ = 0, capacity_ = 0;
+    Buffer vertices_, table_;
+    Pipeline patchMain_, patchTruth_, holedMain_, holedTruth_;
+};
+
+} // namespace sward
