@@ -56,18 +56,20 @@ float GroundTracks::depth(int64_t i, int64_t j) const {
 void GroundTracks::pressVertex(int64_t i, int64_t j, float d) {
     if (!(d > 0.0f)) return;
     const int32_t bx = trackBlockOf(i), by = trackBlockOf(j);
+    const size_t index = size_t((j - int64_t(by) * kBlock) * kBlock + (i - int64_t(bx) * kBlock));
+    // The common case while a wheel rolls on: its earlier steps pressed this vertex as deep already.
+    if (const auto owner = blocks_.find({bx, by}); owner != blocks_.end() && d <= owner->second[index]) return;
     // The block owning the vertex, and a block whose shared edge it lies on (its first row or column belongs to the
     // next block), so that where a patch meets the coarse ground every vertex is unpressed.
     for (int32_t y = by - (j % kBlock == 0 ? 1 : 0); y <= by; ++y)
         for (int32_t x = bx - (i % kBlock == 0 ? 1 : 0); x <= bx; ++x)
-            blocks_.try_emplace({x, y}, TrackBlock(size_t(kBlock * kBlock), 0.0f));
-    float& slot = blocks_[{bx, by}][size_t((j - int64_t(by) * kBlock) * kBlock + (i - int64_t(bx) * kBlock))];
-    if (d <= slot) return;
-    slot = d;
+            blocks_.try_emplace({x, y}, size_t(kBlock * kBlock), 0.0f); // built only when new
+    blocks_[{bx, by}][index] = d;
     // Every patch drawing this vertex or shading with it (its ring's normals look one vertex further): blocks b
-    // with b * kBlock - 2 <= i <= b * kBlock + kBlock + 2.
-    for (int32_t y = trackBlockOf(j - 3); y <= trackBlockOf(j + 2); ++y)
-        for (int32_t x = trackBlockOf(i - 3); x <= trackBlockOf(i + 2); ++x)
+    // with b * kBlock - ring - 1 <= i <= b * kBlock + kBlock + ring + 1.
+    constexpr int64_t kReach = gpu::kTrackPatchRing + 1;
+    for (int32_t y = trackBlockOf(j - kReach - 1); y <= trackBlockOf(j + kReach); ++y)
+        for (int32_t x = trackBlockOf(i - kReach - 1); x <= trackBlockOf(i + kReach); ++x)
             if (blocks_.count({x, y})) revisions_[{x, y}] = revision_ + 1;
     changed_ = true;
 }

@@ -488,7 +488,9 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
     for (uint32_t v = 0; v < views.size(); ++v) writeConstants(firstSlot + v, *views[v].camera, shadowFit, timeSeconds);
     const DescriptorBinding shadow = shadowBinding();
     if (objects_) objects_->update(timeSeconds, dataSlot);
-    if (tracks_) tracks_->update(cmd);
+    if (tracks_)
+        tracks_->update(cmd, reference, views.size() == 2 ? stereoFrustumPlanes(reference, *views[1].camera) : reference.frustumPlanes(),
+                        dataSlot);
 
     if (expand) recordExpansion(cmd, views, timeSeconds, frameIndex, timers);
 

@@ -12,7 +12,12 @@ namespace {
 
 constexpr uint32_t kSide = gpu::kTrackPatchVertices;              // vertices along a patch's side
 constexpr uint32_t kPatchVertices = kSide * kSide;               // TerrainVertex per patch
-constexpr uint32_t kPatchDrawVertices = (kSide - 1) * (kSide - 1) * 6; // two triangles per cell, not indexed
+// Vertices drawn per patch at level of detail `level` (every 2^level-th vertex): two triangles per cell, not indexed.
+constexpr uint32_t patchDrawVertices(uint32_t level) {
+    return ((kSide - 1) >> level) * ((kSide - 1) >> level) * 6;
+}
+static_assert(((kSide - 1) >> (gpu::kTrackLodLevels - 1)) << (gpu::kTrackLodLevels - 1) == kSide - 1,
+              "every level of detail must tile the patch");
 constexpr uint64_t kPatchBytes = uint64_t(kPatchVertices) * sizeof(gpu::TerrainVertex);
 constexpr uint64_t kMaxUpdateBytes = 65536; // vkCmdUpdateBuffer's limit per call
 
@@ -23,10 +28,22 @@ void updateBuffer(VkCommandBuffer cmd, const Buffer& buffer, uint64_t offset, st
                           bytes.data() + at);
 }
 
-// A pipeline layout without one of its bindings.
-PipelineLayoutDesc without(PipelineLayoutDesc layout, uint32_t binding) {
-    std::erase_if(layout.bindings, [&](const VkDescriptorSetLayoutBinding& b) { return b.binding == binding; });
-    return layout;
+// The main pass's patch grids, one per level of detail, back to back: each cell's two triangles as track.vert's
+// truth path builds them (split along (i, j)-(i+1, j+1), the same corner order), indexing the grid's vertices row
+// by row; `first` gets each level's first index, then the total.
+std::vector<uint32_t> patchGridIndices(std::array<uint32_t, gpu::kTrackLodLevels + 1>& first) {
+    std::vector<uint32_t> indices;
+    for (uint32_t level = 0; level < gpu::kTrackLodLevels; ++level) {
+        first[level] = uint32_t(indices.size());
+        const uint32_t cells = (kSide - 1) >> level, side = cells + 1;
+        for (uint32_t y = 0; y < cells; ++y)
+            for (uint32_t x = 0; x < cells; ++x) {
+                const uint32_t v00 = y * side + x, v10 = v00 + 1, v01 = v00 + side, v11 = v01 + 1;
+                indices.insert(indices.end(), {v00, v10, v11, v00, v11, v01});
+            }
+    }
+    first[gpu::kTrackLodLevels] = uint32_t(indices.size());
+    return indices;
 }
 
 PipelineLayoutDesc with(PipelineLayoutDesc layout, VkDescriptorSetLayoutBinding binding) {
@@ -43,28 +60,37 @@ TrackRenderer::TrackRenderer(Context& ctx, const GraphicsPipelineDesc& main, con
         layoutBinding(gpu::kBindingTrackTable, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT);
     const VkDescriptorSetLayoutBinding patch =
         layoutBinding(gpu::kBindingMeshVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT);
+    const VkDescriptorSetLayoutBinding visible =
+        layoutBinding(gpu::kBindingMeshIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT);
     GraphicsPipelineDesc desc = main;
     desc.fragmentShader = "terrain_holes.frag";
     holedMain_ = createGraphicsPipeline(ctx.device, desc, with(mainLayout, table));
     desc = truth;
     desc.fragmentShader = "truth_holes.frag";
     holedTruth_ = createGraphicsPipeline(ctx.device, desc, with(truthLayout, table));
-    // The patches pull their vertices (track.vert), so each also knows its triangle's normal for the truth pass.
+    // The patches pull their vertices (track.vert): indexed in the main pass (each grid vertex shaded once), three per
+    // triangle in the truth pass (each vertex knows its triangle's normal).
     desc = main;
     desc.vertexShader = "track.vert";
     desc.vertexBindings = {};
     desc.vertexAttributes = {};
     desc.specialization = {/* PASS= */ gpu::kPassMain};
-    patchMain_ = createGraphicsPipeline(ctx.device, desc, with(mainLayout, patch));
+    patchMain_ = createGraphicsPipeline(ctx.device, desc, with(with(mainLayout, patch), visible));
     desc = truth;
     desc.vertexShader = "track.vert";
     desc.specialization = {/* PASS= */ gpu::kPassTruth};
-    patchTruth_ = createGraphicsPipeline(ctx.device, desc, without(truthLayout, gpu::kBindingMeshIndices));
+    patchTruth_ = createGraphicsPipeline(ctx.device, desc, truthLayout); // its mesh indices: the patches drawn
+    const std::vector<uint32_t> indices = patchGridIndices(firstIndex_);
+    gridIndices_ = createBufferWithData(ctx, std::span(reinterpret_cast<const uint8_t*>(indices.data()),
+                                                       indices.size() * sizeof(uint32_t)),
+                                        VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
 }
 
 TrackRenderer::~TrackRenderer() {
     destroyBuffer(ctx_, vertices_);
     destroyBuffer(ctx_, table_);
+    destroyBuffer(ctx_, visible_);
+    destroyBuffer(ctx_, gridIndices_);
     for (Pipeline* p : {&patchMain_, &patchTruth_, &holedMain_, &holedTruth_}) destroyPipeline(ctx_.device, *p);
 }
 
@@ -78,11 +104,13 @@ void TrackRenderer::setSource(const GroundTracks* tracks, const Ground* ground) 
     blockCount_ = 0;
 }
 
-// The patch of block `key`: lattice vertices [-1, kTrackBlockCells + 2) around the block's first, each the coarse
+// The patch of block `key`: lattice vertices [-ring, kTrackBlockCells + ring] around the block's first, each the coarse
 // ground's vertex there pressed down by the rut, its normal tilted by the rut's slope (central differences).
 void TrackRenderer::uploadBlock(VkCommandBuffer cmd, uint32_t slot, TrackBlockKey key) {
     std::vector<gpu::TerrainVertex> patch(kPatchVertices);
-    const int64_t i0 = int64_t(key.x) * gpu::kTrackBlockCells - 1, j0 = int64_t(key.y) * gpu::kTrackBlockCells - 1;
+    glm::vec2 heights(INFINITY, -INFINITY);
+    const int64_t i0 = int64_t(key.x) * gpu::kTrackBlockCells - gpu::kTrackPatchRing;
+    const int64_t j0 = int64_t(key.y) * gpu::kTrackBlockCells - gpu::kTrackPatchRing;
     for (uint32_t v = 0; v < kSide; ++v)
         for (uint32_t u = 0; u < kSide; ++u) {
             const int64_t i = i0 + u, j = j0 + v;
@@ -95,8 +123,10 @@ void TrackRenderer::uploadBlock(VkCommandBuffer cmd, uint32_t slot, TrackBlockKe
             vertex.normal = glm::vec4(glm::normalize(n), 0.0f);
             vertex.positionHeight.z -= rut;
             vertex.positionHeight.w = rut;
+            heights = glm::vec2(std::min(heights.x, vertex.positionHeight.z), std::max(heights.y, vertex.positionHeight.z));
             patch[size_t(v) * kSide + u] = vertex;
         }
+    heights_[slot] = heights;
     updateBuffer(cmd, vertices_, slot * kPatchBytes,
                  std::span(reinterpret_cast<const uint8_t*>(patch.data()), kPatchBytes));
 }
@@ -128,10 +158,20 @@ void TrackRenderer::reserve(uint32_t blocks) {
     vertices_ = createBuffer(ctx_, capacity_ * kPatchBytes,
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                              MemoryIntent::DeviceLocal);
+    retireBuffer(ctx_, visible_);
+    visible_ = createBuffer(ctx_, uint64_t(capacity_) * sizeof(uint32_t) * gpu::kFrameDataSlots,
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryIntent::Upload);
+    heights_.resize(capacity_);
     seen_ = 0;
 }
 
-void TrackRenderer::update(VkCommandBuffer cmd) {
+void TrackRenderer::update(VkCommandBuffer cmd, const Camera& reference, const std::array<glm::vec4, 5>& planes,
+                           uint32_t dataSlot) {
+    upload(cmd);
+    if (active()) cull(reference, planes, dataSlot);
+}
+
+void TrackRenderer::upload(VkCommandBuffer cmd) {
     if (!tracks_ || tracks_->revision() == seen_) return; // idle ground: nothing to do
     if (tracks_->generation() != generation_) { // a restored state: start afresh
         generation_ = tracks_->generation();
@@ -156,27 +196,80 @@ void TrackRenderer::update(VkCommandBuffer cmd) {
     seen_ = tracks_->revision();
 }
 
+// The patches whose box (the block, its ring, its lowest and highest vertex) reaches into the frustum, in block order
+// within each level of detail: level 0 where a lattice cell spans at least a pixel at the box's nearest point to the
+// reference camera, level 1 (every 2nd vertex) down to half a pixel, level 2 (every 4th) beyond.
+void TrackRenderer::cull(const Camera& reference, const std::array<glm::vec4, 5>& planes, uint32_t dataSlot) {
+    constexpr float kBlockMetres = gpu::kTrackCell * float(gpu::kTrackBlockCells);
+    constexpr float kRingMetres = gpu::kTrackCell * float(gpu::kTrackPatchRing);
+    const double level0Distance = reference.fy * gpu::kTrackCell; // a cell is one pixel there
+    std::array<std::vector<uint32_t>, gpu::kTrackLodLevels> levels;
+    for (const auto& [key, slot] : slots_) {
+        const glm::vec3 lo(float(key.x) * kBlockMetres - kRingMetres, float(key.y) * kBlockMetres - kRingMetres,
+                           heights_[slot].x);
+        const glm::vec3 hi(lo.x + kBlockMetres + 2.0f * kRingMetres, lo.y + kBlockMetres + 2.0f * kRingMetres,
+                           heights_[slot].y);
+        bool inside = true;
+        for (const glm::vec4& plane : planes) { // the box corner furthest along the plane's normal
+            const glm::vec3 far(plane.x >= 0.0f ? hi.x : lo.x, plane.y >= 0.0f ? hi.y : lo.y, plane.z >= 0.0f ? hi.z : lo.z);
+            inside = inside && glm::dot(glm::vec3(plane), far) + plane.w >= 0.0f;
+        }
+        if (!inside) continue;
+        const double distance = glm::distance(reference.position, glm::clamp(reference.position, glm::dvec3(lo), glm::dvec3(hi)));
+        const uint32_t level = distance < level0Distance ? 0 : distance < 2.0 * level0Distance ? 1 : 2;
+        levels[level].push_back(slot | level << gpu::kTrackLodShift);
+    }
+    uint32_t* visible = reinterpret_cast<uint32_t*>(visible_.mapped()) + size_t(dataSlot) * capacity_;
+    visibleCount_ = 0;
+    for (uint32_t level = 0; level < gpu::kTrackLodLevels; ++level) {
+        firstVisible_[level] = visibleCount_;
+        std::copy(levels[level].begin(), levels[level].end(), visible + visibleCount_);
+        visibleCount_ += uint32_t(levels[level].size());
+    }
+    firstVisible_[gpu::kTrackLodLevels] = visibleCount_;
+    dataSlot_ = dataSlot;
+}
+
+void TrackRenderer::drawVisible(VkCommandBuffer cmd, bool indexed) const {
+    for (uint32_t level = 0; level < gpu::kTrackLodLevels; ++level) {
+        const uint32_t instances = firstVisible_[level + 1] - firstVisible_[level];
+        if (instances == 0) continue;
+        if (indexed)
+            vkCmdDrawIndexed(cmd, firstIndex_[level + 1] - firstIndex_[level], instances, firstIndex_[level], 0,
+                             firstVisible_[level]);
+        else
+            vkCmdDraw(cmd, patchDrawVertices(level), instances, 0, firstVisible_[level]);
+    }
+}
+
+DescriptorBinding TrackRenderer::visibleBinding() const {
+    const uint64_t bytes = uint64_t(capacity_) * sizeof(uint32_t);
+    return storageBuffer(gpu::kBindingMeshIndices, visible_.handle, dataSlot_ * bytes, bytes);
+}
+
 DescriptorBinding TrackRenderer::tableBinding() const { return storageBuffer(gpu::kBindingTrackTable, table_.handle); }
 
 void TrackRenderer::drawMain(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& shadow,
                              const DescriptorBinding& cover, const DescriptorBinding& textures,
                              const gpu::TerrainTileConstants& tile) {
-    if (!active()) return;
+    if (visibleCount_ == 0) return;
     bindPipeline(cmd, patchMain_);
     pushDescriptors(ctx_.device, cmd, patchMain_,
-                    {frame, shadow, cover, textures, storageBuffer(gpu::kBindingMeshVertices, vertices_.handle)});
+                    {frame, shadow, cover, textures, storageBuffer(gpu::kBindingMeshVertices, vertices_.handle),
+                     visibleBinding()});
     pushConstants(cmd, patchMain_, tile);
-    vkCmdDraw(cmd, kPatchDrawVertices, blockCount_, 0, 0);
+    vkCmdBindIndexBuffer(cmd, gridIndices_.handle, 0, VK_INDEX_TYPE_UINT32);
+    drawVisible(cmd, true);
 }
 
 void TrackRenderer::drawTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& cover,
                               const gpu::TerrainTileConstants& tile) {
-    if (!active()) return;
+    if (visibleCount_ == 0) return;
     bindPipeline(cmd, patchTruth_);
     pushDescriptors(ctx_.device, cmd, patchTruth_,
-                    {frame, storageBuffer(gpu::kBindingMeshVertices, vertices_.handle), cover});
+                    {frame, storageBuffer(gpu::kBindingMeshVertices, vertices_.handle), visibleBinding(), cover});
     pushConstants(cmd, patchTruth_, tile);
-    vkCmdDraw(cmd, kPatchDrawVertices, blockCount_, 0, 0);
+    drawVisible(cmd, false);
 }
 
 } // namespace sward

@@ -10,7 +10,10 @@
 // keeps its plain pipelines and idle ground costs nothing.
 //
 // update() records the upload of the blocks changed since the last frame (vkCmdUpdateBuffer into the frame's
-// command buffer: only the touched blocks' vertices, ordered after the frames before it). The sun shadow pass draws
+// command buffer: only the touched blocks' vertices, ordered after the frames before it) and culls the patches
+// against the frame's frustum: a draw's instances are the patches in view, in block order, one draw per level of
+// detail (every vertex, every 2nd, every 4th: a cell about a pixel wide). Both views of a stereo pair and the truth
+// pass draw the same levels, chosen from the reference camera, so the truth is always the drawn geometry. The sun shadow pass draws
 // the coarse ground without holes: a rut lies at most its depth below it, within the shadow bias of 5 cm or more
 // (world/sun_shadow.h), so ruts up to that depth are lit as the ground around them.
 #pragma once
@@ -20,8 +23,11 @@
 #include "interaction/ground_tracks.h"
 #include "render/ground_mesh.h"
 #include "render/vegetation_renderer.h" // PlantPass
+#include "world/camera.h"
 
+#include <array>
 #include <map>
+#include <vector>
 
 namespace sward {
 
@@ -37,11 +43,16 @@ public:
 
     // The ruts to draw and the ground they are pressed into; both must outlive the renderer.
     void setSource(const GroundTracks* tracks, const Ground* ground);
-    // Records the upload of every block changed since the last call. Outside any rendering pass.
-    void update(VkCommandBuffer cmd);
+    // Records the upload of every block changed since the last call and picks the patches inside the frame's
+    // frustum `planes` (world space, inward, as Camera::frustumPlanes), each at the level of detail its distance to
+    // the `reference` camera asks for, for the draws of data slot `dataSlot` (< gpu::kFrameDataSlots, not in use by
+    // a frame still executing). Outside any rendering pass.
+    void update(VkCommandBuffer cmd, const Camera& reference, const std::array<glm::vec4, 5>& planes,
+                uint32_t dataSlot);
 
     bool active() const { return blockCount_ > 0; } // some rut is drawn
     uint32_t blockCount() const { return blockCount_; }
+    uint32_t visibleCount() const { return visibleCount_; } // patches in the latest update's frustum
     // The coarse ground's pipeline for the main or truth pass, with holes where patches lie (active() only), and
     // the table binding it needs beside the terrain's own.
     const Pipeline& holedGround(PlantPass pass) const { return pass == PlantPass::Main ? holedMain_ : holedTruth_; }
@@ -54,18 +65,27 @@ public:
                    const gpu::TerrainTileConstants& tile);
 
 private:
+    void upload(VkCommandBuffer cmd);
     void uploadBlock(VkCommandBuffer cmd, uint32_t slot, TrackBlockKey key);
     void uploadTable(VkCommandBuffer cmd);
     void reserve(uint32_t blocks);
+    void cull(const Camera& reference, const std::array<glm::vec4, 5>& planes, uint32_t dataSlot);
+    void drawVisible(VkCommandBuffer cmd, bool indexed) const;
+    DescriptorBinding visibleBinding() const;
 
     Context& ctx_;
     const GroundTracks* tracks_ = nullptr;
     const Ground* ground_ = nullptr;
     GroundDrawMesh mesh_; // the coarse ground's attributes, interpolated at patch vertices
     uint64_t generation_ = ~uint64_t(0), seen_ = 0; // of the tracks last uploaded
-    std::map<TrackBlockKey, uint32_t> slots_; // block -> its patch's instance
-    uint32_t blockCount_ = 0, capacity_ = 0;
+    std::map<TrackBlockKey, uint32_t> slots_; // block -> its patch's slot in vertices_
+    std::vector<glm::vec2> heights_;          // per slot: the patch's lowest and highest vertex z
+    uint32_t blockCount_ = 0, capacity_ = 0, visibleCount_ = 0, dataSlot_ = 0;
+    std::array<uint32_t, gpu::kTrackLodLevels + 1> firstVisible_{}; // each level's first entry, then the count
     Buffer vertices_, table_;
+    Buffer visible_; // per data slot, capacity_ uints: the slots of the patches drawn (host-visible)
+    Buffer gridIndices_; // the main pass's grid triangles per level of detail (patchGridIndices)
+    std::array<uint32_t, gpu::kTrackLodLevels + 1> firstIndex_{};
     Pipeline patchMain_, patchTruth_, holedMain_, holedTruth_;
 };
 

@@ -57,7 +57,7 @@ SWARD_CONST(uint, kBindingGroundTextures, 8u);   // a mesh ground's base-colour 
 SWARD_CONST(uint, kBindingMeshVertices, 2u);     // truth pass: a mesh's vertices, pulled by terrain_truth.vert
 SWARD_CONST(uint, kBindingMeshIndices, 3u);      // (TerrainVertex[]) and object_truth.vert (ObjectVertex[]) / its
                                                  // triangle list (uint[]), so a vertex sees its whole triangle;
-                                                 // a rut patch's TerrainVertex[] (track.vert)
+                                                 // rut patches' TerrainVertex[] and the patches in view (track.vert)
 SWARD_CONST(uint, kBindingTrackTable, 9u);       // the blocks drawn as rut patches (ground_tracks.glsl)
 
 // Vegetation expansion (vegetation_expand.comp), besides its constants at kBindingVegetation.

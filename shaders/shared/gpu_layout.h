@@ -158,12 +158,17 @@ float turfFraction(float coverArea) {
 // of kTrackCell metres, vertex (i, j) at (i, j) * kTrackCell, in blocks of kTrackBlockCells x kTrackBlockCells
 // vertices (block (bx, by) owns i in [bx, bx + 1) * kTrackBlockCells). A block holding any rut is drawn as a fine
 // patch of the ground (track.vert) of kTrackPatchVertices^2 vertices: its own, the next block's first row and column
-// (the shared edge), and one ring beyond, so neighbouring patches and the coarse ground around them overlap and
-// never leave a crack. The coarse ground discards its fragments inside such blocks (ground_tracks.glsl). A ground
-// point whose rut is at least kTrackLabelDepth deep is labelled kSemanticTrack.
+// (the shared edge), and a ring of kTrackPatchRing beyond, so neighbouring patches and the coarse ground around them
+// overlap and never leave a crack. The coarse ground discards its fragments inside such blocks (ground_tracks.glsl).
+// A patch far from the camera is drawn with every 2nd or 4th vertex (level of detail 1 or 2: kTrackLodLevels), so
+// its triangles stay about a pixel wide. A ground point whose rut is at least kTrackLabelDepth deep is labelled
+// kSemanticTrack.
 SWARD_CONST(float, kTrackCell, 0.025);
 SWARD_CONST(uint, kTrackBlockCells, 32u);
-SWARD_CONST(uint, kTrackPatchVertices, kTrackBlockCells + 3u);
+SWARD_CONST(uint, kTrackPatchRing, 2u);
+SWARD_CONST(uint, kTrackPatchVertices, kTrackBlockCells + 1u + 2u * kTrackPatchRing); // 37: 36 cells, 9 at level 2
+SWARD_CONST(uint, kTrackLodLevels, 3u);
+SWARD_CONST(uint, kTrackLodShift, 28u); // a drawn patch's entry: slot | level << kTrackLodShift
 SWARD_CONST(float, kTrackLabelDepth, 0.002);
 // Slot of block (x, y) in the GPU's open-addressing table of patched blocks (linear probing from here; the table
 // size is a power of two). The same text is a GLSL and a C++ function.

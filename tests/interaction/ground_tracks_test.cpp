@@ -116,12 +116,14 @@ TEST(GroundTracks, APatchMeetsTheUnpressedGroundWithUnpressedVertices) {
         const int64_t i0 = int64_t(key.x) * n, j0 = int64_t(key.y) * n;
         // Where a neighbour is not drawn, the patch's edge towards it and its ring beyond lie on the unpressed
         // ground (the coarse ground drawn there meets them).
-        for (int64_t k = 0; k <= n; ++k) {
-            if (!drawn(key.x + 1, key.y)) edgeVertices += tracks.depth(i0 + n, j0 + k) == 0.0f && tracks.depth(i0 + n + 1, j0 + k) == 0.0f ? 1 : 1000000;
-            if (!drawn(key.x - 1, key.y)) edgeVertices += tracks.depth(i0, j0 + k) == 0.0f && tracks.depth(i0 - 1, j0 + k) == 0.0f ? 1 : 1000000;
-            if (!drawn(key.x, key.y + 1)) edgeVertices += tracks.depth(i0 + k, j0 + n) == 0.0f && tracks.depth(i0 + k, j0 + n + 1) == 0.0f ? 1 : 1000000;
-            if (!drawn(key.x, key.y - 1)) edgeVertices += tracks.depth(i0 + k, j0) == 0.0f && tracks.depth(i0 + k, j0 - 1) == 0.0f ? 1 : 1000000;
-        }
+        for (int64_t k = 0; k <= n; ++k)
+            for (int64_t r = 0; r <= int64_t(gpu::kTrackPatchRing); ++r) { // the edge, then the ring beyond it
+                const bool right = drawn(key.x + 1, key.y) || tracks.depth(i0 + n + r, j0 + k) == 0.0f;
+                const bool left = drawn(key.x - 1, key.y) || tracks.depth(i0 - r, j0 + k) == 0.0f;
+                const bool up = drawn(key.x, key.y + 1) || tracks.depth(i0 + k, j0 + n + r) == 0.0f;
+                const bool down = drawn(key.x, key.y - 1) || tracks.depth(i0 + k, j0 - r) == 0.0f;
+                edgeVertices += right && left && up && down ? 1 : 1000000;
+            }
     }
     EXPECT_LT(edgeVertices, 1000000u) << "a pressed vertex on the edge towards a block that is not drawn";
     EXPECT_GT(edgeVertices, 0u);
