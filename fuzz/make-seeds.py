@@ -68,12 +68,16 @@ def fnv1a64(data):
     return h
 
 
-def state_file(fields, plants, tick=7):
-    out = b"SWARDST1" + struct.pack("<IIQQ", 1, len(fields), tick, len(plants))
+def state_file(fields, plants, tick=7, tracks=()):
+    """tracks: [((x, y), {vertex index: depth}), ...], ascending (y, x); each block holds 32 x 32 depths."""
+    out = b"SWARDST1" + struct.pack("<IIQQ", 2, len(fields), tick, len(plants))
     for active, last in fields:
         out += struct.pack("<IQ", active, last)
     for bend, state in plants:
         out += struct.pack("<II", bend, state)
+    out += struct.pack("<I", len(tracks))
+    for (x, y), depths in tracks:
+        out += struct.pack("<ii", x, y) + struct.pack("<1024f", *[depths.get(k, 0.0) for k in range(1024)])
     return out + struct.pack("<Q", fnv1a64(out))
 
 
@@ -156,6 +160,8 @@ def main():
 
     put("state_file", "two_fields.bin", state_file([(1, 5), (0, 0)], [(0x3c003c00, 1), (0, 0), (7, 2)]))
     put("state_file", "empty.bin", state_file([], [], tick=0))
+    put("state_file", "ruts.bin", state_file([], [], tick=3, tracks=[((-1, 4), {0: 0.04, 33: 0.025}),
+                                                                       ((2, 4), {1023: 0.01})]))
     put("state_file", "world.bin", world_state([((1, 0), [(0, 1, 5, [(0x3c003c00, 1), (7, 2)]), (3, 0, 0, [])]),
                                                 ((0, 2), [(2, 0, 9, [(0, 0)])])]))
 
