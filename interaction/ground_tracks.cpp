@@ -13,7 +13,9 @@ namespace {
 
 constexpr int64_t kBlock = gpu::kTrackBlockCells;
 
-int64_t floorDiv(int64_t a, int64_t b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0))); }
+int64_t floorDiv(int64_t a, int64_t b) {
+    return a / b - ((a % b != 0) && ((a < 0) != (b < 0)));
+}
 
 // The lattice index range [first, last] of vertices within `reach` metres of [lo, hi].
 std::pair<int64_t, int64_t> latticeRange(float lo, float hi, float reach) {
@@ -44,7 +46,9 @@ glm::vec2 trackVertexPosition(int64_t i, int64_t j) {
     return glm::vec2(float(double(i) * gpu::kTrackCell), float(double(j) * gpu::kTrackCell));
 }
 
-int32_t trackBlockOf(int64_t i) { return int32_t(floorDiv(i, kBlock)); }
+int32_t trackBlockOf(int64_t i) {
+    return int32_t(floorDiv(i, kBlock));
+}
 
 float GroundTracks::depth(int64_t i, int64_t j) const {
     const auto it = blocks_.find({trackBlockOf(i), trackBlockOf(j)});
@@ -92,12 +96,11 @@ void GroundTracks::pressHull(const Collider& hull, glm::vec2 forward, const Grou
         }
 }
 
-void GroundTracks::press(std::span<const Collider> previous, std::span<const Collider> current,
-                         const Ground& ground) {
+void GroundTracks::press(std::span<const Collider> previous, std::span<const Collider> current, const Ground& ground) {
     for (const Collider& c : current) {
         if (c.kind != ColliderKind::Push || !(c.rut.depth > 0.0f)) continue;
-        const auto before = std::find_if(previous.begin(), previous.end(),
-                                         [&](const Collider& p) { return p.id == c.id; });
+        const auto before =
+            std::find_if(previous.begin(), previous.end(), [&](const Collider& p) { return p.id == c.id; });
         glm::vec3 motion(0.0f);
         if (before != previous.end() && glm::distance(before->centre, c.centre) <= kMaxSweep)
             motion = c.centre - before->centre;
@@ -119,8 +122,8 @@ uint64_t GroundTracks::blockRevision(TrackBlockKey key) const {
 
 void GroundTracks::restore(TrackBlocks blocks) {
     for (const auto& [key, block] : blocks) {
-        require(block.size() == size_t(kBlock * kBlock), "a track block must hold " +
-                                                            std::to_string(kBlock * kBlock) + " depths");
+        require(block.size() == size_t(kBlock * kBlock),
+                "a track block must hold " + std::to_string(kBlock * kBlock) + " depths");
         for (float d : block) require(std::isfinite(d) && d >= 0.0f, "a rut depth must be finite and >= 0");
     }
     blocks_ = std::move(blocks);

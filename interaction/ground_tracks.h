@@ -25,9 +25,7 @@ class Ground;
 struct TrackBlockKey {
     int32_t x = 0, y = 0; // block (x, y) owns lattice vertices [x, x + 1) * kTrackBlockCells in i (j alike)
     // Row by row: the order of the state file and of the GPU upload.
-    std::strong_ordering operator<=>(const TrackBlockKey& o) const {
-        return y != o.y ? y <=> o.y : x <=> o.x;
-    }
+    std::strong_ordering operator<=>(const TrackBlockKey& o) const { return y != o.y ? y <=> o.y : x <=> o.x; }
     bool operator==(const TrackBlockKey&) const = default;
 };
 

@@ -7,8 +7,8 @@
 #include "shared/gpu_layout.h"
 
 #include <bit>
-#include <cmath>
 #include <cassert>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -25,10 +25,10 @@ constexpr size_t kChecksumBytes = 8;
 constexpr size_t kTrackBlockBytes = 4 + 4 + sizeof(float) * gpu::kTrackBlockCells * gpu::kTrackBlockCells;
 // The largest valid state: a tile of kMaxFieldsPerTileSide^2 fields, as many plants as there are plant ids and
 // kMaxTrackBlocks blocks of ruts. A longer file is refused from its length, before it is read into memory.
-constexpr uint64_t kMaxStateBytes =
-    kHeaderBytes + uint64_t(kMaxFieldsPerTileSide) * kMaxFieldsPerTileSide * kFieldBytes +
-    uint64_t(gpu::kMaxPlantInstances) * sizeof(gpu::PlantDynamic) + 4 + kMaxTrackBlocks * kTrackBlockBytes +
-    kChecksumBytes;
+constexpr uint64_t kMaxStateBytes = kHeaderBytes +
+                                    uint64_t(kMaxFieldsPerTileSide) * kMaxFieldsPerTileSide * kFieldBytes +
+                                    uint64_t(gpu::kMaxPlantInstances) * sizeof(gpu::PlantDynamic) + 4 +
+                                    kMaxTrackBlocks * kTrackBlockBytes + kChecksumBytes;
 
 // x86-64 and every target sward builds for are little-endian, so native byte copies are the file format.
 static_assert(std::endian::native == std::endian::little);

@@ -162,7 +162,8 @@ gpu::TerrainVertex groundVertexAt(const Ground& ground, const GroundDrawMesh& me
     out.positionHeight = glm::vec4(xy, ground.height(xy), 0.0f);
     out.normal = glm::vec4(glm::normalize(glm::vec3(mix(a.normal, b.normal, c.normal))), 0.0f);
     out.albedo = mix(a.albedo, b.albedo, c.albedo);
-    out.uvLayer = glm::vec4(glm::vec2(mix(a.uvLayer, b.uvLayer, c.uvLayer)), a.uvLayer.z, 0.0f); // one layer per triangle
+    out.uvLayer =
+        glm::vec4(glm::vec2(mix(a.uvLayer, b.uvLayer, c.uvLayer)), a.uvLayer.z, 0.0f); // one layer per triangle
     return out;
 }
 

@@ -11,7 +11,8 @@
 namespace sward {
 
 OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples)
-    : ctx_(ctx), main_(ctx, mainPassTargetDesc(width, height, samples)), truth_(ctx, truthPassTargetDesc(width, height)) {
+    : ctx_(ctx), main_(ctx, mainPassTargetDesc(width, height, samples)),
+      truth_(ctx, truthPassTargetDesc(width, height)) {
     uint64_t pixels = uint64_t(width) * height;
     color_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     depth_ = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
@@ -48,8 +49,9 @@ OffscreenFrame::~OffscreenFrame() {
         retireBuffer(ctx_, *b);
 }
 
-FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
-                                   const std::function<void(VkCommandBuffer)>& prologue, const Camera* right) {
+FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera, double timeSeconds,
+                                   uint32_t frameIndex, const std::function<void(VkCommandBuffer)>& prologue,
+                                   const Camera* right) {
     const RenderTargetDesc& desc = main_.desc();
     require(camera.width == desc.width && camera.height == desc.height, "camera and frame sizes differ");
     require(!right || (right->width == desc.width && right->height == desc.height), "left and right sizes differ");

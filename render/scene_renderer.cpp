@@ -1,5 +1,6 @@
 #include "render/scene_renderer.h"
 
+#include "common/half_float.h"
 #include "engine/barriers.h"
 #include "engine/timestamps.h"
 #include "render/ground_mesh.h"
@@ -8,7 +9,6 @@
 #include "render/vegetation_renderer.h"
 #include "shared/config.h"
 #include "shared/gpu_layout.h"
-#include "common/half_float.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -346,9 +346,9 @@ void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, const Camera& referenc
             drawTerrain(cmd, PlantPass::Shadow, frame, reference.position);
             if (objects_) objects_->recordShadow(cmd, frame, dataSlot);
             if (vegetation_)
-                vegetation_->draw(cmd, PlantPass::Shadow, frame, shadowBinding(), dataSlot,
-                                  lodsReaching(scene_.lod, cascades[k].firstReceiver, cascades[k].end,
-                                               shadowParams_.casterMargin));
+                vegetation_->draw(
+                    cmd, PlantPass::Shadow, frame, shadowBinding(), dataSlot,
+                    lodsReaching(scene_.lod, cascades[k].firstReceiver, cascades[k].end, shadowParams_.casterMargin));
         }
     }
     shadowMap_->end(cmd);
@@ -372,14 +372,19 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const Descr
         const DescriptorBinding cover = sampledImage(gpu::kBindingCoverMap, tile.cover.view, coverSampler_);
         const gpu::TerrainTileConstants constants{.coverRect = tile.coverRect};
         if (pass == PlantPass::Main) {
-            if (ruts) pushDescriptors(ctx_.device, cmd, pipeline, {frame, shadowBinding(), cover, textures, tracks_->tableBinding()});
-            else pushDescriptors(ctx_.device, cmd, pipeline, {frame, shadowBinding(), cover, textures});
+            if (ruts)
+                pushDescriptors(ctx_.device, cmd, pipeline,
+                                {frame, shadowBinding(), cover, textures, tracks_->tableBinding()});
+            else
+                pushDescriptors(ctx_.device, cmd, pipeline, {frame, shadowBinding(), cover, textures});
             pushConstants(cmd, pipeline, constants);
         } else if (pass == PlantPass::Truth) {
             const DescriptorBinding vertices = storageBuffer(gpu::kBindingMeshVertices, tile.vertices.handle);
             const DescriptorBinding indices = storageBuffer(gpu::kBindingMeshIndices, tile.indices.handle);
-            if (ruts) pushDescriptors(ctx_.device, cmd, pipeline, {frame, vertices, indices, cover, tracks_->tableBinding()});
-            else pushDescriptors(ctx_.device, cmd, pipeline, {frame, vertices, indices, cover});
+            if (ruts)
+                pushDescriptors(ctx_.device, cmd, pipeline, {frame, vertices, indices, cover, tracks_->tableBinding()});
+            else
+                pushDescriptors(ctx_.device, cmd, pipeline, {frame, vertices, indices, cover});
             pushConstants(cmd, pipeline, constants);
             vkCmdDraw(cmd, tile.indexCount, 1, 0, 0); // non-indexed: the shader reads the triangle list
         } else {
@@ -392,8 +397,10 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const Descr
             vkCmdDrawIndexed(cmd, tile.indexCount, 1, 0, 0, 0);
         }
         if (!ruts) continue; // ruts: a one-tile scene, the patches over its ground
-        if (pass == PlantPass::Main) tracks_->drawMain(cmd, frame, shadowBinding(), cover, textures, constants);
-        else tracks_->drawTruth(cmd, frame, cover, constants);
+        if (pass == PlantPass::Main)
+            tracks_->drawMain(cmd, frame, shadowBinding(), cover, textures, constants);
+        else
+            tracks_->drawTruth(cmd, frame, cover, constants);
     }
 }
 
@@ -489,8 +496,9 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
     const DescriptorBinding shadow = shadowBinding();
     if (objects_) objects_->update(timeSeconds, dataSlot);
     if (tracks_)
-        tracks_->update(cmd, reference, views.size() == 2 ? stereoFrustumPlanes(reference, *views[1].camera) : reference.frustumPlanes(),
-                        dataSlot);
+        tracks_->update(
+            cmd, reference,
+            views.size() == 2 ? stereoFrustumPlanes(reference, *views[1].camera) : reference.frustumPlanes(), dataSlot);
 
     if (expand) recordExpansion(cmd, views, timeSeconds, frameIndex, timers);
 

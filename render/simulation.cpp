@@ -12,7 +12,8 @@ Simulation::Simulation(Context& ctx, const Scene& scene, const Ground& terrain, 
     : ctx_(ctx), scene_(scene), terrain_(terrain) {
     assert((tile == nullptr) == (buffers == nullptr));
     if (!tile) return;
-    world_ = std::make_unique<InteractionWorld>(*tile, scene.vegetation, scene.interaction, resolveThreadCount(threads));
+    world_ =
+        std::make_unique<InteractionWorld>(*tile, scene.vegetation, scene.interaction, resolveThreadCount(threads));
     gpu_ = std::make_unique<InteractionGpu>(ctx, *buffers);
 }
 

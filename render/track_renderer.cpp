@@ -10,8 +10,8 @@ namespace sward {
 
 namespace {
 
-constexpr uint32_t kSide = gpu::kTrackPatchVertices;              // vertices along a patch's side
-constexpr uint32_t kPatchVertices = kSide * kSide;               // TerrainVertex per patch
+constexpr uint32_t kSide = gpu::kTrackPatchVertices; // vertices along a patch's side
+constexpr uint32_t kPatchVertices = kSide * kSide;   // TerrainVertex per patch
 // Vertices drawn per patch at level of detail `level` (every 2^level-th vertex): two triangles per cell, not indexed.
 constexpr uint32_t patchDrawVertices(uint32_t level) {
     return ((kSide - 1) >> level) * ((kSide - 1) >> level) * 6;
@@ -81,9 +81,9 @@ TrackRenderer::TrackRenderer(Context& ctx, const GraphicsPipelineDesc& main, con
     desc.specialization = {/* PASS= */ gpu::kPassTruth};
     patchTruth_ = createGraphicsPipeline(ctx.device, desc, truthLayout); // its mesh indices: the patches drawn
     const std::vector<uint32_t> indices = patchGridIndices(firstIndex_);
-    gridIndices_ = createBufferWithData(ctx, std::span(reinterpret_cast<const uint8_t*>(indices.data()),
-                                                       indices.size() * sizeof(uint32_t)),
-                                        VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    gridIndices_ = createBufferWithData(
+        ctx, std::span(reinterpret_cast<const uint8_t*>(indices.data()), indices.size() * sizeof(uint32_t)),
+        VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
 }
 
 TrackRenderer::~TrackRenderer() {
@@ -123,7 +123,8 @@ void TrackRenderer::uploadBlock(VkCommandBuffer cmd, uint32_t slot, TrackBlockKe
             vertex.normal = glm::vec4(glm::normalize(n), 0.0f);
             vertex.positionHeight.z -= rut;
             vertex.positionHeight.w = rut;
-            heights = glm::vec2(std::min(heights.x, vertex.positionHeight.z), std::max(heights.y, vertex.positionHeight.z));
+            heights =
+                glm::vec2(std::min(heights.x, vertex.positionHeight.z), std::max(heights.y, vertex.positionHeight.z));
             patch[size_t(v) * kSide + u] = vertex;
         }
     heights_[slot] = heights;
@@ -155,9 +156,9 @@ void TrackRenderer::reserve(uint32_t blocks) {
     if (blocks <= capacity_) return;
     capacity_ = std::max(16u, std::bit_ceil(blocks));
     retireBuffer(ctx_, vertices_);
-    vertices_ = createBuffer(ctx_, capacity_ * kPatchBytes,
-                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                             MemoryIntent::DeviceLocal);
+    vertices_ =
+        createBuffer(ctx_, capacity_ * kPatchBytes,
+                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::DeviceLocal);
     retireBuffer(ctx_, visible_);
     visible_ = createBuffer(ctx_, uint64_t(capacity_) * sizeof(uint32_t) * gpu::kFrameDataSlots,
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryIntent::Upload);
@@ -173,7 +174,7 @@ void TrackRenderer::update(VkCommandBuffer cmd, const Camera& reference, const s
 
 void TrackRenderer::upload(VkCommandBuffer cmd) {
     if (!tracks_ || tracks_->revision() == seen_) return; // idle ground: nothing to do
-    if (tracks_->generation() != generation_) { // a restored state: start afresh
+    if (tracks_->generation() != generation_) {           // a restored state: start afresh
         generation_ = tracks_->generation();
         slots_.clear();
         seen_ = 0;
@@ -211,11 +212,13 @@ void TrackRenderer::cull(const Camera& reference, const std::array<glm::vec4, 5>
                            heights_[slot].y);
         bool inside = true;
         for (const glm::vec4& plane : planes) { // the box corner furthest along the plane's normal
-            const glm::vec3 far(plane.x >= 0.0f ? hi.x : lo.x, plane.y >= 0.0f ? hi.y : lo.y, plane.z >= 0.0f ? hi.z : lo.z);
+            const glm::vec3 far(plane.x >= 0.0f ? hi.x : lo.x, plane.y >= 0.0f ? hi.y : lo.y,
+                                plane.z >= 0.0f ? hi.z : lo.z);
             inside = inside && glm::dot(glm::vec3(plane), far) + plane.w >= 0.0f;
         }
         if (!inside) continue;
-        const double distance = glm::distance(reference.position, glm::clamp(reference.position, glm::dvec3(lo), glm::dvec3(hi)));
+        const double distance =
+            glm::distance(reference.position, glm::clamp(reference.position, glm::dvec3(lo), glm::dvec3(hi)));
         const uint32_t level = distance < level0Distance ? 0 : distance < 2.0 * level0Distance ? 1 : 2;
         levels[level].push_back(slot | level << gpu::kTrackLodShift);
     }
@@ -247,16 +250,18 @@ DescriptorBinding TrackRenderer::visibleBinding() const {
     return storageBuffer(gpu::kBindingMeshIndices, visible_.handle, dataSlot_ * bytes, bytes);
 }
 
-DescriptorBinding TrackRenderer::tableBinding() const { return storageBuffer(gpu::kBindingTrackTable, table_.handle); }
+DescriptorBinding TrackRenderer::tableBinding() const {
+    return storageBuffer(gpu::kBindingTrackTable, table_.handle);
+}
 
 void TrackRenderer::drawMain(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& shadow,
                              const DescriptorBinding& cover, const DescriptorBinding& textures,
                              const gpu::TerrainTileConstants& tile) {
     if (visibleCount_ == 0) return;
     bindPipeline(cmd, patchMain_);
-    pushDescriptors(ctx_.device, cmd, patchMain_,
-                    {frame, shadow, cover, textures, storageBuffer(gpu::kBindingMeshVertices, vertices_.handle),
-                     visibleBinding()});
+    pushDescriptors(
+        ctx_.device, cmd, patchMain_,
+        {frame, shadow, cover, textures, storageBuffer(gpu::kBindingMeshVertices, vertices_.handle), visibleBinding()});
     pushConstants(cmd, patchMain_, tile);
     vkCmdBindIndexBuffer(cmd, gridIndices_.handle, 0, VK_INDEX_TYPE_UINT32);
     drawVisible(cmd, true);

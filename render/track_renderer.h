@@ -5,17 +5,18 @@
 // gpu::kTrackPatchVertices^2 vertices at the ground's height minus the rut, with the coarse ground's normal (tilted
 // by the rut's slope), colour and texture coordinate at each vertex, so where the ground is unpressed the patch is
 // the ground. The coarse ground is then drawn with holes: its fragments inside a patched block are discarded
-// (ground_tracks.glsl looks the block up in an open-addressing table). Patches reach one lattice cell into their
+// (ground_tracks.glsl looks the block up in an open-addressing table). Patches reach two lattice cells into their
 // neighbours, so no crack opens along a block's edge. Without any rut nothing here is drawn or looked up: the ground
 // keeps its plain pipelines and idle ground costs nothing.
 //
-// update() records the upload of the blocks changed since the last frame (vkCmdUpdateBuffer into the frame's
-// command buffer: only the touched blocks' vertices, ordered after the frames before it) and culls the patches
-// against the frame's frustum: a draw's instances are the patches in view, in block order, one draw per level of
-// detail (every vertex, every 2nd, every 4th: a cell about a pixel wide). Both views of a stereo pair and the truth
-// pass draw the same levels, chosen from the reference camera, so the truth is always the drawn geometry. The sun shadow pass draws
+// update() records the upload of the blocks changed since the last frame (vkCmdUpdateBuffer into the frame's command
+// buffer: only the touched blocks' vertices, ordered after the frames before it) and culls the patches against the
+// frame's frustum: a draw's instances are the patches in view, in block order, one draw per level of detail (every
+// vertex, every 2nd, every 4th: a cell about a pixel wide). Both views of a stereo pair and the truth pass draw the
+// same levels, chosen from the reference camera, so the truth is always the drawn geometry. The sun shadow pass draws
 // the coarse ground without holes: a rut lies at most its depth below it, within the shadow bias of 5 cm or more
 // (world/sun_shadow.h), so ruts up to that depth are lit as the ground around them.
+
 #pragma once
 
 #include "engine/context.h"
@@ -60,7 +61,8 @@ public:
     // Draw every patch into the current main / truth pass, with the terrain's bindings for that pass (less its mesh
     // buffers) and the tile's push constants.
     void drawMain(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& shadow,
-                  const DescriptorBinding& cover, const DescriptorBinding& textures, const gpu::TerrainTileConstants& tile);
+                  const DescriptorBinding& cover, const DescriptorBinding& textures,
+                  const gpu::TerrainTileConstants& tile);
     void drawTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& cover,
                    const gpu::TerrainTileConstants& tile);
 
@@ -76,14 +78,14 @@ private:
     Context& ctx_;
     const GroundTracks* tracks_ = nullptr;
     const Ground* ground_ = nullptr;
-    GroundDrawMesh mesh_; // the coarse ground's attributes, interpolated at patch vertices
+    GroundDrawMesh mesh_;                           // the coarse ground's attributes, interpolated at patch vertices
     uint64_t generation_ = ~uint64_t(0), seen_ = 0; // of the tracks last uploaded
-    std::map<TrackBlockKey, uint32_t> slots_; // block -> its patch's slot in vertices_
-    std::vector<glm::vec2> heights_;          // per slot: the patch's lowest and highest vertex z
+    std::map<TrackBlockKey, uint32_t> slots_;       // block -> its patch's slot in vertices_
+    std::vector<glm::vec2> heights_;                // per slot: the patch's lowest and highest vertex z
     uint32_t blockCount_ = 0, capacity_ = 0, visibleCount_ = 0, dataSlot_ = 0;
     std::array<uint32_t, gpu::kTrackLodLevels + 1> firstVisible_{}; // each level's first entry, then the count
     Buffer vertices_, table_;
-    Buffer visible_; // per data slot, capacity_ uints: the slots of the patches drawn (host-visible)
+    Buffer visible_;     // per data slot, capacity_ uints: the slots of the patches drawn (host-visible)
     Buffer gridIndices_; // the main pass's grid triangles per level of detail (patchGridIndices)
     std::array<uint32_t, gpu::kTrackLodLevels + 1> firstIndex_{};
     Pipeline patchMain_, patchTruth_, holedMain_, holedTruth_;

@@ -3,8 +3,9 @@
 // A rut patch (render/track_renderer.h): instance k draws the k-th entry of visiblePatches (slot | level <<
 // kTrackLodShift), a grid of kTrackPatchVertices^2 vertices pulled from storage, every (1 << level)-th of them drawn,
 // two triangles per cell split along (i, j)-(i+1, j+1) and wound counter-clockwise seen from above, as the
-// heightfield's: indexed in the main pass, three vertices per triangle in the truth pass (for its normal). Outputs are terrain.vert's, for terrain.frag, and terrain_truth.vert's, for truth.frag; the
-// rut depth (position w) goes to both, for the compacted soil's colour and the "track" label.
+// heightfield's: indexed in the main pass, three vertices per triangle in the truth pass (for its normal). Outputs are
+// terrain.vert's, for terrain.frag, and terrain_truth.vert's, for truth.frag; the rut depth (position w) goes to both,
+// for the compacted soil's colour and the "track" label.
 #include "shared/frame.glsl"
 
 layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain or kPassTruth

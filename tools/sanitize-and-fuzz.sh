@@ -21,10 +21,12 @@ jobs=${JOBS:-$(nproc)}
 all_targets="scene grass_map atlas gltf glb state_file pfm kitti_png exr calib"
 targets=${FUZZ_TARGETS:-$all_targets}
 cpu_suites="common io world vegetation interaction scene dataset eval export"
-# A GPU smoke subset: engine basics, the validation self-test, one renderer of each kind and the GPU simulation.
+# A GPU smoke subset: engine basics, the validation self-test, one renderer of each kind (ruts: in sward-render and
+# in a Session) and the GPU simulation.
 gpu_filter="RangeAllocator.*:Validation.*:GpuTest.ComputeRoundTrip*:GpuTest.BuffersAreSubAllocated*"
 gpu_filter+=":GpuTest.ExpansionMatchesTheCpuReference:GpuTest.RecoveryMatchesTheCpuReference"
 gpu_filter+=":ObjectRenderTest.RoverIsDrawnWithExactDepthAndItsLabel:RenderTest.TwoRendersAreBitwiseIdentical"
+gpu_filter+=":GpuTest.WheelsPressRuts*:GpuTest.RutsAreTheSameBits*"
 
 fail() { echo "sanitize-and-fuzz: $*" >&2; exit 1; }
 seconds_since() { echo $(( $(date +%s) - $1 )); }

@@ -38,7 +38,9 @@ Collider wheelAt(const Ground& ground, uint32_t id, float x, float y, RutParams 
     return c;
 }
 
-int64_t lattice(float metres) { return int64_t(std::lround(metres / gpu::kTrackCell)); }
+int64_t lattice(float metres) {
+    return int64_t(std::lround(metres / gpu::kTrackCell));
+}
 
 // Drives wheels along +y from y0 in steps of `step` metres for `ticks` ticks (previous tick swept to this one).
 GroundTracks drive(const Ground& ground, std::vector<float> xs, float y0, float step, int ticks, RutParams rut,
@@ -63,7 +65,8 @@ TEST(GroundTracks, AFastWheelLeavesAContinuousRutOfItsDepthFollowingTheGround) {
     // 0.4 m per tick: a wheel print is 0.23 m long, so unswept prints would leave humps 2.5 cm high between them.
     const GroundTracks tracks = drive(ground, {10.0f}, 10.0f, 0.4f, 21, {kRut, 0.0f, 0.0f});
     float shallowest = 1.0f;
-    for (int64_t j = lattice(10.0f); j <= lattice(18.0f); ++j) shallowest = std::min(shallowest, tracks.depth(lattice(10.0f), j));
+    for (int64_t j = lattice(10.0f); j <= lattice(18.0f); ++j)
+        shallowest = std::min(shallowest, tracks.depth(lattice(10.0f), j));
     EXPECT_GT(shallowest, kRut - 2e-4f) << "the rut is not continuous along the wheel's path";
     EXPECT_LE(shallowest, kRut);
     // Across the track: full depth under the tyre, none beyond its rounded edge (half width + sqrt(2 r depth)).

@@ -40,8 +40,8 @@ std::string readFile(const std::string& path) {
 
 std::string render(const std::string& args) {
     const std::string out = tempDir("ruts");
-    const std::string command = SWARD_RENDER_EXE " " + kScene + " --no-vegetation -q " + args + " --out " + out +
-                                " >/dev/null 2>&1";
+    const std::string command =
+        SWARD_RENDER_EXE " " + kScene + " --no-vegetation -q " + args + " --out " + out + " >/dev/null 2>&1";
     EXPECT_EQ(std::system(command.c_str()), 0) << command;
     return out;
 }
@@ -92,8 +92,9 @@ TEST_F(GpuTest, WheelsPressRutsOfTheConfiguredDepthIntoBareGroundSeenInDepthColo
     const glm::dvec3 eye(253.2, 198.5, ground.height(glm::vec2(253.2f, 198.5f)) + 2.0);
     const glm::dvec3 target(250.0, 203.5, ground.height(glm::vec2(250.0f, 203.5f)));
     char args[256];
-    std::snprintf(args, sizeof args, "--frames %u:%u --resolution %ux%u --camera %.4f,%.4f,%.4f --look-at %.4f,%.4f,%.4f",
-                  kFrame, kFrame + 1, kWidth, kHeight, eye.x, eye.y, eye.z, target.x, target.y, target.z);
+    std::snprintf(args, sizeof args,
+                  "--frames %u:%u --resolution %ux%u --camera %.4f,%.4f,%.4f --look-at %.4f,%.4f,%.4f", kFrame,
+                  kFrame + 1, kWidth, kHeight, eye.x, eye.y, eye.z, target.x, target.y, target.z);
     const std::string out = render(args);
     const cv::Mat depth = cv::imread(out + "/depth/000029.exr", cv::IMREAD_UNCHANGED);
     const cv::Mat left = cv::imread(out + "/left/000029.exr", cv::IMREAD_UNCHANGED);
@@ -151,9 +152,10 @@ TEST_F(GpuTest, RutsAreTheSameBitsFromShardsAndFromARestoredState) {
     const std::string full = render("--frames 0:12 --resolution 96x64 --samples 1");
     const std::string sharded = tempDir("ruts-shards");
     for (const char* shard : {"0/2", "1/2"}) {
-        const std::string command = SWARD_RENDER_EXE " " + kScene + " --no-vegetation -q --frames 0:12 --resolution "
-                                    "96x64 --samples 1 --shard " + std::string(shard) + " --out " + sharded +
-                                    " >/dev/null 2>&1";
+        const std::string command = SWARD_RENDER_EXE " " + kScene +
+                                    " --no-vegetation -q --frames 0:12 --resolution "
+                                    "96x64 --samples 1 --shard " +
+                                    std::string(shard) + " --out " + sharded + " >/dev/null 2>&1";
         ASSERT_EQ(std::system(command.c_str()), 0) << command;
     }
     for (const char* file : {"depth/000011.exr", "left/000011.exr", "semantic/000011.png", "normal/000011.exr"}) {
