@@ -48,7 +48,6 @@ public:
     // Rut depth at lattice vertex (i, j), metres; 0 where nothing was pressed.
     float depth(int64_t i, int64_t j) const;
     const TrackBlocks& blocks() const { return blocks_; }
-    bool empty() const { return blocks_.empty(); }
 
     // Change counters for whoever draws the ruts: revision() grows with every press that changed a depth, and a
     // block's revision is the value revision() took when its drawn patch (own vertices, shared edge, ring and the

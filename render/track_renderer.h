@@ -52,8 +52,6 @@ public:
                 uint32_t dataSlot);
 
     bool active() const { return blockCount_ > 0; } // some rut is drawn
-    uint32_t blockCount() const { return blockCount_; }
-    uint32_t visibleCount() const { return visibleCount_; } // patches in the latest update's frustum
     // The coarse ground's pipeline for the main or truth pass, with holes where patches lie (active() only), and
     // the table binding it needs beside the terrain's own.
     const Pipeline& holedGround(PlantPass pass) const { return pass == PlantPass::Main ? holedMain_ : holedTruth_; }
