@@ -241,20 +241,24 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
         return timers.read();
     };
 
-    // Full frames: every pass, timed, with whole quads (variant 0) and with each cut-out corner count, interleaved so
-    // all see the same machine state. The first frame of each warms up caches and pipelines and is not timed; it is
-    // the one whose plant draws are counted.
+    // Full frames: every pass, timed, with whole quads (variant 0), with each cut-out corner count, and with the
+    // floor's two main-pass variants (plants drawn by a constant-colour shader; no plants), interleaved so all see the
+    // same machine state. The first frame of each warms up caches and pipelines and is not timed; it is the one whose
+    // plant draws are counted.
     VegetationRenderer& vegetation = *renderer.vegetation();
+    using Shading = VegetationRenderer::MainShading;
     const Atlas atlas = options.cutoutCorners.empty() ? Atlas{} : buildAtlas(resources.scene); // createSceneGpu let go of it
     PipelineStatistics statistics(ctx.device, 3 * (gpu::kMaxShadowCascades + 2)); // 3 LODs of the one tile: per shadow cascade, main, truth
-    std::vector<uint32_t> variants = {0};
-    variants.insert(variants.end(), options.cutoutCorners.begin(), options.cutoutCorners.end());
+    std::vector<std::pair<uint32_t, Shading>> variants = {{0, Shading::Full}};
+    for (uint32_t corners : options.cutoutCorners) variants.push_back({corners, Shading::Full});
+    if (options.floor) variants.insert(variants.end(), {{0, Shading::Floor}, {0, Shading::Off}});
     std::vector<PassCounts> counts(variants.size());
     std::vector<std::map<std::string, std::vector<double>>> passes(variants.size());
     std::vector<std::array<std::vector<uint8_t>, 3>> images(variants.size());
     for (uint32_t i = 0; i <= options.frames; ++i)
         for (size_t v = 0; v < variants.size(); ++v) {
-            vegetation.setCutout(variants[v], atlas);
+            vegetation.setCutout(variants[v].first, atlas);
+            vegetation.setMainShading(variants[v].second);
             auto times = timedFrame(ctx, renderer, main, truth, camera, i, timers, i == 0 ? &statistics : nullptr,
                                     counts[v]);
             if (i > 0)
@@ -262,9 +266,22 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
             if (i == options.frames) images[v] = frameImages(main, truth);
         }
     vegetation.setCutout(0, atlas);
+    vegetation.setMainShading(Shading::Full);
     nlohmann::json cutouts = nlohmann::json::object();
-    for (size_t v = 1; v < variants.size(); ++v)
-        cutouts[std::to_string(variants[v])] = cutoutFigures(counts[v], passes[v], images[v], counts[0], passes[0], images[0]);
+    for (size_t v = 1; v <= options.cutoutCorners.size(); ++v)
+        cutouts[std::to_string(variants[v].first)] =
+            cutoutFigures(counts[v], passes[v], images[v], counts[0], passes[0], images[0]);
+    nlohmann::json floor = nlohmann::json::object();
+    if (options.floor) {
+        const double full = median(passes[0].at("main")), floorMs = median(passes[variants.size() - 2].at("main")),
+                     without = median(passes.back().at("main"));
+        floor = {{"main_ms", full},
+                 {"floor_main_ms", floorMs},
+                 {"without_plants_main_ms", without},
+                 {"plant_ms", full - without},
+                 {"floor_plant_ms", floorMs - without},
+                 {"plant_to_floor", floorMs > without ? (full - without) / (floorMs - without) : 0.0}};
+    }
     BakedPlants baked = vegetation.bake(0);
 
     // Expansion overhead: expansion + main pass against the same main pass drawing the same quads from the
@@ -300,6 +317,7 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
         {"covered_pixels", counts[0].coveredPixels},
         {"covered_fraction", double(counts[0].coveredPixels) / (double(options.width) * options.height)},
         {"cutout", cutouts},
+        {"floor", floor},
         {"device", ctx.device.name()},
         {"width", options.width},
         {"height", options.height},

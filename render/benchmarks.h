@@ -32,6 +32,7 @@ struct FrameBenchOptions {
     uint32_t frames = 5;              // measured frames per figure (medians are reported)
     std::string device;
     std::vector<uint32_t> cutoutCorners = {4, 6, 8}; // cut-out variants measured against whole quads (4..8 each)
+    bool floor = true; // also the main pass with the plants drawn by a constant-colour shader, and without plants
 };
 
 // Renders the scene and reports GPU pass times and expansion figures. Keys: pass_ms (pass -> median ms),
@@ -43,8 +44,11 @@ struct FrameBenchOptions {
 // untimed warm-up frame; main and truth also lanes_per_covered_pixel = invocations / covered_pixels),
 // covered_pixels (pixels whose ground-truth label is a plant: vegetation, felled or cut), covered_fraction, cutout
 // (per corner count of options.cutoutCorners: pass_ms, plant_draws, covered_pixels, main_lanes_ratio and
-// main_ms_ratio against whole quads, pixels_differing {colour, depth, label} from the whole-quad image), device,
-// width, height, samples.
+// main_ms_ratio against whole quads, pixels_differing {colour, depth, label} from the whole-quad image), floor
+// (with options.floor, the same run: main_ms of the main pass with full plant shading, floor_main_ms with the plants'
+// fragment shader replaced by a constant colour, without_plants_main_ms without plant draws, plant_ms and
+// floor_plant_ms = each minus the pass without plants, plant_to_floor = plant_ms / floor_plant_ms), device, width,
+// height, samples.
 nlohmann::json benchFrame(const FrameBenchOptions& options);
 
 struct CollideBenchOptions {

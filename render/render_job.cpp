@@ -1,5 +1,6 @@
 #include "render/render_job.h"
 
+#include "common/background_task.h"
 #include "common/parse_number.h"
 #include "dataset/dataset_writer.h"
 #include "dataset/fingerprint.h"
@@ -17,6 +18,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <unistd.h>
 
@@ -166,13 +168,20 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
     OffscreenFrame target(ctx, plan.width, plan.height, plan.samples);
     Progress progress{!options.quiet && isatty(fileno(stderr)), uint32_t(todo.size())};
     uint32_t done = 0;
+    // A frame's files are encoded and written while the next frame renders (the CPU driver's vertex stage runs on
+    // one thread, and a GPU renders on its own). One frame at a time: start() waits for the previous frame's files,
+    // so a write error stops the run one frame later at the most, and progress counts frames on disk.
+    BackgroundTask writer;
     for (uint32_t frame : todo) {
-        RigCameras cameras;
-        const FrameImages images =
-            renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, cameras);
-        dataset.writeFrame(frame, images, cameras.left, rig.baseline);
-        progress.frameDone(++done, frame);
+        auto cameras = std::make_shared<RigCameras>();
+        auto images = std::make_shared<const FrameImages>(
+            renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras));
+        writer.start([&dataset, &progress, &done, &rig, frame, images, cameras] {
+            dataset.writeFrame(frame, *images, cameras->left, rig.baseline);
+            progress.frameDone(++done, frame);
+        });
     }
+    writer.wait();
 }
 
 // The manifest: everything needed to reproduce and verify the files, and nothing that changes between two runs of

@@ -55,6 +55,27 @@ VegetationRenderer::Tile::~Tile() {
     for (Buffer* b : {&constants, &clusterCounts, &draws, &stats}) retireBuffer(ctx, *b);
 }
 
+PipelineLayoutDesc VegetationRenderer::drawLayout(bool withShadowMap) const {
+    std::vector<VkDescriptorSetLayoutBinding> bindings = plantDrawBindings();
+    bindings.push_back(layoutBinding(gpu::kBindingInstancePlants, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT));
+    if (withShadowMap) bindings.push_back(shadowMapLayoutBinding());
+    return {.bindings = bindings, .pushConstantSize = sizeof(uint32_t), .pushConstantStages = kDrawStages}; // lod
+}
+
+GraphicsPipelineDesc VegetationRenderer::mainPipelineDesc(const char* fragmentShader) const {
+    const bool msaa = formats_.mainSamples != VK_SAMPLE_COUNT_1_BIT;
+    return {
+        .vertexShader = "plant.vert",
+        .fragmentShader = fragmentShader,
+        .cullMode = VK_CULL_MODE_NONE, // quads are seen from both sides
+        .colorFormats = {formats_.mainColor},
+        .depthFormat = formats_.mainDepth,
+        .samples = formats_.mainSamples,
+        .alphaToCoverage = msaa,
+        .specialization = {/* PASS= */ gpu::kPassMain, /* ALPHA_TO_COVERAGE= */ msaa ? 1u : 0u},
+    };
+}
+
 VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const Atlas& atlas,
                                        const VegetationPassFormats& formats, uint32_t instanceCapacity)
     : ctx_(ctx), scene_(scene), capacity_(std::max(instanceCapacity, 1u)), formats_(formats) {
@@ -87,25 +108,9 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const A
                                .pushConstantSize = sizeof(gpu::ScanConstants),
                                .pushConstantStages = cs});
 
-    std::vector<VkDescriptorSetLayoutBinding> drawBindings = plantDrawBindings();
-    drawBindings.push_back(ssbo(gpu::kBindingInstancePlants, VK_SHADER_STAGE_VERTEX_BIT));
-    PipelineLayoutDesc shadowLayout{
-        .bindings = drawBindings, .pushConstantSize = sizeof(uint32_t), .pushConstantStages = kDrawStages}; // lod
-    PipelineLayoutDesc mainLayout = shadowLayout;
-    mainLayout.bindings.push_back(shadowMapLayoutBinding());
-
-    const bool msaa = formats.mainSamples != VK_SAMPLE_COUNT_1_BIT;
-    GraphicsPipelineDesc plants{
-        .vertexShader = "plant.vert",
-        .fragmentShader = "plant.frag",
-        .cullMode = VK_CULL_MODE_NONE, // quads are seen from both sides
-        .colorFormats = {formats.mainColor},
-        .depthFormat = formats.mainDepth,
-        .samples = formats.mainSamples,
-        .alphaToCoverage = msaa,
-        .specialization = {/* PASS= */ gpu::kPassMain, /* ALPHA_TO_COVERAGE= */ msaa ? 1u : 0u},
-    };
-    mainPipeline_ = createGraphicsPipeline(ctx.device, plants, mainLayout);
+    PipelineLayoutDesc shadowLayout = drawLayout(false);
+    GraphicsPipelineDesc plants = mainPipelineDesc("plant.frag");
+    mainPipeline_ = createGraphicsPipeline(ctx.device, plants, drawLayout(true));
     plants.fragmentShader = "plant_truth.frag";
     plants.colorFormats = {formats.truthDepthBits, formats.truthLabel, formats.truthNormal};
     plants.depthFormat = formats.truthDepth;
@@ -126,7 +131,7 @@ VegetationRenderer::~VegetationRenderer() {
     ctx_.submitter.waitIdle();
     tiles_.clear();
     for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &truthPipeline_,
-                        &shadowPipeline_, &bakePipeline_, &staticPipeline_})
+                        &shadowPipeline_, &bakePipeline_, &staticPipeline_, &floorPipeline_})
         destroyPipeline(ctx_.device, *p);
     for (Buffer* b : {&instances_, &instancePlants_, &cursor_, &atlasCells_}) destroyBuffer(ctx_, *b);
     destroyImage(ctx_, atlasImage_);
@@ -139,6 +144,10 @@ void VegetationRenderer::uploadAtlas(const Atlas& atlas) {
     uint32_t maxColumns = desc.maxColumns();
     atlasMaxColumns_ = maxColumns;
     for (uint32_t r = 0; r < std::min<size_t>(desc.rows.size(), 4); ++r) atlasColumns_[int(r)] = uint32_t(desc.rows[r].cells.size());
+    const std::array<float, 4> cover = cardCover(atlas);
+    cardCover_ = glm::vec4(cover[0], cover[1], cover[2], cover[3]);
+    const std::array<float, 4> aspects = meanAspects(desc);
+    meanAspects_ = glm::vec4(aspects[0], aspects[1], aspects[2], aspects[3]);
     std::vector<gpu::AtlasCellGpu> cells(desc.rows.size() * maxColumns);
     for (uint32_t r = 0; r < desc.rows.size(); ++r)
         for (uint32_t c = 0; c < desc.rows[r].cells.size(); ++c) {
@@ -250,6 +259,9 @@ void VegetationRenderer::writeConstants(const Tile& tile, const Camera& camera, 
     if (w.enabled && w.tilesX * w.tilesY > 1)
         c.tile = glm::uvec4(uint32_t(tile.coord.y) * w.tilesX + uint32_t(tile.coord.x) + 1u, 0u, 0u, 0u);
     c.options = glm::uvec4(cutoutCorners_, 0u, 0u, 0u);
+    c.categoryCard = cardCover_;
+    c.categoryAspect = meanAspects_;
+    c.farLod = glm::vec4(scene_.lod.sliceLayers, scene_.lod.mergeWidth, float(camera.fy), 0.0f);
     std::memcpy(tile.constants.mapped() + (slot % gpu::kFrameDataSlots) * constantsStride_, &c, sizeof c);
 }
 
@@ -315,7 +327,13 @@ void VegetationRenderer::expandTile(VkCommandBuffer cmd, const Tile& tile, uint3
 
 void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame,
                               const DescriptorBinding& shadowMap, uint32_t slot, uint32_t lodMask) {
-    const Pipeline& pipeline = pass == PlantPass::Main ? mainPipeline_ : pass == PlantPass::Truth ? truthPipeline_ : shadowPipeline_;
+    if (pass == PlantPass::Main && mainShading_ == MainShading::Off) return;
+    if (pass == PlantPass::Main && mainShading_ == MainShading::Floor && !floorPipeline_.handle)
+        floorPipeline_ = createGraphicsPipeline(ctx_.device, mainPipelineDesc("plant_floor.frag"), drawLayout(true));
+    const Pipeline& pipeline = pass == PlantPass::Truth  ? truthPipeline_
+                             : pass == PlantPass::Shadow ? shadowPipeline_
+                             : mainShading_ == MainShading::Floor ? floorPipeline_
+                                                                  : mainPipeline_;
     bindPipeline(cmd, pipeline);
     DescriptorBinding instances = storageBuffer(gpu::kBindingPlantInstances, instances_.handle);
     DescriptorBinding plants = storageBuffer(gpu::kBindingInstancePlants, instancePlants_.handle);

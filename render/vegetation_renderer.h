@@ -89,6 +89,10 @@ public:
     // `atlas` is the one the renderer was made with: its polygons are fitted on the first use of a corner count.
     void setCutout(uint32_t corners, const Atlas& atlas);
     uint32_t cutoutCorners() const { return cutoutCorners_; }
+    // Benchmarks: how the main pass draws plants. Floor: the same triangles with a constant-colour fragment shader
+    // (shaders/plant_floor.frag, the rasteriser's floor); Off: not at all. Truth and shadow passes are unchanged.
+    enum class MainShading { Full, Floor, Off };
+    void setMainShading(MainShading shading) { mainShading_ = shading; }
     // Benchmarks: while set, draw() wraps each tile's draw of each LOD in a statistics range named after the pass
     // and the LOD ("main.near", "truth.far", "shadow.mid", ...). The command buffers draw() then records into must
     // not dispatch compute (lavapipe crashes).
@@ -122,6 +126,8 @@ private:
 
     void uploadAtlas(const Atlas& atlas);
     void uploadCellTable(); // cellTables_[cutoutCorners_]
+    PipelineLayoutDesc drawLayout(bool withShadowMap) const; // the plant draws' layout: main (shadow map) or not
+    GraphicsPipelineDesc mainPipelineDesc(const char* fragmentShader) const;
     void writeConstants(const Tile& tile, const Camera& camera, double timeSeconds, uint32_t slot,
                         const std::array<glm::vec4, 5>& planes);
     void expandTile(VkCommandBuffer cmd, const Tile& tile, uint32_t slot, bool firstTile);
@@ -137,13 +143,16 @@ private:
     uint32_t capacity_ = 0;
     uint32_t atlasMaxColumns_ = 1;
     glm::uvec4 atlasColumns_{1u};
+    glm::vec4 cardCover_{0.0f};   // cardCover(atlas): far slicing's card area per category
+    glm::vec4 meanAspects_{0.0f}; // meanAspects(atlas): far merging's width per height per category
     Buffer instances_, instancePlants_, cursor_, atlasCells_;
     uint64_t constantsStride_ = 0;
     Image atlasImage_;
     VkSampler atlasSampler_ = VK_NULL_HANDLE;
     Pipeline countPipeline_, scanPipeline_, writePipeline_;
     Pipeline mainPipeline_, truthPipeline_, shadowPipeline_;
-    Pipeline bakePipeline_, staticPipeline_; // created on first use (benchmarks, tests)
+    Pipeline bakePipeline_, staticPipeline_, floorPipeline_; // created on first use (benchmarks, tests)
+    MainShading mainShading_ = MainShading::Full;
     VegetationPassFormats formats_;
     PipelineStatistics* statistics_ = nullptr;
     uint32_t cutoutCorners_ = 0;

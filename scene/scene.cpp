@@ -166,6 +166,10 @@ void readLod(JsonReader r, LodParams& l) {
     l.midToFar = r.numberF("mid", l.midToFar, 0.0, 1e4);
     l.farLimit = r.numberF("far", l.farLimit, 0.0, 1e5);
     l.band = r.numberF("band", l.band, 0.01, 100.0);
+    l.sliceLayers = r.numberF("slice_layers", l.sliceLayers, 0.0, 100.0);
+    l.mergeWidth = r.numberF("merge_width", l.mergeWidth, 0.0, 64.0);
+    if (l.sliceLayers > 0.0f && l.sliceLayers < 2.0f)
+        r.fail(r.name("slice_layers") + " must be 0 (off) or at least 2 (fewer would show the ground through the plants)");
     if (!(l.nearToMid <= l.midToFar && l.midToFar <= l.farLimit))
         r.fail("'" + r.path() + "' distances must satisfy near <= mid <= far");
     r.finish();

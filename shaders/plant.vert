@@ -4,6 +4,7 @@
 #include "shared/frame.glsl"
 #include "shared/vegetation.glsl"
 #include "shared/plant_vertex.glsl"
+#include "shared/plant_shading.glsl"
 
 layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain, kPassTruth or kPassShadow
 layout(push_constant) uniform Push { uint lod; } push;
@@ -14,13 +15,16 @@ layout(set = 0, binding = kBindingInstancePlants, std430) readonly buffer Instan
 layout(location = 0) out vec2 outUv;
 layout(location = 1) out vec3 outWorld;
 layout(location = 2) out float outViewDepth;
-layout(location = 3) out vec3 outUp;
 layout(location = 4) flat out uint outFade;
 layout(location = 5) out float outHeightFraction;
 layout(location = 6) flat out float outRandom;
 layout(location = 7) flat out uint outLabel; // ground truth: (semantic class << 24) | instance id
 layout(location = 8) flat out uint outTile;  // ground truth: the tile's label (VegetationConstants::tile)
 layout(location = 9) flat out vec3 outNormal; // ground truth: the triangle's camera-frame normal (truthNormal)
+layout(location = 10) flat out mat3 outAlbedo; // colour pass: plantShading (locations 10-15)
+layout(location = 13) flat out vec3 outAlbedoOffset;
+layout(location = 14) flat out vec3 outSunLight;
+layout(location = 15) flat out vec3 outAmbient;
 
 void main() {
     ExpandedPlant instance = instances[gl_InstanceIndex];
@@ -38,7 +42,6 @@ void main() {
     outUv = v.uv;
     outWorld = v.position;
     outViewDepth = (frame.view * vec4(v.position, 1.0)).z;
-    outUp = octahedralDecode(instance.up);
     outFade = instance.fade | (push.lod << 21); // bits 21-22: the LOD, for the viewer's LOD colours
     outHeightFraction = v.heightFraction;
     outRandom = v.random;
@@ -56,7 +59,15 @@ void main() {
         vec3 p1 = plantVertex(instance, push.lod, first + 1u).position;
         vec3 p2 = plantVertex(instance, push.lod, first + 2u).position;
         outNormal = truthNormal(cross(p1 - p0, p2 - p0), p0);
-    } else {
+    }
+    if (PASS == kPassMain) {
+        PlantShading shading = plantShading(instance.fade, push.lod, octahedralDecode(instance.up), v.random);
+        outAlbedo = shading.albedo;
+        outAlbedoOffset = shading.albedoOffset;
+        outSunLight = shading.sunLight;
+        outAmbient = shading.ambient;
+    }
+    if (PASS != kPassTruth) {
         outLabel = 0u;
         outTile = 0u;
         outNormal = vec3(0.0);

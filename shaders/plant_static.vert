@@ -3,6 +3,7 @@
 // Draws pre-baked plant vertices (benchmark baseline): same outputs as plant.vert, no per-frame expansion.
 #include "shared/frame.glsl"
 #include "shared/vegetation.glsl"
+#include "shared/plant_shading.glsl"
 
 layout(set = 0, binding = kBindingPlantInstances, std430) readonly buffer Baked { BakedVertex baked[]; };
 // Unused here, declared so the pipeline layout matches plant.vert's.
@@ -11,17 +12,25 @@ layout(set = 0, binding = kBindingAtlasCells, std430) readonly buffer Cells { At
 layout(location = 0) out vec2 outUv;
 layout(location = 1) out vec3 outWorld;
 layout(location = 2) out float outViewDepth;
-layout(location = 3) out vec3 outUp;
 layout(location = 4) flat out uint outFade;
 layout(location = 5) out float outHeightFraction;
 layout(location = 6) flat out float outRandom;
+layout(location = 10) flat out mat3 outAlbedo; // plantShading (locations 10-15)
+layout(location = 13) flat out vec3 outAlbedoOffset;
+layout(location = 14) flat out vec3 outSunLight;
+layout(location = 15) flat out vec3 outAmbient;
 
 void main() {
     BakedVertex v = baked[gl_VertexIndex];
     outUv = v.uvRandom.xy;
     outWorld = v.positionFraction.xyz;
     outViewDepth = (frame.view * vec4(v.positionFraction.xyz, 1.0)).z;
-    outUp = octahedralDecode(v.upFade.x);
+    // Baked vertices carry no LOD: the LOD overlay shows every plant as far.
+    PlantShading shading = plantShading(v.upFade.y, kLodFar, octahedralDecode(v.upFade.x), v.uvRandom.z);
+    outAlbedo = shading.albedo;
+    outAlbedoOffset = shading.albedoOffset;
+    outSunLight = shading.sunLight;
+    outAmbient = shading.ambient;
     outFade = v.upFade.y;
     outHeightFraction = v.positionFraction.w;
     outRandom = v.uvRandom.z;

@@ -23,6 +23,45 @@ layout(set = 0, binding = kExpandBindingInstances, std430) writeonly buffer Inst
 // Parallel to instances: the plant's index in the tile's record buffers (ground-truth instance ids).
 layout(set = 0, binding = kExpandBindingInstancePlants, std430) writeonly buffer InstancePlants { uint instancePlants[]; };
 
+// A plant's height after its size and cut (what the draw uses).
+float plantHeight(PlantStatic plant, PlantDynamic dyn) {
+    float cut = plantState(dyn) == kPlantStateCut ? plantCutFraction(dyn) : 1.0;
+    return veg.categoryHeight[plantCategory(plant)] * plantSizeScale(plant) * cut;
+}
+
+// Sums over the cluster's plants of categoryCard * height^2 and categoryCard * height per m^2 (sliceHeight's cover2
+// and cover1), in plant order.
+vec2 clusterCardCover(uint first, uint count, PlantField field) {
+    vec2 sums = vec2(0.0);
+    for (uint i = 0u; i < count; ++i) {
+        float h = plantHeight(statics[first + i], dynamics[first + i]);
+        float card = veg.categoryCard[plantCategory(statics[first + i])];
+        sums += card * vec2(h * h, h);
+    }
+    float fieldSize = field.originStep.z * float(kPlantPositionSteps);
+    return sums / (fieldSize * fieldSize / float(veg.counts.y));
+}
+
+// The far slicing's cut (ExpandedPlant::attributes bits 24-31; kSliceUnit: hidden whole). Only a plant drawn as a
+// far billboard alone is sliced: in a cross-fade band both copies must show the same. `cover.x` < 0 until the
+// cluster's sums are first needed.
+uint sliceBits(LodChoice choice, PlantStatic plant, float height, vec3 position, uint first, uint count,
+               PlantField field, inout vec2 cover) {
+    if (choice.lodA != kLodFar || choice.lodB != kNoLod || veg.farLod.x <= 0.0) return 0u;
+    if (cover.x < 0.0) cover = clusterCardCover(first, count, field);
+    float sinView = dot(normalize(veg.cameraPosition.xyz - position), octahedralDecode(plant.up));
+    float cut = sliceHeight(veg.farLod.x, cover.x, cover.y, sinView);
+    return uint(min(cut / max(height, 1e-6), 1.0) * kSliceUnit);
+}
+
+// The far merging's width scale times kWidthScaleUnit (ExpandedPlant::fade bits 8-15; 0: not drawn). Only a plant
+// drawn as a far billboard alone is merged: in a cross-fade band both copies must match.
+uint widthBits(LodChoice choice, float height, uint category, float dist, uint index) {
+    if (choice.lodA != kLodFar || choice.lodB != kNoLod) return uint(kWidthScaleUnit);
+    float widthPixels = height * veg.categoryAspect[category] * veg.farLod.z / max(dist, 1e-3);
+    return uint(min(mergeWidthScale(veg.farLod.y, widthPixels, mergeHash(index)) * kWidthScaleUnit + 0.5, 255.0));
+}
+
 void main() {
     uint cluster = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * kExpandGroupSize;
     if (cluster >= veg.counts.x) return;
@@ -35,13 +74,20 @@ void main() {
     uint first = field.range.x + box.range.x;
     uint count = box.range.y;
     vec3 camera = veg.cameraPosition.xyz;
+    vec2 cover = vec2(-1.0);
 
     if (WRITE_PASS == 0u) {
         uvec3 lodCounts = uvec3(0u);
         for (uint i = 0u; i < count; ++i) {
-            vec3 position = plantPosition(statics[first + i], field.originStep);
-            LodChoice choice = chooseLod(distance(position, camera));
-            if (choice.lodA != kNoLod) lodCounts[choice.lodA] += 1u;
+            PlantStatic plant = statics[first + i];
+            vec3 position = plantPosition(plant, field.originStep);
+            float dist = distance(position, camera);
+            LodChoice choice = chooseLod(dist);
+            if (choice.lodA == kNoLod) continue;
+            float height = plantHeight(plant, dynamics[first + i]);
+            if (widthBits(choice, height, plantCategory(plant), dist, first + i) == 0u) continue;
+            if (sliceBits(choice, plant, height, position, first, count, field, cover) == uint(kSliceUnit)) continue;
+            lodCounts[choice.lodA] += 1u;
             if (choice.lodB != kNoLod) lodCounts[choice.lodB] += 1u;
         }
         // w: plants whose per-plant work was done (statistics; 0 marks a culled cluster)
@@ -54,21 +100,25 @@ void main() {
     for (uint i = 0u; i < count; ++i) {
         PlantStatic plant = statics[first + i];
         vec3 position = plantPosition(plant, field.originStep);
-        LodChoice choice = chooseLod(distance(position, camera));
+        float dist = distance(position, camera);
+        LodChoice choice = chooseLod(dist);
         if (choice.lodA == kNoLod) continue;
         PlantDynamic dyn = dynamics[first + i];
+        float height = plantHeight(plant, dyn);
+        uint width = widthBits(choice, height, plantCategory(plant), dist, first + i);
+        if (width == 0u) continue;
+        uint slice = sliceBits(choice, plant, height, position, first, count, field, cover);
+        if (slice == uint(kSliceUnit)) continue;
         float random = plantRandom(plant);
-        float cut = plantState(dyn) == kPlantStateCut ? plantCutFraction(dyn) : 1.0;
-        float height = veg.categoryHeight[plantCategory(plant)] * plantSizeScale(plant) * cut;
         vec2 tip = plantBend(dyn) + windTip(position, random, time);
         float len = length(tip);
         if (len > kMaxTipOffset) tip *= kMaxTipOffset / len; // a blade bends, it does not stretch
         ExpandedPlant instance;
         instance.positionHeight = vec4(position, height);
         instance.up = plant.up;
-        instance.attributes = plant.attributes;
+        instance.attributes = bitfieldInsert(plant.attributes, slice, 24, 8);
         instance.tip = packHalf2x16(tip);
-        uint fadeBits = uint(clamp(choice.t, 0.0, 1.0) * 65535.0 + 0.5) | (plantState(dyn) << 17) |
+        uint fadeBits = uint(clamp(choice.t, 0.0, 1.0) * 255.0 + 0.5) | (width << 8) | (plantState(dyn) << 17) |
                         (bitfieldExtract(dyn.state, 24, 8) << 24);
 
         instance.fade = fadeBits;

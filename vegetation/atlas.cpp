@@ -134,6 +134,28 @@ float alphaCoverage(const AtlasMip& mip, const AtlasRect& rect, float reference)
     return float(passing) / float(size_t(rect.width) * rect.height);
 }
 
+std::array<float, 4> cardCover(const Atlas& atlas) {
+    std::array<float, 4> cover{};
+    const AtlasDesc& desc = atlas.desc;
+    for (uint32_t r = 0; r < std::min<size_t>(desc.rows.size(), cover.size()); ++r) {
+        double sum = 0.0;
+        for (uint32_t c = 0; c < desc.rows[r].cells.size(); ++c)
+            sum += double(desc.rows[r].cells[c].aspect) * alphaCoverage(atlas.mips.at(0), desc.cellRect(r, c, 0), 0.5f);
+        cover[r] = float(sum / double(std::max<size_t>(desc.rows[r].cells.size(), 1)));
+    }
+    return cover;
+}
+
+std::array<float, 4> meanAspects(const AtlasDesc& desc) {
+    std::array<float, 4> aspects{};
+    for (uint32_t r = 0; r < std::min<size_t>(desc.rows.size(), aspects.size()); ++r) {
+        double sum = 0.0;
+        for (const AtlasCell& cell : desc.rows[r].cells) sum += double(cell.aspect);
+        aspects[r] = float(sum / double(std::max<size_t>(desc.rows[r].cells.size(), 1)));
+    }
+    return aspects;
+}
+
 namespace {
 
 // Fraction of alphas that pass the reference after scaling and 8-bit quantisation, exactly as alphaCoverage()

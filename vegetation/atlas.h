@@ -135,6 +135,13 @@ void buildMipChain(Atlas& atlas, float alphaReference = 0.5f, bool preserveCover
 // Fraction (0..1) of the texels in rect whose alpha / 255 >= reference; 0 for an empty rect.
 float alphaCoverage(const AtlasMip& mip, const AtlasRect& rect, float reference);
 
+// Per row (category, up to 4): the mean over its cells of aspect * alphaCoverage(level 0, 0.5), the opaque area of
+// the row's billboard per square metre of plant height (gpu::VegetationConstants::categoryCard; 0 for absent rows).
+std::array<float, 4> cardCover(const Atlas& atlas);
+// Per row (category, up to 4): the mean width / height of its cells (gpu::VegetationConstants::categoryAspect, far
+// merging's estimate of a plant's width on screen; 0 for absent rows).
+std::array<float, 4> meanAspects(const AtlasDesc& desc);
+
 // Reads an atlas PNG (8-bit RGBA) and its JSON description into mips[0]. Throws sward::Error naming the file for
 // a missing or unreadable file, bad JSON or schema, a PNG that is not RGBA8, or an image size that does not match
 // the JSON grid.

@@ -52,37 +52,76 @@ glm::vec2 windTip(const WindParams& wind, glm::vec3 position, float random, floa
     return dir * (wind.strength * (0.8f + 0.2f * sway) + gust) + glm::vec2(-dir.y, dir.x) * flutter;
 }
 
+// A plant's height after its size and cut (vegetation_expand.comp's plantHeight).
+float plantHeight(const VegetationParams& vegetation, const gpu::PlantStatic& plant, const gpu::PlantDynamic& dynamic) {
+    PlantInstance decoded = decodePlantStatic(plant);
+    PlantMotion motion = decodePlantDynamic(dynamic);
+    float cut = motion.state == gpu::kPlantStateCut ? motion.cutFraction : 1.0f;
+    return vegetation.categories[decoded.category].height * (float(decoded.size) / gpu::kPlantSizeDivisor) * cut;
+}
+
+// clusterCardCover(): sliceHeight's cover2 and cover1 of the cluster, summed in plant order.
+glm::vec2 clusterCardCover(const VegetationParams& vegetation, const FieldVegetation& field, const gpu::PlantCluster& box,
+                           const std::array<float, 4>& categoryCard) {
+    glm::vec2 sums(0.0f);
+    for (uint32_t i = box.range.x; i < box.range.x + box.range.y; ++i) {
+        float h = plantHeight(vegetation, field.staticRecords[i], field.dynamicRecords[i]);
+        sums += categoryCard[field.staticRecords[i].attributes & 3u] * glm::vec2(h * h, h);
+    }
+    float fieldSize = field.positionStep * float(gpu::kPlantPositionSteps);
+    return sums / (fieldSize * fieldSize / float(field.clusters.size()));
+}
+
 } // namespace
 
 ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationParams& vegetation, const LodParams& lod,
-                                   const WindParams& wind, const Camera& camera, double time) {
+                                   const WindParams& wind, const Camera& camera, double time,
+                                   const ExpansionAtlas& atlas) {
     ReferenceExpansion out;
     const auto planes = camera.frustumPlanes();
     const glm::vec3 eye(camera.position);
+    uint32_t fieldFirst = 0; // the field's first plant in the tile's record buffers (fields packed in order)
     for (const FieldVegetation& field : tile.fields) {
         for (const gpu::PlantCluster& box : field.clusters) {
             if (box.range.y == 0 || !clusterVisible(planes, lod, eye, glm::vec3(box.boundsMin), glm::vec3(box.boundsMax)))
                 continue;
             ++out.visibleClusters;
             out.plantsConsidered += box.range.y;
+            glm::vec2 cover(-1.0f);
             for (uint32_t i = box.range.x; i < box.range.x + box.range.y; ++i) {
                 const gpu::PlantStatic& plant = field.staticRecords[i];
                 glm::vec3 position = decodePlantPosition(plant, field.origin, field.positionStep);
-                LodChoice choice = chooseLod(lod, glm::distance(position, eye));
+                const float distance = glm::distance(position, eye);
+                LodChoice choice = chooseLod(lod, distance);
                 if (choice.lodA == kNoLod) continue;
+                float height = plantHeight(vegetation, plant, field.dynamicRecords[i]);
+                uint32_t width = uint32_t(gpu::kWidthScaleUnit); // widthBits()
+                if (choice.lodA == gpu::kLodFar && choice.lodB == kNoLod) {
+                    float widthPixels = height * atlas.aspect[plant.attributes & 3u] * float(camera.fy) /
+                                        std::max(distance, 1e-3f);
+                    float scale = gpu::mergeWidthScale(lod.mergeWidth, widthPixels, gpu::mergeHash(fieldFirst + i));
+                    width = uint32_t(std::min(scale * gpu::kWidthScaleUnit + 0.5f, 255.0f));
+                    if (width == 0) continue;
+                }
+                uint32_t slice = 0; // sliceBits()
+                if (choice.lodA == gpu::kLodFar && choice.lodB == kNoLod && lod.sliceLayers > 0.0f) {
+                    if (cover.x < 0.0f) cover = clusterCardCover(vegetation, field, box, atlas.card);
+                    float sinView = glm::dot(glm::normalize(eye - position), decodeOctahedral(plant.up));
+                    float cut = gpu::sliceHeight(lod.sliceLayers, cover.x, cover.y, sinView);
+                    slice = uint32_t(std::min(cut / std::max(height, 1e-6f), 1.0f) * gpu::kSliceUnit);
+                    if (slice == uint32_t(gpu::kSliceUnit)) continue;
+                }
                 PlantInstance decoded = decodePlantStatic(plant);
                 PlantMotion motion = decodePlantDynamic(field.dynamicRecords[i]);
                 float random = float(decoded.random) / 255.0f;
-                float cut = motion.state == gpu::kPlantStateCut ? motion.cutFraction : 1.0f;
-                float height = vegetation.categories[decoded.category].height *
-                               (float(decoded.size) / gpu::kPlantSizeDivisor) * cut;
                 glm::vec2 tip = motion.bend + windTip(wind, position, random, float(time));
                 float len = glm::length(tip);
                 if (len > gpu::kMaxTipOffset) tip *= gpu::kMaxTipOffset / len;
                 uint32_t cutByte = (field.dynamicRecords[i].state >> 24) & 0xffu;
-                uint32_t fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 65535.0f + 0.5f) | (motion.state << 17) |
-                                (cutByte << 24);
-                gpu::ExpandedPlant expanded{glm::vec4(position, height), plant.up, plant.attributes,
+                uint32_t fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 255.0f + 0.5f) | (width << 8) |
+                                (motion.state << 17) | (cutByte << 24);
+                gpu::ExpandedPlant expanded{glm::vec4(position, height), plant.up,
+                                            (plant.attributes & 0x00ffffffu) | (slice << 24),
                                             glm::packHalf2x16(tip), fade};
                 out.lods[choice.lodA].push_back(expanded);
                 if (choice.lodB != kNoLod) {
@@ -91,6 +130,7 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
                 }
             }
         }
+        fieldFirst += uint32_t(field.staticRecords.size());
     }
     return out;
 }
@@ -124,7 +164,7 @@ ReferenceQuad referenceQuad(const gpu::ExpandedPlant& plant, uint32_t lod, uint3
     q.base = glm::vec3(plant.positionHeight);
     q.height = plant.positionHeight.w;
     q.up = decodeOctahedral(plant.up);
-    q.width = q.height * cellBaseAspect.z;
+    q.width = q.height * cellBaseAspect.z * (float((plant.fade >> 8) & 0xffu) / gpu::kWidthScaleUnit);
     q.tip = glm::unpackHalf2x16(plant.tip);
     q.baseAspect = cellBaseAspect;
     float orientation = float((plant.attributes >> 8) & 0xffu) * (6.2831853f / 256.0f);
@@ -177,7 +217,11 @@ std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, u
     for (uint32_t v = 0; v < gpu::plantVertexCount(lod, fan ? cutoutCorners : 0u); ++v) {
         const ReferenceQuad q = referenceQuad(plant, lod, v / perQuad, cameraPosition, cellBaseAspect);
         if (!fan) {
-            vertices.push_back(q.point(corners[v % perQuad]));
+            // plant_vertex.glsl's sliceBottom: a sliced far billboard starts at its cut height.
+            const float cut = float(plant.attributes >> 24) * (1.0f / gpu::kSliceUnit);
+            const float bottom = cut > 0.0f ? std::clamp(1.0f - cellBaseAspect.y + cut, 0.0f, 1.0f) : 0.0f;
+            const glm::vec2 corner = corners[v % perQuad];
+            vertices.push_back(q.point({corner.x, bottom + (1.0f - bottom) * corner.y}));
             continue;
         }
         // Between the quad's bottom and top edges, as the shader places a polygon corner.

@@ -23,9 +23,14 @@ struct ReferenceExpansion {
 };
 
 // Expands every plant of `tile` for `camera` at simulation time `time`, with the scene's LOD, wind and
-// category heights. The atlas column counts bound the variant as in the shader.
+// category heights; far slicing and merging use the atlas's `ExpansionAtlas` figures and the camera's fy.
+struct ExpansionAtlas {
+    std::array<float, 4> card;   // cardCover() of the atlas drawn
+    std::array<float, 4> aspect; // meanAspects() of its description
+};
 ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationParams& vegetation, const LodParams& lod,
-                                   const WindParams& wind, const Camera& camera, double time);
+                                   const WindParams& wind, const Camera& camera, double time,
+                                   const ExpansionAtlas& atlas);
 
 // The gpu::plantVertexCount(lod, cutoutCorners) vertex positions of one expanded plant (plant_vertex.glsl), for an
 // atlas cell with base (baseU, baseV) and width / height `aspect`; with `cutout` and cutoutCorners (4..8), near and

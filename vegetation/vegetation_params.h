@@ -39,6 +39,13 @@ struct LodParams {
     float midToFar = 40.0f;  // closer: 2 crossed quads; farther: 1 billboard
     float farLimit = 150.0f; // plants beyond are not drawn (the terrain colour stands in)
     float band = 4.0f;       // width of the dithered cross-fade around each distance
+    // Far billboards are drawn only above the height where a grazing ray has crossed this many layers of opaque card
+    // (gpu::sliceHeight): their hidden lower parts cost nothing, and a ray reaches the ground through the drawn parts
+    // with probability exp(-sliceLayers). 0: off.
+    float sliceLayers = 8.0f;
+    // Far billboards narrower on screen than this many pixels are merged into fewer, wider ones
+    // (gpu::mergeWidthScale): the same expected coverage from fewer triangles. 0: off.
+    float mergeWidth = 6.0f;
 };
 
 // Procedural wind (a pure function of simulation time; see shaders/shared/vegetation.glsl).

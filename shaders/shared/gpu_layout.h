@@ -16,6 +16,9 @@ using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;
 using mat4 = glm::mat4;
 using uint = uint32_t;
+using glm::clamp; // the functions shared with GLSL call these by their GLSL names
+using glm::max;
+using glm::sqrt;
 #define SWARD_CONST(type, name, value) inline constexpr type name = value
 #else
 #define SWARD_CONST(type, name, value) const type name = value
@@ -184,6 +187,67 @@ uint trackBlockHash(int x, int y) {
 // An empty slot of that table holds this key (no block lies there: it would be 10^8 km away).
 SWARD_CONST(int, kTrackEmptyKey, -2147483647 - 1);
 
+// Slicing of far billboards. A grazing ray crosses many far billboards before it reaches the ground, and it meets
+// them near their tops: the parts of the plants below some height are hidden behind the plants in front. A far
+// billboard is drawn only above that height, so the hidden parts cost nothing, while every ray that reaches a drawn
+// part meets the same plants at the same height as without slicing (a ray above the cut height only meets plant parts
+// above it, all of which are drawn; the sun's rays to a drawn point likewise, so its shadows are the same too).
+// The cut height is where a ray has crossed `layersWanted` layers of opaque card from the canopy top, so it reaches
+// the ground through the drawn parts with probability exp(-layersWanted) only (Boolean model).
+// `cover2` and `cover1`: the sums over the plant's cluster of categoryCard * height^2 and categoryCard * height per m^2
+// of ground; `sinView`: sine of the angle between the ray to the camera and the plant's up. Returns the cut height
+// in metres above the plants' bases (0: whole). The expected layers above height z are
+// cot(angle) * sum(card * h * (h - z)) / area for z below every plant's height; that linear form undercounts above
+// the shortest plant (it subtracts the plants shorter than z), so the cut it gives is never too high.
+#ifdef __cplusplus
+inline
+#endif
+float sliceHeight(float layersWanted, float cover2, float cover1, float sinView) {
+    if (layersWanted <= 0.0f || cover1 <= 0.0f) return 0.0f;
+    float s = max(sinView, 1e-3f);
+    float tanView = s / max(sqrt(max(1.0f - s * s, 0.0f)), 1e-6f);
+    return max((cover2 - layersWanted * tanView) / cover1, 0.0f);
+}
+// ExpandedPlant::attributes bits 24-31: the cut height as a fraction of the plant's height, times this (rounded
+// down: a drawn part is never lost). 0: whole; kSliceUnit: not drawn.
+SWARD_CONST(float, kSliceUnit, 255.0);
+
+// Merging of far billboards narrower than a few pixels (LodParams::mergeWidth) into fewer, wider ones: a far plant
+// `widthPixels` wide on screen is kept with probability widthPixels / mergeWidth (by its hash `u` in [0, 1)) and
+// drawn that much wider, up to kMaxMergeWiden times. The expected drawn width per plant is its own, so coverage and
+// the height at which a grazing ray meets the plants are unchanged (Boolean model: density times width is what
+// blocks a ray), while the rasteriser sees a few billboards a block wide instead of many smaller ones, each of which
+// costs at least a 4 x 4 block of fragment lanes on a CPU driver (a 2 x 2 quad on a GPU) and a vertex stage. The kept
+// plants nearest the threshold (the top kMergeFade of the kept range) shrink to nothing as the camera moves away, so
+// none pops. Returns the plant's width scale (0: not drawn); exactly 1 where nothing is merged.
+SWARD_CONST(float, kMergeFade, 0.25);
+SWARD_CONST(float, kMaxMergeWiden, 6.0);
+#ifdef __cplusplus
+inline
+#endif
+float mergeWidthScale(float mergeWidth, float widthPixels, float u) {
+    if (mergeWidth <= 0.0f) return 1.0f;
+    float r = max(widthPixels / mergeWidth, 1.0f / kMaxMergeWiden); // the share of plants to draw
+    float q = r / (1.0f - 0.5f * kMergeFade); // kept: u < q, shrinking over [q * (1 - kMergeFade), q)
+    float zone = q * (1.0f - kMergeFade);
+    if (zone >= 1.0f) return 1.0f;
+    // The expected drawn share over u: q * (1 - fade / 2) = r, or, where part of the shrinking zone lies beyond
+    // u = 1, what is left of it (continuous in q, so the width changes smoothly).
+    float share = q <= 1.0f ? r : zone + ((q - zone) * (q - zone) - (q - 1.0f) * (q - 1.0f)) / (2.0f * q * kMergeFade);
+    return clamp((q - u) / (q * kMergeFade), 0.0f, 1.0f) / share;
+}
+// ExpandedPlant::fade bits 8-15 hold the width scale times this (32: 1, exactly; 0: not drawn).
+SWARD_CONST(float, kWidthScaleUnit, 32.0);
+// A plant's merging hash in [0, 1): PCG's output permutation (Jarzynski and Olano 2020) of its index in the tile.
+#ifdef __cplusplus
+constexpr
+#endif
+float mergeHash(uint index) {
+    uint state = (index ^ 0x6A09E667u) * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return float(((word >> 22u) ^ word) >> 8u) * (1.0f / 16777216.0f);
+}
+
 // Per-frame constants of the vegetation expansion (uniform buffer).
 struct VegetationConstants {
     vec4 frustumPlanes[5]; // world space, xyz inward normal, w offset: inside when dot(n, p) + w >= 0
@@ -196,16 +260,23 @@ struct VegetationConstants {
     uvec4 atlasColumns;    // variants (atlas columns) per category
     uvec4 tile;            // x: the tile's ground-truth label in a world of several tiles (y * tilesX + x + 1), else 0
     uvec4 options;         // x: cut-out corners (>= 3: near and mid quads drawn as their cell's polygon; 0: off)
+    vec4 categoryCard;     // per category: opaque card area per height^2 (cardCover(), vegetation/atlas.h)
+    vec4 categoryAspect;   // per category: mean width / height of its atlas cells (meanAspects(), far merging)
+    vec4 farLod;           // x: card layers a ray crosses above a far billboard's cut (LodParams::sliceLayers; 0: off),
+                           // y: far billboards narrower merge to this width, pixels (LodParams::mergeWidth; 0: off),
+                           // z: the camera's vertical focal length, pixels
 };
 
 // One expanded plant in one level of detail (storage buffer written by vegetation_expand.comp).
 struct ExpandedPlant {
     vec4 positionHeight; // xyz world position of the base, w plant height in metres (after size and cut)
     uint up;             // octahedral unit up vector, as PlantStatic::up
-    uint attributes;     // as PlantStatic::attributes (category, variant, orientation, random, size)
+    uint attributes;     // as PlantStatic::attributes (category, variant, orientation, random) but bits 24-31: the
+                         // far slicing's cut height (sliceHeight) / height * kSliceUnit (the size is in positionHeight.w)
     uint tip;            // packHalf2x16: horizontal tip offset (wind + interaction) in plant heights, world xy
-    uint fade;           // bits 0-15 cross-fade t (unorm16), bit 16 set on the upper-LOD copy, bits 17-20 plant
-                         // state (PlantDynamic state bits 20-23), bits 24-31 cut height byte
+    uint fade;           // bits 0-7 cross-fade t (unorm8), bits 8-15 the far merging's width scale times
+                         // kWidthScaleUnit, bit 16 set on the upper-LOD copy, bits 17-20 plant state (PlantDynamic
+                         // state bits 20-23), bits 24-31 cut height byte
 };
 
 // Atlas cell mapping (storage buffer, row * maxColumns + column).
@@ -267,7 +338,7 @@ struct ExpansionStats {
 static_assert(sizeof(FrameConstants) == (4 + kMaxShadowCascades) * 64 + (14 + kMaxShadowCascades) * 16);
 static_assert(sizeof(TerrainTileConstants) == 16);
 static_assert(sizeof(DebugLineVertex) == 32);
-static_assert(sizeof(VegetationConstants) == 14 * 16);
+static_assert(sizeof(VegetationConstants) == 17 * 16);
 static_assert(sizeof(ExpandedPlant) == 32);
 static_assert(sizeof(AtlasCellGpu) == 32 + 8 * kMaxCutoutCorners);
 static_assert(sizeof(ExpansionStats) == 32);

@@ -9,7 +9,6 @@ layout(set = 0, binding = kBindingAtlas) uniform sampler2D atlas;
 layout(location = 0) in vec2 inUv;
 layout(location = 1) in vec3 inWorld;
 layout(location = 2) in float inViewDepth;
-layout(location = 3) in vec3 inUp;
 layout(location = 4) flat in uint inFade;
 layout(location = 5) in float inHeightFraction;
 layout(location = 6) flat in float inRandom;
@@ -18,7 +17,7 @@ layout(location = 7) flat in uint inLabel; // ground truth only
 // Cross-fade between two LOD copies of one plant: both copies compute the same threshold per pixel, the lower
 // copy keeps the pixel when threshold >= t, the upper copy when threshold < t: exactly one survives.
 bool keepFragment() {
-    float t = float(inFade & 0xffffu) * (1.0 / 65535.0);
+    float t = float(inFade & 0xffu) * (1.0 / 255.0);
     if (t == 0.0 && (inFade & 0x10000u) == 0u) return true;
     // Interleaved gradient noise (Jimenez 2014), shifted per plant so neighbours do not dissolve in lockstep.
     vec2 p = gl_FragCoord.xy + vec2(inRandom * 97.0, inRandom * 61.0);

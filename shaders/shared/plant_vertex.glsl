@@ -71,7 +71,7 @@ PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, out uint cell) 
     q.random = float(bitfieldExtract(instance.attributes, 16, 8)) * (1.0 / 255.0);
     cell = category * veg.counts.w + variant;
     vec4 baseAspect = cells[cell].baseAspect;
-    q.width = q.height * baseAspect.z;
+    q.width = q.height * baseAspect.z * (float(bitfieldExtract(instance.fade, 8, 8)) / kWidthScaleUnit); // merging
     q.baseAspect = baseAspect.xyz;
     q.uvRect = cells[cell].uvRect;
     q.cutFraction = float(instance.fade >> 24) * (1.0 / 255.0); // height is already cut to this fraction
@@ -114,6 +114,13 @@ vec3 quadPoint(PlantQuad q, vec2 corner, out float fraction) {
     return position;
 }
 
+// Corner height (quadPoint's y: 0 the cell's bottom edge, 1 its top) of the far slicing's cut: where the plant rises
+// attributes bits 24-31 / kSliceUnit of its height above its base (the base sits at cell v = baseV).
+float sliceBottom(ExpandedPlant instance, PlantQuad q) {
+    float cut = float(bitfieldExtract(instance.attributes, 24, 8)) * (1.0 / kSliceUnit);
+    return cut > 0.0 ? clamp(1.0 - q.baseAspect.y + cut, 0.0, 1.0) : 0.0;
+}
+
 PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex) {
     const bool cutout = veg.options.x >= 3u && lod != kLodFar;
     const uint perQuad = cutout ? 3u * (veg.options.x - 2u) : kVerticesPerQuad;
@@ -122,6 +129,8 @@ PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex) {
     float fraction;
     if (!cutout) {
         vec2 corner = kCorners[vertexIndex % 6u];
+        // Far slicing (sliceHeight): the quad starts at the cut height, so its bottom rows of the cell are not drawn.
+        corner.y = mix(sliceBottom(instance, q), 1.0, corner.y);
         vec3 position = quadPoint(q, corner, fraction);
         // Cut plants show the lower part of the texture (stalks), not a squashed plant.
         float u = (q.random > 0.5) ? 1.0 - corner.x : corner.x; // mirror half of the plants for variety

@@ -1,6 +1,7 @@
 // Vegetation expansion and rendering on the GPU: LOD choice, culling, wind, determinism, ground truth.
 #include "gpu_test.h"
 
+#include "common/half_float.h"
 #include "render/scene_renderer.h"
 #include "render/vegetation_renderer.h"
 #include "scene/scene.h"
@@ -171,7 +172,7 @@ TEST_F(VegetationTest, LodFollowsDistanceWithComplementaryCrossFadeCopies) {
             float d = float(glm::distance(glm::dvec3(glm::vec3(p.positionHeight)), camera.position));
             ASSERT_GE(d, edges[lod] - half - 1e-3f) << "LOD " << lod;
             ASSERT_LT(d, edges[lod + 1] + half + 1e-3f) << "LOD " << lod;
-            float t = float(p.fade & 0xffffu) / 65535.0f;
+            float t = float(p.fade & 0xffu) / 255.0f;
             bool upper = (p.fade & 0x10000u) != 0;
             bool inBand = std::abs(d - edges[lod + (upper ? 0 : 1)]) < half;
             if (t > 0.0f || upper) {
@@ -184,6 +185,53 @@ TEST_F(VegetationTest, LodFollowsDistanceWithComplementaryCrossFadeCopies) {
     }
     EXPECT_GT(banded, 0u);
     EXPECT_GT(upperCopies, 0u) << "plants in the near/mid and mid/far bands are drawn in both LODs";
+}
+
+// Far slicing (LodParams::sliceLayers: far billboards drawn only above the height a grazing ray reaches) and merging
+// (LodParams::mergeWidth: fewer, wider far billboards): the same vegetation coverage and mean colour in the images,
+// from fewer billboards and fewer fragments; near and mid plants untouched.
+TEST_F(VegetationTest, SlicingAndMergingFarBillboardsKeepCoverageAndColour) {
+    struct Measured {
+        gpu::ExpansionStats stats{};
+        double plants = 0.0, green = 0.0, farHeight = 0.0; // farHeight: drawn share of the far billboards' height
+    };
+    auto measure = [&](float sliceLayers, float mergeWidth) {
+        scene.lod.sliceLayers = sliceLayers;
+        scene.lod.mergeWidth = mergeWidth;
+        auto r = renderer(true);
+        Measured m;
+        FrameImages frame = renderFrame(*ctx, *r, camera);
+        m.stats = r->vegetation()->readStats();
+        const std::vector<gpu::ExpandedPlant> instances = readInstances(*r->vegetation(), m.stats.instances.w);
+        const uint32_t firstFar = m.stats.instances.x + m.stats.instances.y;
+        for (uint32_t i = firstFar; i < m.stats.instances.w; ++i) // cut height / plant height; the base is at v = 1
+            m.farHeight += 1.0 - float(instances[i].attributes >> 24) / gpu::kSliceUnit;
+        m.farHeight /= std::max(double(m.stats.instances.z), 1.0);
+        for (size_t i = 0; i < frame.labels.size(); ++i) {
+            uint32_t semantic = frame.labels[i] >> gpu::kInstanceBits;
+            if (semantic < gpu::kSemanticVegetation || semantic >= gpu::kSemanticVegetation + gpu::kMaxPlantCategories)
+                continue;
+            m.plants += 1.0;
+            m.green += halfBitsToFloat(frame.rgbaHalf[4 * i + 1]);
+        }
+        m.green /= std::max(m.plants, 1.0);
+        return m;
+    };
+    // Fewer layers than the default: a test that can fail.
+    const Measured whole = measure(0.0f, 0.0f), sliced = measure(4.0f, 6.0f);
+    std::printf("far plants %u -> %u, drawn share of their height %.3f, plant pixels %.0f -> %.0f (%+.2f %%), mean green "
+                "%.4f -> %.4f (%+.2f %%)\n",
+                whole.stats.instances.z, sliced.stats.instances.z, sliced.farHeight, whole.plants, sliced.plants,
+                100.0 * (sliced.plants / whole.plants - 1.0),
+                whole.green, sliced.green, 100.0 * (sliced.green / whole.green - 1.0));
+    EXPECT_EQ(sliced.stats.instances.x, whole.stats.instances.x) << "near plants are never sliced";
+    EXPECT_EQ(sliced.stats.instances.y, whole.stats.instances.y) << "mid plants are never sliced";
+    EXPECT_EQ(whole.farHeight, 1.0) << "off: every far billboard whole";
+    EXPECT_LT(sliced.farHeight, 0.85) << "the hidden parts of far billboards are not drawn";
+    EXPECT_LT(sliced.stats.instances.z, whole.stats.instances.z / 2) << "at 240 x 160 far billboards are a few pixels wide";
+    ASSERT_GT(whole.plants, double(kWidth * kHeight) / 5);
+    EXPECT_NEAR(sliced.plants / whole.plants, 1.0, 0.02) << "coverage within 2 %";
+    EXPECT_NEAR(sliced.green / whole.green, 1.0, 0.02) << "mean plant colour within 2 %";
 }
 
 TEST_F(VegetationTest, ClusterCullingSkipsWhatTheCameraCannotSee) {

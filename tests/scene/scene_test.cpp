@@ -37,6 +37,9 @@ TEST(Scene, RejectsBadValuesNamingFileAndKey) {
     EXPECT_NE(errorOf(R"({"render": {"samples": 2}})").find("render.samples"), std::string::npos);
     EXPECT_NE(errorOf(R"({"camera": {"position": [1, 2]}})").find("camera.position"), std::string::npos);
     EXPECT_NE(errorOf(R"([1, 2])").find("JSON object"), std::string::npos);
+    EXPECT_NE(errorOf(R"({"lod": {"slice_layers": 1}})").find("'lod.slice_layers' must be 0 (off) or at least 2"),
+              std::string::npos);
+    EXPECT_EQ(parseScene(nlohmann::json::parse(R"({"lod": {"slice_layers": 0}})"), "s.json").lod.sliceLayers, 0.0f);
 }
 
 TEST(Scene, MissingFileNamesIt) {

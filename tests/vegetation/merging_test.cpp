@@ -1,0 +1,71 @@
+// Far billboards narrower than a few pixels merge into fewer, wider ones (gpu::mergeWidthScale).
+#include "shared/gpu_layout.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace sward;
+
+namespace {
+
+constexpr int kSteps = 200000;
+
+// Expected drawn width per plant over the plant hash u, in units of its own width.
+double expectedWidth(float mergeWidth, float widthPixels) {
+    double sum = 0.0;
+    for (int i = 0; i < kSteps; ++i) sum += gpu::mergeWidthScale(mergeWidth, widthPixels, (float(i) + 0.5f) / float(kSteps));
+    return sum / kSteps;
+}
+
+double keptShare(float mergeWidth, float widthPixels) {
+    int kept = 0;
+    for (int i = 0; i < kSteps; ++i) kept += gpu::mergeWidthScale(mergeWidth, widthPixels, (float(i) + 0.5f) / float(kSteps)) > 0.0f;
+    return double(kept) / kSteps;
+}
+
+} // namespace
+
+TEST(Merging, KeepsTheExpectedWidthSoCoverageIsUnchanged) {
+    // From a billboard as wide as the merge width down to the widening limit, and in the continuous zone between.
+    for (float pixels : {6.0f, 5.0f, 3.0f, 1.5f, 1.0f, 0.5f})
+        EXPECT_NEAR(expectedWidth(6.0f, pixels), 1.0, 1e-3) << pixels << " px";
+    EXPECT_NEAR(keptShare(6.0f, 1.5f), 0.25 / (1.0 - 0.5 * gpu::kMergeFade), 1e-3) << "a quarter, plus the shrinking zone";
+}
+
+TEST(Merging, WideBillboardsAndOffAreExactlyUntouched) {
+    for (float u : {0.0f, 0.5f, 0.99999f}) {
+        EXPECT_EQ(gpu::mergeWidthScale(6.0f, 7.0f, u), 1.0f);
+        EXPECT_EQ(gpu::mergeWidthScale(0.0f, 0.2f, u), 1.0f) << "off";
+    }
+    EXPECT_EQ(1.0f * gpu::kWidthScaleUnit, 32.0f) << "a scale of 1 is stored exactly";
+}
+
+TEST(Merging, WidensAtMostToTheLimitAndNarrowBillboardsBecomeAsWideAsTheMergeWidth) {
+    float widest = 0.0f;
+    for (int i = 0; i < kSteps; ++i) widest = std::max(widest, gpu::mergeWidthScale(6.0f, 0.1f, float(i) / kSteps));
+    EXPECT_NEAR(widest, gpu::kMaxMergeWiden, 1e-3) << "0.1 px wide: widened 6x, not 60x";
+    EXPECT_NEAR(gpu::mergeWidthScale(6.0f, 2.0f, 0.0f) * 2.0f, 6.0f, 1e-4) << "a kept 2 px billboard is drawn 6 px wide";
+}
+
+TEST(Merging, APlantsWidthChangesContinuouslyWithItsDistance) {
+    // As the camera moves away a billboard narrows on screen: its scale grows, then shrinks to nothing, never pops.
+    for (float u : {0.1f, 0.35f, 0.6f, 0.9f}) {
+        float previous = gpu::mergeWidthScale(6.0f, 8.0f, u) * 8.0f; // drawn width in pixels
+        for (float pixels = 8.0f; pixels > 0.3f; pixels -= 0.001f) {
+            float drawn = gpu::mergeWidthScale(6.0f, pixels, u) * pixels;
+            ASSERT_LE(std::abs(drawn - previous), 0.05f) << "u " << u << " at " << pixels << " px";
+            previous = drawn;
+        }
+    }
+}
+
+TEST(Merging, PlantHashesAreUniformAndFixed) {
+    // A biased hash would merge some plants (categories, rows of the field) more than others.
+    int quarter[4] = {0, 0, 0, 0};
+    for (uint32_t i = 0; i < 100000; ++i) ++quarter[int(gpu::mergeHash(i) * 4.0f)];
+    for (int q = 0; q < 4; ++q) EXPECT_NEAR(quarter[q], 25000, 600) << "quarter " << q;
+    static_assert(gpu::mergeHash(0u) >= 0.0f && gpu::mergeHash(0u) < 1.0f);
+    EXPECT_EQ(gpu::mergeHash(12345u), gpu::mergeHash(12345u));
+    EXPECT_FLOAT_EQ(gpu::mergeHash(0u), 0.44527441f); // fixed: every merged dataset depends on these values
+}
