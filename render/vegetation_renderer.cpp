@@ -57,7 +57,8 @@ VegetationRenderer::Tile::~Tile() {
 
 PipelineLayoutDesc VegetationRenderer::drawLayout(bool withShadowMap) const {
     std::vector<VkDescriptorSetLayoutBinding> bindings = plantDrawBindings();
-    bindings.push_back(layoutBinding(gpu::kBindingInstancePlants, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT));
+    bindings.push_back(
+        layoutBinding(gpu::kBindingInstancePlants, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT));
     if (withShadowMap) bindings.push_back(shadowMapLayoutBinding());
     return {.bindings = bindings, .pushConstantSize = sizeof(uint32_t), .pushConstantStages = kDrawStages}; // lod
 }
@@ -330,10 +331,10 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
     if (pass == PlantPass::Main && mainShading_ == MainShading::Off) return;
     if (pass == PlantPass::Main && mainShading_ == MainShading::Floor && !floorPipeline_.handle)
         floorPipeline_ = createGraphicsPipeline(ctx_.device, mainPipelineDesc("plant_floor.frag"), drawLayout(true));
-    const Pipeline& pipeline = pass == PlantPass::Truth  ? truthPipeline_
-                             : pass == PlantPass::Shadow ? shadowPipeline_
-                             : mainShading_ == MainShading::Floor ? floorPipeline_
-                                                                  : mainPipeline_;
+    const Pipeline& pipeline = pass == PlantPass::Truth             ? truthPipeline_
+                               : pass == PlantPass::Shadow          ? shadowPipeline_
+                               : mainShading_ == MainShading::Floor ? floorPipeline_
+                                                                    : mainPipeline_;
     bindPipeline(cmd, pipeline);
     DescriptorBinding instances = storageBuffer(gpu::kBindingPlantInstances, instances_.handle);
     DescriptorBinding plants = storageBuffer(gpu::kBindingInstancePlants, instancePlants_.handle);

@@ -169,7 +169,8 @@ void readLod(JsonReader r, LodParams& l) {
     l.sliceLayers = r.numberF("slice_layers", l.sliceLayers, 0.0, 100.0);
     l.mergeWidth = r.numberF("merge_width", l.mergeWidth, 0.0, 64.0);
     if (l.sliceLayers > 0.0f && l.sliceLayers < 2.0f)
-        r.fail(r.name("slice_layers") + " must be 0 (off) or at least 2 (fewer would show the ground through the plants)");
+        r.fail(r.name("slice_layers") +
+               " must be 0 (off) or at least 2 (fewer would show the ground through the plants)");
     if (!(l.nearToMid <= l.midToFar && l.midToFar <= l.farLimit))
         r.fail("'" + r.path() + "' distances must satisfy near <= mid <= far");
     r.finish();

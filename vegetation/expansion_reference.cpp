@@ -61,8 +61,8 @@ float plantHeight(const VegetationParams& vegetation, const gpu::PlantStatic& pl
 }
 
 // clusterCardCover(): sliceHeight's cover2 and cover1 of the cluster, summed in plant order.
-glm::vec2 clusterCardCover(const VegetationParams& vegetation, const FieldVegetation& field, const gpu::PlantCluster& box,
-                           const std::array<float, 4>& categoryCard) {
+glm::vec2 clusterCardCover(const VegetationParams& vegetation, const FieldVegetation& field,
+                           const gpu::PlantCluster& box, const std::array<float, 4>& categoryCard) {
     glm::vec2 sums(0.0f);
     for (uint32_t i = box.range.x; i < box.range.x + box.range.y; ++i) {
         float h = plantHeight(vegetation, field.staticRecords[i], field.dynamicRecords[i]);
@@ -97,8 +97,8 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
                 float height = plantHeight(vegetation, plant, field.dynamicRecords[i]);
                 uint32_t width = uint32_t(gpu::kWidthScaleUnit); // widthBits()
                 if (choice.lodA == gpu::kLodFar && choice.lodB == kNoLod) {
-                    float widthPixels = height * atlas.aspect[plant.attributes & 3u] * float(camera.fy) /
-                                        std::max(distance, 1e-3f);
+                    float widthPixels =
+                        height * atlas.aspect[plant.attributes & 3u] * float(camera.fy) / std::max(distance, 1e-3f);
                     float scale = gpu::mergeWidthScale(lod.mergeWidth, widthPixels, gpu::mergeHash(fieldFirst + i));
                     width = uint32_t(std::min(scale * gpu::kWidthScaleUnit + 0.5f, 255.0f));
                     if (width == 0) continue;
@@ -121,8 +121,8 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
                 uint32_t fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 255.0f + 0.5f) | (width << 8) |
                                 (motion.state << 17) | (cutByte << 24);
                 gpu::ExpandedPlant expanded{glm::vec4(position, height), plant.up,
-                                            (plant.attributes & 0x00ffffffu) | (slice << 24),
-                                            glm::packHalf2x16(tip), fade};
+                                            (plant.attributes & 0x00ffffffu) | (slice << 24), glm::packHalf2x16(tip),
+                                            fade};
                 out.lods[choice.lodA].push_back(expanded);
                 if (choice.lodB != kNoLod) {
                     expanded.fade = fade | 0x10000u;

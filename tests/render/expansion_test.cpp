@@ -64,9 +64,8 @@ void expectExpansionMatchesTheCpuReference(Context* ctx, uint32_t cutoutCorners)
     SceneSetup s(smallFieldJson());
     Camera camera = s.camera();
     const double time = 0.7;
-    ReferenceExpansion reference =
-        referenceExpand(s.tile, s.scene.vegetation, s.scene.lod, s.scene.wind, camera, time,
-                        {cardCover(s.atlas), meanAspects(s.atlas.desc)});
+    ReferenceExpansion reference = referenceExpand(s.tile, s.scene.vegetation, s.scene.lod, s.scene.wind, camera, time,
+                                                   {cardCover(s.atlas), meanAspects(s.atlas.desc)});
     SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_1_BIT, &s.tile, &s.atlas);
     VegetationRenderer& vegetation = *renderer.vegetation();
     vegetation.setCutout(cutoutCorners, s.atlas);

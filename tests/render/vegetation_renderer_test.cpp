@@ -219,16 +219,18 @@ TEST_F(VegetationTest, SlicingAndMergingFarBillboardsKeepCoverageAndColour) {
     };
     // Fewer layers than the default: a test that can fail.
     const Measured whole = measure(0.0f, 0.0f), sliced = measure(4.0f, 6.0f);
-    std::printf("far plants %u -> %u, drawn share of their height %.3f, plant pixels %.0f -> %.0f (%+.2f %%), mean green "
-                "%.4f -> %.4f (%+.2f %%)\n",
-                whole.stats.instances.z, sliced.stats.instances.z, sliced.farHeight, whole.plants, sliced.plants,
-                100.0 * (sliced.plants / whole.plants - 1.0),
-                whole.green, sliced.green, 100.0 * (sliced.green / whole.green - 1.0));
+    std::printf(
+        "far plants %u -> %u, drawn share of their height %.3f, plant pixels %.0f -> %.0f (%+.2f %%), mean green "
+        "%.4f -> %.4f (%+.2f %%)\n",
+        whole.stats.instances.z, sliced.stats.instances.z, sliced.farHeight, whole.plants, sliced.plants,
+        100.0 * (sliced.plants / whole.plants - 1.0), whole.green, sliced.green,
+        100.0 * (sliced.green / whole.green - 1.0));
     EXPECT_EQ(sliced.stats.instances.x, whole.stats.instances.x) << "near plants are never sliced";
     EXPECT_EQ(sliced.stats.instances.y, whole.stats.instances.y) << "mid plants are never sliced";
     EXPECT_EQ(whole.farHeight, 1.0) << "off: every far billboard whole";
     EXPECT_LT(sliced.farHeight, 0.85) << "the hidden parts of far billboards are not drawn";
-    EXPECT_LT(sliced.stats.instances.z, whole.stats.instances.z / 2) << "at 240 x 160 far billboards are a few pixels wide";
+    EXPECT_LT(sliced.stats.instances.z, whole.stats.instances.z / 2)
+        << "at 240 x 160 far billboards are a few pixels wide";
     ASSERT_GT(whole.plants, double(kWidth * kHeight) / 5);
     EXPECT_NEAR(sliced.plants / whole.plants, 1.0, 0.02) << "coverage within 2 %";
     EXPECT_NEAR(sliced.green / whole.green, 1.0, 0.02) << "mean plant colour within 2 %";

@@ -14,13 +14,15 @@ constexpr int kSteps = 200000;
 // Expected drawn width per plant over the plant hash u, in units of its own width.
 double expectedWidth(float mergeWidth, float widthPixels) {
     double sum = 0.0;
-    for (int i = 0; i < kSteps; ++i) sum += gpu::mergeWidthScale(mergeWidth, widthPixels, (float(i) + 0.5f) / float(kSteps));
+    for (int i = 0; i < kSteps; ++i)
+        sum += gpu::mergeWidthScale(mergeWidth, widthPixels, (float(i) + 0.5f) / float(kSteps));
     return sum / kSteps;
 }
 
 double keptShare(float mergeWidth, float widthPixels) {
     int kept = 0;
-    for (int i = 0; i < kSteps; ++i) kept += gpu::mergeWidthScale(mergeWidth, widthPixels, (float(i) + 0.5f) / float(kSteps)) > 0.0f;
+    for (int i = 0; i < kSteps; ++i)
+        kept += gpu::mergeWidthScale(mergeWidth, widthPixels, (float(i) + 0.5f) / float(kSteps)) > 0.0f;
     return double(kept) / kSteps;
 }
 
@@ -30,7 +32,8 @@ TEST(Merging, KeepsTheExpectedWidthSoCoverageIsUnchanged) {
     // From a billboard as wide as the merge width down to the widening limit, and in the continuous zone between.
     for (float pixels : {6.0f, 5.0f, 3.0f, 1.5f, 1.0f, 0.5f})
         EXPECT_NEAR(expectedWidth(6.0f, pixels), 1.0, 1e-3) << pixels << " px";
-    EXPECT_NEAR(keptShare(6.0f, 1.5f), 0.25 / (1.0 - 0.5 * gpu::kMergeFade), 1e-3) << "a quarter, plus the shrinking zone";
+    EXPECT_NEAR(keptShare(6.0f, 1.5f), 0.25 / (1.0 - 0.5 * gpu::kMergeFade), 1e-3)
+        << "a quarter, plus the shrinking zone";
 }
 
 TEST(Merging, WideBillboardsAndOffAreExactlyUntouched) {
@@ -45,7 +48,8 @@ TEST(Merging, WidensAtMostToTheLimitAndNarrowBillboardsBecomeAsWideAsTheMergeWid
     float widest = 0.0f;
     for (int i = 0; i < kSteps; ++i) widest = std::max(widest, gpu::mergeWidthScale(6.0f, 0.1f, float(i) / kSteps));
     EXPECT_NEAR(widest, gpu::kMaxMergeWiden, 1e-3) << "0.1 px wide: widened 6x, not 60x";
-    EXPECT_NEAR(gpu::mergeWidthScale(6.0f, 2.0f, 0.0f) * 2.0f, 6.0f, 1e-4) << "a kept 2 px billboard is drawn 6 px wide";
+    EXPECT_NEAR(gpu::mergeWidthScale(6.0f, 2.0f, 0.0f) * 2.0f, 6.0f, 1e-4)
+        << "a kept 2 px billboard is drawn 6 px wide";
 }
 
 TEST(Merging, APlantsWidthChangesContinuouslyWithItsDistance) {

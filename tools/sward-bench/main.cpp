@@ -62,8 +62,9 @@ int main(int argc, char** argv) {
            },
            "Cut-out variants (corners per polygon, 4..8; 0: none) measured against whole quads (repeatable; default 4 6 8)")
         ->type_name("UINT");
-    frm->add_flag("!--no-floor", frame.floor,
-                  "Skip the floor variants (the main pass with plants drawn by a constant-colour shader, and without plants)");
+    frm->add_flag(
+        "!--no-floor", frame.floor,
+        "Skip the floor variants (the main pass with plants drawn by a constant-colour shader, and without plants)");
     frm->add_option("--device", frame.device, "Vulkan device name substring");
     frm->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
