@@ -187,6 +187,22 @@ uint trackBlockHash(int x, int y) {
 // An empty slot of that table holds this key (no block lies there: it would be 10^8 km away).
 SWARD_CONST(int, kTrackEmptyKey, -2147483647 - 1);
 
+// Integer hashing for decisions that must be the same on every device and on the CPU (no sin, no float noise):
+// PCG's output permutation (Jarzynski and Olano, "Hash Functions for GPU Rendering", 2020). GLSL and C++ functions.
+#ifdef __cplusplus
+constexpr
+#endif
+uint pcgHash(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+// A hash's top 24 bits as a number in [0, 1).
+#ifdef __cplusplus
+constexpr
+#endif
+float unitFromHash(uint h) { return float(h >> 8u) * (1.0f / 16777216.0f); }
+
 // Slicing of far billboards. A grazing ray crosses many far billboards before it reaches the ground, and it meets
 // them near their tops: the parts of the plants below some height are hidden behind the plants in front. A far
 // billboard is drawn only above that height, so the hidden parts cost nothing, while every ray that reaches a drawn
@@ -238,15 +254,11 @@ float mergeWidthScale(float mergeWidth, float widthPixels, float u) {
 }
 // ExpandedPlant::fade bits 8-15 hold the width scale times this (32: 1, exactly; 0: not drawn).
 SWARD_CONST(float, kWidthScaleUnit, 32.0);
-// A plant's merging hash in [0, 1): PCG's output permutation (Jarzynski and Olano 2020) of its index in the tile.
+// A plant's merging hash in [0, 1), from its index in the tile.
 #ifdef __cplusplus
 constexpr
 #endif
-float mergeHash(uint index) {
-    uint state = (index ^ 0x6A09E667u) * 747796405u + 2891336453u;
-    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return float(((word >> 22u) ^ word) >> 8u) * (1.0f / 16777216.0f);
-}
+float mergeHash(uint index) { return unitFromHash(pcgHash(index ^ 0x6A09E667u)); }
 
 // Per-frame constants of the vegetation expansion (uniform buffer).
 struct VegetationConstants {

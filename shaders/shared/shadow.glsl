@@ -7,7 +7,7 @@
 #define SWARD_SHADOW_GLSL
 
 #include "config.h"
-#include "pcg_hash.glsl"
+#include "gpu_layout.h" // pcgHash
 
 layout(set = 0, binding = kBindingShadowMap) uniform sampler2DShadow shadowMap;
 

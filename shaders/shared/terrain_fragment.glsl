@@ -12,7 +12,6 @@
 #ifdef SWARD_TERRAIN_HOLES
 #include "shared/ground_tracks.glsl"
 #endif
-#include "shared/pcg_hash.glsl"
 #include "shared/shadow.glsl"
 
 layout(set = 0, binding = kBindingGroundTextures) uniform sampler2DArray groundTextures;
