@@ -5,7 +5,9 @@
 // Never use std:: distributions or rand(): their sequences depend on call order and on the standard library.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <initializer_list>
 
 namespace sward {
@@ -32,6 +34,13 @@ constexpr float unitFloat(uint64_t h) { return float(uint32_t(h >> 40)) * (1.0f 
 
 // Uniform double in [0, 1) from the top 53 bits.
 constexpr double unitDouble(uint64_t h) { return double(h >> 11) * (1.0 / 9007199254740992.0); }
+
+// Standard normal from one hash: Box-Muller on two uniforms derived from it (u1 in (0, 1], so the logarithm is finite).
+inline double standardNormal(uint64_t h) {
+    const double u1 = 1.0 - unitDouble(h);
+    const double u2 = unitDouble(mix64(h ^ 0x2545f4914f6cdd1dull));
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+}
 
 // A stream of independent values under one key: value i of the stream is hashKey({key, i}).
 struct HashStream {

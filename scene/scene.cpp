@@ -268,6 +268,7 @@ Scene parseScene(const nlohmann::json& json, const std::string& source, const As
     readAtlas(root.child("atlas"), scene);
     readVegetation(root, scene);
     if (root.has("world")) scene.world = parseWorldParams(root.child("world"));
+    scene.rangeSensors = parseRangeSensors(root);
     root.finish();
     checkSceneLimits(scene);
     if (scene.world.enabled) checkWorldScene(scene);

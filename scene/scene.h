@@ -14,6 +14,7 @@
 #include "interaction/collision.h"
 #include "world/path.h"
 #include "scene/objects.h"
+#include "scene/range_sensor_params.h"
 #include "scene/terrain.h"
 #include "scene/vehicles.h"
 #include "scene/world_params.h"
@@ -116,6 +117,7 @@ struct Scene {
     std::string atlasPngPath, atlasJsonPath; // "atlas": {"png", "json"}; empty = the built-in procedural atlas
     AssetPolicy assets; // where the files it names may be read from (loadScene: the scene file's folder)
     WorldParams world;  // "world": many tiles around interest points (scene/world_tiles.h); off = one tile
+    std::vector<RangeSensorParams> rangeSensors; // "range_sensors": LiDARs, laser scanners, ToF cameras (range/)
 };
 
 // Parses and validates a scene; `source` names it in error messages, and relative file paths are taken against

@@ -19,13 +19,9 @@ namespace {
 // Distinguishes sensor noise from every other hashed quantity that might share (seed, frame, ...) keys.
 constexpr uint64_t kSensorNoiseDomain = 0x53454e534f524e31ull; // "SENSORN1"
 
-// Standard normal for one pixel channel: Box-Muller on two uniforms derived from one counter-based hash.
-// u1 is in (0, 1] so the logarithm is finite.
+// Standard normal for one pixel channel, from one counter-based hash.
 double gaussian(uint64_t seed, uint32_t frame, uint32_t camera, uint64_t pixel, uint32_t channel) {
-    uint64_t h = hashKey({kSensorNoiseDomain, seed, frame, camera, pixel, channel});
-    double u1 = 1.0 - unitDouble(h);
-    double u2 = unitDouble(mix64(h ^ 0x2545f4914f6cdd1dull));
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+    return standardNormal(hashKey({kSensorNoiseDomain, seed, frame, camera, pixel, channel}));
 }
 
 // Jacobian of distortNormalized at (x, y), row-major.

@@ -74,6 +74,22 @@ glm::vec2 clusterCardCover(const VegetationParams& vegetation, const FieldVegeta
 
 } // namespace
 
+gpu::ExpandedPlant expandWholePlant(const VegetationParams& vegetation, const WindParams& wind,
+                                    const FieldVegetation& field, uint32_t i, double time) {
+    const gpu::PlantStatic& plant = field.staticRecords[i];
+    const glm::vec3 position = decodePlantPosition(plant, field.origin, field.positionStep);
+    const PlantInstance decoded = decodePlantStatic(plant);
+    const PlantMotion motion = decodePlantDynamic(field.dynamicRecords[i]);
+    const float random = float(decoded.random) / 255.0f;
+    glm::vec2 tip = motion.bend + windTip(wind, position, random, float(time));
+    const float len = glm::length(tip);
+    if (len > gpu::kMaxTipOffset) tip *= gpu::kMaxTipOffset / len;
+    const uint32_t cutByte = (field.dynamicRecords[i].state >> 24) & 0xffu;
+    const uint32_t fade = (uint32_t(gpu::kWidthScaleUnit) << 8) | (motion.state << 17) | (cutByte << 24);
+    return {glm::vec4(position, plantHeight(vegetation, plant, field.dynamicRecords[i])), plant.up,
+            plant.attributes & 0x00ffffffu, glm::packHalf2x16(tip), fade};
+}
+
 ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationParams& vegetation, const LodParams& lod,
                                    const WindParams& wind, const Camera& camera, double time,
                                    const ExpansionAtlas& atlas) {
@@ -111,18 +127,11 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
                     slice = uint32_t(std::min(cut / std::max(height, 1e-6f), 1.0f) * gpu::kSliceUnit);
                     if (slice == uint32_t(gpu::kSliceUnit)) continue;
                 }
-                PlantInstance decoded = decodePlantStatic(plant);
-                PlantMotion motion = decodePlantDynamic(field.dynamicRecords[i]);
-                float random = float(decoded.random) / 255.0f;
-                glm::vec2 tip = motion.bend + windTip(wind, position, random, float(time));
-                float len = glm::length(tip);
-                if (len > gpu::kMaxTipOffset) tip *= gpu::kMaxTipOffset / len;
-                uint32_t cutByte = (field.dynamicRecords[i].state >> 24) & 0xffu;
-                uint32_t fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 255.0f + 0.5f) | (width << 8) |
-                                (motion.state << 17) | (cutByte << 24);
-                gpu::ExpandedPlant expanded{glm::vec4(position, height), plant.up,
-                                            (plant.attributes & 0x00ffffffu) | (slice << 24), glm::packHalf2x16(tip),
-                                            fade};
+                gpu::ExpandedPlant expanded = expandWholePlant(vegetation, wind, field, i, time);
+                expanded.attributes |= slice << 24;
+                expanded.fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 255.0f + 0.5f) | (width << 8) |
+                                (expanded.fade & 0xffff0000u);
+                const uint32_t fade = expanded.fade;
                 out.lods[choice.lodA].push_back(expanded);
                 if (choice.lodB != kNoLod) {
                     expanded.fade = fade | 0x10000u;
@@ -206,6 +215,16 @@ glm::vec2 cutoutFanCorner(const gpu::ExpandedPlant& plant, const CutoutPolygon& 
 }
 
 } // namespace
+
+void plantQuadCorners(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cameraPosition, glm::vec3 cellBaseAspect,
+                      glm::vec3* corners) {
+    static const glm::vec2 quadCorners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    const uint32_t quads = gpu::plantVertexCount(lod, 0u) / gpu::kVerticesPerQuad;
+    for (uint32_t quad = 0; quad < quads; ++quad) {
+        const ReferenceQuad q = referenceQuad(plant, lod, quad, cameraPosition, cellBaseAspect);
+        for (uint32_t k = 0; k < 4; ++k) corners[4 * quad + k] = q.point(quadCorners[k]);
+    }
+}
 
 std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cameraPosition,
                                               glm::vec3 cellBaseAspect, const CutoutPolygon* cutout,

@@ -1,6 +1,6 @@
 // CPU reference of the GPU vegetation expansion (shaders/vegetation_expand.comp, shared/vegetation.glsl,
-// shared/plant_vertex.glsl): the same math in C++, in the same order, for tests that check the GPU result.
-// Not used for rendering. Float arithmetic mirrors the shaders; results agree to rounding (FMA contraction
+// shared/plant_vertex.glsl): the same math in C++, in the same order, for tests that check the GPU result and for
+// the range sensors (range/), which cast rays against the plants the cameras see. Not used for rendering. Float arithmetic mirrors the shaders; results agree to rounding (FMA contraction
 // and transcendental precision may differ on a GPU), which the tests allow for.
 #pragma once
 
@@ -31,6 +31,17 @@ struct ExpansionAtlas {
 ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationParams& vegetation, const LodParams& lod,
                                    const WindParams& wind, const Camera& camera, double time,
                                    const ExpansionAtlas& atlas);
+
+// Plant `i` of `field` expanded whole at simulation time `time`: position, height after size and cut, wind + bend tip,
+// state; no LOD fade, merging (width scale 1) or slicing. referenceExpand's instances are this plus those.
+gpu::ExpandedPlant expandWholePlant(const VegetationParams& vegetation, const WindParams& wind,
+                                    const FieldVegetation& field, uint32_t i, double time);
+
+// The corners of each quad of `plant` drawn at `lod` (whole quads, no slicing), four per quad in the order (x across,
+// y up) (0, 0), (1, 0), (1, 1), (0, 1): the quad's triangles are corners (0, 1, 2) and (0, 2, 3), as kCorners draws
+// them. `corners` holds 4 * quads entries (16 for the near LOD).
+void plantQuadCorners(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cameraPosition, glm::vec3 cellBaseAspect,
+                      glm::vec3* corners);
 
 // The gpu::plantVertexCount(lod, cutoutCorners) vertex positions of one expanded plant (plant_vertex.glsl), for an
 // atlas cell with base (baseU, baseV) and width / height `aspect`; with `cutout` and cutoutCorners (4..8), near and

@@ -1,0 +1,198 @@
+#include "range/range_sweep.h"
+
+#include "common/error.h"
+#include "common/hash.h"
+#include "common/parallel_for.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace sward {
+
+namespace {
+
+constexpr double kDegrees = std::numbers::pi / 180.0;
+constexpr uint64_t kRangeNoiseDomain = 0x52414e47454e3031ull; // "RANGEN01"
+// Sub-ray hits closer than this along the beam form one echo (a pulse cannot separate them).
+constexpr float kEchoSeparation = 0.5f;
+
+// Diffuse reflectance at the sensors' near-infrared wavelength per semantic class (vegetation is bright there).
+float reflectance(uint32_t label) {
+    switch (label >> gpu::kInstanceBits) {
+    case gpu::kSemanticGround: case gpu::kSemanticTurf: case gpu::kSemanticTrack: return 0.25f;
+    case gpu::kSemanticObject: return 0.3f;
+    case gpu::kSemanticFelled: case gpu::kSemanticCut: return 0.45f;
+    default: return 0.5f; // standing plants
+    }
+}
+
+glm::dmat4 frameFromAxes(glm::dvec3 forward, glm::dvec3 up, glm::dvec3 origin, double pitchDegrees) {
+    forward = glm::normalize(forward), up = glm::normalize(up - forward * glm::dot(forward, up));
+    const double p = pitchDegrees * kDegrees;
+    const glm::dvec3 x = forward * std::cos(p) - up * std::sin(p), z = up * std::cos(p) + forward * std::sin(p);
+    return glm::dmat4(glm::dvec4(x, 0.0), glm::dvec4(glm::cross(z, x), 0.0), glm::dvec4(z, 0.0), glm::dvec4(origin, 1.0));
+}
+
+// A beam's sub-rays: offsets (radians, in the beam's cross-section) and weights of a Gaussian beam whose 1/e^2 full
+// angle is the divergence: the centre and rings of 6 (and 12) rays.
+struct SubRay {
+    glm::dvec2 offset;
+    double weight;
+};
+std::vector<SubRay> subRays(const RangeSensorParams& s) {
+    const double half = 0.5 * s.divergenceMrad * 1e-3;
+    std::vector<SubRay> rays{{glm::dvec2(0.0), 1.0}};
+    const uint32_t rings = s.subRays == 19 ? 2 : s.subRays == 7 ? 1 : 0;
+    for (uint32_t ring = 1; ring <= rings; ++ring) {
+        const double radius = half * double(ring) / double(rings + 1), weight = std::exp(-2.0 * (radius / half) * (radius / half));
+        for (uint32_t k = 0; k < 6 * ring; ++k) {
+            const double phi = 2.0 * std::numbers::pi * double(k) / double(6 * ring);
+            rays.push_back({radius * glm::dvec2(std::cos(phi), std::sin(phi)), weight});
+        }
+    }
+    double total = 0.0;
+    for (const SubRay& r : rays) total += r.weight;
+    for (SubRay& r : rays) r.weight /= total;
+    return rays;
+}
+
+struct SubHit {
+    float distance, energy;
+    uint32_t label, index;
+};
+
+// The echoes of a beam from its sub-rays' hits (sorted by distance): the reported one's range, energy and label.
+bool chooseReturn(std::vector<SubHit>& hits, RangeReturn mode, float& range, float& energy, uint32_t& label) {
+    if (hits.empty()) return false;
+    std::sort(hits.begin(), hits.end(), [](const SubHit& a, const SubHit& b) {
+        return a.distance < b.distance || (a.distance == b.distance && a.index < b.index);
+    });
+    bool found = false;
+    for (size_t begin = 0; begin < hits.size();) {
+        size_t end = begin + 1;
+        while (end < hits.size() && hits[end].distance - hits[end - 1].distance < kEchoSeparation) ++end;
+        double e = 0.0, weighted = 0.0;
+        const SubHit* strongest = &hits[begin];
+        for (size_t i = begin; i < end; ++i) {
+            e += hits[i].energy, weighted += double(hits[i].energy) * hits[i].distance;
+            if (hits[i].energy > strongest->energy) strongest = &hits[i];
+        }
+        const float r = e > 0.0 ? float(weighted / e) : hits[begin].distance;
+        const bool take = !found || mode == RangeReturn::Last || (mode == RangeReturn::Strongest && float(e) > energy);
+        if (take) range = r, energy = float(e), label = strongest->label;
+        found = true;
+        if (mode == RangeReturn::First) break;
+        begin = end;
+    }
+    return true;
+}
+
+} // namespace
+
+glm::dmat4 rangeSensorPose(const RangeWorld& world, const RangeSensorParams& sensor, double time) {
+    const RangeMount& m = sensor.mount;
+    switch (m.kind) {
+    case RangeMount::Kind::Fixed: {
+        glm::dvec3 p = m.position;
+        if (m.useHeightAboveGround) p.z = world.terrain.height(glm::vec2(p)) + m.heightAboveGround;
+        const double yaw = m.yawDegrees * kDegrees;
+        return frameFromAxes({std::cos(yaw), std::sin(yaw), 0.0}, {0, 0, 1}, p, m.pitchDegrees);
+    }
+    case RangeMount::Kind::Path: {
+        const PathPose pose = pathPose(m.path, world.terrain, time);
+        return frameFromAxes(glm::dvec3(pose.heading, 0.0), {0, 0, 1}, pose.position, m.pitchDegrees);
+    }
+    case RangeMount::Kind::Object: break;
+    }
+    size_t k = 0;
+    while (k < world.scene.objects.size() && world.scene.objects[k].name != m.object) ++k;
+    require(k < world.scene.objects.size() && k < world.models.size(),
+            world.scene.source + ": range sensor '" + sensor.name + "': 'mount.object' names no scene object: '" +
+                m.object + "'");
+    const glm::dmat4 node = objectNodeToWorld(world.scene.objects[k], world.models[k], m.node, world.terrain, time);
+    // Node frame: -y forward, +x left, +z up (objects.h).
+    return frameFromAxes(glm::dvec3(node * glm::dvec4(0, -1, 0, 0)), glm::dvec3(node * glm::dvec4(0, 0, 1, 0)),
+                         glm::dvec3(node * glm::dvec4(m.offset, 1.0)), m.pitchDegrees);
+}
+
+glm::dvec3 beamDirection(const RangeSensorParams& s, uint32_t ring, uint32_t column) {
+    if (s.type == RangeSensorType::TimeOfFlight) {
+        const double f = 0.5 * double(s.height) / std::tan(0.5 * s.fovYDegrees * kDegrees);
+        return glm::normalize(glm::dvec3(f, -(double(column) + 0.5 - 0.5 * s.width), -(double(ring) + 0.5 - 0.5 * s.height)));
+    }
+    const double az = (s.angleMinDegrees + double(column) * s.azimuthStepDegrees) * kDegrees;
+    const double el = s.elevationsDegrees[ring] * kDegrees;
+    return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+}
+
+double columnTime(const RangeSensorParams& s, uint32_t column) {
+    if (s.type == RangeSensorType::TimeOfFlight) return 0.0;
+    return double(column) * s.azimuthStepDegrees / 360.0 / s.rateHz;
+}
+
+std::vector<PosedTriangles> posedObjects(const RangeWorld& world, double time) {
+    std::vector<PosedTriangles> out;
+    for (size_t k = 0; k < world.scene.objects.size() && k < world.models.size(); ++k) {
+        const ObjectModel& model = world.models[k];
+        const std::vector<glm::dmat4> nodes = objectNodeTransforms(world.scene.objects[k], model, world.terrain, time);
+        PosedTriangles posed;
+        posed.label = objectLabel(k);
+        for (size_t n = 0; n < model.nodes.size(); ++n)
+            for (const ModelPrimitive& prim : model.nodes[n].primitives) {
+                const uint32_t base = uint32_t(posed.positions.size());
+                for (const glm::vec3& p : prim.positions) posed.positions.push_back(glm::vec3(nodes[n] * glm::dvec4(p, 1.0)));
+                for (uint32_t i : prim.indices) posed.indices.push_back(base + i);
+            }
+        out.push_back(std::move(posed));
+    }
+    return out;
+}
+
+RangeScan sweepSensor(const RayScene& rays, const RangeWorld& world, uint32_t sensorIndex, uint32_t frame,
+                      double frameTime, uint32_t threads) {
+    const RangeSensorParams& s = world.scene.rangeSensors.at(sensorIndex);
+    RangeScan scan;
+    scan.channels = s.channels(), scan.columns = s.columns();
+    scan.ranges.assign(size_t(scan.channels) * scan.columns, 0.0f);
+    scan.startPose = rangeSensorPose(world, s, frameTime + columnTime(s, 0));
+    scan.endPose = rangeSensorPose(world, s, frameTime + columnTime(s, scan.columns - 1));
+    const std::vector<SubRay> pattern = subRays(s);
+    std::vector<std::vector<RangePoint>> perColumn(scan.columns);
+    parallelFor(scan.columns, threads, [&](uint32_t c, uint32_t) {
+        const double t = columnTime(s, c);
+        const glm::dmat4 pose = s.type == RangeSensorType::TimeOfFlight ? scan.startPose : rangeSensorPose(world, s, frameTime + t);
+        const glm::dvec3 origin(pose[3]);
+        const glm::dmat3 rotation(pose);
+        std::vector<SubHit> hits;
+        for (uint32_t ring = 0; ring < scan.channels; ++ring) {
+            const glm::dvec3 beam = beamDirection(s, ring, c);
+            const glm::dvec3 u = glm::normalize(std::abs(beam.z) < 0.9 ? glm::cross(beam, {0, 0, 1}) : glm::cross(beam, {1, 0, 0}));
+            const glm::dvec3 v = glm::cross(beam, u);
+            hits.clear();
+            for (uint32_t k = 0; k < pattern.size(); ++k) {
+                const glm::dvec3 local = glm::normalize(beam + pattern[k].offset.x * u + pattern[k].offset.y * v);
+                const glm::dvec3 dir = glm::normalize(rotation * local);
+                const RangeHit hit = rays.cast(origin, dir, s.minRange, s.maxRange);
+                if (!hit.hit()) continue;
+                const float cosine = float(std::abs(glm::dot(glm::dvec3(hit.normal), dir)));
+                hits.push_back({hit.distance, float(pattern[k].weight) * reflectance(hit.label) * cosine, hit.label, k});
+            }
+            RangePoint p;
+            if (!chooseReturn(hits, s.returnMode, p.range, p.intensity, p.label)) continue;
+            const uint64_t key = hashKey({kRangeNoiseDomain, world.scene.seed, sensorIndex, frame, c, ring});
+            if (s.dropout > 0.0 && unitDouble(mix64(key ^ 0x9e3779b97f4a7c15ull)) < s.dropout) continue;
+            if (s.rangeNoise > 0.0) p.range = float(double(p.range) + s.rangeNoise * standardNormal(key));
+            if (!(p.range > 0.0f)) continue;
+            p.sensor = glm::vec3(beam * double(p.range));
+            p.world = origin + rotation * (beam * double(p.range));
+            p.time = float(t), p.ring = ring, p.column = c;
+            scan.ranges[size_t(ring) * scan.columns + c] = p.range;
+            perColumn[c].push_back(p);
+        }
+    });
+    for (std::vector<RangePoint>& column : perColumn) scan.points.insert(scan.points.end(), column.begin(), column.end());
+    return scan;
+}
+
+} // namespace sward

@@ -1,0 +1,62 @@
+// One sweep of a range sensor: its beams (directions in the sensor frame, firing times), its pose as it moves during
+// the sweep, sub-rays over the beam's divergence, echoes and the return it reports, range noise and dropout.
+//
+// Beams fire column by column (a LiDAR's azimuth steps, a scanner's angles; every ring of a column at once), column c
+// at time frameTime + c / (columns * rate); a ToF camera's pixels all at frameTime (a global shutter). The sensor moves
+// between columns (its mount's pose at each column's time); the world is the one of the frame's tick (RayScene).
+// Every random quantity is a counter-based hash of (seed, sensor, frame, column, ring): bitwise reproducible on any
+// number of threads.
+#pragma once
+
+#include "range/ray_scene.h"
+#include "scene/scene.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace sward {
+
+// One beam's return.
+struct RangePoint {
+    glm::vec3 sensor{0.0f};     // in the sensor frame at its firing time (x forward, y left, z up), metres
+    glm::dvec3 world{0.0};      // world frame
+    float range = 0.0f;         // metres along the beam, noise included
+    float intensity = 0.0f;     // the echo's share of the beam's energy times the surfaces' reflectance (0..1)
+    float time = 0.0f;          // seconds after the sweep's start
+    uint32_t ring = 0, column = 0;
+    uint32_t label = 0;         // (semantic class << 24) | instance of the surface that returned most of the echo
+};
+
+struct RangeScan {
+    uint32_t channels = 0, columns = 0;
+    std::vector<RangePoint> points; // beams with a return, in firing order (column, then ring)
+    std::vector<float> ranges;      // per beam, ring-major (ring * columns + column): range, 0 = no return
+    glm::dmat4 startPose{1.0}, endPose{1.0}; // world-from-sensor at the first and the last column's time
+};
+
+// What a sweep needs of the scene besides the RayScene.
+struct RangeWorld {
+    const Scene& scene;
+    const Ground& terrain;
+    const std::vector<ObjectModel>& models;
+};
+
+// World-from-sensor transform of `sensor` at simulation time `time` (its mount: fixed, path or object node).
+glm::dmat4 rangeSensorPose(const RangeWorld& world, const RangeSensorParams& sensor, double time);
+
+// Unit direction (sensor frame) of beam (ring, column); a ToF camera's pixel (column, ring) through its centre.
+glm::dvec3 beamDirection(const RangeSensorParams& sensor, uint32_t ring, uint32_t column);
+// Seconds after the sweep's start at which column `column` fires.
+double columnTime(const RangeSensorParams& sensor, uint32_t column);
+
+// The scene objects' triangles at simulation time `time`, world space, labelled as the truth pass labels them.
+std::vector<PosedTriangles> posedObjects(const RangeWorld& world, double time);
+
+// Sensor `sensorIndex` (of scene.rangeSensors) sweeping from `frameTime` (frame `frame`) through `rays`, which must hold
+// the world of that frame's tick. Threads as parallelFor.
+RangeScan sweepSensor(const RayScene& rays, const RangeWorld& world, uint32_t sensorIndex, uint32_t frame,
+                      double frameTime, uint32_t threads = 0);
+
+} // namespace sward

@@ -1,0 +1,69 @@
+// RayScene: exactly what the cameras draw at one tick, for rays cast on the CPU with Embree (range sensors).
+//
+// - Ground: the drawn triangulation (a heightfield's cells split along the (i, j)-(i+1, j+1) diagonal, or the mesh's
+//   triangles), one Embree triangle geometry built once.
+// - Plants: every plant in the near LOD's four quads (vegetation/expansion_reference.h: the same records, wind, bend,
+//   felled and cut states as the GPU expansion), whole quads, the atlas's level-0 alpha tested at 0.5 with bilinear
+//   filtering at each hit, so rays pass through the gaps between blades. One Embree user geometry per 25 m field,
+//   its boxes bounding the plant in any state (built once, when a field first comes within reach); per tick
+//   setPlants() recomputes the quads of the fields within reach, and the intersector tests a plant's tight box, then
+//   its eight triangles.
+// - Objects: the scene objects' triangles posed at the tick (setObjects).
+//
+// Closest hits are unique: among hits at the same distance the lowest (geometry, primitive, triangle) key wins, so the
+// result does not depend on traversal order. Embree builds on one thread (its BVHs do not depend on the machine), and
+// rays are cast from any number of threads at once.
+#pragma once
+
+#include "vegetation/atlas.h"
+#include "vegetation/vegetation_params.h"
+#include "vegetation/vegetation_tile.h"
+#include "world/ground.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace sward {
+
+struct RangeHit {
+    float distance = 0.0f;    // along the ray's unit direction, metres; 0 = nothing hit
+    uint32_t label = 0;       // (semantic class << kInstanceBits) | instance id, as the truth pass writes it
+    glm::vec3 normal{0.0f};   // unit world normal of the surface hit, facing the ray's origin
+    bool hit() const { return distance > 0.0f; }
+};
+
+// The triangles of one posed scene object, world space, with its truth label.
+struct PosedTriangles {
+    std::vector<glm::vec3> positions;
+    std::vector<uint32_t> indices; // 3 per triangle
+    uint32_t label = 0;
+};
+
+class RayScene {
+public:
+    // `tile` (null: no plants) must outlive the scene; its dynamic records are read by setPlants.
+    RayScene(const Ground& ground, const Atlas& atlas, const VegetationParams& vegetation, const VegetationTile* tile);
+    ~RayScene();
+    RayScene(const RayScene&) = delete;
+    RayScene& operator=(const RayScene&) = delete;
+
+    // The plants at simulation time `time` (wind) with the dynamic records `tile` holds now: quads of every field
+    // whose box lies within `reach` metres of `centre` (xy); plants of other fields are not hit. Threads as parallelFor.
+    void setPlants(const WindParams& wind, double time, glm::dvec2 centre, double reach, uint32_t threads = 0);
+    // The scene objects' triangles at this tick (replaces the previous ones).
+    void setObjects(const std::vector<PosedTriangles>& objects);
+
+    // The closest surface along origin + t * direction (direction unit) with t in [tNear, tFar].
+    RangeHit cast(glm::dvec3 origin, glm::dvec3 direction, double tNear, double tFar) const;
+
+    uint64_t plantsPrepared() const; // plants whose quads setPlants computed last
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace sward
