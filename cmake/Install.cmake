@@ -10,7 +10,7 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(SWARD_LAYERS common io world vegetation interaction scene dataset eval engine render)
+set(SWARD_LAYERS common io world vegetation interaction scene dataset eval range engine render)
 set(SWARD_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/sward)
 
 foreach(layer ${SWARD_LAYERS})

@@ -70,22 +70,41 @@ bool isFrameFileName(const fs::path& name) {
     return frameNumber(name.stem().string()) && (extension == ".exr" || extension == ".png" || extension == ".pfm");
 }
 
+// NNNNNN.ply / .bin / .label / .json / .exr: a range sensor's per-frame files (range/<sensor>/).
+bool isRangeFileName(const fs::path& name) {
+    const std::string extension = name.extension().string();
+    return frameNumber(name.stem().string()) && (extension == ".ply" || extension == ".bin" || extension == ".label" ||
+                                                 extension == ".json" || extension == ".exr");
+}
+
+// The sensor folders under range/ ("range/<name>"), whatever their names.
+std::vector<std::string> rangeFoldersIn(const std::string& root) {
+    std::vector<std::string> folders;
+    std::error_code ec;
+    for (const fs::directory_entry& entry : fs::directory_iterator(root + "/" + kRangeFolder, ec))
+        if (entry.is_directory(ec) && !entry.is_symlink(ec))
+            folders.push_back(std::string(kRangeFolder) + "/" + entry.path().filename().string());
+    std::sort(folders.begin(), folders.end());
+    return folders;
+}
+
 // Relative paths of the sward dataset files under `root` (with sward temporaries when `withTemporaries`);
 // foreign files are never listed.
 std::vector<std::string> swardFilesIn(const std::string& root, bool withTemporaries) {
     std::vector<std::string> files;
     std::error_code ec;
-    auto scan = [&](const std::string& folder, bool rootLevel) {
+    auto scan = [&](const std::string& folder, bool (*isOurs)(const fs::path&)) {
         const std::string dir = folder.empty() ? root : root + "/" + folder;
         for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
             const std::string name = entry.path().filename().string();
-            const bool ours = rootLevel ? isRootDatasetFile(name) : isFrameFileName(entry.path().filename());
+            const bool ours = isOurs(entry.path().filename());
             if ((ours && !entry.is_directory(ec)) || (withTemporaries && isSwardTemporaryName(name)))
                 files.push_back(folder.empty() ? name : folder + "/" + name);
         }
     };
-    scan("", true);
-    for (const char* folder : kAllFolders) scan(folder, false);
+    scan("", [](const fs::path& name) { return isRootDatasetFile(name.string()); });
+    for (const char* folder : kAllFolders) scan(folder, isFrameFileName);
+    for (const std::string& folder : rangeFoldersIn(root)) scan(folder, isRangeFileName);
     return files;
 }
 
@@ -93,7 +112,10 @@ constexpr const char* kUseOverwrite = "; use --overwrite to start over or choose
 
 } // namespace
 
-DatasetWriter::DatasetWriter(std::string root, bool stereo) : root_(std::move(root)), stereo_(stereo) {}
+DatasetWriter::DatasetWriter(std::string root, bool stereo, const std::vector<RangeSensorParams>& rangeSensors)
+    : root_(std::move(root)), stereo_(stereo) {
+    for (const RangeSensorParams& sensor : rangeSensors) rangeSensors_.push_back({sensor.name, sensor.type, sensor.channels() * uint64_t(sensor.columns())});
+}
 
 std::vector<std::string> DatasetWriter::directories() const {
     std::vector<std::string> dirs = {kLeftFolder,     kDepthFolder,  kSemanticFolder,
@@ -101,6 +123,8 @@ std::vector<std::string> DatasetWriter::directories() const {
     if (stereo_)
         dirs.insert(dirs.end(), {kRightFolder, kDisparityFolder, kPreviewRightFolder, kDepthRightFolder,
                                  kDisparityRightFolder, kOcclusionFolder, kOcclusionRightFolder, kNormalRightFolder});
+    if (!rangeSensors_.empty()) dirs.push_back(kRangeFolder);
+    for (const RangeFiles& sensor : rangeSensors_) dirs.push_back(std::string(kRangeFolder) + "/" + sensor.name);
     return dirs;
 }
 
@@ -141,6 +165,12 @@ uint64_t DatasetWriter::frameBytesUpperBound(uint32_t width, uint32_t height) co
         const uint64_t bytes = perPixel * width * height * 9 / 8 + height + kBlock;
         total += (bytes + kBlock - 1) / kBlock * kBlock + kBlock;
     }
+    // Range sensors, per beam: PLY 53 + KITTI 16 + label 4 bytes, or a scan's JSON (at most 16 characters a range) and
+    // PLY, or a ToF pixel's Y + Z; each file with its header and blocks.
+    for (const RangeFiles& sensor : rangeSensors_) {
+        const uint64_t perBeam = sensor.type == RangeSensorType::Lidar ? 73 : sensor.type == RangeSensorType::Scanner ? 69 : 9;
+        total += sensor.beams * perBeam + 4 * (kBlock + kBlock);
+    }
     return total;
 }
 
@@ -158,6 +188,8 @@ void DatasetWriter::createFolder(const std::string& path) {
 void DatasetWriter::removeOldDataset() const {
     std::error_code ec;
     for (const std::string& file : swardFilesIn(root_, true)) fs::remove(root_ + "/" + file, ec);
+    for (const std::string& folder : rangeFoldersIn(root_)) fs::remove(root_ + "/" + folder, ec);
+    fs::remove(root_ + "/" + kRangeFolder, ec);
     for (const char* folder : kAllFolders) fs::remove(root_ + "/" + folder, ec); // only when left empty
 }
 
@@ -191,6 +223,10 @@ void DatasetWriter::discardCreated() noexcept {
     createdFolders_.clear();
 }
 
+std::string DatasetWriter::claim(const std::string& relative) {
+    return target(relative);
+}
+
 std::string DatasetWriter::target(const std::string& relative) {
     std::string path = root_ + "/" + relative;
     struct stat info;
@@ -211,6 +247,8 @@ std::vector<std::string> DatasetWriter::frameFiles(uint32_t frame) const {
                       frameFile(kDisparityRightFolder, frame, ".exr"), frameFile(kDisparityRightFolder, frame, ".pfm"),
                       frameFile(kOcclusionFolder, frame, ".png"), frameFile(kOcclusionRightFolder, frame, ".png"),
                       frameFile(kNormalRightFolder, frame, ".exr")});
+    for (const RangeFiles& sensor : rangeSensors_)
+        for (std::string& file : rangeFrameFiles(sensor.name, sensor.type, frame)) files.push_back(std::move(file));
     return files;
 }
 

@@ -16,6 +16,7 @@
 
 #include "dataset/frame_images.h"
 #include "dataset/frame_truth.h"
+#include "scene/range_sensors.h"
 #include "world/camera.h"
 
 #include <nlohmann/json.hpp>
@@ -34,7 +35,8 @@ void parseShard(const std::string& text, uint32_t& index, uint32_t& count);
 
 class DatasetWriter {
 public:
-    DatasetWriter(std::string root, bool stereo);
+    // `rangeSensors`: the scene's range sensors, whose files (range/<name>/) belong to each frame.
+    DatasetWriter(std::string root, bool stereo, const std::vector<RangeSensorParams>& rangeSensors = {});
 
     // Checks, writing nothing, that the run can start: the output folder (or, when missing, its nearest existing
     // parent) is a writable folder; a dataset already there has `fingerprint` (keys absent from it are not
@@ -60,6 +62,9 @@ public:
     // Writes every file of one rendered frame. `left` is the reference camera and `baseline` the rig's (metres),
     // for the disparity; `images.labels` hold (class << 24) | instance per pixel (gpu::kSemantic*).
     void writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline);
+    // The absolute path under which to write the frame file `relative` (one of frameFiles(): a range sensor's files,
+    // written by range/range_files.h), remembered as created by this run when it does not exist yet.
+    std::string claim(const std::string& relative);
 
     // The per-dataset files are functions of the fingerprint, so each is written only when missing.
     // calib.txt (Middlebury 2014): the rig's intrinsics, baseline in millimetres, ndisp covering minDepth.
@@ -83,6 +88,12 @@ private:
     void removeOldDataset() const;
     std::string root_;
     bool stereo_;
+    struct RangeFiles {
+        std::string name;
+        RangeSensorType type;
+        uint64_t beams; // per sweep
+    };
+    std::vector<RangeFiles> rangeSensors_;
     std::vector<std::string> createdFiles_, createdFolders_;
 };
 

@@ -58,6 +58,22 @@ nlohmann::json colliderJson(const Collider& c) {
     return j;
 }
 
+nlohmann::json rangeSensorsJson(const Scene& scene, const std::vector<ObjectModel>& models, const Ground& terrain,
+                                double time) {
+    static const char* kTypes[] = {"lidar", "scanner", "tof"};
+    nlohmann::json sensors = nlohmann::json::array();
+    for (const RangeSensorParams& s : scene.rangeSensors) {
+        const double duration = columnTime(s, s.columns() - 1);
+        sensors.push_back({{"name", s.name},
+                           {"type", kTypes[int(s.type)]},
+                           {"sweep_start", time},
+                           {"sweep_duration", duration},
+                           {"start_pose", matrixJson(rangeSensorPose(scene, s, terrain, models, time))},
+                           {"end_pose", matrixJson(rangeSensorPose(scene, s, terrain, models, time + duration))}});
+    }
+    return sensors;
+}
+
 nlohmann::json frameRecord(const Scene& scene, const std::vector<ObjectModel>& models, const Ground& terrain,
                            const RigCameras& rig, uint32_t frame, double windTimeOffset,
                            std::span<const Collider> acting) {
@@ -90,6 +106,7 @@ nlohmann::json frameRecord(const Scene& scene, const std::vector<ObjectModel>& m
         record["baseline"] = params.baseline;
     }
     if (params.sensor.enabled) record["sensor"] = sensorToJson(params.sensor);
+    if (!scene.rangeSensors.empty()) record["range_sensors"] = rangeSensorsJson(scene, models, terrain, time);
     return record;
 }
 

@@ -28,6 +28,11 @@ nlohmann::json matrixJson(const glm::dmat4& m);
 nlohmann::json cameraPoseJson(const Camera& camera);
 nlohmann::json colliderJson(const Collider& collider);
 
+// Per range sensor: name, type, the sweep's start time and duration (s) and its world-from-sensor poses (sensor frame
+// x forward, y left, z up) when its first and last columns fire.
+nlohmann::json rangeSensorsJson(const Scene& scene, const std::vector<ObjectModel>& models, const Ground& terrain,
+                                double time);
+
 // The record of `frame` (tick `frame`, time frame * sequence.time_step): rig poses and intrinsics (OpenCV pixel
 // centres), wind (its clock offset by `windTimeOffset`), the colliders acting during the tick (sceneColliders;
 // empty on bare ground, where none act), object poses and the sensor parameters.

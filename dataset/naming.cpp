@@ -47,6 +47,16 @@ std::optional<uint32_t> frameNumber(std::string_view stem) {
     return frame;
 }
 
+std::vector<std::string> rangeFrameFiles(const std::string& name, RangeSensorType type, uint32_t frame) {
+    const std::string stem = std::string(kRangeFolder) + "/" + name + "/" + frameName(frame);
+    switch (type) {
+    case RangeSensorType::Lidar: return {stem + ".ply", stem + ".bin", stem + ".label"};
+    case RangeSensorType::Scanner: return {stem + ".json", stem + ".ply"};
+    case RangeSensorType::TimeOfFlight: return {stem + ".exr"};
+    }
+    return {};
+}
+
 std::string frameFile(const char* folder, uint32_t frame, const char* extension) {
     return std::string(folder) + "/" + frameName(frame) + extension;
 }

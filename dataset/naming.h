@@ -2,6 +2,8 @@
 // writer (sward-render) and by the evaluation (sward-eval), so both always agree (docs/dataset-format.md).
 #pragma once
 
+#include "scene/range_sensors.h"
+
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -25,6 +27,7 @@ inline constexpr const char* kDisparityRightFolder = "disparity_right"; // right
 inline constexpr const char* kOcclusionFolder = "occlusion";            // left pixels visible in the right view (stereo)
 inline constexpr const char* kOcclusionRightFolder = "occlusion_right"; // right pixels visible in the left view
 inline constexpr const char* kNormalRightFolder = "normal_right";       // the right view's normals (stereo)
+inline constexpr const char* kRangeFolder = "range"; // range sensors: range/<sensor>/ (range/range_files.h)
 
 // Files of a dataset as a whole.
 inline constexpr const char* kCalibFile = "calib.txt";
@@ -42,6 +45,9 @@ std::string frameName(uint32_t frame);
 std::optional<uint32_t> frameNumber(std::string_view stem);
 // "<folder>/<frameName(frame)><extension>", relative to the dataset root; `extension` includes the dot.
 std::string frameFile(const char* folder, uint32_t frame, const char* extension);
+// The files of range sensor `name` for one frame, relative to the root (range/range_files.h): "range/<name>/NNNNNN"
+// with .ply .bin .label (LiDAR), .json .ply (scanner) or .exr (ToF).
+std::vector<std::string> rangeFrameFiles(const std::string& name, RangeSensorType type, uint32_t frame);
 
 // One semantic class of semantic/NNNNNN.png, as gpu::kSemantic* numbers it.
 struct SemanticClass {

@@ -27,13 +27,6 @@ float reflectance(uint32_t label) {
     }
 }
 
-glm::dmat4 frameFromAxes(glm::dvec3 forward, glm::dvec3 up, glm::dvec3 origin, double pitchDegrees) {
-    forward = glm::normalize(forward), up = glm::normalize(up - forward * glm::dot(forward, up));
-    const double p = pitchDegrees * kDegrees;
-    const glm::dvec3 x = forward * std::cos(p) - up * std::sin(p), z = up * std::cos(p) + forward * std::sin(p);
-    return glm::dmat4(glm::dvec4(x, 0.0), glm::dvec4(glm::cross(z, x), 0.0), glm::dvec4(z, 0.0), glm::dvec4(origin, 1.0));
-}
-
 // A beam's sub-rays: offsets (radians, in the beam's cross-section) and weights of a Gaussian beam whose 1/e^2 full
 // angle is the divergence: the centre and rings of 6 (and 12) rays.
 struct SubRay {
@@ -90,47 +83,6 @@ bool chooseReturn(std::vector<SubHit>& hits, RangeReturn mode, float& range, flo
 
 } // namespace
 
-glm::dmat4 rangeSensorPose(const RangeWorld& world, const RangeSensorParams& sensor, double time) {
-    const RangeMount& m = sensor.mount;
-    switch (m.kind) {
-    case RangeMount::Kind::Fixed: {
-        glm::dvec3 p = m.position;
-        if (m.useHeightAboveGround) p.z = world.terrain.height(glm::vec2(p)) + m.heightAboveGround;
-        const double yaw = m.yawDegrees * kDegrees;
-        return frameFromAxes({std::cos(yaw), std::sin(yaw), 0.0}, {0, 0, 1}, p, m.pitchDegrees);
-    }
-    case RangeMount::Kind::Path: {
-        const PathPose pose = pathPose(m.path, world.terrain, time);
-        return frameFromAxes(glm::dvec3(pose.heading, 0.0), {0, 0, 1}, pose.position, m.pitchDegrees);
-    }
-    case RangeMount::Kind::Object: break;
-    }
-    size_t k = 0;
-    while (k < world.scene.objects.size() && world.scene.objects[k].name != m.object) ++k;
-    require(k < world.scene.objects.size() && k < world.models.size(),
-            world.scene.source + ": range sensor '" + sensor.name + "': 'mount.object' names no scene object: '" +
-                m.object + "'");
-    const glm::dmat4 node = objectNodeToWorld(world.scene.objects[k], world.models[k], m.node, world.terrain, time);
-    // Node frame: -y forward, +x left, +z up (objects.h).
-    return frameFromAxes(glm::dvec3(node * glm::dvec4(0, -1, 0, 0)), glm::dvec3(node * glm::dvec4(0, 0, 1, 0)),
-                         glm::dvec3(node * glm::dvec4(m.offset, 1.0)), m.pitchDegrees);
-}
-
-glm::dvec3 beamDirection(const RangeSensorParams& s, uint32_t ring, uint32_t column) {
-    if (s.type == RangeSensorType::TimeOfFlight) {
-        const double f = 0.5 * double(s.height) / std::tan(0.5 * s.fovYDegrees * kDegrees);
-        return glm::normalize(glm::dvec3(f, -(double(column) + 0.5 - 0.5 * s.width), -(double(ring) + 0.5 - 0.5 * s.height)));
-    }
-    const double az = (s.angleMinDegrees + double(column) * s.azimuthStepDegrees) * kDegrees;
-    const double el = s.elevationsDegrees[ring] * kDegrees;
-    return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
-}
-
-double columnTime(const RangeSensorParams& s, uint32_t column) {
-    if (s.type == RangeSensorType::TimeOfFlight) return 0.0;
-    return double(column) * s.azimuthStepDegrees / 360.0 / s.rateHz;
-}
-
 std::vector<PosedTriangles> posedObjects(const RangeWorld& world, double time) {
     std::vector<PosedTriangles> out;
     for (size_t k = 0; k < world.scene.objects.size() && k < world.models.size(); ++k) {
@@ -155,13 +107,13 @@ RangeScan sweepSensor(const RayScene& rays, const RangeWorld& world, uint32_t se
     RangeScan scan;
     scan.channels = s.channels(), scan.columns = s.columns();
     scan.ranges.assign(size_t(scan.channels) * scan.columns, 0.0f);
-    scan.startPose = rangeSensorPose(world, s, frameTime + columnTime(s, 0));
-    scan.endPose = rangeSensorPose(world, s, frameTime + columnTime(s, scan.columns - 1));
+    scan.startPose = rangeSensorPose(world.scene, s, world.terrain, world.models, frameTime + columnTime(s, 0));
+    scan.endPose = rangeSensorPose(world.scene, s, world.terrain, world.models, frameTime + columnTime(s, scan.columns - 1));
     const std::vector<SubRay> pattern = subRays(s);
     std::vector<std::vector<RangePoint>> perColumn(scan.columns);
     parallelFor(scan.columns, threads, [&](uint32_t c, uint32_t) {
         const double t = columnTime(s, c);
-        const glm::dmat4 pose = s.type == RangeSensorType::TimeOfFlight ? scan.startPose : rangeSensorPose(world, s, frameTime + t);
+        const glm::dmat4 pose = s.type == RangeSensorType::TimeOfFlight ? scan.startPose : rangeSensorPose(world.scene, s, world.terrain, world.models, frameTime + t);
         const glm::dvec3 origin(pose[3]);
         const glm::dmat3 rotation(pose);
         std::vector<SubHit> hits;

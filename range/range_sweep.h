@@ -43,14 +43,6 @@ struct RangeWorld {
     const std::vector<ObjectModel>& models;
 };
 
-// World-from-sensor transform of `sensor` at simulation time `time` (its mount: fixed, path or object node).
-glm::dmat4 rangeSensorPose(const RangeWorld& world, const RangeSensorParams& sensor, double time);
-
-// Unit direction (sensor frame) of beam (ring, column); a ToF camera's pixel (column, ring) through its centre.
-glm::dvec3 beamDirection(const RangeSensorParams& sensor, uint32_t ring, uint32_t column);
-// Seconds after the sweep's start at which column `column` fires.
-double columnTime(const RangeSensorParams& sensor, uint32_t column);
-
 // The scene objects' triangles at simulation time `time`, world space, labelled as the truth pass labels them.
 std::vector<PosedTriangles> posedObjects(const RangeWorld& world, double time);
 

@@ -316,12 +316,13 @@ struct RayScene::Impl {
         check("building a field of plants");
     }
 
-    void prepareField(Field& f, const WindParams& wind, double time) {
+    void prepareField(Field& f, const WindParams& wind, double time, std::span<const gpu::PlantDynamic> dynamics) {
         const FieldVegetation& field = tile->fields[f.index];
         f.quads.resize(field.plantCount());
         for (uint32_t i = 0; i < field.plantCount(); ++i) {
             PlantQuads& p = f.quads[i];
-            const gpu::ExpandedPlant plant = expandWholePlant(vegetation, wind, field, i, time);
+            const gpu::PlantDynamic& dynamic = dynamics.empty() ? field.dynamicRecords[i] : dynamics[f.firstPlant + i];
+            const gpu::ExpandedPlant plant = expandWholePlant(vegetation, wind, field, i, dynamic, time);
             p.cell = plantCell(atlas, plant.attributes);
             p.cutFraction = float(plant.fade >> 24) * (1.0f / 255.0f);
             p.mirrored = float((plant.attributes >> 16) & 0xffu) * (1.0f / 255.0f) > 0.5f;
@@ -340,9 +341,13 @@ RayScene::RayScene(const Ground& ground, const Atlas& atlas, const VegetationPar
 
 RayScene::~RayScene() = default;
 
-void RayScene::setPlants(const WindParams& wind, double time, glm::dvec2 centre, double reach, uint32_t threads) {
+void RayScene::setPlants(const WindParams& wind, double time, std::span<const gpu::PlantDynamic> dynamics,
+                         glm::dvec2 centre, double reach, uint32_t threads) {
     Impl& impl = *impl_;
     if (!impl.tile) return;
+    uint64_t plants = 0;
+    for (const FieldVegetation& field : impl.tile->fields) plants += field.plantCount();
+    require(dynamics.empty() || dynamics.size() == plants, "range sensors: the dynamic records are not the tile's");
     std::vector<uint32_t> inReach;
     for (Impl::Field& f : impl.fields) {
         const FieldVegetation& field = impl.tile->fields[f.index];
@@ -355,7 +360,7 @@ void RayScene::setPlants(const WindParams& wind, double time, glm::dvec2 centre,
     for (uint32_t index : inReach)
         if (!impl.fields[index].scene) impl.buildField(impl.fields[index]); // Embree builds on its one thread
     parallelFor(uint32_t(inReach.size()), threads,
-                [&](uint32_t k, uint32_t) { impl.prepareField(impl.fields[inReach[k]], wind, time); });
+                [&](uint32_t k, uint32_t) { impl.prepareField(impl.fields[inReach[k]], wind, time, dynamics); });
     impl.prepared = 0;
     for (uint32_t index : inReach) impl.prepared += impl.fields[index].quads.size();
     impl.rebuildTop();

@@ -24,6 +24,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace sward {
@@ -50,9 +51,11 @@ public:
     RayScene(const RayScene&) = delete;
     RayScene& operator=(const RayScene&) = delete;
 
-    // The plants at simulation time `time` (wind) with the dynamic records `tile` holds now: quads of every field
-    // whose box lies within `reach` metres of `centre` (xy); plants of other fields are not hit. Threads as parallelFor.
-    void setPlants(const WindParams& wind, double time, glm::dvec2 centre, double reach, uint32_t threads = 0);
+    // The plants at simulation time `time` (wind) in the interaction state `dynamics` (the tile's whole dynamic record
+    // buffer, in tile order, as the GPU holds it; empty: the tile's own records): quads of every field whose box lies
+    // within `reach` metres of `centre` (xy); plants of other fields are not hit. Threads as parallelFor.
+    void setPlants(const WindParams& wind, double time, std::span<const gpu::PlantDynamic> dynamics, glm::dvec2 centre,
+                   double reach, uint32_t threads = 0);
     // The scene objects' triangles at this tick (replaces the previous ones).
     void setObjects(const std::vector<PosedTriangles>& objects);
 

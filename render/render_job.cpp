@@ -8,6 +8,7 @@
 #include "dataset/naming.h"
 #include "engine/context.h"
 #include "io/sha256.h"
+#include "range/range_recorder.h"
 #include "render/scene_gpu.h"
 #include "render/sequence_frame.h"
 #include "scene/scene_input.h"
@@ -163,6 +164,7 @@ uint64_t bytesNeeded(const DatasetWriter& dataset, const JobPlan& plan, const st
 // and other shards' frames still leave their tracks.
 void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const std::vector<uint32_t>& todo,
                   DatasetWriter& dataset, const std::optional<SensorModel>& sensor, const RenderJobOptions& options) {
+    RangeRecorder range(r); // before createSceneGpu releases the atlas
     SceneGpu gpu = createSceneGpu(ctx, r, plan.samples, SimulationMode::WhenSceneHasColliders);
     const RigParams& rig = r.scene.camera.rig;
     OffscreenFrame target(ctx, plan.width, plan.height, plan.samples);
@@ -176,8 +178,12 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
         auto cameras = std::make_shared<RigCameras>();
         auto images = std::make_shared<const FrameImages>(
             renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras));
-        writer.start([&dataset, &progress, &done, &rig, frame, images, cameras] {
+        // The range sensors see the plants as this frame shows them: the GPU's dynamic records after its tick.
+        auto dynamics = std::make_shared<std::vector<gpu::PlantDynamic>>();
+        if (range.active() && gpu.simulation && gpu.simulation->hasPlants()) *dynamics = gpu.simulation->gpu().readDynamics();
+        writer.start([&dataset, &progress, &done, &rig, &range, &options, frame, images, cameras, dynamics] {
             dataset.writeFrame(frame, *images, cameras->left, rig.baseline);
+            if (range.active()) range.record(dataset, frame, *dynamics, options.time);
             progress.frameDone(++done, frame);
         });
     }
@@ -229,7 +235,7 @@ void runRenderJob(const RenderJobOptions& options) {
     const bool stereo = resources.scene.camera.rig.stereo();
 
     const std::vector<nlohmann::json> records = sequenceRecords(resources, plan, options.time);
-    DatasetWriter dataset(options.outDir, stereo);
+    DatasetWriter dataset(options.outDir, stereo, resources.scene.rangeSensors);
     std::vector<uint32_t> todo; // resume: frames whose files all exist are complete
     for (uint32_t frame = plan.firstFrame; frame < plan.endFrame; ++frame)
         if (options.overwrite || !dataset.frameComplete(frame)) todo.push_back(frame);

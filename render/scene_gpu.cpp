@@ -34,7 +34,8 @@ SceneGpu createSceneGpu(Context& ctx, SceneResources& resources, uint32_t sample
         gpu.simulation->setObjectModels(&resources.models);
         gpu.renderer->setGroundTracks(&gpu.simulation->tracks(), &resources.terrain);
     }
-    if (!plants || !gpu.simulation) resources.tile.reset(); // uploaded; only the collision pass reads the CPU copy
+    // Uploaded; only the collision pass and the range sensors (range/range_recorder.h) read the CPU copy.
+    if ((!plants || !gpu.simulation) && resources.scene.rangeSensors.empty()) resources.tile.reset();
     return gpu;
 }
 

@@ -14,7 +14,7 @@
 #include "interaction/collision.h"
 #include "world/path.h"
 #include "scene/objects.h"
-#include "scene/range_sensor_params.h"
+#include "scene/range_sensors.h"
 #include "scene/terrain.h"
 #include "scene/vehicles.h"
 #include "scene/world_params.h"

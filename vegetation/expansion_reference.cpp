@@ -75,18 +75,19 @@ glm::vec2 clusterCardCover(const VegetationParams& vegetation, const FieldVegeta
 } // namespace
 
 gpu::ExpandedPlant expandWholePlant(const VegetationParams& vegetation, const WindParams& wind,
-                                    const FieldVegetation& field, uint32_t i, double time) {
+                                    const FieldVegetation& field, uint32_t i, const gpu::PlantDynamic& dynamic,
+                                    double time) {
     const gpu::PlantStatic& plant = field.staticRecords[i];
     const glm::vec3 position = decodePlantPosition(plant, field.origin, field.positionStep);
     const PlantInstance decoded = decodePlantStatic(plant);
-    const PlantMotion motion = decodePlantDynamic(field.dynamicRecords[i]);
+    const PlantMotion motion = decodePlantDynamic(dynamic);
     const float random = float(decoded.random) / 255.0f;
     glm::vec2 tip = motion.bend + windTip(wind, position, random, float(time));
     const float len = glm::length(tip);
     if (len > gpu::kMaxTipOffset) tip *= gpu::kMaxTipOffset / len;
-    const uint32_t cutByte = (field.dynamicRecords[i].state >> 24) & 0xffu;
+    const uint32_t cutByte = (dynamic.state >> 24) & 0xffu;
     const uint32_t fade = (uint32_t(gpu::kWidthScaleUnit) << 8) | (motion.state << 17) | (cutByte << 24);
-    return {glm::vec4(position, plantHeight(vegetation, plant, field.dynamicRecords[i])), plant.up,
+    return {glm::vec4(position, plantHeight(vegetation, plant, dynamic)), plant.up,
             plant.attributes & 0x00ffffffu, glm::packHalf2x16(tip), fade};
 }
 
@@ -127,7 +128,7 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
                     slice = uint32_t(std::min(cut / std::max(height, 1e-6f), 1.0f) * gpu::kSliceUnit);
                     if (slice == uint32_t(gpu::kSliceUnit)) continue;
                 }
-                gpu::ExpandedPlant expanded = expandWholePlant(vegetation, wind, field, i, time);
+                gpu::ExpandedPlant expanded = expandWholePlant(vegetation, wind, field, i, field.dynamicRecords[i], time);
                 expanded.attributes |= slice << 24;
                 expanded.fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 255.0f + 0.5f) | (width << 8) |
                                 (expanded.fade & 0xffff0000u);

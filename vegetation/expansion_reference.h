@@ -32,10 +32,12 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
                                    const WindParams& wind, const Camera& camera, double time,
                                    const ExpansionAtlas& atlas);
 
-// Plant `i` of `field` expanded whole at simulation time `time`: position, height after size and cut, wind + bend tip,
-// state; no LOD fade, merging (width scale 1) or slicing. referenceExpand's instances are this plus those.
+// Plant `i` of `field` with dynamic record `dynamic` expanded whole at simulation time `time`: position, height after
+// size and cut, wind + bend tip, state; no LOD fade, merging (width scale 1) or slicing. referenceExpand's instances
+// are this (with the field's own dynamic record) plus those.
 gpu::ExpandedPlant expandWholePlant(const VegetationParams& vegetation, const WindParams& wind,
-                                    const FieldVegetation& field, uint32_t i, double time);
+                                    const FieldVegetation& field, uint32_t i, const gpu::PlantDynamic& dynamic,
+                                    double time);
 
 // The corners of each quad of `plant` drawn at `lod` (whole quads, no slicing), four per quad in the order (x across,
 // y up) (0, 0), (1, 0), (1, 1), (0, 1): the quad's triangles are corners (0, 1, 2) and (0, 2, 3), as kCorners draws

@@ -35,7 +35,7 @@ TEST(RangePenetration, TransmissionFollowsBeerLambertInDensityAndDepth) {
     for (double density : densities) {
         const auto patch = test::uniformPatch(density);
         RayScene rays(patch.ground, patch.atlas, patch.scene.vegetation, &patch.tile);
-        rays.setPlants(patch.scene.wind, 0.0, {25.0, 25.0}, 100.0);
+        rays.setPlants(patch.scene.wind, 0.0, {}, {25.0, 25.0}, 100.0);
         for (double depth : depths) samples.push_back({density, depth, transmission(rays, depth)});
     }
     // ln T = -k * density * depth, least squares through the origin.
@@ -83,7 +83,7 @@ TEST(RangePenetration, FelledAndCutGrassLetMoreBeamsThrough) {
     auto patch = test::uniformPatch(8.0);
     auto measure = [&]() {
         RayScene rays(patch.ground, patch.atlas, patch.scene.vegetation, &patch.tile);
-        rays.setPlants(patch.scene.wind, 0.0, {25.0, 25.0}, 100.0);
+        rays.setPlants(patch.scene.wind, 0.0, {}, {25.0, 25.0}, 100.0);
         return transmission(rays, 1.0);
     };
     const double standing = measure();

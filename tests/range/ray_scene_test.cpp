@@ -17,12 +17,12 @@ using test::uniformPatch;
 TEST(RayScene, HitsAPlantCardWhereItsAlphaIsOpaque) {
     const auto patch = uniformPatch(4.0);
     RayScene rays(patch.ground, patch.atlas, patch.scene.vegetation, &patch.tile);
-    rays.setPlants(patch.scene.wind, 0.0, {25.0, 25.0}, 100.0);
+    rays.setPlants(patch.scene.wind, 0.0, {}, {25.0, 25.0}, 100.0);
     const FieldVegetation& field = patch.tile.fields[0];
     ASSERT_GT(field.plantCount(), 10u);
     uint32_t checked = 0;
     for (uint32_t i = 0; i < field.plantCount() && checked < 20; i += 7) {
-        const gpu::ExpandedPlant plant = expandWholePlant(patch.scene.vegetation, patch.scene.wind, field, i, 0.0);
+        const gpu::ExpandedPlant plant = expandWholePlant(patch.scene.vegetation, patch.scene.wind, field, i, field.dynamicRecords[i], 0.0);
         const AtlasDesc& desc = patch.atlas.desc;
         const uint32_t category = plant.attributes & 3u, variant = ((plant.attributes >> 2) & 63u) % uint32_t(desc.rows[category].cells.size());
         const AtlasCell& cell = desc.rows[category].cells[variant];
@@ -47,7 +47,7 @@ TEST(RayScene, HitsAPlantCardWhereItsAlphaIsOpaque) {
 TEST(RayScene, HitsTheGroundWhereNoPlantStands) {
     const auto patch = uniformPatch(0.0);
     RayScene rays(patch.ground, patch.atlas, patch.scene.vegetation, &patch.tile);
-    rays.setPlants(patch.scene.wind, 0.0, {25.0, 25.0}, 100.0);
+    rays.setPlants(patch.scene.wind, 0.0, {}, {25.0, 25.0}, 100.0);
     const RangeHit hit = rays.cast({12.3, 17.9, 3.0}, {0, 0, -1}, 0.0, 10.0);
     ASSERT_TRUE(hit.hit());
     EXPECT_NEAR(hit.distance, 3.0f - patch.ground.height({12.3f, 17.9f}), 1e-5f);

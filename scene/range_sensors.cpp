@@ -1,9 +1,11 @@
-#include "scene/range_sensor_params.h"
+#include "scene/range_sensors.h"
 
 #include "common/error.h"
 #include "common/json_reader.h"
+#include "scene/scene.h"
 
 #include <cmath>
+#include <numbers>
 #include <set>
 
 namespace sward {
@@ -137,6 +139,15 @@ RangeSensorParams readSensor(JsonReader r, size_t index) {
     return p;
 }
 
+constexpr double kDegrees = std::numbers::pi / 180.0;
+
+glm::dmat4 frameFromAxes(glm::dvec3 forward, glm::dvec3 up, glm::dvec3 origin, double pitchDegrees) {
+    forward = glm::normalize(forward), up = glm::normalize(up - forward * glm::dot(forward, up));
+    const double p = pitchDegrees * kDegrees;
+    const glm::dvec3 x = forward * std::cos(p) - up * std::sin(p), z = up * std::cos(p) + forward * std::sin(p);
+    return glm::dmat4(glm::dvec4(x, 0.0), glm::dvec4(glm::cross(z, x), 0.0), glm::dvec4(z, 0.0), glm::dvec4(origin, 1.0));
+}
+
 } // namespace
 
 uint32_t RangeSensorParams::columns() const {
@@ -146,6 +157,48 @@ uint32_t RangeSensorParams::columns() const {
                             : angleMaxDegrees - angleMinDegrees;
     const bool closed = span == 360.0; // a full turn does not fire its first azimuth twice
     return uint32_t(std::floor(span / azimuthStepDegrees + 1e-9)) + (closed ? 0u : 1u);
+}
+
+glm::dmat4 rangeSensorPose(const Scene& scene, const RangeSensorParams& sensor, const Ground& terrain,
+                           const std::vector<ObjectModel>& models, double time) {
+    const RangeMount& m = sensor.mount;
+    switch (m.kind) {
+    case RangeMount::Kind::Fixed: {
+        glm::dvec3 p = m.position;
+        if (m.useHeightAboveGround) p.z = terrain.height(glm::vec2(p)) + m.heightAboveGround;
+        const double yaw = m.yawDegrees * kDegrees;
+        return frameFromAxes({std::cos(yaw), std::sin(yaw), 0.0}, {0, 0, 1}, p, m.pitchDegrees);
+    }
+    case RangeMount::Kind::Path: {
+        const PathPose pose = pathPose(m.path, terrain, time);
+        return frameFromAxes(glm::dvec3(pose.heading, 0.0), {0, 0, 1}, pose.position, m.pitchDegrees);
+    }
+    case RangeMount::Kind::Object: break;
+    }
+    size_t k = 0;
+    while (k < scene.objects.size() && scene.objects[k].name != m.object) ++k;
+    require(k < scene.objects.size() && k < models.size(),
+            scene.source + ": range sensor '" + sensor.name + "': 'mount.object' names no scene object: '" +
+                m.object + "'");
+    const glm::dmat4 node = objectNodeToWorld(scene.objects[k], models[k], m.node, terrain, time);
+    // Node frame: -y forward, +x left, +z up (objects.h).
+    return frameFromAxes(glm::dvec3(node * glm::dvec4(0, -1, 0, 0)), glm::dvec3(node * glm::dvec4(0, 0, 1, 0)),
+                         glm::dvec3(node * glm::dvec4(m.offset, 1.0)), m.pitchDegrees);
+}
+
+glm::dvec3 beamDirection(const RangeSensorParams& s, uint32_t ring, uint32_t column) {
+    if (s.type == RangeSensorType::TimeOfFlight) {
+        const double f = 0.5 * double(s.height) / std::tan(0.5 * s.fovYDegrees * kDegrees);
+        return glm::normalize(glm::dvec3(f, -(double(column) + 0.5 - 0.5 * s.width), -(double(ring) + 0.5 - 0.5 * s.height)));
+    }
+    const double az = (s.angleMinDegrees + double(column) * s.azimuthStepDegrees) * kDegrees;
+    const double el = s.elevationsDegrees[ring] * kDegrees;
+    return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+}
+
+double columnTime(const RangeSensorParams& s, uint32_t column) {
+    if (s.type == RangeSensorType::TimeOfFlight) return 0.0;
+    return double(column) * s.azimuthStepDegrees / 360.0 / s.rateHz;
 }
 
 std::vector<std::string> rangeSensorPresets() {

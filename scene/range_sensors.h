@@ -16,7 +16,10 @@
 
 namespace sward {
 
+class Ground;
 class JsonReader;
+struct ObjectModel;
+struct Scene;
 
 enum class RangeSensorType { Lidar, Scanner, TimeOfFlight };
 // Which echo of a beam becomes its point when sub-rays (beam divergence) meet several surfaces.
@@ -62,6 +65,17 @@ struct RangeSensorParams {
 // The presets' names, for messages and docs: "VLP-16", "HDL-32E", "OS1-64" (LiDAR), "LMS111", "UST-10LX" (scanner),
 // "ToF-VGA" (time of flight).
 std::vector<std::string> rangeSensorPresets();
+
+// World-from-sensor transform of `sensor` at simulation time `time` (its mount: fixed, on a path or on an object's
+// node; `models` as loadObjectModels returns them, needed only for an object mount).
+glm::dmat4 rangeSensorPose(const Scene& scene, const RangeSensorParams& sensor, const Ground& terrain,
+                           const std::vector<ObjectModel>& models, double time);
+
+// Unit direction (sensor frame) of beam (ring, column); a ToF camera's pixel (column, ring) through its centre.
+glm::dvec3 beamDirection(const RangeSensorParams& sensor, uint32_t ring, uint32_t column);
+// Seconds after the sweep's start at which column `column` fires: a LiDAR or scanner turns at rateHz, so column c
+// fires at c * step / 360 / rate; a ToF camera's pixels all at 0 (global shutter).
+double columnTime(const RangeSensorParams& sensor, uint32_t column);
 
 // Parses the scene's `range_sensors` array (each element an object, keys in docs/scene-format.md); a preset sets the
 // defaults its other keys then override. Errors name the sensor's JSON path.

@@ -1,0 +1,41 @@
+// The range sensors of a sequence: one RayScene for the whole run and, per frame, the plants' state after the frame's
+// tick, the objects' poses, each sensor's sweep and its files. Used by the render job (sward-render) and the
+// benchmarks, so a dataset's range files and a benchmark's sweeps are the same computation.
+#pragma once
+
+#include "dataset/dataset_writer.h"
+#include "range/range_sweep.h"
+#include "scene/scene_resources.h"
+
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace sward {
+
+class RangeRecorder {
+public:
+    // `r` must outlive the recorder, with its tile (a one-tile scene; null without vegetation) and atlas still
+    // present: build it before createSceneGpu releases the CPU copies (it keeps the tile of a scene with range sensors).
+    explicit RangeRecorder(const SceneResources& r, uint32_t threads = 0);
+    ~RangeRecorder();
+
+    bool active() const { return rays_ != nullptr; } // the scene has range sensors
+
+    // Every sensor's sweep of frame `frame` (starting at the frame's time), the plants in the state `dynamics` (the
+    // tile's dynamic records after the frame's tick, tile order; empty: at rest) with the wind's clock offset by
+    // `windTimeOffset` (sward-render --time).
+    std::vector<RangeScan> sweep(uint32_t frame, std::span<const gpu::PlantDynamic> dynamics, double windTimeOffset);
+    // The same, with each scan's files written through `dataset`.
+    void record(DatasetWriter& dataset, uint32_t frame, std::span<const gpu::PlantDynamic> dynamics,
+                double windTimeOffset);
+
+    const RayScene& rays() const { return *rays_; }
+
+private:
+    const SceneResources& r_;
+    uint32_t threads_;
+    std::unique_ptr<RayScene> rays_;
+};
+
+} // namespace sward
