@@ -4,6 +4,7 @@
 #include "range/range_files.h"
 
 #include <algorithm>
+#include <chrono>
 
 namespace sward {
 
@@ -37,11 +38,16 @@ std::vector<RangeScan> RangeRecorder::sweep(uint32_t frame, std::span<const gpu:
                                              time + columnTime(sensor, sensor.columns() - 1))[3]);
         reach = std::max(reach, glm::distance(centre, starts[k]) + glm::distance(starts[k], end) + sensor.maxRange);
     }
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point start = Clock::now();
     rays_->setPlants(scene.wind, time + windTimeOffset, dynamics, centre, reach, threads_);
     rays_->setObjects(posedObjects({scene, r_.terrain, r_.models}, time));
+    const Clock::time_point prepared = Clock::now();
     std::vector<RangeScan> scans;
     for (uint32_t k = 0; k < scene.rangeSensors.size(); ++k)
         scans.push_back(sweepSensor(*rays_, {scene, r_.terrain, r_.models}, k, frame, time, threads_));
+    timings_ = {std::chrono::duration<double, std::milli>(prepared - start).count(),
+                std::chrono::duration<double, std::milli>(Clock::now() - prepared).count()};
     return scans;
 }
 

@@ -31,11 +31,17 @@ public:
                 double windTimeOffset);
 
     const RayScene& rays() const { return *rays_; }
+    // Wall time of the latest sweep(): preparing the scene (plants, objects) and casting, milliseconds.
+    struct Timings {
+        double prepareMs = 0.0, castMs = 0.0;
+    };
+    Timings timings() const { return timings_; }
 
 private:
     const SceneResources& r_;
     uint32_t threads_;
     std::unique_ptr<RayScene> rays_;
+    Timings timings_;
 };
 
 } // namespace sward

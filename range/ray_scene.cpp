@@ -2,16 +2,16 @@
 
 #include "common/error.h"
 #include "common/parallel_for.h"
-#include "vegetation/expansion_reference.h"
+#include "range/plant_quads.h"
 #include "vegetation/records.h"
 
 #include <embree3/rtcore.h>
-#include <glm/gtc/packing.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
-#include <limits>
+#include <thread>
 
 namespace sward {
 
@@ -19,132 +19,98 @@ namespace {
 
 // Top-level instance ids: the ground, the objects, then one per field.
 constexpr uint32_t kGroundInstance = 0, kObjectsInstance = 1, kFirstFieldInstance = 2;
-constexpr uint32_t kNearQuads = gpu::kQuadsNear;
+constexpr uint32_t kBusy = 0xffffffffu; // a plant's stamp while one thread computes its quads
 
-// One plant's near quads at the current tick.
-struct PlantQuads {
-    glm::vec3 corners[4 * kNearQuads]; // per quad (0,0), (1,0), (1,1), (0,1): triangles (0,1,2), (0,2,3)
-    glm::vec3 lo, hi;                  // their bounding box
-    uint32_t cell = 0;                 // atlas cell (category * maxColumns + variant)
-    float cutFraction = 1.0f;          // the part of the cell shown (cut plants show their lower part)
-    uint32_t label = 0;
-    bool mirrored = false, present = false;
-};
-
-struct AtlasAlpha {
-    uint32_t width = 0, height = 0;
-    std::vector<uint8_t> alpha;         // level 0
-    std::vector<glm::vec4> uvRects;     // per cell
-    std::vector<glm::vec3> baseAspects; // per cell: base u, base v, aspect
-    uint32_t maxColumns = 1;
-    std::array<uint32_t, 4> columns{};
-
-    // Bilinear alpha at uv, clamp to edge, texel centres at +0.5 (the GPU sampler's rule at level 0).
-    float sample(glm::vec2 uv) const {
-        const float x = uv.x * float(width) - 0.5f, y = uv.y * float(height) - 0.5f;
-        const float fx0 = std::floor(x), fy0 = std::floor(y);
-        const float fx = x - fx0, fy = y - fy0;
-        auto at = [&](float i, float j) {
-            const int64_t ii = std::clamp<int64_t>(int64_t(i), 0, int64_t(width) - 1);
-            const int64_t jj = std::clamp<int64_t>(int64_t(j), 0, int64_t(height) - 1);
-            return float(alpha[size_t(jj) * width + size_t(ii)]) * (1.0f / 255.0f);
-        };
-        const float top = at(fx0, fy0) * (1.0f - fx) + at(fx0 + 1.0f, fy0) * fx;
-        const float bottom = at(fx0, fy0 + 1.0f) * (1.0f - fx) + at(fx0 + 1.0f, fy0 + 1.0f) * fx;
-        return top * (1.0f - fy) + bottom * fy;
+void addTriangles(RTCDevice device, RTCScene scene, const std::vector<glm::vec3>& positions,
+                  const std::vector<uint32_t>& indices, uint32_t geomID) {
+    if (indices.empty()) return;
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), positions.size()));
+    auto* i = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                             3 * sizeof(uint32_t), indices.size() / 3));
+    if (v && i) {
+        std::memcpy(v, positions.data(), positions.size() * sizeof(glm::vec3));
+        std::memcpy(i, indices.data(), indices.size() * sizeof(uint32_t));
     }
-};
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scene, geom, geomID);
+    rtcReleaseGeometry(geom);
+}
 
-AtlasAlpha atlasAlpha(const Atlas& atlas) {
-    require(!atlas.mips.empty(), "range sensors: the atlas has no image");
-    AtlasAlpha a;
-    const AtlasMip& mip = atlas.mips[0];
-    a.width = mip.width, a.height = mip.height;
-    a.alpha.resize(size_t(mip.width) * mip.height);
-    for (size_t i = 0; i < a.alpha.size(); ++i) a.alpha[i] = mip.rgba[4 * i + 3];
-    const AtlasDesc& desc = atlas.desc;
-    a.maxColumns = desc.maxColumns();
-    a.uvRects.resize(desc.rows.size() * a.maxColumns, glm::vec4(0.0f));
-    a.baseAspects.resize(a.uvRects.size(), glm::vec3(0.5f, 1.0f, 1.0f));
-    for (uint32_t r = 0; r < desc.rows.size(); ++r) {
-        if (r < 4) a.columns[r] = uint32_t(desc.rows[r].cells.size());
-        for (uint32_t c = 0; c < desc.rows[r].cells.size(); ++c) {
-            const auto uv = desc.cellUvRect(r, c);
-            const AtlasCell& cell = desc.rows[r].cells[c];
-            a.uvRects[r * a.maxColumns + c] = glm::vec4(uv[0], uv[1], uv[2], uv[3]);
-            a.baseAspects[r * a.maxColumns + c] = glm::vec3(cell.baseU, cell.baseV, cell.aspect);
-        }
+void attachInstance(RTCDevice device, RTCScene top, RTCScene child, uint32_t id) {
+    static const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+    RTCGeometry inst = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(inst, child);
+    rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+    rtcCommitGeometry(inst);
+    rtcAttachGeometryByID(top, inst, id);
+    rtcReleaseGeometry(inst);
+}
+
+// The drawn ground's triangles: render/ground_mesh.cpp's heightfield triangulation (cell (i, j) as (p00, p10, p11) and
+// (p00, p11, p01)) or the mesh's own.
+void groundTriangles(const Ground& ground, std::vector<glm::vec3>& positions, std::vector<uint32_t>& indices) {
+    if (const Heightfield* h = ground.heightfield()) {
+        for (uint32_t j = 0; j < h->rows(); ++j)
+            for (uint32_t i = 0; i < h->columns(); ++i)
+                positions.push_back(glm::vec3(h->origin() + glm::vec2(float(i), float(j)) * h->spacing(), h->sample(i, j)));
+        for (uint32_t j = 0; j + 1 < h->rows(); ++j)
+            for (uint32_t i = 0; i + 1 < h->columns(); ++i) {
+                const uint32_t p00 = j * h->columns() + i, p10 = p00 + 1, p01 = p00 + h->columns(), p11 = p01 + 1;
+                indices.insert(indices.end(), {p00, p10, p11, p00, p11, p01});
+            }
+    } else if (const TriangleMesh* mesh = ground.mesh()) {
+        positions = mesh->positions, indices = mesh->indices;
     }
-    return a;
-}
-
-// plant_vertex.glsl's cell choice.
-uint32_t plantCell(const AtlasAlpha& atlas, uint32_t attributes) {
-    const uint32_t category = attributes & 3u, variant = (attributes >> 2) & 63u;
-    return category * atlas.maxColumns + variant % std::max(atlas.columns[category], 1u);
-}
-
-// plant.vert's truth label of a plant.
-uint32_t plantLabel(const gpu::ExpandedPlant& plant, uint32_t plantInTile) {
-    const uint32_t state = (plant.fade >> 17) & 0xfu;
-    const uint32_t semantic = state == gpu::kPlantStateFelled ? gpu::kSemanticFelled
-                              : state == gpu::kPlantStateCut  ? gpu::kSemanticCut
-                                                              : gpu::kSemanticVegetation + (plant.attributes & 3u);
-    return (semantic << gpu::kInstanceBits) | (plantInTile + 1u);
-}
-
-// Ray / triangle (Moller-Trumbore, two-sided): distance and barycentrics of p1, p2.
-bool intersectTriangle(glm::vec3 o, glm::vec3 d, glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, float& t, float& b1,
-                       float& b2) {
-    const glm::vec3 e1 = p1 - p0, e2 = p2 - p0, p = glm::cross(d, e2);
-    const float det = glm::dot(e1, p);
-    if (std::abs(det) < 1e-20f) return false;
-    const float inv = 1.0f / det;
-    const glm::vec3 s = o - p0;
-    b1 = glm::dot(s, p) * inv;
-    if (b1 < 0.0f || b1 > 1.0f) return false;
-    const glm::vec3 q = glm::cross(s, e1);
-    b2 = glm::dot(d, q) * inv;
-    if (b2 < 0.0f || b1 + b2 > 1.0f) return false;
-    t = glm::dot(e2, q) * inv;
-    return true;
-}
-
-bool rayHitsBox(glm::vec3 o, glm::vec3 inv, glm::vec3 lo, glm::vec3 hi, float tNear, float tFar) {
-    const glm::vec3 a = (lo - o) * inv, b = (hi - o) * inv;
-    const glm::vec3 mn = glm::min(a, b), mx = glm::max(a, b);
-    const float enter = std::max({mn.x, mn.y, mn.z, tNear}), leave = std::min({mx.x, mx.y, mx.z, tFar});
-    return enter <= leave;
 }
 
 } // namespace
 
 struct RayScene::Impl {
-    const Ground& ground;
-    const VegetationParams& vegetation;
     const VegetationTile* tile;
+    const VegetationParams& vegetation;
     AtlasAlpha atlas;
+    WindTipRange windRange{};
     RTCDevice device = nullptr;
     RTCScene groundScene = nullptr, objectScene = nullptr, top = nullptr;
     std::vector<uint32_t> objectLabels;
 
+    // The plants' state of the current tick, read by the intersector while rays are cast.
+    WindParams wind;
+    double time = 0.0;
+    std::span<const gpu::PlantDynamic> dynamics;
+    uint32_t stamp = 0; // setPlants calls so far: a plant's quads are current when its stamp equals this
+    std::atomic<uint64_t> prepared{0};
+
+    // A field's plants: while all rest (only the wind moves them) a BVH over boxes that hold them under any wind,
+    // built once, with each plant's quads computed when a ray first reaches its box; once touched (bent, felled, cut)
+    // a BVH over the exact boxes of the tick, rebuilt with all its quads every tick.
     struct Field {
         Impl* impl = nullptr;
         uint32_t index = 0, firstPlant = 0;
-        RTCScene scene = nullptr; // built on first use
+        RTCScene resting = nullptr, touched = nullptr;
+        bool inReach = false, isTouched = false;
+        std::vector<glm::vec3> restLo, restHi; // the resting BVH's boxes
+        std::vector<UnbentPlant> unbent;       // resting plants' quads before the wind
         std::vector<PlantQuads> quads;
-        bool inReach = false;
+        std::unique_ptr<std::atomic<uint32_t>[]> stamps;
     };
     std::vector<Field> fields;
-    uint64_t prepared = 0;
 
-    Impl(const Ground& g, const Atlas& a, const VegetationParams& v, const VegetationTile* t)
-        : ground(g), vegetation(v), tile(t), atlas(atlasAlpha(a)) {
+    Impl(const Ground& ground, const Atlas& a, const VegetationParams& v, const VegetationTile* t)
+        : tile(t), vegetation(v), atlas(a) {
         // One build thread: the BVHs (and so which of two equally near surfaces a ray meets first) are the same on
         // every machine and run.
         device = rtcNewDevice("threads=1,set_affinity=0");
         require(device != nullptr, "range sensors: Embree could not start (rtcNewDevice)");
-        buildGround();
+        std::vector<glm::vec3> positions;
+        std::vector<uint32_t> indices;
+        groundTriangles(ground, positions, indices);
+        groundScene = rtcNewScene(device);
+        addTriangles(device, groundScene, positions, indices, 0);
+        rtcCommitScene(groundScene);
+        check("building the ground");
         if (tile) {
             fields.resize(tile->fields.size());
             uint32_t first = 0;
@@ -158,7 +124,8 @@ struct RayScene::Impl {
 
     ~Impl() {
         for (Field& f : fields)
-            if (f.scene) rtcReleaseScene(f.scene);
+            for (RTCScene s : {f.resting, f.touched})
+                if (s) rtcReleaseScene(s);
         for (RTCScene s : {groundScene, objectScene, top})
             if (s) rtcReleaseScene(s);
         rtcReleaseDevice(device);
@@ -168,45 +135,6 @@ struct RayScene::Impl {
         const RTCError e = rtcGetDeviceError(device);
         require(e == RTC_ERROR_NONE, std::string("range sensors: Embree failed in ") + what + " (error " +
                                          std::to_string(int(e)) + ")");
-    }
-
-    static void addTriangles(RTCDevice device, RTCScene scene, const std::vector<glm::vec3>& positions,
-                             const std::vector<uint32_t>& indices, uint32_t geomID) {
-        if (indices.empty()) return;
-        RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                              3 * sizeof(float), positions.size()));
-        auto* i = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 3 * sizeof(uint32_t), indices.size() / 3));
-        if (v && i) {
-            std::memcpy(v, positions.data(), positions.size() * sizeof(glm::vec3));
-            std::memcpy(i, indices.data(), indices.size() * sizeof(uint32_t));
-        }
-        rtcCommitGeometry(geom);
-        rtcAttachGeometryByID(scene, geom, geomID);
-        rtcReleaseGeometry(geom);
-    }
-
-    void buildGround() {
-        std::vector<glm::vec3> positions;
-        std::vector<uint32_t> indices;
-        if (const Heightfield* h = ground.heightfield()) {
-            // render/ground_mesh.cpp's triangulation: cell (i, j) as (p00, p10, p11) and (p00, p11, p01).
-            for (uint32_t j = 0; j < h->rows(); ++j)
-                for (uint32_t i = 0; i < h->columns(); ++i)
-                    positions.push_back(glm::vec3(h->origin() + glm::vec2(float(i), float(j)) * h->spacing(), h->sample(i, j)));
-            for (uint32_t j = 0; j + 1 < h->rows(); ++j)
-                for (uint32_t i = 0; i + 1 < h->columns(); ++i) {
-                    const uint32_t p00 = j * h->columns() + i, p10 = p00 + 1, p01 = p00 + h->columns(), p11 = p01 + 1;
-                    indices.insert(indices.end(), {p00, p10, p11, p00, p11, p01});
-                }
-        } else if (const TriangleMesh* mesh = ground.mesh()) {
-            positions = mesh->positions, indices = mesh->indices;
-        }
-        groundScene = rtcNewScene(device);
-        addTriangles(device, groundScene, positions, indices, 0);
-        rtcCommitScene(groundScene);
-        check("building the ground");
     }
 
     void setObjects(const std::vector<PosedTriangles>& objects) {
@@ -222,16 +150,6 @@ struct RayScene::Impl {
         rebuildTop();
     }
 
-    static void attachInstance(RTCDevice device, RTCScene top, RTCScene child, uint32_t id) {
-        static const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
-        RTCGeometry inst = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
-        rtcSetGeometryInstancedScene(inst, child);
-        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
-        rtcCommitGeometry(inst);
-        rtcAttachGeometryByID(top, inst, id);
-        rtcReleaseGeometry(inst);
-    }
-
     // The top level: instances of the ground, the objects and the fields in reach (a function of this tick only).
     void rebuildTop() {
         if (top) rtcReleaseScene(top);
@@ -239,57 +157,51 @@ struct RayScene::Impl {
         attachInstance(device, top, groundScene, kGroundInstance);
         attachInstance(device, top, objectScene, kObjectsInstance);
         for (const Field& f : fields)
-            if (f.inReach) attachInstance(device, top, f.scene, kFirstFieldInstance + f.index);
+            if (f.inReach) attachInstance(device, top, f.isTouched ? f.touched : f.resting, kFirstFieldInstance + f.index);
         rtcCommitScene(top);
         check("building the top level");
     }
 
-    // The box every state of plant i can occupy (any wind, bend, fall or cut): its base plus the reach of its cell.
-    static void plantBounds(const struct RTCBoundsFunctionArguments* args) {
-        const Field& f = *static_cast<const Field*>(args->geometryUserPtr);
-        const Impl& impl = *f.impl;
-        const FieldVegetation& field = impl.tile->fields[f.index];
-        const gpu::PlantStatic& plant = field.staticRecords[args->primID];
-        const PlantInstance decoded = decodePlantStatic(plant);
-        const glm::vec3 base = decodePlantPosition(plant, field.origin, field.positionStep);
-        const float h = impl.vegetation.categories[decoded.category].height * (float(decoded.size) / gpu::kPlantSizeDivisor);
-        const glm::vec3 cell = impl.atlas.baseAspects[plantCell(impl.atlas, plant.attributes)];
-        const float bu = std::max(cell.x, 1.0f - cell.x), bv = std::max(cell.y, 1.0f - cell.y);
-        const float below = cell.y > 0.0f ? (1.0f - cell.y) / cell.y : 0.0f;
-        const float bend = std::max(1.0f, below * below); // quadPoint's fraction^2 at the cell's far edge
-        const float r = 1.01f * (h * cell.z * bu + h * bv + bend * (gpu::kMaxTipOffset + 1.0f) * h) + 1e-3f;
-        *args->bounds_o = {base.x - r, base.y - r, base.z - r, 0.0f, base.x + r, base.y + r, base.z + r, 0.0f};
+    const gpu::PlantDynamic& dynamicOf(const Field& f, uint32_t i) const {
+        return dynamics.empty() ? tile->fields[f.index].dynamicRecords[i] : dynamics[f.firstPlant + i];
     }
 
-    static void plantIntersect(const RTCIntersectFunctionNArguments* args) {
-        if (!args->valid[0]) return;
+    // Plant i's quads of this tick, computed by the first thread that needs them (the others wait for it).
+    const PlantQuads& current(Field& f, uint32_t i) {
+        std::atomic<uint32_t>& s = f.stamps[i];
+        for (uint32_t seen = s.load(std::memory_order_acquire); seen != stamp; seen = s.load(std::memory_order_acquire)) {
+            if (seen != kBusy && s.compare_exchange_strong(seen, kBusy, std::memory_order_acquire)) {
+                f.quads[i] = plantQuads(atlas, vegetation, wind, tile->fields[f.index], i, f.firstPlant + i,
+                                        dynamicOf(f, i), time, &f.unbent[i]);
+                prepared.fetch_add(1, std::memory_order_relaxed);
+                s.store(stamp, std::memory_order_release);
+                break;
+            }
+            std::this_thread::yield();
+        }
+        return f.quads[i];
+    }
+
+    static void restingBounds(const RTCBoundsFunctionArguments* args) {
         const Field& f = *static_cast<const Field*>(args->geometryUserPtr);
-        const PlantQuads& p = f.quads[args->primID];
-        if (!p.present) return;
+        const glm::vec3 lo = f.restLo[args->primID], hi = f.restHi[args->primID];
+        *args->bounds_o = {lo.x, lo.y, lo.z, 0.0f, hi.x, hi.y, hi.z, 0.0f};
+    }
+
+    static void touchedBounds(const RTCBoundsFunctionArguments* args) {
+        const PlantQuads& p = static_cast<const Field*>(args->geometryUserPtr)->quads[args->primID];
+        *args->bounds_o = {p.lo.x, p.lo.y, p.lo.z, 0.0f, p.hi.x, p.hi.y, p.hi.z, 0.0f};
+    }
+
+    static void intersect(const RTCIntersectFunctionNArguments* args) {
+        if (!args->valid[0]) return;
+        Field& f = *static_cast<Field*>(args->geometryUserPtr);
+        const PlantQuads& p = f.isTouched ? f.quads[args->primID] : f.impl->current(f, args->primID);
         RTCRayHit& rh = *reinterpret_cast<RTCRayHit*>(args->rayhit);
         const glm::vec3 o(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z), d(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
-        if (!rayHitsBox(o, 1.0f / d, p.lo, p.hi, rh.ray.tnear, rh.ray.tfar)) return;
-        const AtlasAlpha& atlas = f.impl->atlas;
-        const glm::vec4 rect = atlas.uvRects[p.cell];
-        static const glm::vec2 kQuadCorner[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-        static const uint32_t kTriangle[2][3] = {{0, 1, 2}, {0, 2, 3}};
         float best = rh.ray.tfar;
-        glm::vec3 normal(0.0f);
-        for (uint32_t q = 0; q < kNearQuads; ++q)
-            for (const auto& tri : kTriangle) {
-                const glm::vec3 *c = &p.corners[4 * q], &p0 = c[tri[0]], &p1 = c[tri[1]], &p2 = c[tri[2]];
-                float t, b1, b2;
-                if (!intersectTriangle(o, d, p0, p1, p2, t, b1, b2) || t < rh.ray.tnear || !(t < best)) continue;
-                // The texel the GPU would show there: uv interpolated over the triangle as plant_vertex.glsl sets it.
-                const glm::vec2 corner = kQuadCorner[tri[0]] * (1.0f - b1 - b2) + kQuadCorner[tri[1]] * b1 +
-                                         kQuadCorner[tri[2]] * b2;
-                const glm::vec2 cellUv(p.mirrored ? 1.0f - corner.x : corner.x, 1.0f - corner.y * p.cutFraction);
-                const glm::vec2 uv = glm::mix(glm::vec2(rect.x, rect.y), glm::vec2(rect.z, rect.w), cellUv);
-                if (atlas.sample(uv) < 0.5f) continue;
-                best = t;
-                normal = glm::cross(p1 - p0, p2 - p0);
-            }
-        if (!(best < rh.ray.tfar)) return;
+        glm::vec3 normal;
+        if (!intersectPlant(p, f.impl->atlas, o, d, rh.ray.tnear, best, normal)) return;
         rh.ray.tfar = best;
         rh.hit.Ng_x = normal.x, rh.hit.Ng_y = normal.y, rh.hit.Ng_z = normal.z;
         rh.hit.u = rh.hit.v = 0.0f;
@@ -298,39 +210,54 @@ struct RayScene::Impl {
         rh.hit.instID[0] = args->context->instID[0];
     }
 
-    static void plantOccluded(const RTCOccludedFunctionNArguments*) {} // rtcOccluded1 is not used
+    static void occluded(const RTCOccludedFunctionNArguments*) {} // rtcOccluded1 is not used
 
-    void buildField(Field& f) {
-        const FieldVegetation& field = tile->fields[f.index];
-        f.scene = rtcNewScene(device);
+    RTCScene plantScene(Field& f, RTCBoundsFunction bounds) {
+        RTCScene scene = rtcNewScene(device);
         RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-        rtcSetGeometryUserPrimitiveCount(geom, field.plantCount());
+        rtcSetGeometryUserPrimitiveCount(geom, tile->fields[f.index].plantCount());
+        // A resting field's BVH serves every tick: worth Embree's best build.
+        if (bounds == &Impl::restingBounds) rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
         rtcSetGeometryUserData(geom, &f);
-        rtcSetGeometryBoundsFunction(geom, &Impl::plantBounds, nullptr);
-        rtcSetGeometryIntersectFunction(geom, &Impl::plantIntersect);
-        rtcSetGeometryOccludedFunction(geom, &Impl::plantOccluded);
+        rtcSetGeometryBoundsFunction(geom, bounds, nullptr);
+        rtcSetGeometryIntersectFunction(geom, &Impl::intersect);
+        rtcSetGeometryOccludedFunction(geom, &Impl::occluded);
         rtcCommitGeometry(geom);
-        rtcAttachGeometryByID(f.scene, geom, 0);
+        rtcAttachGeometryByID(scene, geom, 0);
         rtcReleaseGeometry(geom);
-        rtcCommitScene(f.scene);
+        rtcCommitScene(scene);
         check("building a field of plants");
+        return scene;
     }
 
-    void prepareField(Field& f, const WindParams& wind, double time, std::span<const gpu::PlantDynamic> dynamics) {
+    // Whether any plant of the field is out of its resting geometry in this tick.
+    bool touchedNow(const Field& f) const {
+        for (uint32_t i = 0; i < tile->fields[f.index].plantCount(); ++i)
+            if (!restingGeometry(dynamicOf(f, i))) return true;
+        return false;
+    }
+
+    // A field in reach this tick: its storage, its mode, and (touched) all its quads.
+    void prepare(Field& f) {
         const FieldVegetation& field = tile->fields[f.index];
-        f.quads.resize(field.plantCount());
-        for (uint32_t i = 0; i < field.plantCount(); ++i) {
-            PlantQuads& p = f.quads[i];
-            const gpu::PlantDynamic& dynamic = dynamics.empty() ? field.dynamicRecords[i] : dynamics[f.firstPlant + i];
-            const gpu::ExpandedPlant plant = expandWholePlant(vegetation, wind, field, i, dynamic, time);
-            p.cell = plantCell(atlas, plant.attributes);
-            p.cutFraction = float(plant.fade >> 24) * (1.0f / 255.0f);
-            p.mirrored = float((plant.attributes >> 16) & 0xffu) * (1.0f / 255.0f) > 0.5f;
-            p.label = plantLabel(plant, f.firstPlant + i);
-            p.present = plant.positionHeight.w > 0.0f;
-            plantQuadCorners(plant, gpu::kLodNear, glm::vec3(0.0f), atlas.baseAspects[p.cell], p.corners);
-            p.lo = p.hi = p.corners[0];
-            for (const glm::vec3& c : p.corners) p.lo = glm::min(p.lo, c), p.hi = glm::max(p.hi, c);
+        const uint32_t n = field.plantCount();
+        if (f.quads.size() != n) {
+            f.quads.assign(n, PlantQuads{});
+            f.stamps = std::make_unique<std::atomic<uint32_t>[]>(n); // zero: no tick yet (stamps start at 1)
+        }
+        f.isTouched = touchedNow(f);
+        if (f.isTouched) {
+            for (uint32_t i = 0; i < n; ++i) {
+                f.quads[i] = plantQuads(atlas, vegetation, wind, field, i, f.firstPlant + i, dynamicOf(f, i), time);
+                f.stamps[i].store(stamp, std::memory_order_relaxed);
+            }
+            prepared.fetch_add(n, std::memory_order_relaxed);
+        } else if (f.restLo.empty()) {
+            f.restLo.resize(n), f.restHi.resize(n), f.unbent.resize(n);
+            for (uint32_t i = 0; i < n; ++i) {
+                f.unbent[i] = unbentPlant(atlas, vegetation, field, i);
+                sward::restingBounds(atlas, vegetation, field, i, f.unbent[i], windRange, f.restLo[i], f.restHi[i]);
+            }
         }
     }
 };
@@ -348,21 +275,35 @@ void RayScene::setPlants(const WindParams& wind, double time, std::span<const gp
     uint64_t plants = 0;
     for (const FieldVegetation& field : impl.tile->fields) plants += field.plantCount();
     require(dynamics.empty() || dynamics.size() == plants, "range sensors: the dynamic records are not the tile's");
+    impl.wind = wind, impl.time = time, impl.dynamics = dynamics, ++impl.stamp;
+    const WindTipRange range = windTipRange(wind);
+    if (range.lo != impl.windRange.lo || range.hi != impl.windRange.hi || range.length != impl.windRange.length)
+        for (Impl::Field& f : impl.fields) { // another wind: the resting boxes no longer hold
+            f.restLo.clear(), f.restHi.clear(), f.unbent.clear();
+            if (f.resting) rtcReleaseScene(f.resting), f.resting = nullptr;
+        }
+    impl.windRange = range;
+    impl.prepared = 0;
     std::vector<uint32_t> inReach;
     for (Impl::Field& f : impl.fields) {
         const FieldVegetation& field = impl.tile->fields[f.index];
         const glm::dvec2 lo(field.boundsMin), hi(field.boundsMax);
         const glm::dvec2 nearest = glm::clamp(centre, lo - 2.0, hi + 2.0); // plants lean out of the field's box
         f.inReach = field.plantCount() > 0 && glm::distance(nearest, centre) <= reach;
-        if (f.inReach) inReach.push_back(f.index);
-        else f.quads = {};
+        if (f.inReach) {
+            inReach.push_back(f.index);
+        } else {
+            f.quads = {}, f.stamps.reset(), f.unbent = {}, f.restLo = {}, f.restHi = {};
+            if (f.resting) rtcReleaseScene(f.resting), f.resting = nullptr;
+        }
     }
-    for (uint32_t index : inReach)
-        if (!impl.fields[index].scene) impl.buildField(impl.fields[index]); // Embree builds on its one thread
-    parallelFor(uint32_t(inReach.size()), threads,
-                [&](uint32_t k, uint32_t) { impl.prepareField(impl.fields[inReach[k]], wind, time, dynamics); });
-    impl.prepared = 0;
-    for (uint32_t index : inReach) impl.prepared += impl.fields[index].quads.size();
+    parallelFor(uint32_t(inReach.size()), threads, [&](uint32_t k, uint32_t) { impl.prepare(impl.fields[inReach[k]]); });
+    for (uint32_t index : inReach) { // Embree builds on its one thread
+        Impl::Field& f = impl.fields[index];
+        if (f.touched) rtcReleaseScene(f.touched), f.touched = nullptr;
+        if (f.isTouched) f.touched = impl.plantScene(f, &Impl::touchedBounds);
+        else if (!f.resting) f.resting = impl.plantScene(f, &Impl::restingBounds);
+    }
     impl.rebuildTop();
 }
 
@@ -371,7 +312,7 @@ void RayScene::setObjects(const std::vector<PosedTriangles>& objects) {
 }
 
 uint64_t RayScene::plantsPrepared() const {
-    return impl_->prepared;
+    return impl_->prepared.load();
 }
 
 RangeHit RayScene::cast(glm::dvec3 origin, glm::dvec3 direction, double tNear, double tFar) const {

@@ -26,20 +26,20 @@ RangeSensorParams preset(const std::string& name, const std::string& where) {
     if (name == "VLP-16") { // Velodyne VLP-16 (Puck): 16 x 2 degrees, 0.2 degrees at 10 Hz, 100 m, +-3 cm
         p.elevationsDegrees = evenlySpaced(-15.0, 15.0, 16);
         p.azimuthStepDegrees = 0.2, p.maxRange = 100.0, p.minRange = 0.5;
-        p.divergenceMrad = 3.0, p.subRays = 7, p.rangeNoise = 0.015;
+        p.divergenceMrad = 3.0, p.rangeNoise = 0.015;
     } else if (name == "HDL-32E") { // Velodyne HDL-32E: -30.67 .. +10.67 degrees, 0.16 degrees at 10 Hz, 100 m
         p.elevationsDegrees = evenlySpaced(-30.67, 10.67, 32);
         p.azimuthStepDegrees = 0.16, p.maxRange = 100.0, p.minRange = 1.0;
-        p.divergenceMrad = 2.0, p.subRays = 7, p.rangeNoise = 0.01;
+        p.divergenceMrad = 2.0, p.rangeNoise = 0.01;
     } else if (name == "OS1-64") { // Ouster OS1-64: 64 channels over 45 degrees, 1024 columns at 10 Hz, 120 m
         p.elevationsDegrees = evenlySpaced(-22.5, 22.5, 64);
         p.azimuthStepDegrees = 360.0 / 1024.0, p.maxRange = 120.0, p.minRange = 0.3;
-        p.divergenceMrad = 2.3, p.subRays = 7, p.rangeNoise = 0.015;
+        p.divergenceMrad = 2.3, p.rangeNoise = 0.015;
     } else if (name == "LMS111") { // SICK LMS111: 270 degrees in 0.5 degree steps at 25 Hz, 20 m, 12 mm
         p.type = RangeSensorType::Scanner;
         p.elevationsDegrees = {0.0};
         p.angleMinDegrees = -135.0, p.angleMaxDegrees = 135.0, p.azimuthStepDegrees = 0.5, p.rateHz = 25.0;
-        p.maxRange = 20.0, p.minRange = 0.5, p.divergenceMrad = 8.7, p.subRays = 7, p.rangeNoise = 0.012;
+        p.maxRange = 20.0, p.minRange = 0.5, p.divergenceMrad = 8.7, p.rangeNoise = 0.012;
     } else if (name == "UST-10LX") { // Hokuyo UST-10LX: 270 degrees in 0.25 degree steps at 40 Hz, 10 m, 40 mm
         p.type = RangeSensorType::Scanner;
         p.elevationsDegrees = {0.0};
@@ -128,7 +128,8 @@ RangeSensorParams readSensor(JsonReader r, size_t index) {
     p.divergenceMrad = r.number("divergence_mrad", p.divergenceMrad, 0.0, 100.0);
     p.subRays = uint32_t(r.integer("sub_rays", p.subRays, 1, 19));
     if (p.subRays != 1 && p.subRays != 7 && p.subRays != 19) r.fail("'" + r.childPath("sub_rays") + "' must be 1, 7 or 19");
-    if (p.divergenceMrad == 0.0) p.subRays = 1;
+    if (p.subRays > 1 && p.divergenceMrad == 0.0)
+        r.fail("'" + r.childPath("sub_rays") + "' > 1 needs a beam divergence ('divergence_mrad' > 0)");
     p.returnMode = RangeReturn(r.choice("return", int(p.returnMode), {"first", "strongest", "last"}));
     p.rangeNoise = r.number("range_noise_m", p.rangeNoise, 0.0, 10.0);
     p.dropout = r.number("dropout", p.dropout, 0.0, 1.0);

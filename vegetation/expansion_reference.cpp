@@ -154,15 +154,19 @@ struct ReferenceQuad {
     glm::vec2 tip;
     glm::vec3 baseAspect;
 
-    // quadPoint(): the bent point at corner (x across, y up).
-    glm::vec3 point(glm::vec2 corner) const {
+    // quadPoint() before its bend: the point at corner (x across, y up) and its bend weight (fraction^2).
+    glm::vec3 unbent(glm::vec2 corner, float& bend) const {
         float cellV = 1.0f - corner.y;
         float along = (baseAspect.y - cellV) * height;
         float fraction = baseAspect.y > 0.0f ? along / (baseAspect.y * std::max(height, 1e-6f)) : 0.0f;
-        glm::vec3 position = base + side * (width * (corner.x - baseAspect.x)) + rise * along;
-        float bend = fraction * fraction;
-        float drop = height * (1.0f - std::sqrt(std::max(1.0f - glm::dot(tip, tip), 0.0f)));
-        return position + glm::vec3(tip * height, 0.0f) * bend - up * (drop * bend);
+        bend = fraction * fraction;
+        return base + side * (width * (corner.x - baseAspect.x)) + rise * along;
+    }
+    // quadPoint(): the bent point at corner (x across, y up).
+    glm::vec3 point(glm::vec2 corner) const {
+        float bend;
+        const glm::vec3 position = unbent(corner, bend);
+        return bentPoint(position, bend, tip, height, up);
     }
 };
 
@@ -216,6 +220,21 @@ glm::vec2 cutoutFanCorner(const gpu::ExpandedPlant& plant, const CutoutPolygon& 
 }
 
 } // namespace
+
+glm::vec3 bentPoint(glm::vec3 unbent, float bend, glm::vec2 tip, float height, glm::vec3 up) {
+    float drop = height * (1.0f - std::sqrt(std::max(1.0f - glm::dot(tip, tip), 0.0f)));
+    return unbent + glm::vec3(tip * height, 0.0f) * bend - up * (drop * bend);
+}
+
+void unbentQuadCorners(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cellBaseAspect, glm::vec3* corners,
+                       float* bends) {
+    static const glm::vec2 quadCorners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    const uint32_t quads = gpu::plantVertexCount(lod, 0u) / gpu::kVerticesPerQuad;
+    for (uint32_t quad = 0; quad < quads; ++quad) {
+        const ReferenceQuad q = referenceQuad(plant, lod, quad, glm::vec3(0.0f), cellBaseAspect);
+        for (uint32_t k = 0; k < 4; ++k) corners[4 * quad + k] = q.unbent(quadCorners[k], bends[4 * quad + k]);
+    }
+}
 
 void plantQuadCorners(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cameraPosition, glm::vec3 cellBaseAspect,
                       glm::vec3* corners) {

@@ -45,6 +45,13 @@ gpu::ExpandedPlant expandWholePlant(const VegetationParams& vegetation, const Wi
 void plantQuadCorners(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cameraPosition, glm::vec3 cellBaseAspect,
                       glm::vec3* corners);
 
+// plantQuadCorners in two steps, for plants whose quads' frames do not depend on their tip (all but felled ones, and
+// not for far billboards, which face the camera): unbentQuadCorners gives each corner before its bend and its bend
+// weight (the height fraction squared), bentPoint bends it by a tip; together bitwise plantQuadCorners' corners.
+void unbentQuadCorners(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cellBaseAspect, glm::vec3* corners,
+                       float* bends);
+glm::vec3 bentPoint(glm::vec3 unbent, float bend, glm::vec2 tip, float height, glm::vec3 up);
+
 // The gpu::plantVertexCount(lod, cutoutCorners) vertex positions of one expanded plant (plant_vertex.glsl), for an
 // atlas cell with base (baseU, baseV) and width / height `aspect`; with `cutout` and cutoutCorners (4..8), near and
 // mid quads as fans over that cut-out polygon of the cell (atlasCutouts(atlas, cutoutCorners); cut plants: the whole
