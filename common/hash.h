@@ -7,8 +7,8 @@
 
 #include <cmath>
 #include <cstdint>
-#include <numbers>
 #include <initializer_list>
+#include <numbers>
 
 namespace sward {
 

@@ -114,7 +114,8 @@ constexpr const char* kUseOverwrite = "; use --overwrite to start over or choose
 
 DatasetWriter::DatasetWriter(std::string root, bool stereo, const std::vector<RangeSensorParams>& rangeSensors)
     : root_(std::move(root)), stereo_(stereo) {
-    for (const RangeSensorParams& sensor : rangeSensors) rangeSensors_.push_back({sensor.name, sensor.type, sensor.channels() * uint64_t(sensor.columns())});
+    for (const RangeSensorParams& sensor : rangeSensors)
+        rangeSensors_.push_back({sensor.name, sensor.type, sensor.channels() * uint64_t(sensor.columns())});
 }
 
 std::vector<std::string> DatasetWriter::directories() const {
@@ -168,7 +169,9 @@ uint64_t DatasetWriter::frameBytesUpperBound(uint32_t width, uint32_t height) co
     // Range sensors, per beam: PLY 53 + KITTI 16 + label 4 bytes, or a scan's JSON (at most 16 characters a range) and
     // PLY, or a ToF pixel's Y + Z; each file with its header and blocks.
     for (const RangeFiles& sensor : rangeSensors_) {
-        const uint64_t perBeam = sensor.type == RangeSensorType::Lidar ? 73 : sensor.type == RangeSensorType::Scanner ? 69 : 9;
+        const uint64_t perBeam = sensor.type == RangeSensorType::Lidar     ? 73
+                                 : sensor.type == RangeSensorType::Scanner ? 69
+                                                                           : 9;
         total += sensor.beams * perBeam + 4 * (kBlock + kBlock);
     }
     return total;

@@ -50,9 +50,12 @@ std::optional<uint32_t> frameNumber(std::string_view stem) {
 std::vector<std::string> rangeFrameFiles(const std::string& name, RangeSensorType type, uint32_t frame) {
     const std::string stem = std::string(kRangeFolder) + "/" + name + "/" + frameName(frame);
     switch (type) {
-    case RangeSensorType::Lidar: return {stem + ".ply", stem + ".bin", stem + ".label"};
-    case RangeSensorType::Scanner: return {stem + ".json", stem + ".ply"};
-    case RangeSensorType::TimeOfFlight: return {stem + ".exr"};
+    case RangeSensorType::Lidar:
+        return {stem + ".ply", stem + ".bin", stem + ".label"};
+    case RangeSensorType::Scanner:
+        return {stem + ".json", stem + ".ply"};
+    case RangeSensorType::TimeOfFlight:
+        return {stem + ".exr"};
     }
     return {};
 }

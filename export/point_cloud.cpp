@@ -1,27 +1,12 @@
 #include "export/point_cloud.h"
 
 #include "common/atomic_file.h"
+#include "common/little_endian.h"
 #include "dataset/naming.h"
 
-#include <bit>
 #include <cmath>
-#include <cstring>
 
 namespace sward {
-
-// The bytes are assembled with memcpy of native values: binary_little_endian is what they are on every machine
-// sward builds for.
-static_assert(std::endian::native == std::endian::little, "PLY writer assumes a little-endian machine");
-
-namespace {
-
-template <typename T> void append(std::string& bytes, T value) {
-    char raw[sizeof(T)];
-    std::memcpy(raw, &value, sizeof(T));
-    bytes.append(raw, sizeof(T));
-}
-
-} // namespace
 
 std::string pointCloudPly(const FrameTruth& truth, const ExportCamera& camera, const glm::dmat4& pose,
                           const std::string& comment) {
@@ -35,16 +20,16 @@ std::string pointCloudPly(const FrameTruth& truth, const ExportCamera& camera, c
             if (!std::isfinite(z) || z <= 0.0) continue; // sky: no surface
             // OpenCV pixel centres: pixel (x, y) looks through (x, y) of the intrinsics' image plane.
             const glm::dvec4 p = pose * glm::dvec4((x - camera.cx) * z / camera.fx, (y - camera.cy) * z / camera.fy, z, 1.0);
-            append(body, p.x);
-            append(body, p.y);
-            append(body, p.z);
+            appendLittleEndian(body, p.x);
+            appendLittleEndian(body, p.y);
+            appendLittleEndian(body, p.z);
             body.append(reinterpret_cast<const char*>(&truth.rgb[i * 3]), 3);
-            append(body, truth.semantic[i]);
-            append(body, truth.instance[i]);
+            appendLittleEndian(body, truth.semantic[i]);
+            appendLittleEndian(body, truth.instance[i]);
             if (normals) {
                 const glm::dvec3 n = glm::dmat3(pose) *
                                      glm::dvec3(truth.normal[3 * i], truth.normal[3 * i + 1], truth.normal[3 * i + 2]);
-                for (int c = 0; c < 3; ++c) append(body, float(n[c]));
+                for (int c = 0; c < 3; ++c) appendLittleEndian(body, float(n[c]));
             }
             ++count;
         }

@@ -6,8 +6,8 @@
 
 #include <algorithm>
 
-#include <glm/gtc/packing.hpp>
 #include <cmath>
+#include <glm/gtc/packing.hpp>
 #include <limits>
 
 namespace sward {
@@ -44,7 +44,8 @@ AtlasAlpha::AtlasAlpha(const Atlas& atlas) {
             int opaqueTexels = 0;
             for (int64_t dj = 0; dj < 2; ++dj)
                 for (int64_t di = 0; di < 2; ++di) {
-                    const int64_t x = std::clamp<int64_t>(i + di, 0, width - 1), y = std::clamp<int64_t>(j + dj, 0, height - 1);
+                    const int64_t x = std::clamp<int64_t>(i + di, 0, width - 1),
+                                  y = std::clamp<int64_t>(j + dj, 0, height - 1);
                     opaqueTexels += alpha[size_t(y) * width + size_t(x)] >= 128;
                 }
             between_[size_t(j + 1) * (width + 1) + size_t(i + 1)] = opaqueTexels == 0 ? 0 : opaqueTexels == 4 ? 2 : 1;
@@ -138,7 +139,8 @@ WindTipRange windTipRange(const WindParams& wind) {
     // 0 <= wave <= 1; the clamp to kMaxTipOffset only shortens it.
     const glm::vec2 dir = wind.direction(), across(-dir.y, dir.x);
     const float s = wind.strength, g = wind.gustStrength, f = std::abs(wind.flutter);
-    const float alongLo = std::min({0.6f * s, s, 0.6f * s + g, s + g}), alongHi = std::max({0.6f * s, s, 0.6f * s + g, s + g});
+    const float alongLo = std::min({0.6f * s, s, 0.6f * s + g, s + g}),
+                alongHi = std::max({0.6f * s, s, 0.6f * s + g, s + g});
     WindTipRange r{glm::vec2(std::numeric_limits<float>::max()), glm::vec2(-std::numeric_limits<float>::max()), 0.0f};
     for (float a : {alongLo, alongHi})
         for (float b : {-f, f}) {
@@ -150,8 +152,8 @@ WindTipRange windTipRange(const WindParams& wind) {
     return r;
 }
 
-void restingBounds(const AtlasAlpha& atlas, const VegetationParams& vegetation, const FieldVegetation& field, uint32_t i,
-                   const UnbentPlant& unbent, const WindTipRange& wind, glm::vec3& lo, glm::vec3& hi) {
+void restingBounds(const AtlasAlpha& atlas, const VegetationParams& vegetation, const FieldVegetation& field,
+                   uint32_t i, const UnbentPlant& unbent, const WindTipRange& wind, glm::vec3& lo, glm::vec3& hi) {
     glm::vec3 stillLo = unbent.corners[0], stillHi = unbent.corners[0];
     for (const glm::vec3& c : unbent.corners) stillLo = glm::min(stillLo, c), stillHi = glm::max(stillHi, c);
     const glm::vec3 cell = atlas.baseAspects[atlas.cellOf(field.staticRecords[i].attributes)];
@@ -164,7 +166,8 @@ void restingBounds(const AtlasAlpha& atlas, const VegetationParams& vegetation, 
     const float reach = h * std::max(1.0f, below * below);
     const float drop = reach * (1.0f - std::sqrt(std::max(1.0f - wind.length * wind.length, 0.0f)));
     const float margin = 1e-4f + 1e-5f * h;
-    const glm::vec2 sideLo = glm::min(glm::vec2(0.0f), wind.lo * reach), sideHi = glm::max(glm::vec2(0.0f), wind.hi * reach);
+    const glm::vec2 sideLo = glm::min(glm::vec2(0.0f), wind.lo * reach),
+                    sideHi = glm::max(glm::vec2(0.0f), wind.hi * reach);
     lo = stillLo + glm::vec3(sideLo - drop - margin, -drop - margin);
     hi = stillHi + glm::vec3(sideHi + drop + margin, margin);
 }
@@ -176,7 +179,8 @@ bool intersectPlant(const PlantQuads& p, const AtlasAlpha& atlas, glm::vec3 o, g
     constexpr uint32_t n = PlantQuads::kTriangles;
     float t[n], b1[n], b2[n], det[n];
     for (uint32_t i = 0; i < n; ++i) { // branch-free, so the compiler runs it on SIMD lanes
-        const float e1x = p.e1[0][i], e1y = p.e1[1][i], e1z = p.e1[2][i], e2x = p.e2[0][i], e2y = p.e2[1][i], e2z = p.e2[2][i];
+        const float e1x = p.e1[0][i], e1y = p.e1[1][i], e1z = p.e1[2][i], e2x = p.e2[0][i], e2y = p.e2[1][i],
+                    e2z = p.e2[2][i];
         const float px = d.y * e2z - d.z * e2y, py = d.z * e2x - d.x * e2z, pz = d.x * e2y - d.y * e2x;
         det[i] = e1x * px + e1y * py + e1z * pz;
         const float sx = o.x - p.p0[0][i], sy = o.y - p.p0[1][i], sz = o.z - p.p0[2][i];

@@ -22,10 +22,10 @@ namespace sward {
 struct PlantQuads {
     static constexpr uint32_t kTriangles = 2 * gpu::kQuadsNear;
     float p0[3][kTriangles], e1[3][kTriangles], e2[3][kTriangles];
-    glm::vec3 lo, hi;                       // their bounding box
-    uint32_t cell = 0;                      // atlas cell (category * maxColumns + variant)
-    float cutFraction = 1.0f;               // the part of the cell shown (cut plants show their lower part)
-    uint32_t label = 0;                     // (semantic class << kInstanceBits) | plant index in the tile + 1
+    glm::vec3 lo, hi;         // their bounding box
+    uint32_t cell = 0;        // atlas cell (category * maxColumns + variant)
+    float cutFraction = 1.0f; // the part of the cell shown (cut plants show their lower part)
+    uint32_t label = 0;       // (semantic class << kInstanceBits) | plant index in the tile + 1
     bool mirrored = false, present = false;
 };
 
@@ -48,7 +48,8 @@ struct AtlasAlpha {
     uint32_t cellOf(uint32_t attributes) const;
 
 private:
-    std::vector<uint8_t> between_; // per 2 x 2 texel neighbourhood, (width + 1) x (height + 1): 0 all < 0.5, 2 all >= 0.5, 1 mixed
+    std::vector<uint8_t>
+        between_; // per 2 x 2 texel neighbourhood, (width + 1) x (height + 1): 0 all < 0.5, 2 all >= 0.5, 1 mixed
 };
 
 // A resting plant's quad corners before their bend and their bend weights (unbentQuadCorners), which stay the same
@@ -80,12 +81,12 @@ WindTipRange windTipRange(const WindParams& wind);
 
 // The box plant `i` of `field` occupies at rest under any tip offset of `wind`: its quads without wind, shifted by
 // the tip's reach and lowered by its drop.
-void restingBounds(const AtlasAlpha& atlas, const VegetationParams& vegetation, const FieldVegetation& field, uint32_t i,
-                   const UnbentPlant& unbent, const WindTipRange& wind, glm::vec3& lo, glm::vec3& hi);
+void restingBounds(const AtlasAlpha& atlas, const VegetationParams& vegetation, const FieldVegetation& field,
+                   uint32_t i, const UnbentPlant& unbent, const WindTipRange& wind, glm::vec3& lo, glm::vec3& hi);
 
 // The nearest opaque hit of the ray o + t d (t in [tNear, best)) on the plant's eight triangles: updates `best` and
 // `normal` (unnormalised, the triangle's) and returns true when there is one.
-bool intersectPlant(const PlantQuads& plant, const AtlasAlpha& atlas, glm::vec3 o, glm::vec3 d, float tNear, float& best,
-                    glm::vec3& normal);
+bool intersectPlant(const PlantQuads& plant, const AtlasAlpha& atlas, glm::vec3 o, glm::vec3 d, float tNear,
+                    float& best, glm::vec3& normal);
 
 } // namespace sward

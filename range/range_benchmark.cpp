@@ -22,9 +22,9 @@ double median(std::vector<double> v) {
 
 // The scene with one sensor of the preset, driving from the camera's xy towards its target at `speed` m/s.
 Scene lidarScene(const LidarBenchOptions& options) {
-    Scene scene = loadScene(options.scenePath.empty() ? std::string(SWARD_SOURCE_DIR "/examples/meadow.json")
-                                                      : options.scenePath,
-                            {}, options.allowAssets);
+    Scene scene =
+        loadScene(options.scenePath.empty() ? std::string(SWARD_SOURCE_DIR "/examples/meadow.json") : options.scenePath,
+                  {}, options.allowAssets);
     const glm::dvec2 from(scene.camera.position), to(scene.camera.lookAt);
     require(glm::distance(from, to) > 1e-3, "sward-bench lidar: the scene camera looks straight down");
     const glm::dvec2 end = from + glm::normalize(to - from) * 1000.0;
@@ -32,8 +32,10 @@ Scene lidarScene(const LidarBenchOptions& options) {
                                  {"speed", std::max(options.speed, 1e-6)},
                                  {"height_above_ground", options.height}};
     nlohmann::json sensor = {{"name", "bench"}, {"preset", options.preset}, {"mount", {{"path", path}}}};
-    if (options.subRays == 1) sensor["divergence_mrad"] = 0.0;
-    else if (options.subRays > 1) sensor["sub_rays"] = options.subRays;
+    if (options.subRays == 1)
+        sensor["divergence_mrad"] = 0.0;
+    else if (options.subRays > 1)
+        sensor["sub_rays"] = options.subRays;
     const nlohmann::json sensors = {{"range_sensors", nlohmann::json::array({sensor})}};
     JsonReader reader(sensors, "sward-bench lidar"); // keeps a reference: `sensors` outlives it
     scene.rangeSensors = parseRangeSensors(reader);
@@ -50,15 +52,17 @@ nlohmann::json benchLidar(const LidarBenchOptions& options) {
     const RangeSensorParams& sensor = r.scene.rangeSensors[0];
     RangeRecorder recorder(r, options.threads);
     using Clock = std::chrono::steady_clock;
-    auto ms = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
+    auto ms = [](Clock::time_point a, Clock::time_point b) {
+        return std::chrono::duration<double, std::milli>(b - a).count();
+    };
     const Clock::time_point setupStart = Clock::now();
-    recorder.sweep(0, {}, 0.0); // builds the BVH of every field in reach
+    recorder.sweep(0, {}); // builds the BVH of every field in reach
     const double setupMs = ms(setupStart, Clock::now());
     std::vector<double> wall, cpu, points, prepare, cast;
     for (uint32_t frame = 1; frame <= options.sweeps; ++frame) {
         const Clock::time_point start = Clock::now();
         const std::clock_t cpuStart = std::clock();
-        const std::vector<RangeScan> scans = recorder.sweep(frame, {}, 0.0);
+        const std::vector<RangeScan> scans = recorder.sweep(frame, {});
         wall.push_back(ms(start, Clock::now()));
         cpu.push_back(double(std::clock() - cpuStart) * 1000.0 / CLOCKS_PER_SEC);
         points.push_back(double(scans[0].points.size()));

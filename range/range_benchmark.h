@@ -10,14 +10,14 @@
 namespace sward {
 
 struct LidarBenchOptions {
-    std::string scenePath;            // default: examples/meadow.json of this source tree
+    std::string scenePath; // default: examples/meadow.json of this source tree
     std::vector<std::string> allowAssets;
-    std::string preset = "VLP-16";    // the sensor (scene/range_sensors.h presets)
-    double height = 1.0;              // metres above the ground, at the scene camera's xy, facing its view
-    double speed = 1.0;               // metres per second the sensor drives towards the camera's target
-    uint32_t subRays = 0;             // rays per beam (1, 7 or 19; 0: the preset's)
-    uint32_t sweeps = 10;             // measured sweeps (frames at the sensor's rate)
-    uint32_t threads = 0;             // 0 = all cores
+    std::string preset = "VLP-16"; // the sensor (scene/range_sensors.h presets)
+    double height = 1.0;           // metres above the ground, at the scene camera's xy, facing its view
+    double speed = 1.0;            // metres per second the sensor drives towards the camera's target
+    uint32_t subRays = 0;          // rays per beam (1, 7 or 19; 0: the preset's)
+    uint32_t sweeps = 10;          // measured sweeps (frames at the sensor's rate)
+    uint32_t threads = 0;          // 0 = all cores
 };
 
 // Loads the scene with a sensor of `preset` added (driving at `speed` from the scene camera's xy), sweeps once to build

@@ -2,31 +2,18 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/little_endian.h"
 #include "dataset/naming.h"
 #include "io/image_files.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <bit>
-#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <map>
 
 namespace sward {
-
-static_assert(std::endian::native == std::endian::little, "range files are written little-endian");
-
-namespace {
-
-template <typename T> void put(std::string& out, T value) {
-    char bytes[sizeof(T)];
-    std::memcpy(bytes, &value, sizeof(T));
-    out.append(bytes, sizeof(T));
-}
-
-} // namespace
 
 std::string rangePly(const RangeScan& scan, const std::string& comment) {
     std::string out = "ply\nformat binary_little_endian 1.0\ncomment " + comment + "\nelement vertex " +
@@ -36,11 +23,9 @@ std::string rangePly(const RangeScan& scan, const std::string& comment) {
                       "property ushort column\nproperty uchar class\nproperty uint instance\nend_header\n";
     out.reserve(out.size() + scan.points.size() * 53);
     for (const RangePoint& p : scan.points) {
-        put(out, p.sensor.x), put(out, p.sensor.y), put(out, p.sensor.z);
-        put(out, p.world.x), put(out, p.world.y), put(out, p.world.z);
-        put(out, p.intensity), put(out, p.time);
-        put(out, uint16_t(p.ring)), put(out, uint16_t(p.column));
-        put(out, uint8_t(p.label >> gpu::kInstanceBits)), put(out, uint32_t(p.label & ((1u << gpu::kInstanceBits) - 1u)));
+        appendLittleEndian(out, p.sensor.x, p.sensor.y, p.sensor.z, p.world.x, p.world.y, p.world.z, p.intensity,
+                           p.time, uint16_t(p.ring), uint16_t(p.column), uint8_t(p.label >> gpu::kInstanceBits),
+                           uint32_t(p.label & ((1u << gpu::kInstanceBits) - 1u)));
     }
     return out;
 }
@@ -48,7 +33,7 @@ std::string rangePly(const RangeScan& scan, const std::string& comment) {
 std::string kittiBin(const RangeScan& scan) {
     std::string out;
     out.reserve(scan.points.size() * 16);
-    for (const RangePoint& p : scan.points) put(out, p.sensor.x), put(out, p.sensor.y), put(out, p.sensor.z), put(out, p.intensity);
+    for (const RangePoint& p : scan.points) appendLittleEndian(out, p.sensor.x, p.sensor.y, p.sensor.z, p.intensity);
     return out;
 }
 
@@ -65,7 +50,7 @@ std::string semanticKittiLabel(const RangeScan& scan) {
     for (const RangePoint& p : scan.points) {
         const uint32_t id = p.label & ((1u << gpu::kInstanceBits) - 1u);
         const uint32_t instance = id ? numbers[id] & 0xffffu : 0u;
-        put(out, uint32_t((p.label >> gpu::kInstanceBits) | (instance << 16)));
+        appendLittleEndian(out, uint32_t((p.label >> gpu::kInstanceBits) | (instance << 16)));
     }
     return out;
 }
@@ -92,11 +77,16 @@ void writeRangeFiles(DatasetWriter& dataset, const RangeSensorParams& sensor, co
     const std::string comment = "sward range sensor " + sensor.name + " frame " + std::to_string(frame);
     for (const std::string& file : rangeFrameFiles(sensor.name, sensor.type, frame)) {
         const std::string path = dataset.claim(file), extension = std::filesystem::path(file).extension().string();
-        if (extension == ".exr") writeExrDepth(path, sensor.width, sensor.height, tofDepth(sensor, scan));
-        else if (extension == ".ply") writeTextAtomically(path, rangePly(scan, comment));
-        else if (extension == ".bin") writeTextAtomically(path, kittiBin(scan));
-        else if (extension == ".label") writeTextAtomically(path, semanticKittiLabel(scan));
-        else writeTextAtomically(path, laserScanJson(sensor, scan));
+        if (extension == ".exr")
+            writeExrDepth(path, sensor.width, sensor.height, tofDepth(sensor, scan));
+        else if (extension == ".ply")
+            writeTextAtomically(path, rangePly(scan, comment));
+        else if (extension == ".bin")
+            writeTextAtomically(path, kittiBin(scan));
+        else if (extension == ".label")
+            writeTextAtomically(path, semanticKittiLabel(scan));
+        else
+            writeTextAtomically(path, laserScanJson(sensor, scan));
     }
 }
 

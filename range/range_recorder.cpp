@@ -18,8 +18,7 @@ RangeRecorder::RangeRecorder(const SceneResources& r, uint32_t threads) : r_(r),
 
 RangeRecorder::~RangeRecorder() = default;
 
-std::vector<RangeScan> RangeRecorder::sweep(uint32_t frame, std::span<const gpu::PlantDynamic> dynamics,
-                                            double windTimeOffset) {
+std::vector<RangeScan> RangeRecorder::sweep(uint32_t frame, const FrameState& state) {
     require(active(), "the scene has no range sensors");
     const Scene& scene = r_.scene;
     const double time = double(frame) * scene.sequence.timeStep;
@@ -34,14 +33,17 @@ std::vector<RangeScan> RangeRecorder::sweep(uint32_t frame, std::span<const gpu:
     double reach = 0.0;
     for (size_t k = 0; k < starts.size(); ++k) {
         const RangeSensorParams& sensor = scene.rangeSensors[k];
-        const glm::dvec2 end(rangeSensorPose(scene, sensor, r_.terrain, r_.models,
-                                             time + columnTime(sensor, sensor.columns() - 1))[3]);
+        const glm::dvec2 end(
+            rangeSensorPose(scene, sensor, r_.terrain, r_.models, time + columnTime(sensor, sensor.columns() - 1))[3]);
         reach = std::max(reach, glm::distance(centre, starts[k]) + glm::distance(starts[k], end) + sensor.maxRange);
     }
     using Clock = std::chrono::steady_clock;
     const Clock::time_point start = Clock::now();
-    rays_->setPlants(scene.wind, time + windTimeOffset, dynamics, centre, reach, threads_);
+    rays_->setPlants(scene.wind, time + state.windTimeOffset, state.dynamics, centre, reach, threads_);
     rays_->setObjects(posedObjects({scene, r_.terrain, r_.models}, time));
+    const bool patches = state.patches && !state.patches->empty();
+    if (patches || hadPatches_) rays_->setGroundPatches(patches ? *state.patches : std::vector<GroundPatch>{});
+    hadPatches_ = patches;
     const Clock::time_point prepared = Clock::now();
     std::vector<RangeScan> scans;
     for (uint32_t k = 0; k < scene.rangeSensors.size(); ++k)
@@ -51,9 +53,8 @@ std::vector<RangeScan> RangeRecorder::sweep(uint32_t frame, std::span<const gpu:
     return scans;
 }
 
-void RangeRecorder::record(DatasetWriter& dataset, uint32_t frame, std::span<const gpu::PlantDynamic> dynamics,
-                           double windTimeOffset) {
-    const std::vector<RangeScan> scans = sweep(frame, dynamics, windTimeOffset);
+void RangeRecorder::record(DatasetWriter& dataset, uint32_t frame, const FrameState& state) {
+    const std::vector<RangeScan> scans = sweep(frame, state);
     for (size_t k = 0; k < scans.size(); ++k) writeRangeFiles(dataset, r_.scene.rangeSensors[k], scans[k], frame);
 }
 

@@ -22,13 +22,18 @@ public:
 
     bool active() const { return rays_ != nullptr; } // the scene has range sensors
 
-    // Every sensor's sweep of frame `frame` (starting at the frame's time), the plants in the state `dynamics` (the
-    // tile's dynamic records after the frame's tick, tile order; empty: at rest) with the wind's clock offset by
-    // `windTimeOffset` (sward-render --time).
-    std::vector<RangeScan> sweep(uint32_t frame, std::span<const gpu::PlantDynamic> dynamics, double windTimeOffset);
+    // What the frame shows besides the scene itself: the plants' state `dynamics` (the tile's dynamic records after
+    // the frame's tick, tile order; empty: at rest), the ground's rut patches, and the wind's clock offset
+    // (sward-render --time).
+    struct FrameState {
+        std::span<const gpu::PlantDynamic> dynamics;
+        const std::vector<GroundPatch>* patches = nullptr;
+        double windTimeOffset = 0.0;
+    };
+    // Every sensor's sweep of frame `frame` (starting at the frame's time).
+    std::vector<RangeScan> sweep(uint32_t frame, const FrameState& state);
     // The same, with each scan's files written through `dataset`.
-    void record(DatasetWriter& dataset, uint32_t frame, std::span<const gpu::PlantDynamic> dynamics,
-                double windTimeOffset);
+    void record(DatasetWriter& dataset, uint32_t frame, const FrameState& state);
 
     const RayScene& rays() const { return *rays_; }
     // Wall time of the latest sweep(): preparing the scene (plants, objects) and casting, milliseconds.
@@ -41,6 +46,7 @@ private:
     const SceneResources& r_;
     uint32_t threads_;
     std::unique_ptr<RayScene> rays_;
+    bool hadPatches_ = false; // the RayScene holds rut patches
     Timings timings_;
 };
 

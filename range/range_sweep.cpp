@@ -20,10 +20,17 @@ constexpr float kEchoSeparation = 0.5f;
 // Diffuse reflectance at the sensors' near-infrared wavelength per semantic class (vegetation is bright there).
 float reflectance(uint32_t label) {
     switch (label >> gpu::kInstanceBits) {
-    case gpu::kSemanticGround: case gpu::kSemanticTurf: case gpu::kSemanticTrack: return 0.25f;
-    case gpu::kSemanticObject: return 0.3f;
-    case gpu::kSemanticFelled: case gpu::kSemanticCut: return 0.45f;
-    default: return 0.5f; // standing plants
+    case gpu::kSemanticGround:
+    case gpu::kSemanticTurf:
+    case gpu::kSemanticTrack:
+        return 0.25f;
+    case gpu::kSemanticObject:
+        return 0.3f;
+    case gpu::kSemanticFelled:
+    case gpu::kSemanticCut:
+        return 0.45f;
+    default:
+        return 0.5f; // standing plants
     }
 }
 
@@ -38,7 +45,8 @@ std::vector<SubRay> subRays(const RangeSensorParams& s) {
     std::vector<SubRay> rays{{glm::dvec2(0.0), 1.0}};
     const uint32_t rings = s.subRays == 19 ? 2 : s.subRays == 7 ? 1 : 0;
     for (uint32_t ring = 1; ring <= rings; ++ring) {
-        const double radius = half * double(ring) / double(rings + 1), weight = std::exp(-2.0 * (radius / half) * (radius / half));
+        const double radius = half * double(ring) / double(rings + 1),
+                     weight = std::exp(-2.0 * (radius / half) * (radius / half));
         for (uint32_t k = 0; k < 6 * ring; ++k) {
             const double phi = 2.0 * std::numbers::pi * double(k) / double(6 * ring);
             rays.push_back({radius * glm::dvec2(std::cos(phi), std::sin(phi)), weight});
@@ -93,7 +101,8 @@ std::vector<PosedTriangles> posedObjects(const RangeWorld& world, double time) {
         for (size_t n = 0; n < model.nodes.size(); ++n)
             for (const ModelPrimitive& prim : model.nodes[n].primitives) {
                 const uint32_t base = uint32_t(posed.positions.size());
-                for (const glm::vec3& p : prim.positions) posed.positions.push_back(glm::vec3(nodes[n] * glm::dvec4(p, 1.0)));
+                for (const glm::vec3& p : prim.positions)
+                    posed.positions.push_back(glm::vec3(nodes[n] * glm::dvec4(p, 1.0)));
                 for (uint32_t i : prim.indices) posed.indices.push_back(base + i);
             }
         out.push_back(std::move(posed));
@@ -108,18 +117,22 @@ RangeScan sweepSensor(const RayScene& rays, const RangeWorld& world, uint32_t se
     scan.channels = s.channels(), scan.columns = s.columns();
     scan.ranges.assign(size_t(scan.channels) * scan.columns, 0.0f);
     scan.startPose = rangeSensorPose(world.scene, s, world.terrain, world.models, frameTime + columnTime(s, 0));
-    scan.endPose = rangeSensorPose(world.scene, s, world.terrain, world.models, frameTime + columnTime(s, scan.columns - 1));
+    scan.endPose =
+        rangeSensorPose(world.scene, s, world.terrain, world.models, frameTime + columnTime(s, scan.columns - 1));
     const std::vector<SubRay> pattern = subRays(s);
     std::vector<std::vector<RangePoint>> perColumn(scan.columns);
     parallelFor(scan.columns, threads, [&](uint32_t c, uint32_t) {
         const double t = columnTime(s, c);
-        const glm::dmat4 pose = s.type == RangeSensorType::TimeOfFlight ? scan.startPose : rangeSensorPose(world.scene, s, world.terrain, world.models, frameTime + t);
+        const glm::dmat4 pose = s.type == RangeSensorType::TimeOfFlight
+                                    ? scan.startPose
+                                    : rangeSensorPose(world.scene, s, world.terrain, world.models, frameTime + t);
         const glm::dvec3 origin(pose[3]);
         const glm::dmat3 rotation(pose);
         std::vector<SubHit> hits;
         for (uint32_t ring = 0; ring < scan.channels; ++ring) {
             const glm::dvec3 beam = beamDirection(s, ring, c);
-            const glm::dvec3 u = glm::normalize(std::abs(beam.z) < 0.9 ? glm::cross(beam, {0, 0, 1}) : glm::cross(beam, {1, 0, 0}));
+            const glm::dvec3 u =
+                glm::normalize(std::abs(beam.z) < 0.9 ? glm::cross(beam, {0, 0, 1}) : glm::cross(beam, {1, 0, 0}));
             const glm::dvec3 v = glm::cross(beam, u);
             hits.clear();
             for (uint32_t k = 0; k < pattern.size(); ++k) {
@@ -128,7 +141,8 @@ RangeScan sweepSensor(const RayScene& rays, const RangeWorld& world, uint32_t se
                 const RangeHit hit = rays.cast(origin, dir, s.minRange, s.maxRange);
                 if (!hit.hit()) continue;
                 const float cosine = float(std::abs(glm::dot(glm::dvec3(hit.normal), dir)));
-                hits.push_back({hit.distance, float(pattern[k].weight) * reflectance(hit.label) * cosine, hit.label, k});
+                hits.push_back(
+                    {hit.distance, float(pattern[k].weight) * reflectance(hit.label) * cosine, hit.label, k});
             }
             RangePoint p;
             if (!chooseReturn(hits, s.returnMode, p.range, p.intensity, p.label)) continue;
@@ -143,7 +157,8 @@ RangeScan sweepSensor(const RayScene& rays, const RangeWorld& world, uint32_t se
             perColumn[c].push_back(p);
         }
     });
-    for (std::vector<RangePoint>& column : perColumn) scan.points.insert(scan.points.end(), column.begin(), column.end());
+    for (std::vector<RangePoint>& column : perColumn)
+        scan.points.insert(scan.points.end(), column.begin(), column.end());
     return scan;
 }
 

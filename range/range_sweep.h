@@ -20,19 +20,19 @@ namespace sward {
 
 // One beam's return.
 struct RangePoint {
-    glm::vec3 sensor{0.0f};     // in the sensor frame at its firing time (x forward, y left, z up), metres
-    glm::dvec3 world{0.0};      // world frame
-    float range = 0.0f;         // metres along the beam, noise included
-    float intensity = 0.0f;     // the echo's share of the beam's energy times the surfaces' reflectance (0..1)
-    float time = 0.0f;          // seconds after the sweep's start
+    glm::vec3 sensor{0.0f}; // in the sensor frame at its firing time (x forward, y left, z up), metres
+    glm::dvec3 world{0.0};  // world frame
+    float range = 0.0f;     // metres along the beam, noise included
+    float intensity = 0.0f; // the echo's share of the beam's energy times the surfaces' reflectance (0..1)
+    float time = 0.0f;      // seconds after the sweep's start
     uint32_t ring = 0, column = 0;
-    uint32_t label = 0;         // (semantic class << 24) | instance of the surface that returned most of the echo
+    uint32_t label = 0; // (semantic class << 24) | instance of the surface that returned most of the echo
 };
 
 struct RangeScan {
     uint32_t channels = 0, columns = 0;
-    std::vector<RangePoint> points; // beams with a return, in firing order (column, then ring)
-    std::vector<float> ranges;      // per beam, ring-major (ring * columns + column): range, 0 = no return
+    std::vector<RangePoint> points;          // beams with a return, in firing order (column, then ring)
+    std::vector<float> ranges;               // per beam, ring-major (ring * columns + column): range, 0 = no return
     glm::dmat4 startPose{1.0}, endPose{1.0}; // world-from-sensor at the first and the last column's time
 };
 

@@ -11,19 +11,21 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <set>
 #include <thread>
 
 namespace sward {
 
 namespace {
 
-// Top-level instance ids: the ground, the objects, then one per field.
-constexpr uint32_t kGroundInstance = 0, kObjectsInstance = 1, kFirstFieldInstance = 2;
+// Top-level instance ids: the ground, the objects, the rut patches, then one per field.
+constexpr uint32_t kGroundInstance = 0, kObjectsInstance = 1, kPatchesInstance = 2, kFirstFieldInstance = 3;
+constexpr float kBlockMetres = gpu::kTrackCell * float(gpu::kTrackBlockCells);
 constexpr uint32_t kBusy = 0xffffffffu; // a plant's stamp while one thread computes its quads
 
-void addTriangles(RTCDevice device, RTCScene scene, const std::vector<glm::vec3>& positions,
-                  const std::vector<uint32_t>& indices, uint32_t geomID) {
-    if (indices.empty()) return;
+RTCGeometry addTriangles(RTCDevice device, RTCScene scene, const std::vector<glm::vec3>& positions,
+                         const std::vector<uint32_t>& indices, uint32_t geomID) {
+    if (indices.empty()) return nullptr;
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                           3 * sizeof(float), positions.size()));
@@ -36,6 +38,7 @@ void addTriangles(RTCDevice device, RTCScene scene, const std::vector<glm::vec3>
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(scene, geom, geomID);
     rtcReleaseGeometry(geom);
+    return geom;
 }
 
 void attachInstance(RTCDevice device, RTCScene top, RTCScene child, uint32_t id) {
@@ -54,7 +57,8 @@ void groundTriangles(const Ground& ground, std::vector<glm::vec3>& positions, st
     if (const Heightfield* h = ground.heightfield()) {
         for (uint32_t j = 0; j < h->rows(); ++j)
             for (uint32_t i = 0; i < h->columns(); ++i)
-                positions.push_back(glm::vec3(h->origin() + glm::vec2(float(i), float(j)) * h->spacing(), h->sample(i, j)));
+                positions.push_back(
+                    glm::vec3(h->origin() + glm::vec2(float(i), float(j)) * h->spacing(), h->sample(i, j)));
         for (uint32_t j = 0; j + 1 < h->rows(); ++j)
             for (uint32_t i = 0; i + 1 < h->columns(); ++i) {
                 const uint32_t p00 = j * h->columns() + i, p10 = p00 + 1, p01 = p00 + h->columns(), p11 = p01 + 1;
@@ -73,8 +77,11 @@ struct RayScene::Impl {
     AtlasAlpha atlas;
     WindTipRange windRange{};
     RTCDevice device = nullptr;
-    RTCScene groundScene = nullptr, objectScene = nullptr, top = nullptr;
+    RTCScene groundScene = nullptr, objectScene = nullptr, patchScene = nullptr, top = nullptr;
     std::vector<uint32_t> objectLabels;
+    std::set<std::pair<int32_t, int32_t>> patchedBlocks; // the coarse ground's holes
+    std::vector<uint32_t> patchIndices;                  // the patches' triangles, for the rut at a hit
+    std::vector<float> patchRuts;                        // per patch point
 
     // The plants' state of the current tick, read by the intersector while rays are cast.
     WindParams wind;
@@ -108,7 +115,11 @@ struct RayScene::Impl {
         std::vector<uint32_t> indices;
         groundTriangles(ground, positions, indices);
         groundScene = rtcNewScene(device);
-        addTriangles(device, groundScene, positions, indices, 0);
+        if (RTCGeometry geom = addTriangles(device, groundScene, positions, indices, 0)) {
+            rtcSetGeometryUserData(geom, this);
+            rtcSetGeometryIntersectFilterFunction(geom, &Impl::groundHole);
+            rtcCommitGeometry(geom);
+        }
         rtcCommitScene(groundScene);
         check("building the ground");
         if (tile) {
@@ -122,19 +133,61 @@ struct RayScene::Impl {
         setObjects({});
     }
 
+    // The coarse ground has a hole over every block drawn as a rut patch (terrain_holes.frag).
+    static void groundHole(const RTCFilterFunctionNArguments* args) {
+        const Impl& impl = *static_cast<const Impl*>(args->geometryUserPtr);
+        if (impl.patchedBlocks.empty() || args->valid[0] == 0) return;
+        const float t = RTCRayN_tfar(args->ray, args->N, 0);
+        const float x = RTCRayN_org_x(args->ray, args->N, 0) + t * RTCRayN_dir_x(args->ray, args->N, 0);
+        const float y = RTCRayN_org_y(args->ray, args->N, 0) + t * RTCRayN_dir_y(args->ray, args->N, 0);
+        const std::pair<int32_t, int32_t> block(int32_t(std::floor(x / kBlockMetres)),
+                                                int32_t(std::floor(y / kBlockMetres)));
+        if (impl.patchedBlocks.count(block)) args->valid[0] = 0;
+    }
+
+    void setGroundPatches(const std::vector<GroundPatch>& patches) {
+        if (patchScene) rtcReleaseScene(patchScene);
+        patchScene = rtcNewScene(device);
+        patchedBlocks.clear(), patchIndices.clear(), patchRuts.clear();
+        std::vector<glm::vec3> positions;
+        constexpr uint32_t side = gpu::kTrackPatchVertices;
+        for (const GroundPatch& patch : patches) {
+            require(patch.points.size() == side * side, "range sensors: a rut patch of the wrong size");
+            patchedBlocks.insert({patch.blockX, patch.blockY});
+            const uint32_t first = uint32_t(positions.size());
+            for (const glm::vec4& p : patch.points) positions.push_back(glm::vec3(p)), patchRuts.push_back(p.w);
+            for (uint32_t v = 0; v + 1 < side; ++v)
+                for (uint32_t u = 0; u + 1 < side; ++u) {
+                    const uint32_t p00 = first + v * side + u, p10 = p00 + 1, p01 = p00 + side, p11 = p01 + 1;
+                    patchIndices.insert(patchIndices.end(), {p00, p10, p11, p00, p11, p01});
+                }
+        }
+        addTriangles(device, patchScene, positions, patchIndices, 0);
+        rtcCommitScene(patchScene);
+        check("building the rut patches");
+        rebuildTop();
+    }
+
+    // truth.frag's rule: track where the rut, interpolated over the triangle, is at least kTrackLabelDepth deep.
+    uint32_t patchLabel(uint32_t triangle, float u, float v) const {
+        const uint32_t* p = &patchIndices[3 * size_t(triangle)];
+        const float rut = patchRuts[p[0]] * (1.0f - u - v) + patchRuts[p[1]] * u + patchRuts[p[2]] * v;
+        return (rut >= gpu::kTrackLabelDepth ? gpu::kSemanticTrack : gpu::kSemanticGround) << gpu::kInstanceBits;
+    }
+
     ~Impl() {
         for (Field& f : fields)
             for (RTCScene s : {f.resting, f.touched})
                 if (s) rtcReleaseScene(s);
-        for (RTCScene s : {groundScene, objectScene, top})
+        for (RTCScene s : {groundScene, objectScene, patchScene, top})
             if (s) rtcReleaseScene(s);
         rtcReleaseDevice(device);
     }
 
     void check(const char* what) const {
         const RTCError e = rtcGetDeviceError(device);
-        require(e == RTC_ERROR_NONE, std::string("range sensors: Embree failed in ") + what + " (error " +
-                                         std::to_string(int(e)) + ")");
+        require(e == RTC_ERROR_NONE,
+                std::string("range sensors: Embree failed in ") + what + " (error " + std::to_string(int(e)) + ")");
     }
 
     void setObjects(const std::vector<PosedTriangles>& objects) {
@@ -156,8 +209,10 @@ struct RayScene::Impl {
         top = rtcNewScene(device);
         attachInstance(device, top, groundScene, kGroundInstance);
         attachInstance(device, top, objectScene, kObjectsInstance);
+        if (patchScene) attachInstance(device, top, patchScene, kPatchesInstance);
         for (const Field& f : fields)
-            if (f.inReach) attachInstance(device, top, f.isTouched ? f.touched : f.resting, kFirstFieldInstance + f.index);
+            if (f.inReach)
+                attachInstance(device, top, f.isTouched ? f.touched : f.resting, kFirstFieldInstance + f.index);
         rtcCommitScene(top);
         check("building the top level");
     }
@@ -169,7 +224,8 @@ struct RayScene::Impl {
     // Plant i's quads of this tick, computed by the first thread that needs them (the others wait for it).
     const PlantQuads& current(Field& f, uint32_t i) {
         std::atomic<uint32_t>& s = f.stamps[i];
-        for (uint32_t seen = s.load(std::memory_order_acquire); seen != stamp; seen = s.load(std::memory_order_acquire)) {
+        for (uint32_t seen = s.load(std::memory_order_acquire); seen != stamp;
+             seen = s.load(std::memory_order_acquire)) {
             if (seen != kBusy && s.compare_exchange_strong(seen, kBusy, std::memory_order_acquire)) {
                 f.quads[i] = plantQuads(atlas, vegetation, wind, tile->fields[f.index], i, f.firstPlant + i,
                                         dynamicOf(f, i), time, &f.unbent[i]);
@@ -297,18 +353,25 @@ void RayScene::setPlants(const WindParams& wind, double time, std::span<const gp
             if (f.resting) rtcReleaseScene(f.resting), f.resting = nullptr;
         }
     }
-    parallelFor(uint32_t(inReach.size()), threads, [&](uint32_t k, uint32_t) { impl.prepare(impl.fields[inReach[k]]); });
+    parallelFor(uint32_t(inReach.size()), threads,
+                [&](uint32_t k, uint32_t) { impl.prepare(impl.fields[inReach[k]]); });
     for (uint32_t index : inReach) { // Embree builds on its one thread
         Impl::Field& f = impl.fields[index];
         if (f.touched) rtcReleaseScene(f.touched), f.touched = nullptr;
-        if (f.isTouched) f.touched = impl.plantScene(f, &Impl::touchedBounds);
-        else if (!f.resting) f.resting = impl.plantScene(f, &Impl::restingBounds);
+        if (f.isTouched)
+            f.touched = impl.plantScene(f, &Impl::touchedBounds);
+        else if (!f.resting)
+            f.resting = impl.plantScene(f, &Impl::restingBounds);
     }
     impl.rebuildTop();
 }
 
 void RayScene::setObjects(const std::vector<PosedTriangles>& objects) {
     impl_->setObjects(objects);
+}
+
+void RayScene::setGroundPatches(const std::vector<GroundPatch>& patches) {
+    impl_->setGroundPatches(patches);
 }
 
 uint64_t RayScene::plantsPrepared() const {
@@ -330,9 +393,14 @@ RangeHit RayScene::cast(glm::dvec3 origin, glm::dvec3 direction, double tNear, d
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
     out.distance = rh.ray.tfar;
     const uint32_t instance = rh.hit.instID[0];
-    if (instance == kGroundInstance) out.label = gpu::kSemanticGround << gpu::kInstanceBits;
-    else if (instance == kObjectsInstance) out.label = impl.objectLabels[rh.hit.geomID];
-    else out.label = impl.fields[instance - kFirstFieldInstance].quads[rh.hit.primID].label;
+    if (instance == kGroundInstance)
+        out.label = gpu::kSemanticGround << gpu::kInstanceBits;
+    else if (instance == kObjectsInstance)
+        out.label = impl.objectLabels[rh.hit.geomID];
+    else if (instance == kPatchesInstance)
+        out.label = impl.patchLabel(rh.hit.primID, rh.hit.u, rh.hit.v);
+    else
+        out.label = impl.fields[instance - kFirstFieldInstance].quads[rh.hit.primID].label;
     glm::vec3 n = glm::normalize(glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
     if (glm::dot(glm::dvec3(n), direction) > 0.0) n = -n;
     out.normal = n;

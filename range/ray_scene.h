@@ -9,6 +9,8 @@
 //   setPlants() recomputes the quads of the fields within reach, and the intersector tests a plant's tight box, then
 //   its eight triangles.
 // - Objects: the scene objects' triangles posed at the tick (setObjects).
+// - Ruts: the ground's rut patches at the tick, at their finest level (setGroundPatches), the coarse ground holed
+//   under them as the renderer draws it; a hit where the rut is at least kTrackLabelDepth deep is labelled track.
 //
 // Closest hits are unique: among hits at the same distance the lowest (geometry, primitive, triangle) key wins, so the
 // result does not depend on traversal order. Embree builds on one thread (its BVHs do not depend on the machine), and
@@ -30,9 +32,9 @@
 namespace sward {
 
 struct RangeHit {
-    float distance = 0.0f;    // along the ray's unit direction, metres; 0 = nothing hit
-    uint32_t label = 0;       // (semantic class << kInstanceBits) | instance id, as the truth pass writes it
-    glm::vec3 normal{0.0f};   // unit world normal of the surface hit, facing the ray's origin
+    float distance = 0.0f;  // along the ray's unit direction, metres; 0 = nothing hit
+    uint32_t label = 0;     // (semantic class << kInstanceBits) | instance id, as the truth pass writes it
+    glm::vec3 normal{0.0f}; // unit world normal of the surface hit, facing the ray's origin
     bool hit() const { return distance > 0.0f; }
 };
 
@@ -41,6 +43,14 @@ struct PosedTriangles {
     std::vector<glm::vec3> positions;
     std::vector<uint32_t> indices; // 3 per triangle
     uint32_t label = 0;
+};
+
+// A rut patch of the ground (render/track_renderer.h): ground-track block (blockX, blockY) drawn as a grid of
+// gpu::kTrackPatchVertices^2 points (xyz, w the rut's depth), row by row, cells split along (i, j)-(i+1, j+1); the
+// coarse ground has a hole over the block.
+struct GroundPatch {
+    int32_t blockX = 0, blockY = 0;
+    std::vector<glm::vec4> points;
 };
 
 class RayScene {
@@ -58,6 +68,8 @@ public:
                    double reach, uint32_t threads = 0);
     // The scene objects' triangles at this tick (replaces the previous ones).
     void setObjects(const std::vector<PosedTriangles>& objects);
+    // The ground's rut patches at this tick (replaces the previous ones; none: the ground as it was made).
+    void setGroundPatches(const std::vector<GroundPatch>& patches);
 
     // The closest surface along origin + t * direction (direction unit) with t in [tNear, tFar].
     RangeHit cast(glm::dvec3 origin, glm::dvec3 direction, double tNear, double tFar) const;

@@ -104,29 +104,33 @@ void TrackRenderer::setSource(const GroundTracks* tracks, const Ground* ground) 
     blockCount_ = 0;
 }
 
-// The patch of block `key`: lattice vertices [-ring, kTrackBlockCells + ring] around the block's first, each the coarse
-// ground's vertex there pressed down by the rut, its normal tilted by the rut's slope (central differences).
-void TrackRenderer::uploadBlock(VkCommandBuffer cmd, uint32_t slot, TrackBlockKey key) {
+std::vector<gpu::TerrainVertex> trackPatchVertices(const GroundTracks& tracks, const Ground& ground,
+                                                   const GroundDrawMesh& mesh, TrackBlockKey key) {
     std::vector<gpu::TerrainVertex> patch(kPatchVertices);
-    glm::vec2 heights(INFINITY, -INFINITY);
     const int64_t i0 = int64_t(key.x) * gpu::kTrackBlockCells - gpu::kTrackPatchRing;
     const int64_t j0 = int64_t(key.y) * gpu::kTrackBlockCells - gpu::kTrackPatchRing;
     for (uint32_t v = 0; v < kSide; ++v)
         for (uint32_t u = 0; u < kSide; ++u) {
             const int64_t i = i0 + u, j = j0 + v;
-            gpu::TerrainVertex vertex = groundVertexAt(*ground_, mesh_, trackVertexPosition(i, j));
-            const float rut = tracks_->depth(i, j);
-            const glm::vec2 slope((tracks_->depth(i + 1, j) - tracks_->depth(i - 1, j)) / (2.0f * gpu::kTrackCell),
-                                  (tracks_->depth(i, j + 1) - tracks_->depth(i, j - 1)) / (2.0f * gpu::kTrackCell));
+            gpu::TerrainVertex vertex = groundVertexAt(ground, mesh, trackVertexPosition(i, j));
+            const float rut = tracks.depth(i, j);
+            const glm::vec2 slope((tracks.depth(i + 1, j) - tracks.depth(i - 1, j)) / (2.0f * gpu::kTrackCell),
+                                  (tracks.depth(i, j + 1) - tracks.depth(i, j - 1)) / (2.0f * gpu::kTrackCell));
             // The ground h has normal ~ (-dh/dx, -dh/dy, 1); the pressed ground h - rut adds (drut/dx, drut/dy, 0).
             const glm::vec3 n = glm::vec3(vertex.normal) / vertex.normal.z + glm::vec3(slope, 0.0f);
             vertex.normal = glm::vec4(glm::normalize(n), 0.0f);
             vertex.positionHeight.z -= rut;
             vertex.positionHeight.w = rut;
-            heights =
-                glm::vec2(std::min(heights.x, vertex.positionHeight.z), std::max(heights.y, vertex.positionHeight.z));
             patch[size_t(v) * kSide + u] = vertex;
         }
+    return patch;
+}
+
+void TrackRenderer::uploadBlock(VkCommandBuffer cmd, uint32_t slot, TrackBlockKey key) {
+    const std::vector<gpu::TerrainVertex> patch = trackPatchVertices(*tracks_, *ground_, mesh_, key);
+    glm::vec2 heights(INFINITY, -INFINITY);
+    for (const gpu::TerrainVertex& vertex : patch)
+        heights = glm::vec2(std::min(heights.x, vertex.positionHeight.z), std::max(heights.y, vertex.positionHeight.z));
     heights_[slot] = heights;
     updateBuffer(cmd, vertices_, slot * kPatchBytes,
                  std::span(reinterpret_cast<const uint8_t*>(patch.data()), kPatchBytes));

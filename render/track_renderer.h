@@ -32,6 +32,13 @@
 
 namespace sward {
 
+// The gpu::kTrackPatchVertices^2 vertices of block `key`'s patch, row by row: lattice vertices [-ring, kTrackBlockCells
+// + ring] around the block's first, each the coarse ground's vertex there (groundVertexAt on `mesh` =
+// groundDrawMesh(ground)) pressed down by the rut (positionHeight.w: the rut's depth), its normal tilted by the rut's
+// slope. What TrackRenderer draws, and what the range sensors see (render_job).
+std::vector<gpu::TerrainVertex> trackPatchVertices(const GroundTracks& tracks, const Ground& ground,
+                                                   const GroundDrawMesh& mesh, TrackBlockKey key);
+
 class TrackRenderer {
 public:
     // `main` / `truth`: the terrain's main and truth pipelines (terrain.vert + terrain.frag, terrain_truth.vert +

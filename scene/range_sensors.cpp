@@ -106,7 +106,8 @@ RangeSensorParams readSensor(JsonReader r, size_t index) {
     if (!p.preset.empty() && type != int(p.type))
         r.fail("'" + r.childPath("type") + "' contradicts preset '" + p.preset + "'");
     p.type = RangeSensorType(type);
-    if (p.type == RangeSensorType::Lidar && p.elevationsDegrees.empty()) p.elevationsDegrees = evenlySpaced(-15, 15, 16);
+    if (p.type == RangeSensorType::Lidar && p.elevationsDegrees.empty())
+        p.elevationsDegrees = evenlySpaced(-15, 15, 16);
     if (p.type == RangeSensorType::Scanner) p.elevationsDegrees = {0.0};
     if (r.has("elevations_deg")) {
         if (p.type != RangeSensorType::Lidar) r.fail("'" + r.childPath("elevations_deg") + "' applies to a lidar only");
@@ -127,7 +128,8 @@ RangeSensorParams readSensor(JsonReader r, size_t index) {
     p.minRange = range.x, p.maxRange = range.y;
     p.divergenceMrad = r.number("divergence_mrad", p.divergenceMrad, 0.0, 100.0);
     p.subRays = uint32_t(r.integer("sub_rays", p.subRays, 1, 19));
-    if (p.subRays != 1 && p.subRays != 7 && p.subRays != 19) r.fail("'" + r.childPath("sub_rays") + "' must be 1, 7 or 19");
+    if (p.subRays != 1 && p.subRays != 7 && p.subRays != 19)
+        r.fail("'" + r.childPath("sub_rays") + "' must be 1, 7 or 19");
     if (p.subRays > 1 && p.divergenceMrad == 0.0)
         r.fail("'" + r.childPath("sub_rays") + "' > 1 needs a beam divergence ('divergence_mrad' > 0)");
     p.returnMode = RangeReturn(r.choice("return", int(p.returnMode), {"first", "strongest", "last"}));
@@ -146,7 +148,8 @@ glm::dmat4 frameFromAxes(glm::dvec3 forward, glm::dvec3 up, glm::dvec3 origin, d
     forward = glm::normalize(forward), up = glm::normalize(up - forward * glm::dot(forward, up));
     const double p = pitchDegrees * kDegrees;
     const glm::dvec3 x = forward * std::cos(p) - up * std::sin(p), z = up * std::cos(p) + forward * std::sin(p);
-    return glm::dmat4(glm::dvec4(x, 0.0), glm::dvec4(glm::cross(z, x), 0.0), glm::dvec4(z, 0.0), glm::dvec4(origin, 1.0));
+    return glm::dmat4(glm::dvec4(x, 0.0), glm::dvec4(glm::cross(z, x), 0.0), glm::dvec4(z, 0.0),
+                      glm::dvec4(origin, 1.0));
 }
 
 } // namespace
@@ -174,13 +177,14 @@ glm::dmat4 rangeSensorPose(const Scene& scene, const RangeSensorParams& sensor, 
         const PathPose pose = pathPose(m.path, terrain, time);
         return frameFromAxes(glm::dvec3(pose.heading, 0.0), {0, 0, 1}, pose.position, m.pitchDegrees);
     }
-    case RangeMount::Kind::Object: break;
+    case RangeMount::Kind::Object:
+        break;
     }
     size_t k = 0;
     while (k < scene.objects.size() && scene.objects[k].name != m.object) ++k;
-    require(k < scene.objects.size() && k < models.size(),
-            scene.source + ": range sensor '" + sensor.name + "': 'mount.object' names no scene object: '" +
-                m.object + "'");
+    require(k < scene.objects.size() && k < models.size(), scene.source + ": range sensor '" + sensor.name +
+                                                               "': 'mount.object' names no scene object: '" + m.object +
+                                                               "'");
     const glm::dmat4 node = objectNodeToWorld(scene.objects[k], models[k], m.node, terrain, time);
     // Node frame: -y forward, +x left, +z up (objects.h).
     return frameFromAxes(glm::dvec3(node * glm::dvec4(0, -1, 0, 0)), glm::dvec3(node * glm::dvec4(0, 0, 1, 0)),
@@ -190,7 +194,8 @@ glm::dmat4 rangeSensorPose(const Scene& scene, const RangeSensorParams& sensor, 
 glm::dvec3 beamDirection(const RangeSensorParams& s, uint32_t ring, uint32_t column) {
     if (s.type == RangeSensorType::TimeOfFlight) {
         const double f = 0.5 * double(s.height) / std::tan(0.5 * s.fovYDegrees * kDegrees);
-        return glm::normalize(glm::dvec3(f, -(double(column) + 0.5 - 0.5 * s.width), -(double(ring) + 0.5 - 0.5 * s.height)));
+        return glm::normalize(
+            glm::dvec3(f, -(double(column) + 0.5 - 0.5 * s.width), -(double(ring) + 0.5 - 0.5 * s.height)));
     }
     const double az = (s.angleMinDegrees + double(column) * s.azimuthStepDegrees) * kDegrees;
     const double el = s.elevationsDegrees[ring] * kDegrees;

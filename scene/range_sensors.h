@@ -27,38 +27,40 @@ enum class RangeReturn { First, Strongest, Last };
 
 struct RangeMount {
     enum class Kind { Fixed, Path, Object } kind = Kind::Fixed;
-    glm::dvec3 position{0.0};        // Fixed: world position; z replaced (on_ground) by the terrain + heightAboveGround
-    double heightAboveGround = 1.0;  // Fixed: metres above the terrain (a path has its own height_above_ground)
+    glm::dvec3 position{0.0};       // Fixed: world position; z replaced (on_ground) by the terrain + heightAboveGround
+    double heightAboveGround = 1.0; // Fixed: metres above the terrain (a path has its own height_above_ground)
     bool useHeightAboveGround = true;
-    double yawDegrees = 0.0;         // Fixed: heading of the sensor's +x, counter-clockwise from world +x
-    double pitchDegrees = 0.0;       // all: downward tilt of +x (positive looks down)
-    PathParams path;                 // Path: heading = direction of travel
-    std::string object, node;        // Object: the node's frame (-y forward, +x left, +z up) carries the sensor
-    glm::dvec3 offset{0.0};          // Object: sensor origin in the node's frame, metres
+    double yawDegrees = 0.0;   // Fixed: heading of the sensor's +x, counter-clockwise from world +x
+    double pitchDegrees = 0.0; // all: downward tilt of +x (positive looks down)
+    PathParams path;           // Path: heading = direction of travel
+    std::string object, node;  // Object: the node's frame (-y forward, +x left, +z up) carries the sensor
+    glm::dvec3 offset{0.0};    // Object: sensor origin in the node's frame, metres
 };
 
 struct RangeSensorParams {
-    std::string name;                // unique; names the output folder
+    std::string name; // unique; names the output folder
     RangeSensorType type = RangeSensorType::Lidar;
-    std::string preset;              // the data-sheet preset it started from ("" = none)
+    std::string preset; // the data-sheet preset it started from ("" = none)
     RangeMount mount;
     // LiDAR: channel elevations (degrees, ring 0 first), azimuth step (degrees) and rotation rate; the sweep of frame
     // f starts at the frame's time and lasts 1 / rateHz. Scanner: one channel, angles [angleMin, angleMax] in steps.
     std::vector<double> elevationsDegrees;
     double azimuthStepDegrees = 0.2;
     double angleMinDegrees = -180.0, angleMaxDegrees = 180.0; // scanner (and a LiDAR's horizontal window)
-    double rateHz = 10.0;            // rotations (LiDAR, scanner) or frames (ToF) per second
+    double rateHz = 10.0;                                     // rotations (LiDAR, scanner) or frames (ToF) per second
     // ToF camera: image size and vertical field of view (square pixels, principal point at the centre).
     uint32_t width = 320, height = 240;
     double fovYDegrees = 45.0;
     double minRange = 0.3, maxRange = 100.0; // metres; no return outside
-    double divergenceMrad = 0.0;     // full-angle beam divergence; > 0: sub-rays over the beam's cone
-    uint32_t subRays = 1;            // rays per beam (1, or 7 / 19: a centre and rings of a hexagonal pattern)
+    double divergenceMrad = 0.0;             // full-angle beam divergence; > 0: sub-rays over the beam's cone
+    uint32_t subRays = 1;                    // rays per beam (1, or 7 / 19: a centre and rings of a hexagonal pattern)
     RangeReturn returnMode = RangeReturn::Strongest;
-    double rangeNoise = 0.0;         // standard deviation of the range, metres (counter-based, reproducible)
-    double dropout = 0.0;            // probability that a beam with an echo returns nothing
+    double rangeNoise = 0.0; // standard deviation of the range, metres (counter-based, reproducible)
+    double dropout = 0.0;    // probability that a beam with an echo returns nothing
 
-    uint32_t channels() const { return type == RangeSensorType::TimeOfFlight ? height : uint32_t(elevationsDegrees.size()); }
+    uint32_t channels() const {
+        return type == RangeSensorType::TimeOfFlight ? height : uint32_t(elevationsDegrees.size());
+    }
     uint32_t columns() const; // azimuth steps (LiDAR, scanner) or image width (ToF)
 };
 

@@ -5,22 +5,22 @@
 // errors name the file and the JSON path, e.g. "examples/meadow.json: 'terrain.amplitude' must be ...".
 #pragma once
 
-#include "vegetation/atlas.h"
-#include "world/camera.h"
-#include "scene/camera_rig.h"
-#include "vegetation/grass_map.h"
-#include "world/ground.h"
-#include "vegetation/land_cover.h"
 #include "interaction/collision.h"
-#include "world/path.h"
+#include "scene/camera_rig.h"
 #include "scene/objects.h"
 #include "scene/range_sensors.h"
 #include "scene/terrain.h"
 #include "scene/vehicles.h"
 #include "scene/world_params.h"
+#include "vegetation/atlas.h"
+#include "vegetation/grass_map.h"
+#include "vegetation/land_cover.h"
 #include "vegetation/vegetation_params.h"
 #include "vegetation/vegetation_tile.h"
 #include "world/asset_policy.h"
+#include "world/camera.h"
+#include "world/ground.h"
+#include "world/path.h"
 
 #include <nlohmann/json.hpp>
 

@@ -100,6 +100,9 @@ void checkWorldDrawable(const Scene& scene) {
         fail("'objects' in a world of several tiles are not supported yet (an object stands on one tile's ground)");
     if (w.tilesX * w.tilesY > 1 && scene.actors.gusts.count > 0)
         fail("'gusts' in a world of several tiles are not supported yet (gusts drift over one tile)");
+    if (!scene.rangeSensors.empty())
+        fail("'range_sensors' in a world are not supported yet: their rays are cast against one tile's ground and "
+             "plants");
 }
 
 uint64_t predictedTileBytes(const Scene& scene, bool farCover) {

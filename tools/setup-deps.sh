@@ -16,6 +16,8 @@ packages=(
   # GIS rasters: GDAL reads land-cover maps and heightmaps (io/raster_file); the build writes the example worlds'
   # GeoTIFFs with gdal-bin's gdal_translate (tools/make-example-data.py)
   libgdal-dev gdal-bin
+  # ray casting of the range sensors (range/ray_scene): Intel's Embree 3
+  libembree-dev
   # OpenCV modules used by tests and sward-eval (the per-module packages avoid 40+ unrelated ones)
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-calib3d-dev
   # configuration, command line, UI

@@ -87,8 +87,8 @@ gpu::ExpandedPlant expandWholePlant(const VegetationParams& vegetation, const Wi
     if (len > gpu::kMaxTipOffset) tip *= gpu::kMaxTipOffset / len;
     const uint32_t cutByte = (dynamic.state >> 24) & 0xffu;
     const uint32_t fade = (uint32_t(gpu::kWidthScaleUnit) << 8) | (motion.state << 17) | (cutByte << 24);
-    return {glm::vec4(position, plantHeight(vegetation, plant, dynamic)), plant.up,
-            plant.attributes & 0x00ffffffu, glm::packHalf2x16(tip), fade};
+    return {glm::vec4(position, plantHeight(vegetation, plant, dynamic)), plant.up, plant.attributes & 0x00ffffffu,
+            glm::packHalf2x16(tip), fade};
 }
 
 ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationParams& vegetation, const LodParams& lod,
@@ -128,7 +128,8 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
                     slice = uint32_t(std::min(cut / std::max(height, 1e-6f), 1.0f) * gpu::kSliceUnit);
                     if (slice == uint32_t(gpu::kSliceUnit)) continue;
                 }
-                gpu::ExpandedPlant expanded = expandWholePlant(vegetation, wind, field, i, field.dynamicRecords[i], time);
+                gpu::ExpandedPlant expanded =
+                    expandWholePlant(vegetation, wind, field, i, field.dynamicRecords[i], time);
                 expanded.attributes |= slice << 24;
                 expanded.fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 255.0f + 0.5f) | (width << 8) |
                                 (expanded.fade & 0xffff0000u);

@@ -20,7 +20,8 @@ struct SensorPatch {
     std::unique_ptr<RayScene> rays;
 
     SensorPatch(double density, nlohmann::json sensor, double size = 50.0) {
-        nlohmann::json mount = {{"position", {size / 2, size / 2, 0.0}}, {"height_above_ground", 1.0}, {"yaw_deg", 30.0}};
+        nlohmann::json mount = {
+            {"position", {size / 2, size / 2, 0.0}}, {"height_above_ground", 1.0}, {"yaw_deg", 30.0}};
         if (!sensor.contains("mount")) sensor["mount"] = mount;
         sensor["name"] = "s";
         patch = test::uniformPatch(density, size, {{"range_sensors", nlohmann::json::array({sensor})}});
@@ -63,7 +64,8 @@ TEST(RangeSweep, BeamsMeetBareGroundWhereTheGeometrySaysTheyDo) {
 
 // Range noise has the configured spread; dropout drops the configured share.
 TEST(RangeSweep, NoiseAndDropoutFollowTheirParameters) {
-    SensorPatch s(0.0, {{"preset", "VLP-16"}, {"range_noise_m", 0.05}, {"dropout", 0.2}, {"angle_step_deg", 0.5}}, 150.0);
+    SensorPatch s(0.0, {{"preset", "VLP-16"}, {"range_noise_m", 0.05}, {"dropout", 0.2}, {"angle_step_deg", 0.5}},
+                  150.0);
     const RangeScan scan = s.sweep(2);
     const RangeSensorParams& sensor = s.patch.scene.rangeSensors[0];
     double sum = 0.0, squares = 0.0;
@@ -81,8 +83,13 @@ TEST(RangeSweep, NoiseAndDropoutFollowTheirParameters) {
 // A beam wider than a plant in front of the ground splits into two echoes: first the plant, last the ground.
 TEST(RangeSweep, FirstAndLastReturnsSeparateAPlantFromTheGroundBehindIt) {
     auto scanWith = [](const char* mode) {
-        SensorPatch s(3.0, {{"preset", "VLP-16"}, {"divergence_mrad", 60.0}, {"sub_rays", 19}, {"return", mode},
-                            {"range_noise_m", 0.0}, {"elevations_deg", {-12.0}}, {"angle_step_deg", 0.5}});
+        SensorPatch s(3.0, {{"preset", "VLP-16"},
+                            {"divergence_mrad", 60.0},
+                            {"sub_rays", 19},
+                            {"return", mode},
+                            {"range_noise_m", 0.0},
+                            {"elevations_deg", {-12.0}},
+                            {"angle_step_deg", 0.5}});
         return s.sweep(2);
     };
     const RangeScan first = scanWith("first"), last = scanWith("last"), strongest = scanWith("strongest");
@@ -126,18 +133,18 @@ TEST(RangeFiles, LayoutsFollowTheirFormats) {
     const RangeScan laser = scanner.sweep(2);
     const nlohmann::json j = nlohmann::json::parse(laserScanJson(scanner.patch.scene.rangeSensors[0], laser));
     ASSERT_EQ(j["ranges"].size(), 541u); // 270 degrees in 0.5 degree steps, both ends
-    for (size_t c = 0; c < laser.ranges.size(); ++c)
-        EXPECT_EQ(j["ranges"][c].is_null(), laser.ranges[c] == 0.0f);
+    for (size_t c = 0; c < laser.ranges.size(); ++c) EXPECT_EQ(j["ranges"][c].is_null(), laser.ranges[c] == 0.0f);
 }
 
 // A ToF camera's depth is planar (along its axis): over flat bare ground, looking down at 90 degrees, every pixel
 // reads the height.
 TEST(RangeFiles, TofDepthIsPlanar) {
-    SensorPatch s(0.0, {{"preset", "AzureKinect-NFOV"},
-                        {"range_noise_m", 0.0},
-                        {"resolution", {64, 48}},
-                        {"range", {0.1, 10.0}},
-                        {"mount", {{"position", {25.0, 25.0, 0.0}}, {"height_above_ground", 2.0}, {"pitch_deg", 90.0}}}});
+    SensorPatch s(0.0,
+                  {{"preset", "AzureKinect-NFOV"},
+                   {"range_noise_m", 0.0},
+                   {"resolution", {64, 48}},
+                   {"range", {0.1, 10.0}},
+                   {"mount", {{"position", {25.0, 25.0, 0.0}}, {"height_above_ground", 2.0}, {"pitch_deg", 90.0}}}});
     const std::vector<float> depth = tofDepth(s.patch.scene.rangeSensors[0], s.sweep(2));
     ASSERT_EQ(depth.size(), 64u * 48u);
     for (float z : depth) EXPECT_NEAR(z, 2.0f, 1e-4f);

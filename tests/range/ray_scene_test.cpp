@@ -22,12 +22,15 @@ TEST(RayScene, HitsAPlantCardWhereItsAlphaIsOpaque) {
     ASSERT_GT(field.plantCount(), 10u);
     uint32_t checked = 0;
     for (uint32_t i = 0; i < field.plantCount() && checked < 20; i += 7) {
-        const gpu::ExpandedPlant plant = expandWholePlant(patch.scene.vegetation, patch.scene.wind, field, i, field.dynamicRecords[i], 0.0);
+        const gpu::ExpandedPlant plant =
+            expandWholePlant(patch.scene.vegetation, patch.scene.wind, field, i, field.dynamicRecords[i], 0.0);
         const AtlasDesc& desc = patch.atlas.desc;
-        const uint32_t category = plant.attributes & 3u, variant = ((plant.attributes >> 2) & 63u) % uint32_t(desc.rows[category].cells.size());
+        const uint32_t category = plant.attributes & 3u,
+                       variant = ((plant.attributes >> 2) & 63u) % uint32_t(desc.rows[category].cells.size());
         const AtlasCell& cell = desc.rows[category].cells[variant];
         glm::vec3 corners[16];
-        plantQuadCorners(plant, gpu::kLodNear, glm::vec3(0.0f), glm::vec3(cell.baseU, cell.baseV, cell.aspect), corners);
+        plantQuadCorners(plant, gpu::kLodNear, glm::vec3(0.0f), glm::vec3(cell.baseU, cell.baseV, cell.aspect),
+                         corners);
         // The centre of quad 0's first triangle, approached along the quad's normal from 2 cm away.
         const glm::vec3 target = (corners[0] + corners[1] + corners[2]) / 3.0f;
         const glm::vec3 normal = glm::normalize(glm::cross(corners[1] - corners[0], corners[2] - corners[0]));

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -29,7 +30,8 @@ std::string readFile(const std::string& path) {
 
 int render(const std::string& args, std::string& err) {
     const std::string dir = tempDir("range-log");
-    const std::string command = SWARD_RENDER_EXE " " + args + " --validation --quiet >" + dir + "/out.txt 2>" + dir + "/err.txt";
+    const std::string command =
+        SWARD_RENDER_EXE " " + args + " --validation --quiet >" + dir + "/out.txt 2>" + dir + "/err.txt";
     const int status = std::system(command.c_str());
     err = readFile(dir + "/err.txt");
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -41,16 +43,17 @@ std::string lidarScene() {
     nlohmann::json scene = nlohmann::json::parse(readFile(SWARD_TEST_DATA_DIR "/dataset_scene.json"));
     scene["lod"] = {{"near", 60}, {"mid", 70}, {"far", 80}, {"band", 2}};
     scene["camera"]["baseline"] = 0.0;
+    scene["vehicles"][0]["rut_depth"] = 0.04; // the vehicle's wheels press ruts the LiDAR must see too
     std::vector<double> elevations; // every degree from 45 down to 5 below the horizon
     for (int e = -45; e <= -5; ++e) elevations.push_back(e);
-    scene["range_sensors"] = {{{"name", "lidar"},
-                               {"preset", "VLP-16"},
-                               {"divergence_mrad", 0.0},
-                               {"range_noise_m", 0.0},
-                               {"angle_step_deg", 0.1},
-                               {"elevations_deg", elevations},
-                               {"mount", {{"position", {53.5, 46.0, 0.0}}, {"height_above_ground", 2.2},
-                                          {"yaw_deg", 120.0}}}}};
+    scene["range_sensors"] = {
+        {{"name", "lidar"},
+         {"preset", "VLP-16"},
+         {"divergence_mrad", 0.0},
+         {"range_noise_m", 0.0},
+         {"angle_step_deg", 0.1},
+         {"elevations_deg", elevations},
+         {"mount", {{"position", {53.5, 46.0, 0.0}}, {"height_above_ground", 2.2}, {"yaw_deg", 120.0}}}}};
     const std::string path = tempDir("range-scene") + "/scene.json";
     std::ofstream(path) << scene.dump(2);
     return path;
@@ -90,7 +93,7 @@ std::vector<LidarPoint> readPly(const std::string& path) {
     return points;
 }
 
-TEST(RangeSensors, LidarPointsAgreeWithTheCameraDepthOnTheSameSurface) {
+TEST(RangeSensorDatasets, LidarPointsAgreeWithTheCameraDepthOnTheSameSurface) {
     const std::string out = tempDir("range-consistency");
     std::string err;
     ASSERT_EQ(render(lidarScene() + " --out " + out + " --frames 4:5 --resolution 320x240", err), 0) << err;
@@ -109,18 +112,20 @@ TEST(RangeSensors, LidarPointsAgreeWithTheCameraDepthOnTheSameSurface) {
     const cv::Matx44d cameraFromWorld = pose.inv();
 
     std::vector<double> relative, plantRelative; // all points, plant points
-    uint32_t plants = 0, felled = 0, ground = 0;
+    uint32_t plants = 0, felled = 0, ground = 0, track = 0;
     for (const LidarPoint& p : readPly(out + "/range/lidar/000004.ply")) {
         const cv::Vec4d c = cameraFromWorld * cv::Vec4d(p.wx, p.wy, p.wz, 1.0);
         if (c[2] <= 0.1) continue;
-        const double u = double(k["fx"]) * c[0] / c[2] + double(k["cx"]), v = double(k["fy"]) * c[1] / c[2] + double(k["cy"]);
+        const double u = double(k["fx"]) * c[0] / c[2] + double(k["cx"]),
+                     v = double(k["fy"]) * c[1] / c[2] + double(k["cy"]);
         const int x0 = int(std::floor(u)), y0 = int(std::floor(v));
         if (x0 < 0 || y0 < 0 || x0 + 1 >= depth.cols || y0 + 1 >= depth.rows) continue;
         // The same surface: all four pixels around the point show the point's class and instance (range sensors label
         // the ground as ground; the camera's truth calls it turf under dense plants).
         auto sameClass = [&](uint8_t pixel) {
             using namespace sward::gpu;
-            return pixel == p.semantic || (p.semantic == kSemanticGround && (pixel == kSemanticTurf || pixel == kSemanticTrack));
+            return pixel == p.semantic ||
+                   (p.semantic == kSemanticGround && (pixel == kSemanticTurf || pixel == kSemanticTrack));
         };
         bool same = true;
         for (int dy = 0; dy < 2; ++dy)
@@ -139,28 +144,34 @@ TEST(RangeSensors, LidarPointsAgreeWithTheCameraDepthOnTheSameSurface) {
         plants += plant;
         felled += p.semantic == sward::gpu::kSemanticFelled;
         ground += p.semantic == sward::gpu::kSemanticGround || p.semantic == sward::gpu::kSemanticTurf;
+        track += p.semantic == sward::gpu::kSemanticTrack;
     }
     ASSERT_GT(relative.size(), 500u);
     auto median = [](std::vector<double> v) {
         std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
         return v.empty() ? 1.0 : v[v.size() / 2];
     };
-    std::printf("%zu LiDAR points on surfaces the camera sees (%u plant, %u felled, %u ground): median relative depth "
-                "difference %.3g (plants %.3g)\n", relative.size(), plants, felled, ground, median(relative),
-                median(plantRelative));
+    std::printf(
+        "%zu LiDAR points on surfaces the camera sees (%u plant, %u felled, %u ground, %u rut): median relative "
+        "depth difference %.3g (plants %.3g)\n",
+        relative.size(), plants, felled, ground, track, median(relative), median(plantRelative));
     EXPECT_LT(median(relative), 1e-4);
     EXPECT_LT(median(plantRelative), 1e-4);
     EXPECT_GT(plants, 100u);
     EXPECT_GT(ground, 100u);
     EXPECT_GT(felled, 0u); // the test scene's vehicle has felled grass by frame 4: the GPU's dynamic records are read
+    EXPECT_GT(track, 0u);  // and pressed ruts, which the LiDAR sees where the camera does
 }
 
-TEST(RangeSensors, FilesAreTheSameRenderedWholeOrInShards) {
+TEST(RangeSensorDatasets, FilesAreTheSameRenderedWholeInShardsOrResumed) {
     const std::string scene = lidarScene(), whole = tempDir("range-whole"), shards = tempDir("range-shards");
     std::string err;
     ASSERT_EQ(render(scene + " --out " + whole + " --frames 2:5 --resolution 96x72", err), 0) << err;
     ASSERT_EQ(render(scene + " --out " + shards + " --frames 2:5 --resolution 96x72 --shard 1/2", err), 0) << err;
     ASSERT_EQ(render(scene + " --out " + shards + " --frames 2:5 --resolution 96x72 --shard 0/2", err), 0) << err;
+    // A frame with a range file missing is not complete: a rerun renders it again, to the same bytes.
+    std::remove((shards + "/range/lidar/000003.label").c_str());
+    ASSERT_EQ(render(scene + " --out " + shards + " --frames 2:5 --resolution 96x72", err), 0) << err;
     for (uint32_t frame = 2; frame < 5; ++frame)
         for (const char* extension : {".ply", ".bin", ".label"}) {
             char name[64];

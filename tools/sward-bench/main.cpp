@@ -20,6 +20,25 @@ void emit(const nlohmann::json& result, const std::string& jsonPath, const std::
     sward::writeTextAtomically(jsonPath, result.dump(2) + "\n");
 }
 
+CLI::App* addLidarCommand(CLI::App& app, sward::LidarBenchOptions& lidar, std::string& json) {
+    CLI::App* ldr = app.add_subcommand(
+        "lidar", "Range sensor against real time: a sensor driving through the scene (CPU, Embree), sweep time, CPU "
+                 "time and points per second");
+    ldr->add_option("scene", lidar.scenePath, "Scene JSON (default: examples/meadow.json)");
+    ldr->add_option("--allow-assets", lidar.allowAssets, "Also read the scene's assets from this folder (repeatable)");
+    ldr->add_option("--preset", lidar.preset,
+                    "Sensor preset (VLP-16, HDL-32E, OS1-64, LMS111, UST-10LX, AzureKinect-NFOV)")
+        ->capture_default_str();
+    sward::addReal(*ldr, "--height", lidar.height, 0.0, 100.0, "Sensor height above the ground, metres");
+    sward::addReal(*ldr, "--speed", lidar.speed, 0.0, 100.0, "Driving speed, metres per second");
+    sward::addUnsigned(*ldr, "--sub-rays", lidar.subRays, 0, 19,
+                       "Rays per beam: 1 (no divergence), 7 or 19 (0: the preset's)");
+    sward::addUnsigned(*ldr, "--sweeps", lidar.sweeps, 1, 10000, "Measured sweeps (medians)");
+    sward::addUnsigned(*ldr, "--threads", lidar.threads, 0, sward::kMaxThreadsOption, "Threads (0 = all cores)");
+    ldr->add_option("--json", json, "Also write the figures as a JSON object to this file");
+    return ldr;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -110,19 +129,7 @@ int main(int argc, char** argv) {
     wld->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
     sward::LidarBenchOptions lidar;
-    CLI::App* ldr = app.add_subcommand(
-        "lidar", "Range sensor against real time: a sensor driving through the scene (CPU, Embree), sweep time, CPU "
-                 "time and points per second");
-    ldr->add_option("scene", lidar.scenePath, "Scene JSON (default: examples/meadow.json)");
-    ldr->add_option("--allow-assets", lidar.allowAssets, "Also read the scene's assets from this folder (repeatable)");
-    ldr->add_option("--preset", lidar.preset, "Sensor preset (VLP-16, HDL-32E, OS1-64, LMS111, UST-10LX, AzureKinect-NFOV)")
-        ->capture_default_str();
-    sward::addReal(*ldr, "--height", lidar.height, 0.0, 100.0, "Sensor height above the ground, metres");
-    sward::addReal(*ldr, "--speed", lidar.speed, 0.0, 100.0, "Driving speed, metres per second");
-    sward::addUnsigned(*ldr, "--sub-rays", lidar.subRays, 0, 19, "Rays per beam: 1 (no divergence), 7 or 19 (0: the preset's)");
-    sward::addUnsigned(*ldr, "--sweeps", lidar.sweeps, 1, 10000, "Measured sweeps (medians)");
-    sward::addUnsigned(*ldr, "--threads", lidar.threads, 0, sward::kMaxThreadsOption, "Threads (0 = all cores)");
-    ldr->add_option("--json", json, "Also write the figures as a JSON object to this file");
+    CLI::App* ldr = addLidarCommand(app, lidar, json);
 
     return sward::runTool(app, argc, argv, "sward-bench", [&] {
         if (ldr->parsed()) emit(sward::benchLidar(lidar), json);
