@@ -152,3 +152,30 @@ TEST(RangeFiles, TofDepthIsPlanar) {
 
 } // namespace
 } // namespace sward
+
+namespace sward {
+namespace {
+
+// A LiDAR driving at 20 m/s: each column fires later and from further along; a point's world position is its
+// sensor-frame position under the pose of its own firing time, and the sweep's poses in frames.jsonl bracket them.
+TEST(RangeSweep, PointsAreTimedAndPlacedByThePoseOfTheirOwnColumn) {
+    const nlohmann::json path = {{"points", {{20, 75}, {130, 75}}}, {"speed", 20.0}, {"height_above_ground", 1.0}};
+    nlohmann::json sensorJson = {{"preset", "VLP-16"}, {"range_noise_m", 0.0}, {"angle_step_deg", 1.0}};
+    sensorJson["mount"] = {{"path", path}};
+    SensorPatch s(0.0, sensorJson, 150.0);
+    const RangeSensorParams& sensor = s.patch.scene.rangeSensors[0];
+    const RangeScan scan = s.sweep(2);
+    ASSERT_GT(scan.points.size(), 1000u);
+    for (const RangePoint& p : scan.points) {
+        EXPECT_FLOAT_EQ(p.time, float(columnTime(sensor, p.column)));
+        const glm::dmat4 pose = rangeSensorPose(s.patch.scene, sensor, s.patch.ground, s.models, double(p.time));
+        const glm::dvec3 world(pose * glm::dvec4(glm::dvec3(p.sensor), 1.0));
+        EXPECT_NEAR(glm::distance(world, p.world), 0.0, 2e-5);
+    }
+    // 20 m/s for a tenth of a second: the last column fires 2 m further along the path than the first.
+    EXPECT_NEAR(scan.endPose[3].x - scan.startPose[3].x, 20.0 * columnTime(sensor, sensor.columns() - 1), 1e-9);
+    EXPECT_NEAR(scan.points.back().time, 0.1 * 359.0 / 360.0, 1e-6);
+}
+
+} // namespace
+} // namespace sward
