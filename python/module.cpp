@@ -9,6 +9,7 @@
 #include "io/disparity_files.h"
 #include "io/image_files.h"
 #include "io/image_io.h"
+#include "range/range_files.h"
 #include "render/render_job.h"
 #include "render/session.h"
 #include "scene/collider_params.h"
@@ -42,8 +43,44 @@ py::array_t<float> colour(const std::vector<uint16_t>& rendered, uint32_t width,
     return image(rgba, width, height, 4);
 }
 
-// The frame as numpy arrays, named and converted as the dataset's files hold them (dataset/frame_truth.h).
-py::dict frameDict(const SessionFrame& f) {
+// A range sensor's sweep as the dataset's files hold it (range/range_files.h): per point, in firing order, "xyz"
+// (sensor frame), "world", "intensity", "time", "ring", "column", "class", "instance"; a scanner's "ranges" per angle
+// (NaN: no return); a ToF camera's planar "depth" image (+inf: no return).
+py::dict rangeDict(const RangeSensorParams& sensor, const RangeScan& scan) {
+    py::dict d;
+    if (sensor.type == RangeSensorType::TimeOfFlight) {
+        d["depth"] = image(tofDepth(sensor, scan), sensor.width, sensor.height);
+        return d;
+    }
+    const py::ssize_t n = py::ssize_t(scan.points.size());
+    py::array_t<float> xyz({n, py::ssize_t(3)}), intensity(n), time(n);
+    py::array_t<double> world({n, py::ssize_t(3)});
+    py::array_t<uint16_t> ring(n), column(n);
+    py::array_t<uint8_t> semantic(n);
+    py::array_t<uint32_t> instance(n);
+    for (py::ssize_t i = 0; i < n; ++i) {
+        const RangePoint& p = scan.points[size_t(i)];
+        for (int k = 0; k < 3; ++k) xyz.mutable_at(i, k) = p.sensor[k], world.mutable_at(i, k) = p.world[k];
+        intensity.mutable_at(i) = p.intensity, time.mutable_at(i) = p.time;
+        ring.mutable_at(i) = uint16_t(p.ring), column.mutable_at(i) = uint16_t(p.column);
+        semantic.mutable_at(i) = uint8_t(p.label >> gpu::kInstanceBits);
+        instance.mutable_at(i) = p.label & ((1u << gpu::kInstanceBits) - 1u);
+    }
+    d["xyz"] = xyz, d["world"] = world, d["intensity"] = intensity, d["time"] = time;
+    d["ring"] = ring, d["column"] = column, d["class"] = semantic, d["instance"] = instance;
+    if (sensor.type == RangeSensorType::Scanner) {
+        std::vector<float> ranges = scan.ranges;
+        for (float& r : ranges) r = r > 0.0f ? r : std::nanf("");
+        py::array_t<float> out(py::ssize_t(ranges.size()));
+        std::copy(ranges.begin(), ranges.end(), out.mutable_data());
+        d["ranges"] = out;
+    }
+    return d;
+}
+
+// The frame as numpy arrays, named and converted as the dataset's files hold them (dataset/frame_truth.h); with
+// range sensors, "range": {sensor name: rangeDict}.
+py::dict frameDict(const SessionFrame& f, const std::vector<RangeSensorParams>& sensors) {
     const FrameImages& im = f.images;
     const uint32_t w = im.width, h = im.height;
     const FrameTruth truth = frameTruth(im, f.cameras.left.fx, f.baseline);
@@ -65,6 +102,12 @@ py::dict frameDict(const SessionFrame& f) {
         d["disparity_right"] = image(truth.rightDisparity, w, h);
         d["normal_right"] = image(im.rightNormals, w, h, 3);
         d["preview_right"] = image(tonemapPreview(im.rightRgbaHalf, w, h), w, h, 3);
+    }
+    if (!f.range.empty()) {
+        py::dict range;
+        for (size_t k = 0; k < f.range.size() && k < sensors.size(); ++k)
+            range[py::str(sensors[k].name)] = rangeDict(sensors[k], f.range[k]);
+        d["range"] = range;
     }
     return d;
 }
@@ -149,7 +192,7 @@ void bindSession(py::module_& m) {
                 py::gil_scoped_release release;
                 f = s.render();
             }
-            return frameDict(f);
+            return frameDict(f, s.resources().scene.rangeSensors);
         })
         .def("set_camera", [](Session& s, const std::optional<std::vector<double>>& position,
                               const std::optional<std::vector<double>>& lookAt, std::optional<double> fov) {

@@ -11,7 +11,6 @@
 #include "range/range_recorder.h"
 #include "render/scene_gpu.h"
 #include "render/sequence_frame.h"
-#include "render/track_renderer.h"
 #include "scene/scene_input.h"
 #include "scene/scene_resources.h"
 
@@ -161,41 +160,6 @@ uint64_t bytesNeeded(const DatasetWriter& dataset, const JobPlan& plan, const st
     return dataset.frameBytesUpperBound(plan.width, plan.height) + sequenceBytes + manifestBytes + kSmallFiles;
 }
 
-// The ground's rut patches as the track renderer draws them, rebuilt when the ruts change.
-struct RutPatchCache {
-    std::optional<GroundDrawMesh> mesh;
-    uint64_t revision = ~uint64_t(0);
-    std::vector<GroundPatch> patches;
-};
-
-// What the range sensors see of a rendered frame besides the scene: the plants' state and the ruts.
-struct RangeState {
-    std::vector<gpu::PlantDynamic> dynamics;
-    std::vector<GroundPatch> patches;
-};
-
-// The range sensors see the plants and the ground as the frame shows them: the GPU's dynamic records after its tick,
-// the ruts pressed up to it.
-RangeState rangeState(SceneGpu& gpu, const SceneResources& r, RutPatchCache& ruts) {
-    RangeState state;
-    if (!gpu.simulation) return state;
-    if (gpu.simulation->hasPlants()) state.dynamics = gpu.simulation->gpu().readDynamics();
-    const GroundTracks& tracks = gpu.simulation->tracks();
-    if (tracks.revision() != ruts.revision) {
-        if (!ruts.mesh && !tracks.blocks().empty()) ruts.mesh = groundDrawMesh(r.terrain);
-        ruts.patches.clear();
-        for (const auto& [key, depths] : tracks.blocks()) {
-            GroundPatch patch{key.x, key.y, {}};
-            for (const gpu::TerrainVertex& v : trackPatchVertices(tracks, r.terrain, *ruts.mesh, key))
-                patch.points.push_back(v.positionHeight);
-            ruts.patches.push_back(std::move(patch));
-        }
-        ruts.revision = tracks.revision();
-    }
-    state.patches = ruts.patches;
-    return state;
-}
-
 // Renders and writes the frames of `todo` (in order). The simulation runs every tick from 0, so skipped frames
 // and other shards' frames still leave their tracks.
 void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const std::vector<uint32_t>& todo,
@@ -215,11 +179,11 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
         auto cameras = std::make_shared<RigCameras>();
         auto images = std::make_shared<const FrameImages>(
             renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras));
-        auto state = std::make_shared<RangeState>(); // copies: the next frame's ticks change both
-        if (range.active()) *state = rangeState(gpu, r, ruts);
+        auto state = std::make_shared<RangeFrameState>();
+        if (range.active()) *state = rangeFrameState(gpu, r, ruts);
         writer.start([&dataset, &progress, &done, &rig, &range, &options, frame, images, cameras, state] {
             dataset.writeFrame(frame, *images, cameras->left, rig.baseline);
-            if (range.active()) range.record(dataset, frame, {state->dynamics, &state->patches, options.time});
+            if (range.active()) range.record(dataset, frame, state->view(options.time));
             progress.frameDone(++done, frame);
         });
     }

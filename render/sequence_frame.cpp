@@ -1,5 +1,7 @@
 #include "render/sequence_frame.h"
 
+#include "render/track_renderer.h"
+
 #include "common/error.h"
 
 #include <functional>
@@ -79,6 +81,26 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
         if (stereo) sensor->applyHalf(r.scene.seed, frame, 1, images.rightRgbaHalf);
     }
     return images;
+}
+
+RangeFrameState rangeFrameState(SceneGpu& gpu, const SceneResources& r, RutPatchCache& ruts) {
+    RangeFrameState state;
+    if (!gpu.simulation) return state;
+    if (gpu.simulation->hasPlants()) state.dynamics = gpu.simulation->gpu().readDynamics();
+    const GroundTracks& tracks = gpu.simulation->tracks();
+    if (tracks.revision() != ruts.revision) {
+        if (!ruts.mesh && !tracks.blocks().empty()) ruts.mesh = groundDrawMesh(r.terrain);
+        ruts.patches.clear();
+        for (const auto& [key, depths] : tracks.blocks()) {
+            GroundPatch patch{key.x, key.y, {}};
+            for (const gpu::TerrainVertex& v : trackPatchVertices(tracks, r.terrain, *ruts.mesh, key))
+                patch.points.push_back(v.positionHeight);
+            ruts.patches.push_back(std::move(patch));
+        }
+        ruts.revision = tracks.revision();
+    }
+    state.patches = ruts.patches;
+    return state;
 }
 
 } // namespace sward

@@ -3,6 +3,8 @@
 // module (render/session.h), so a frame rendered either way is bitwise the same.
 #pragma once
 
+#include "range/range_recorder.h"
+#include "render/ground_mesh.h"
 #include "render/scene_gpu.h"
 #include "scene/camera_rig.h"
 #include "scene/sensor_model.h"
@@ -32,5 +34,22 @@ std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, uint32_t w
 // frame, camera) noise key. `timeOffset` is added to the wind's time (--time). Returns the rig in `cameras`.
 FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
                                 uint32_t height, uint32_t frame, double timeOffset, const std::optional<SensorModel>& sensor, RigCameras& cameras);
+
+// What the range sensors (range/range_recorder.h) see of a rendered frame besides the scene: the plants' interaction
+// state (the GPU's dynamic records after the frame's tick) and the ground's rut patches as the track renderer draws
+// them. Copies: the next frame's ticks change both.
+struct RangeFrameState {
+    std::vector<gpu::PlantDynamic> dynamics;
+    std::vector<GroundPatch> patches;
+    RangeRecorder::FrameState view(double windTimeOffset) const { return {dynamics, &patches, windTimeOffset}; }
+};
+// The rut patches of the latest revision of the ruts, rebuilt only when they change.
+struct RutPatchCache {
+    std::optional<GroundDrawMesh> mesh;
+    uint64_t revision = ~uint64_t(0);
+    std::vector<GroundPatch> patches;
+};
+// The state of the frame `gpu` rendered last (reads the dynamic records back: waits for the GPU).
+RangeFrameState rangeFrameState(SceneGpu& gpu, const SceneResources& r, RutPatchCache& ruts);
 
 } // namespace sward

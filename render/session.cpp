@@ -18,6 +18,7 @@ Session::Session(Scene scene, const SessionOptions& options)
         DeviceOptions{.deviceFilter = options.device, .validation = options.validation || DeviceOptions{}.validation});
     // Always a simulation: colliders placed from the program may touch plants at any tick. A tick with no contact
     // and no active field records nothing, so frames are the same as sward-render's.
+    if (!resources_.scene.rangeSensors.empty()) range_ = std::make_unique<RangeRecorder>(resources_); // needs the atlas
     gpu_ = createSceneGpu(*ctx_, resources_, resources_.scene.render.samples, SimulationMode::Always);
     target_ = std::make_unique<OffscreenFrame>(*ctx_, width_, height_, resources_.scene.render.samples);
 }
@@ -44,6 +45,7 @@ SessionFrame Session::render() {
     out.images = renderSequenceFrame(gpu_, *target_, resources_, width_, height_, next_, options_.time, sensor_,
                                      out.cameras);
     out.baseline = resources_.scene.camera.rig.baseline;
+    if (range_) out.range = range_->sweep(next_, rangeFrameState(gpu_, resources_, ruts_).view(options_.time));
     ++next_;
     return out;
 }

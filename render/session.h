@@ -28,6 +28,7 @@ struct SessionFrame {
     FrameImages images;
     RigCameras cameras;
     double baseline = 0.0; // metres; 0 for a mono rig
+    std::vector<RangeScan> range; // the scene's range sensors' sweeps of the frame, in scene order (range/)
 };
 
 class Session {
@@ -75,6 +76,8 @@ private:
     std::unique_ptr<Context> ctx_;
     SceneGpu gpu_;
     std::unique_ptr<OffscreenFrame> target_;
+    std::unique_ptr<RangeRecorder> range_; // the scene's range sensors, if any
+    RutPatchCache ruts_;
     uint32_t next_ = 0;
 };
 

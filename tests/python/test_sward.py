@@ -190,3 +190,41 @@ def test_bad_input_raises_the_cli_message(tmp_path):
         sward.Simulator(scene_with(tmp_path, SMALL)).set_colliders([{"radius": 1}])
     with pytest.raises(sward.Error, match="not a sward dataset"):
         sward.Dataset(tmp_path)
+
+
+def test_range_sensors_equal_the_cli_files_bitwise(tmp_path):
+    """A LiDAR, a laser scanner and a ToF camera: the arrays render() returns are the files sward-render writes."""
+    sensors = [{"name": "lidar", "preset": "VLP-16", "angle_step_deg": 2.0,
+                "mount": {"position": [53.5, 46.0, 0.0], "height_above_ground": 2.2, "yaw_deg": 120.0}},
+               {"name": "scan", "preset": "LMS111", "mount": {"position": [52.0, 47.0, 0.0], "height_above_ground": 0.3}},
+               {"name": "tof", "preset": "AzureKinect-NFOV", "resolution": [32, 24],
+                "mount": {"position": [53.5, 46.0, 0.0], "height_above_ground": 1.5, "pitch_deg": 30.0}}]
+    scene = scene_with(tmp_path, {**SMALL, "range_sensors": sensors})
+    out = tmp_path / "out"
+    subprocess.run([RENDER, str(scene), "--out", str(out), "--quiet"], check=True, capture_output=True)
+    sim = sward.Simulator(scene)
+    ply = np.dtype([("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("wx", "<f8"), ("wy", "<f8"), ("wz", "<f8"),
+                    ("intensity", "<f4"), ("time", "<f4"), ("ring", "<u2"), ("column", "<u2"), ("class", "u1"),
+                    ("instance", "<u4")])
+    for index in range(3):
+        frame = sim.render()["range"]
+        name = f"{index:06d}"
+        data = (out / "range" / "lidar" / f"{name}.ply").read_bytes()
+        points = np.frombuffer(data[data.index(b"end_header\n") + 11:], dtype=ply)
+        lidar = frame["lidar"]
+        assert len(points) > 1000
+        assert bitwise_equal(lidar["xyz"], np.stack([points["x"], points["y"], points["z"]], axis=1))
+        assert bitwise_equal(lidar["world"], np.stack([points["wx"], points["wy"], points["wz"]], axis=1))
+        for key in ("intensity", "time", "ring", "column", "class", "instance"):
+            assert bitwise_equal(lidar[key], points[key]), key
+        kitti = np.fromfile(out / "range" / "lidar" / f"{name}.bin", dtype="<f4").reshape(-1, 4)
+        assert bitwise_equal(kitti[:, :3], lidar["xyz"]) and bitwise_equal(kitti[:, 3], lidar["intensity"])
+        labels = np.fromfile(out / "range" / "lidar" / f"{name}.label", dtype="<u4")
+        assert np.array_equal(labels & 0xFFFF, lidar["class"].astype(np.uint32))
+        scan = json.loads((out / "range" / "scan" / f"{name}.json").read_text())
+        ranges = np.array([np.nan if r is None else r for r in scan["ranges"]], dtype=np.float32)
+        assert np.array_equal(np.isnan(ranges), np.isnan(frame["scan"]["ranges"]))
+        assert np.array_equal(ranges[~np.isnan(ranges)], frame["scan"]["ranges"][~np.isnan(ranges)])
+        depth = sward._sward.read_image(str(out / "range" / "tof" / f"{name}.exr"), "Y")
+        assert bitwise_equal(depth, frame["tof"]["depth"])
+    assert sim.validation_messages == 0
