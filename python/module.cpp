@@ -247,11 +247,21 @@ PYBIND11_MODULE(_sward, m) {
     });
     m.def("frame_number", &frameNumber);
     py::dict names;
-    for (auto [key, value] : {std::pair{"left", kLeftFolder}, {"right", kRightFolder}, {"depth", kDepthFolder},
-                              {"disparity", kDisparityFolder}, {"semantic", kSemanticFolder},
-                              {"instance", kInstanceFolder}, {"normal", kNormalFolder}, {"normal_right", kNormalRightFolder}, {"preview", kPreviewFolder},
-                              {"preview_right", kPreviewRightFolder}, {"calib", kCalibFile},
-                              {"frame_log", kFrameLogFile}, {"manifest", kManifestFile}, {"dataset", kDatasetFile}})
+    for (auto [key, value] : {std::pair{"left", kLeftFolder},
+                              {"right", kRightFolder},
+                              {"depth", kDepthFolder},
+                              {"disparity", kDisparityFolder},
+                              {"semantic", kSemanticFolder},
+                              {"instance", kInstanceFolder},
+                              {"normal", kNormalFolder},
+                              {"normal_right", kNormalRightFolder},
+                              {"preview", kPreviewFolder},
+                              {"preview_right", kPreviewRightFolder},
+                              {"calib", kCalibFile},
+                              {"frame_log", kFrameLogFile},
+                              {"manifest", kManifestFile},
+                              {"dataset", kDatasetFile},
+                              {"range", kRangeFolder}})
         names[key] = value;
     m.attr("NAMES") = names;
     py::dict classes; // semantic class name -> pixel value of semantic images (dataset/naming.h)

@@ -11,6 +11,8 @@ import json
 import os
 import pathlib
 
+import numpy as np
+
 from . import _sward
 from ._sward import Error, SEMANTIC_CLASSES
 
@@ -92,6 +94,35 @@ class Simulator:
                              self._options["time"])
 
 
+_PLY_TYPES = {"float": "<f4", "double": "<f8", "uchar": "u1", "ushort": "<u2", "uint": "<u4"}
+
+
+def _read_range(root, name, frame):
+    """Range sensor `name`'s files of one frame as Simulator.render()["range"] gives them (docs/python.md)."""
+    def file(extension):
+        return root / _sward.frame_file(_sward.NAMES["range"] + "/" + name, frame, extension)
+    out = {}
+    ply = file(".ply")
+    if ply.is_file():
+        data = ply.read_bytes()
+        end = data.index(b"end_header\n") + len(b"end_header\n")
+        fields = [(words[2], _PLY_TYPES[words[1]]) for words in (line.split() for line in data[:end].decode().splitlines())
+                  if words and words[0] == "property"]
+        points = np.frombuffer(data[end:], dtype=np.dtype(fields))
+        out["xyz"] = np.stack([points["x"], points["y"], points["z"]], axis=1)
+        out["world"] = np.stack([points["wx"], points["wy"], points["wz"]], axis=1)
+        for key in ("intensity", "time", "ring", "column", "class", "instance"):
+            out[key] = points[key].copy()
+    scan = file(".json")
+    if scan.is_file():
+        ranges = json.loads(scan.read_text())["ranges"]
+        out["ranges"] = np.array([np.nan if r is None else r for r in ranges], dtype=np.float32)
+    depth = file(".exr")
+    if depth.is_file():
+        out["depth"] = _sward.read_image(str(depth), "Y")
+    return out
+
+
 def _point(value):
     return None if value is None else [float(v) for v in value]
 
@@ -155,6 +186,10 @@ class Dataset:
             item["disparity_kitti"] = _sward.read_disparity(self._file("disparity", frame, ".png"))
         if frame in self.records:
             item["record"] = self.records[frame]
+        range_root = self.root / _sward.NAMES["range"]
+        if range_root.is_dir():
+            item["range"] = {sensor.name: _read_range(self.root, sensor.name, frame)
+                             for sensor in sorted(range_root.iterdir()) if sensor.is_dir()}
         return item
 
     def _file(self, kind, frame, extension):

@@ -203,6 +203,7 @@ def test_range_sensors_equal_the_cli_files_bitwise(tmp_path):
     out = tmp_path / "out"
     subprocess.run([RENDER, str(scene), "--out", str(out), "--quiet"], check=True, capture_output=True)
     sim = sward.Simulator(scene)
+    data_set = sward.Dataset(out)
     ply = np.dtype([("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("wx", "<f8"), ("wy", "<f8"), ("wz", "<f8"),
                     ("intensity", "<f4"), ("time", "<f4"), ("ring", "<u2"), ("column", "<u2"), ("class", "u1"),
                     ("instance", "<u4")])
@@ -227,4 +228,15 @@ def test_range_sensors_equal_the_cli_files_bitwise(tmp_path):
         assert np.array_equal(ranges[~np.isnan(ranges)], frame["scan"]["ranges"][~np.isnan(ranges)])
         depth = sward._sward.read_image(str(out / "range" / "tof" / f"{name}.exr"), "Y")
         assert bitwise_equal(depth, frame["tof"]["depth"])
+        # sward.Dataset reads them back to the same arrays.
+        read = data_set[index]["range"]
+        assert sorted(read) == sorted(frame)
+        for sensor in frame:
+            assert sorted(read[sensor]) == sorted(frame[sensor]), sensor
+            for key in frame[sensor]:
+                same = bitwise_equal(read[sensor][key], frame[sensor][key])
+                if key == "ranges":  # NaN for no return: compare where there is one
+                    got, want = read[sensor][key], frame[sensor][key]
+                    same = np.array_equal(np.isnan(got), np.isnan(want)) and np.array_equal(got[~np.isnan(got)], want[~np.isnan(want)])
+                assert same, f"{sensor}.{key}"
     assert sim.validation_messages == 0
