@@ -38,7 +38,8 @@ AtlasAlpha::AtlasAlpha(const Atlas& atlas) {
     alpha.resize(size_t(mip.width) * mip.height);
     for (size_t i = 0; i < alpha.size(); ++i) alpha[i] = mip.rgba[4 * i + 3];
     // Texel alpha k / 255 is >= 0.5 exactly when k >= 128, and then by at least 0.002: far above rounding.
-    between_.resize(size_t(width + 1) * (height + 1));
+    const size_t stride = size_t(width) + 1;
+    between_.assign((stride * (size_t(height) + 1) + 3) / 4, 0);
     for (int64_t j = -1; j < int64_t(height); ++j)
         for (int64_t i = -1; i < int64_t(width); ++i) {
             int opaqueTexels = 0;
@@ -48,7 +49,9 @@ AtlasAlpha::AtlasAlpha(const Atlas& atlas) {
                                   y = std::clamp<int64_t>(j + dj, 0, height - 1);
                     opaqueTexels += alpha[size_t(y) * width + size_t(x)] >= 128;
                 }
-            between_[size_t(j + 1) * (width + 1) + size_t(i + 1)] = opaqueTexels == 0 ? 0 : opaqueTexels == 4 ? 2 : 1;
+            const uint8_t c = opaqueTexels == 0 ? 0 : opaqueTexels == 4 ? 2 : 1;
+            const size_t k = size_t(j + 1) * stride + size_t(i + 1);
+            between_[k / 4] |= uint8_t(c << (2 * (k % 4)));
         }
     const AtlasDesc& desc = atlas.desc;
     maxColumns = desc.maxColumns();
@@ -81,7 +84,8 @@ float AtlasAlpha::sample(glm::vec2 uv) const {
 bool AtlasAlpha::opaque(glm::vec2 uv) const {
     const float x = std::floor(uv.x * float(width) - 0.5f), y = std::floor(uv.y * float(height) - 0.5f);
     const int64_t i = std::clamp<int64_t>(int64_t(x) + 1, 0, width), j = std::clamp<int64_t>(int64_t(y) + 1, 0, height);
-    const uint8_t c = between_[size_t(j) * (width + 1) + size_t(i)];
+    const size_t k = size_t(j) * (size_t(width) + 1) + size_t(i);
+    const uint32_t c = (between_[k / 4] >> (2 * (k % 4))) & 3u;
     return c == 1 ? sample(uv) >= 0.5f : c == 2;
 }
 
