@@ -110,6 +110,61 @@ std::vector<PosedTriangles> posedObjects(const RangeWorld& world, double time) {
     return out;
 }
 
+namespace {
+
+// Columns per task: neighbouring beams meet the same plants, whose quads the first ray to reach them computes; one
+// thread taking a run of neighbours keeps those plants (and their cache lines) off the other threads' way.
+constexpr uint32_t kColumnsPerTask = 32;
+
+struct SweepContext {
+    const RayScene& rays;
+    const RangeWorld& world;
+    const RangeSensorParams& sensor;
+    uint32_t sensorIndex, frame;
+    double frameTime;
+    const std::vector<SubRay>& pattern;
+};
+
+// Column c's beams: sub-rays cast, the echo chosen, noise and dropout; its points appended to `points` in ring order.
+void sweepColumn(const SweepContext& x, RangeScan& scan, uint32_t c, std::vector<RangePoint>& points) {
+    const RangeSensorParams& s = x.sensor;
+    const double t = columnTime(s, c);
+    const glm::dmat4 pose = s.type == RangeSensorType::TimeOfFlight
+                                ? scan.startPose
+                                : rangeSensorPose(x.world.scene, s, x.world.terrain, x.world.models, x.frameTime + t);
+    const glm::dvec3 origin(pose[3]);
+    const glm::dmat3 rotation(pose);
+    std::vector<SubHit> hits;
+    for (uint32_t ring = 0; ring < scan.channels; ++ring) {
+        const glm::dvec3 beam = beamDirection(s, ring, c);
+        const glm::dvec3 u =
+            glm::normalize(std::abs(beam.z) < 0.9 ? glm::cross(beam, {0, 0, 1}) : glm::cross(beam, {1, 0, 0}));
+        const glm::dvec3 v = glm::cross(beam, u);
+        hits.clear();
+        for (uint32_t k = 0; k < x.pattern.size(); ++k) {
+            const glm::dvec3 local = glm::normalize(beam + x.pattern[k].offset.x * u + x.pattern[k].offset.y * v);
+            const glm::dvec3 dir = glm::normalize(rotation * local);
+            const RangeHit hit = x.rays.cast(origin, dir, s.minRange, s.maxRange);
+            if (!hit.hit()) continue;
+            const float cosine = float(std::abs(glm::dot(glm::dvec3(hit.normal), dir)));
+            hits.push_back({hit.distance, float(x.pattern[k].weight) * reflectance(hit.label) * cosine, hit.label, k});
+        }
+        RangePoint p;
+        if (!chooseReturn(hits, s.returnMode, p.range, p.intensity, p.label)) continue;
+        const uint64_t key = hashKey({kRangeNoiseDomain, x.world.scene.seed, x.sensorIndex, x.frame, c, ring});
+        if (s.dropout > 0.0 && unitDouble(mix64(key ^ 0x9e3779b97f4a7c15ull)) < s.dropout) continue;
+        if (s.rangeNoise > 0.0) p.range = float(double(p.range) + s.rangeNoise * standardNormal(key));
+        if (!(p.range > 0.0f)) continue;
+        p.sensor = glm::vec3(beam * double(p.range));
+        p.world = origin + rotation * (beam * double(p.range));
+        p.time = float(t), p.ring = ring, p.column = c;
+        scan.ranges[size_t(ring) * scan.columns + c] = p.range;
+        points.push_back(p);
+    }
+}
+
+} // namespace
+
 RangeScan sweepSensor(const RayScene& rays, const RangeWorld& world, uint32_t sensorIndex, uint32_t frame,
                       double frameTime, uint32_t threads) {
     const RangeSensorParams& s = world.scene.rangeSensors.at(sensorIndex);
@@ -120,45 +175,15 @@ RangeScan sweepSensor(const RayScene& rays, const RangeWorld& world, uint32_t se
     scan.endPose =
         rangeSensorPose(world.scene, s, world.terrain, world.models, frameTime + columnTime(s, scan.columns - 1));
     const std::vector<SubRay> pattern = subRays(s);
-    std::vector<std::vector<RangePoint>> perColumn(scan.columns);
-    parallelFor(scan.columns, threads, [&](uint32_t c, uint32_t) {
-        const double t = columnTime(s, c);
-        const glm::dmat4 pose = s.type == RangeSensorType::TimeOfFlight
-                                    ? scan.startPose
-                                    : rangeSensorPose(world.scene, s, world.terrain, world.models, frameTime + t);
-        const glm::dvec3 origin(pose[3]);
-        const glm::dmat3 rotation(pose);
-        std::vector<SubHit> hits;
-        for (uint32_t ring = 0; ring < scan.channels; ++ring) {
-            const glm::dvec3 beam = beamDirection(s, ring, c);
-            const glm::dvec3 u =
-                glm::normalize(std::abs(beam.z) < 0.9 ? glm::cross(beam, {0, 0, 1}) : glm::cross(beam, {1, 0, 0}));
-            const glm::dvec3 v = glm::cross(beam, u);
-            hits.clear();
-            for (uint32_t k = 0; k < pattern.size(); ++k) {
-                const glm::dvec3 local = glm::normalize(beam + pattern[k].offset.x * u + pattern[k].offset.y * v);
-                const glm::dvec3 dir = glm::normalize(rotation * local);
-                const RangeHit hit = rays.cast(origin, dir, s.minRange, s.maxRange);
-                if (!hit.hit()) continue;
-                const float cosine = float(std::abs(glm::dot(glm::dvec3(hit.normal), dir)));
-                hits.push_back(
-                    {hit.distance, float(pattern[k].weight) * reflectance(hit.label) * cosine, hit.label, k});
-            }
-            RangePoint p;
-            if (!chooseReturn(hits, s.returnMode, p.range, p.intensity, p.label)) continue;
-            const uint64_t key = hashKey({kRangeNoiseDomain, world.scene.seed, sensorIndex, frame, c, ring});
-            if (s.dropout > 0.0 && unitDouble(mix64(key ^ 0x9e3779b97f4a7c15ull)) < s.dropout) continue;
-            if (s.rangeNoise > 0.0) p.range = float(double(p.range) + s.rangeNoise * standardNormal(key));
-            if (!(p.range > 0.0f)) continue;
-            p.sensor = glm::vec3(beam * double(p.range));
-            p.world = origin + rotation * (beam * double(p.range));
-            p.time = float(t), p.ring = ring, p.column = c;
-            scan.ranges[size_t(ring) * scan.columns + c] = p.range;
-            perColumn[c].push_back(p);
-        }
+    const SweepContext context{rays, world, s, sensorIndex, frame, frameTime, pattern};
+    // Each task fills its own slot; the slots are joined in column order, so the points are the same on any threads.
+    const uint32_t tasks = (scan.columns + kColumnsPerTask - 1) / kColumnsPerTask;
+    std::vector<std::vector<RangePoint>> perTask(tasks);
+    parallelFor(tasks, threads, [&](uint32_t task, uint32_t) {
+        const uint32_t end = std::min(scan.columns, (task + 1) * kColumnsPerTask);
+        for (uint32_t c = task * kColumnsPerTask; c < end; ++c) sweepColumn(context, scan, c, perTask[task]);
     });
-    for (std::vector<RangePoint>& column : perColumn)
-        scan.points.insert(scan.points.end(), column.begin(), column.end());
+    for (std::vector<RangePoint>& points : perTask) scan.points.insert(scan.points.end(), points.begin(), points.end());
     return scan;
 }
 
