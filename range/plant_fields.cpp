@@ -61,20 +61,26 @@ void PlantFields::touchedBoundsOf(const RTCBoundsFunctionArguments* args) {
 }
 
 void PlantFields::intersect(const RTCIntersectFunctionNArguments* args) {
-    if (!args->valid[0]) return;
+    const unsigned n = args->N; // 1 for rtcIntersect1, up to 8 for RayScene::cast8's packets
+    RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, n);
+    RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, n);
     Field& f = *static_cast<Field*>(args->geometryUserPtr);
-    const PlantQuads& p = f.isTouched ? f.quads[args->primID] : f.owner->current(f, args->primID);
-    RTCRayHit& rh = *reinterpret_cast<RTCRayHit*>(args->rayhit);
-    const glm::vec3 o(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z), d(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
-    float best = rh.ray.tfar;
-    glm::vec3 normal;
-    if (!intersectPlant(p, f.owner->atlas_, o, d, rh.ray.tnear, best, normal)) return;
-    rh.ray.tfar = best;
-    rh.hit.Ng_x = normal.x, rh.hit.Ng_y = normal.y, rh.hit.Ng_z = normal.z;
-    rh.hit.u = rh.hit.v = 0.0f;
-    rh.hit.primID = args->primID;
-    rh.hit.geomID = args->geomID;
-    rh.hit.instID[0] = args->context->instID[0];
+    const PlantQuads* p = nullptr;
+    for (unsigned i = 0; i < n; ++i) {
+        if (!args->valid[i]) continue;
+        if (!p) p = f.isTouched ? &f.quads[args->primID] : &f.owner->current(f, args->primID);
+        const glm::vec3 o(RTCRayN_org_x(rays, n, i), RTCRayN_org_y(rays, n, i), RTCRayN_org_z(rays, n, i));
+        const glm::vec3 d(RTCRayN_dir_x(rays, n, i), RTCRayN_dir_y(rays, n, i), RTCRayN_dir_z(rays, n, i));
+        float best = RTCRayN_tfar(rays, n, i);
+        glm::vec3 normal;
+        if (!intersectPlant(*p, f.owner->atlas_, o, d, RTCRayN_tnear(rays, n, i), best, normal)) continue;
+        RTCRayN_tfar(rays, n, i) = best;
+        RTCHitN_Ng_x(hits, n, i) = normal.x, RTCHitN_Ng_y(hits, n, i) = normal.y, RTCHitN_Ng_z(hits, n, i) = normal.z;
+        RTCHitN_u(hits, n, i) = RTCHitN_v(hits, n, i) = 0.0f;
+        RTCHitN_primID(hits, n, i) = args->primID;
+        RTCHitN_geomID(hits, n, i) = args->geomID;
+        RTCHitN_instID(hits, n, i, 0) = args->context->instID[0];
+    }
 }
 
 RTCScene PlantFields::plantScene(Field& f, RTCBoundsFunction bounds) {

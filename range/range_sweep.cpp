@@ -141,13 +141,26 @@ void sweepColumn(const SweepContext& x, RangeScan& scan, uint32_t c, std::vector
             glm::normalize(std::abs(beam.z) < 0.9 ? glm::cross(beam, {0, 0, 1}) : glm::cross(beam, {1, 0, 0}));
         const glm::dvec3 v = glm::cross(beam, u);
         hits.clear();
-        for (uint32_t k = 0; k < x.pattern.size(); ++k) {
-            const glm::dvec3 local = glm::normalize(beam + x.pattern[k].offset.x * u + x.pattern[k].offset.y * v);
-            const glm::dvec3 dir = glm::normalize(rotation * local);
-            const RangeHit hit = x.rays.cast(origin, dir, s.minRange, s.maxRange);
-            if (!hit.hit()) continue;
-            const float cosine = float(std::abs(glm::dot(glm::dvec3(hit.normal), dir)));
-            hits.push_back({hit.distance, float(x.pattern[k].weight) * reflectance(hit.label) * cosine, hit.label, k});
+        // Sub-rays in packets of up to 8, traversed together (one ray: cast alone).
+        for (uint32_t first = 0; first < x.pattern.size(); first += 8) {
+            const uint32_t count = std::min<uint32_t>(8, uint32_t(x.pattern.size()) - first);
+            glm::dvec3 dirs[8];
+            RangeHit found[8];
+            for (uint32_t k = 0; k < count; ++k) {
+                const SubRay& sub = x.pattern[first + k];
+                dirs[k] = glm::normalize(rotation * glm::normalize(beam + sub.offset.x * u + sub.offset.y * v));
+            }
+            if (count == 1)
+                found[0] = x.rays.cast(origin, dirs[0], s.minRange, s.maxRange);
+            else
+                x.rays.cast8(origin, std::span(dirs, count), s.minRange, s.maxRange, found);
+            for (uint32_t k = 0; k < count; ++k) {
+                if (!found[k].hit()) continue;
+                const float cosine = float(std::abs(glm::dot(glm::dvec3(found[k].normal), dirs[k])));
+                hits.push_back({found[k].distance,
+                                float(x.pattern[first + k].weight) * reflectance(found[k].label) * cosine,
+                                found[k].label, first + k});
+            }
         }
         RangePoint p;
         if (!chooseReturn(hits, s.returnMode, p.range, p.intensity, p.label)) continue;

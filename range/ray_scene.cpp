@@ -102,13 +102,16 @@ struct RayScene::Impl {
     // The coarse ground has a hole over every block drawn as a rut patch (terrain_holes.frag).
     static void groundHole(const RTCFilterFunctionNArguments* args) {
         const Impl& impl = *static_cast<const Impl*>(args->geometryUserPtr);
-        if (impl.patchedBlocks.empty() || args->valid[0] == 0) return;
-        const float t = RTCRayN_tfar(args->ray, args->N, 0);
-        const float x = RTCRayN_org_x(args->ray, args->N, 0) + t * RTCRayN_dir_x(args->ray, args->N, 0);
-        const float y = RTCRayN_org_y(args->ray, args->N, 0) + t * RTCRayN_dir_y(args->ray, args->N, 0);
-        const std::pair<int32_t, int32_t> block(int32_t(std::floor(x / kBlockMetres)),
-                                                int32_t(std::floor(y / kBlockMetres)));
-        if (impl.patchedBlocks.count(block)) args->valid[0] = 0;
+        if (impl.patchedBlocks.empty()) return;
+        for (unsigned i = 0; i < args->N; ++i) {
+            if (args->valid[i] == 0) continue;
+            const float t = RTCRayN_tfar(args->ray, args->N, i);
+            const float x = RTCRayN_org_x(args->ray, args->N, i) + t * RTCRayN_dir_x(args->ray, args->N, i);
+            const float y = RTCRayN_org_y(args->ray, args->N, i) + t * RTCRayN_dir_y(args->ray, args->N, i);
+            const std::pair<int32_t, int32_t> block(int32_t(std::floor(x / kBlockMetres)),
+                                                    int32_t(std::floor(y / kBlockMetres)));
+            if (impl.patchedBlocks.count(block)) args->valid[i] = 0;
+        }
     }
 
     void setGroundPatches(const std::vector<GroundPatch>& patches) {
@@ -140,6 +143,8 @@ struct RayScene::Impl {
         const float rut = patchRuts[p[0]] * (1.0f - u - v) + patchRuts[p[1]] * u + patchRuts[p[2]] * v;
         return (rut >= gpu::kTrackLabelDepth ? gpu::kSemanticTrack : gpu::kSemanticGround) << gpu::kInstanceBits;
     }
+
+    RangeHit hitOf(const RTCRay& ray, const RTCHit& hit, glm::dvec3 direction) const;
 
     ~Impl() {
         plants.reset(); // its scenes first, then the device
@@ -208,8 +213,27 @@ uint64_t RayScene::plantsPrepared() const {
     return impl_->plants ? impl_->plants->prepared() : 0;
 }
 
+// The hit of one ray as RangeHit: distance, the truth label of what it hit, the normal facing the ray.
+RangeHit RayScene::Impl::hitOf(const RTCRay& ray, const RTCHit& hit, glm::dvec3 direction) const {
+    RangeHit out;
+    if (hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
+    out.distance = ray.tfar;
+    const uint32_t instance = hit.instID[0];
+    if (instance == kGroundInstance)
+        out.label = gpu::kSemanticGround << gpu::kInstanceBits;
+    else if (instance == kObjectsInstance)
+        out.label = objectLabels[hit.geomID];
+    else if (instance == kPatchesInstance)
+        out.label = patchLabel(hit.primID, hit.u, hit.v);
+    else
+        out.label = plants->label(instance - kFirstFieldInstance, hit.primID);
+    glm::vec3 n = glm::normalize(glm::vec3(hit.Ng_x, hit.Ng_y, hit.Ng_z));
+    if (glm::dot(glm::dvec3(n), direction) > 0.0) n = -n;
+    out.normal = n;
+    return out;
+}
+
 RangeHit RayScene::cast(glm::dvec3 origin, glm::dvec3 direction, double tNear, double tFar) const {
-    const Impl& impl = *impl_;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
@@ -218,23 +242,33 @@ RangeHit RayScene::cast(glm::dvec3 origin, glm::dvec3 direction, double tNear, d
     rh.ray.tnear = float(tNear), rh.ray.tfar = float(tFar);
     rh.ray.mask = 0xffffffffu;
     rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(impl.top, &context, &rh);
-    RangeHit out;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
-    out.distance = rh.ray.tfar;
-    const uint32_t instance = rh.hit.instID[0];
-    if (instance == kGroundInstance)
-        out.label = gpu::kSemanticGround << gpu::kInstanceBits;
-    else if (instance == kObjectsInstance)
-        out.label = impl.objectLabels[rh.hit.geomID];
-    else if (instance == kPatchesInstance)
-        out.label = impl.patchLabel(rh.hit.primID, rh.hit.u, rh.hit.v);
-    else
-        out.label = impl.plants->label(instance - kFirstFieldInstance, rh.hit.primID);
-    glm::vec3 n = glm::normalize(glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
-    if (glm::dot(glm::dvec3(n), direction) > 0.0) n = -n;
-    out.normal = n;
-    return out;
+    rtcIntersect1(impl_->top, &context, &rh);
+    return impl_->hitOf(rh.ray, rh.hit, direction);
+}
+
+void RayScene::cast8(glm::dvec3 origin, std::span<const glm::dvec3> directions, double tNear, double tFar,
+                     RangeHit* hits) const {
+    require(directions.size() <= 8, "RayScene::cast8: at most 8 rays");
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT; // a beam's sub-rays: one origin, nearly one direction
+    alignas(32) RTCRayHit8 rh{};
+    alignas(32) int valid[8] = {};
+    for (size_t i = 0; i < directions.size(); ++i) {
+        valid[i] = -1;
+        rh.ray.org_x[i] = float(origin.x), rh.ray.org_y[i] = float(origin.y), rh.ray.org_z[i] = float(origin.z);
+        rh.ray.dir_x[i] = float(directions[i].x), rh.ray.dir_y[i] = float(directions[i].y);
+        rh.ray.dir_z[i] = float(directions[i].z);
+        rh.ray.tnear[i] = float(tNear), rh.ray.tfar[i] = float(tFar);
+        rh.ray.mask[i] = 0xffffffffu;
+        rh.hit.geomID[i] = rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect8(valid, impl_->top, &context, &rh);
+    for (size_t i = 0; i < directions.size(); ++i) {
+        RTCRayHitN* n = reinterpret_cast<RTCRayHitN*>(&rh);
+        const RTCRayHit one = rtcGetRayHitFromRayHitN(n, 8, unsigned(i));
+        hits[i] = impl_->hitOf(one.ray, one.hit, directions[i]);
+    }
 }
 
 } // namespace sward

@@ -73,6 +73,10 @@ public:
 
     // The closest surface along origin + t * direction (direction unit) with t in [tNear, tFar].
     RangeHit cast(glm::dvec3 origin, glm::dvec3 direction, double tNear, double tFar) const;
+    // The same for up to 8 rays from one origin, traversed together (a beam's sub-rays): hits[i] is what cast gives
+    // for directions[i].
+    void cast8(glm::dvec3 origin, std::span<const glm::dvec3> directions, double tNear, double tFar,
+               RangeHit* hits) const;
 
     uint64_t plantsPrepared() const; // plants whose quads setPlants computed last
 
