@@ -33,7 +33,9 @@ inline UniformPatch uniformPatch(double density, double size = 50.0, const nlohm
     UniformPatch p;
     p.scene = parseScene(j, "patch.json");
     p.ground = buildTerrain(p.scene);
-    p.atlas = buildAtlas(p.scene);
+    // The built-in atlas (the patch names none) does not depend on the scene: painted once per test process.
+    static const Atlas builtIn = buildAtlas(p.scene);
+    p.atlas = builtIn;
     const GrassMap map(1, 1, 3, {1.0f, 1.0f, 1.0f}, "uniform");
     p.tile = generateTile(p.ground, map, vegetationOn(p.scene, p.ground), TileCoord{0, 0}, 0);
     return p;
