@@ -41,9 +41,10 @@ std::vector<RangeScan> RangeRecorder::sweep(uint32_t frame, const FrameState& st
     const Clock::time_point start = Clock::now();
     rays_->setPlants(scene.wind, time + state.windTimeOffset, state.dynamics, centre, reach, threads_);
     rays_->setObjects(posedObjects({scene, r_.terrain, r_.models}, time));
-    const bool patches = state.patches && !state.patches->empty();
-    if (patches || hadPatches_) rays_->setGroundPatches(patches ? *state.patches : std::vector<GroundPatch>{});
-    hadPatches_ = patches;
+    if (state.patches != patches_) {
+        rays_->setGroundPatches(state.patches ? *state.patches : std::vector<GroundPatch>{});
+        patches_ = state.patches;
+    }
     const Clock::time_point prepared = Clock::now();
     std::vector<RangeScan> scans;
     for (uint32_t k = 0; k < scene.rangeSensors.size(); ++k)

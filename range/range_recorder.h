@@ -27,7 +27,9 @@ public:
     // (sward-render --time).
     struct FrameState {
         std::span<const gpu::PlantDynamic> dynamics;
-        const std::vector<GroundPatch>* patches = nullptr;
+        // Shared and never changed once made (a new set of ruts is a new vector): the scene rebuilds its rut patches
+        // only when this pointer changes.
+        std::shared_ptr<const std::vector<GroundPatch>> patches;
         double windTimeOffset = 0.0;
     };
     // Every sensor's sweep of frame `frame` (starting at the frame's time).
@@ -46,7 +48,7 @@ private:
     const SceneResources& r_;
     uint32_t threads_;
     std::unique_ptr<RayScene> rays_;
-    bool hadPatches_ = false; // the RayScene holds rut patches
+    std::shared_ptr<const std::vector<GroundPatch>> patches_; // those the RayScene holds
     Timings timings_;
 };
 

@@ -2,7 +2,7 @@
 
 #include "common/error.h"
 #include "range/plant_fields.h"
-#include "vegetation/records.h"
+#include "world/heightfield_mesh.h"
 
 #include <embree3/rtcore.h>
 
@@ -47,19 +47,12 @@ void attachInstance(RTCDevice device, RTCScene top, RTCScene child, uint32_t id)
     rtcReleaseGeometry(inst);
 }
 
-// The drawn ground's triangles: render/ground_mesh.cpp's heightfield triangulation (cell (i, j) as (p00, p10, p11) and
-// (p00, p11, p01)) or the mesh's own.
+// The drawn ground's triangles: the heightfield's drawn triangulation (world/heightfield_mesh.h) or the mesh's own.
 void groundTriangles(const Ground& ground, std::vector<glm::vec3>& positions, std::vector<uint32_t>& indices) {
     if (const Heightfield* h = ground.heightfield()) {
         for (uint32_t j = 0; j < h->rows(); ++j)
-            for (uint32_t i = 0; i < h->columns(); ++i)
-                positions.push_back(
-                    glm::vec3(h->origin() + glm::vec2(float(i), float(j)) * h->spacing(), h->sample(i, j)));
-        for (uint32_t j = 0; j + 1 < h->rows(); ++j)
-            for (uint32_t i = 0; i + 1 < h->columns(); ++i) {
-                const uint32_t p00 = j * h->columns() + i, p10 = p00 + 1, p01 = p00 + h->columns(), p11 = p01 + 1;
-                indices.insert(indices.end(), {p00, p10, p11, p00, p11, p01});
-            }
+            for (uint32_t i = 0; i < h->columns(); ++i) positions.push_back(heightfieldVertex(*h, i, j));
+        indices = heightfieldTriangleIndices(*h);
     } else if (const TriangleMesh* mesh = ground.mesh()) {
         positions = mesh->positions, indices = mesh->indices;
     }

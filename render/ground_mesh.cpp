@@ -1,6 +1,7 @@
 #include "render/ground_mesh.h"
 
 #include "vegetation/atlas_colour.h"
+#include "world/heightfield_mesh.h"
 
 #include <algorithm>
 #include <array>
@@ -14,18 +15,11 @@ GroundDrawMesh heightfieldDrawMesh(const Heightfield& terrain) {
     GroundDrawMesh out;
     out.vertices.reserve(size_t(terrain.columns()) * terrain.rows());
     for (uint32_t j = 0; j < terrain.rows(); ++j)
-        for (uint32_t i = 0; i < terrain.columns(); ++i) {
-            const glm::vec2 xy = terrain.origin() + glm::vec2(float(i), float(j)) * terrain.spacing();
-            out.vertices.push_back({glm::vec4(xy, terrain.sample(i, j), 1.0f),
+        for (uint32_t i = 0; i < terrain.columns(); ++i)
+            out.vertices.push_back({glm::vec4(heightfieldVertex(terrain, i, j), 1.0f),
                                     glm::vec4(terrain.vertexNormal(i, j), 0.0f), glm::vec4(0.0f),
                                     glm::vec4(0.0f, 0.0f, -1.0f, 0.0f)});
-        }
-    out.indices.reserve(size_t(terrain.columns() - 1) * (terrain.rows() - 1) * 6);
-    for (uint32_t j = 0; j + 1 < terrain.rows(); ++j)
-        for (uint32_t i = 0; i + 1 < terrain.columns(); ++i) {
-            const uint32_t p00 = j * terrain.columns() + i, p10 = p00 + 1, p01 = p00 + terrain.columns(), p11 = p01 + 1;
-            out.indices.insert(out.indices.end(), {p00, p10, p11, p00, p11, p01});
-        }
+    out.indices = heightfieldTriangleIndices(terrain);
     return out;
 }
 

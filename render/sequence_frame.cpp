@@ -90,13 +90,14 @@ RangeFrameState rangeFrameState(SceneGpu& gpu, const SceneResources& r, RutPatch
     const GroundTracks& tracks = gpu.simulation->tracks();
     if (tracks.revision() != ruts.revision) {
         if (!ruts.mesh && !tracks.blocks().empty()) ruts.mesh = groundDrawMesh(r.terrain);
-        ruts.patches.clear();
+        auto patches = std::make_shared<std::vector<GroundPatch>>();
         for (const auto& [key, depths] : tracks.blocks()) {
             GroundPatch patch{key.x, key.y, {}};
             for (const gpu::TerrainVertex& v : trackPatchVertices(tracks, r.terrain, *ruts.mesh, key))
                 patch.points.push_back(v.positionHeight);
-            ruts.patches.push_back(std::move(patch));
+            patches->push_back(std::move(patch));
         }
+        ruts.patches = patches->empty() ? nullptr : std::move(patches);
         ruts.revision = tracks.revision();
     }
     state.patches = ruts.patches;

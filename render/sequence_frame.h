@@ -37,17 +37,18 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
 
 // What the range sensors (range/range_recorder.h) see of a rendered frame besides the scene: the plants' interaction
 // state (the GPU's dynamic records after the frame's tick) and the ground's rut patches as the track renderer draws
-// them. Copies: the next frame's ticks change both.
+// them. The dynamic records are a copy (the next frame's ticks change them); the patches are shared, and replaced by a
+// new vector when the ruts change.
 struct RangeFrameState {
     std::vector<gpu::PlantDynamic> dynamics;
-    std::vector<GroundPatch> patches;
-    RangeRecorder::FrameState view(double windTimeOffset) const { return {dynamics, &patches, windTimeOffset}; }
+    std::shared_ptr<const std::vector<GroundPatch>> patches;
+    RangeRecorder::FrameState view(double windTimeOffset) const { return {dynamics, patches, windTimeOffset}; }
 };
-// The rut patches of the latest revision of the ruts, rebuilt only when they change.
+// The rut patches of the latest revision of the ruts, rebuilt only when they change (null: no rut).
 struct RutPatchCache {
     std::optional<GroundDrawMesh> mesh;
     uint64_t revision = ~uint64_t(0);
-    std::vector<GroundPatch> patches;
+    std::shared_ptr<const std::vector<GroundPatch>> patches;
 };
 // The state of the frame `gpu` rendered last (reads the dynamic records back: waits for the GPU).
 RangeFrameState rangeFrameState(SceneGpu& gpu, const SceneResources& r, RutPatchCache& ruts);
