@@ -1,0 +1,4 @@
+// The commands of sward-eval, each a tool of its own behind a command word (main.cpp dispatches on it).
+#pragma once
+
+int stereoMain(int argc, char** argv); // stereo.cpp: `sward-eval [stereo] DATASET`
