@@ -5,6 +5,7 @@
 #include "common/half_float.h"
 #include "common/parse_number.h"
 #include "dataset/fingerprint.h"
+#include "dataset/flow_truth.h"
 #include "dataset/frame_truth.h"
 #include "dataset/naming.h"
 #include "dataset/occlusion.h"
@@ -50,7 +51,10 @@ namespace {
 constexpr const char* kAllFolders[] = {
     kLeftFolder,      kRightFolder,          kDepthFolder,        kDisparityFolder,  kSemanticFolder,
     kInstanceFolder,  kPreviewFolder,        kPreviewRightFolder, kDepthRightFolder, kDisparityRightFolder,
-    kOcclusionFolder, kOcclusionRightFolder, kNormalFolder,       kNormalRightFolder};
+    kOcclusionFolder, kOcclusionRightFolder, kNormalFolder,       kNormalRightFolder,
+    "flow_forward",   "flow_backward",       "flow_forward_right", "flow_backward_right",
+    "flow_forward_mask", "flow_backward_mask", "flow_forward_mask_right", "flow_backward_mask_right",
+    kDisparityChangeForwardFolder, kDisparityChangeBackwardFolder};
 
 bool isSwardTemporaryName(const std::string& name) {
     long pid = 0;
@@ -112,8 +116,9 @@ constexpr const char* kUseOverwrite = "; use --overwrite to start over or choose
 
 } // namespace
 
-DatasetWriter::DatasetWriter(std::string root, bool stereo, const std::vector<RangeSensorParams>& rangeSensors)
-    : root_(std::move(root)), stereo_(stereo) {
+DatasetWriter::DatasetWriter(std::string root, bool stereo, const std::vector<RangeSensorParams>& rangeSensors,
+                             bool flow)
+    : root_(std::move(root)), stereo_(stereo), flow_(flow) {
     for (const RangeSensorParams& sensor : rangeSensors)
         rangeSensors_.push_back({sensor.name, sensor.type, sensor.channels() * uint64_t(sensor.columns())});
 }
@@ -124,6 +129,10 @@ std::vector<std::string> DatasetWriter::directories() const {
     if (stereo_)
         dirs.insert(dirs.end(), {kRightFolder, kDisparityFolder, kPreviewRightFolder, kDepthRightFolder,
                                  kDisparityRightFolder, kOcclusionFolder, kOcclusionRightFolder, kNormalRightFolder});
+    for (uint32_t view = 0; flow_ && view < (stereo_ ? 2u : 1u); ++view)
+        for (bool forward : {true, false})
+            dirs.insert(dirs.end(), {flowFolders(view == 1, forward).flow, flowFolders(view == 1, forward).mask});
+    if (flow_ && stereo_) dirs.insert(dirs.end(), {kDisparityChangeForwardFolder, kDisparityChangeBackwardFolder});
     if (!rangeSensors_.empty()) dirs.push_back(kRangeFolder);
     for (const RangeFiles& sensor : rangeSensors_) dirs.push_back(std::string(kRangeFolder) + "/" + sensor.name);
     return dirs;
@@ -160,6 +169,9 @@ uint64_t DatasetWriter::frameBytesUpperBound(uint32_t width, uint32_t height) co
     // of headers and tables, and is rounded up to 4 KiB blocks plus one for the file system's own records.
     std::vector<uint64_t> bytesPerPixel = {8, 8, 1, 4, 12, 3};
     if (stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {8, 4, 4, 2, 3, 8, 4, 4, 1, 1, 12});
+    // Flow, per view and direction: .flo 8, KITTI PNG 6, EXR 12, mask 1; stereo: two disparity changes of 4.
+    for (uint32_t k = 0; flow_ && k < (stereo_ ? 4u : 2u); ++k) bytesPerPixel.insert(bytesPerPixel.end(), {8, 6, 12, 1});
+    if (flow_ && stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {4, 4});
     constexpr uint64_t kBlock = 4096;
     uint64_t total = 0;
     for (uint64_t perPixel : bytesPerPixel) {
@@ -252,6 +264,24 @@ std::vector<std::string> DatasetWriter::frameFiles(uint32_t frame) const {
                       frameFile(kNormalRightFolder, frame, ".exr")});
     for (const RangeFiles& sensor : rangeSensors_)
         for (std::string& file : rangeFrameFiles(sensor.name, sensor.type, frame)) files.push_back(std::move(file));
+    for (std::string& file : flowFiles(frame)) files.push_back(std::move(file));
+    return files;
+}
+
+std::vector<std::string> DatasetWriter::flowFiles(uint32_t frame) const {
+    std::vector<std::string> files;
+    if (!flow_) return files;
+    for (uint32_t view = 0; view < (stereo_ ? 2u : 1u); ++view)
+        for (bool forward : {true, false}) {
+            if (!forward && frame == 0) continue;
+            const FlowFolders folders = flowFolders(view == 1, forward);
+            for (const char* extension : {".flo", ".png", ".exr"}) files.push_back(frameFile(folders.flow, frame, extension));
+            files.push_back(frameFile(folders.mask, frame, ".png"));
+        }
+    if (stereo_) {
+        files.push_back(frameFile(kDisparityChangeForwardFolder, frame, ".pfm"));
+        if (frame > 0) files.push_back(frameFile(kDisparityChangeBackwardFolder, frame, ".pfm"));
+    }
     return files;
 }
 
@@ -267,7 +297,10 @@ bool DatasetWriter::frameComplete(uint32_t frame) const {
     return true;
 }
 
-void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline) {
+void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline,
+                               const FlowNeighbours* flow) {
+    require(!flow_ || (flow && flow->next && (frame == 0 || flow->previous) && !images.flowForward.empty()),
+            "DatasetWriter::writeFrame: a dataset with flow needs each frame's flow and its neighbours");
     const uint32_t w = images.width, h = images.height;
     auto path = [&](const char* folder, const char* extension) { return target(frameFile(folder, frame, extension)); };
 
@@ -280,6 +313,30 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
     writeExr(path(kNormalFolder, ".exr"), w, h, 3, images.normals); // channels R, G, B = camera x, y, z
     writePng8(path(kPreviewFolder, ".png"), w, h, 3, tonemapPreview(images.rgbaHalf, w, h));
     if (stereo_) writeStereoFiles(frame, images, truth);
+    if (flow_) writeFlowFiles(frame, images, *flow, left.fx * baseline);
+}
+
+void DatasetWriter::writeFlowFiles(uint32_t frame, const FrameImages& images, const FlowNeighbours& neighbours,
+                                   double focalBaseline) {
+    const uint32_t w = images.width, h = images.height;
+    for (uint32_t view = 0; view < (stereo_ ? 2u : 1u); ++view)
+        for (bool forward : {true, false}) {
+            const FrameImages* other = forward ? neighbours.next : neighbours.previous;
+            if (!other) continue; // frame 0: no backward flow
+            const bool right = view == 1;
+            const std::vector<float>& flow = right ? (forward ? images.rightFlowForward : images.rightFlowBackward)
+                                                   : (forward ? images.flowForward : images.flowBackward);
+            const FlowTruth truth = flowTruth(w, h, flow, right ? other->rightDepth : other->depth);
+            const FlowFolders folders = flowFolders(right, forward);
+            writeFlo(target(frameFile(folders.flow, frame, ".flo")), truth.flow);
+            writeKittiFlowPng(target(frameFile(folders.flow, frame, ".png")), truth.flow);
+            writeExr(target(frameFile(folders.flow, frame, ".exr")), w, h, 3, truth.exr);
+            writePng8(target(frameFile(folders.mask, frame, ".png")), w, h, 1, occlusionMaskPixels(truth.visibility));
+            if (stereo_ && !right)
+                writePfmValues(target(frameFile(forward ? kDisparityChangeForwardFolder : kDisparityChangeBackwardFolder,
+                                                frame, ".pfm")),
+                               w, h, disparityChange(flow, images.depth, focalBaseline));
+        }
 }
 
 void DatasetWriter::writeStereoFiles(uint32_t frame, const FrameImages& images, const FrameTruth& truth) {

@@ -33,10 +33,18 @@ void shardRange(uint32_t first, uint32_t end, uint32_t index, uint32_t count, ui
 // Parses "I/N" (0 <= I < N <= kFrameLimit, digits only); throws a clear error otherwise.
 void parseShard(const std::string& text, uint32_t& index, uint32_t& count);
 
+// The frames before and after a frame, whose truth tells where its pixels' points are visible (render.flow).
+struct FlowNeighbours {
+    const FrameImages* previous = nullptr; // null for frame 0 (no backward flow)
+    const FrameImages* next = nullptr;
+};
+
 class DatasetWriter {
 public:
-    // `rangeSensors`: the scene's range sensors, whose files (range/<name>/) belong to each frame.
-    DatasetWriter(std::string root, bool stereo, const std::vector<RangeSensorParams>& rangeSensors = {});
+    // `rangeSensors`: the scene's range sensors, whose files (range/<name>/) belong to each frame. `flow`: frames have
+    // the motion ground truth files too (render.flow; dataset/flow_truth.h).
+    DatasetWriter(std::string root, bool stereo, const std::vector<RangeSensorParams>& rangeSensors = {},
+                  bool flow = false);
 
     // Checks, writing nothing, that the run can start: the output folder (or, when missing, its nearest existing
     // parent) is a writable folder; a dataset already there has `fingerprint` (keys absent from it are not
@@ -61,7 +69,9 @@ public:
 
     // Writes every file of one rendered frame. `left` is the reference camera and `baseline` the rig's (metres),
     // for the disparity; `images.labels` hold (class << 24) | instance per pixel (gpu::kSemantic*).
-    void writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline);
+    // A writer with flow needs `flow`: the neighbouring frames rendered with flow too.
+    void writeFrame(uint32_t frame, const FrameImages& images, const Camera& left, double baseline,
+                    const FlowNeighbours* flow = nullptr);
     // The absolute path under which to write the frame file `relative` (one of frameFiles(): a range sensor's files,
     // written by range/range_files.h), remembered as created by this run when it does not exist yet.
     std::string claim(const std::string& relative);
@@ -82,12 +92,16 @@ private:
     std::vector<std::string> directories() const;
     // The stereo files of writeFrame: right colour, both views' disparity and depth, occlusion masks, right normals.
     void writeStereoFiles(uint32_t frame, const FrameImages& images, const FrameTruth& truth);
+    // The motion ground truth files of writeFrame; `focalBaseline` f*B (stereo) for the disparity change.
+    void writeFlowFiles(uint32_t frame, const FrameImages& images, const FlowNeighbours& neighbours,
+                        double focalBaseline);
+    std::vector<std::string> flowFiles(uint32_t frame) const;
     // The absolute path of `relative`, remembered as created by this run when no file of that name exists yet.
     std::string target(const std::string& relative);
     void createFolder(const std::string& path);
     void removeOldDataset() const;
     std::string root_;
-    bool stereo_;
+    bool stereo_, flow_;
     struct RangeFiles {
         std::string name;
         RangeSensorType type;

@@ -20,6 +20,10 @@ struct FrameImages {
     std::vector<uint32_t> rightLabels;   // stereo only: the right view's truth pass, as labels
     std::vector<float> rightNormals;     // stereo only: the right view's truth pass, as normals (in the right
                                          // camera's axes, which are the left's: the rig is rectified)
+    // Motion ground truth (render.flow), width*height*4 floats per view: the flow of each pixel's surface point to the
+    // next and to the previous tick: x, y pixels (target pixel centre minus this pixel's), z the point's planar depth
+    // in that tick's camera, w 1 (0 where the pixel shows sky).
+    std::vector<float> flowForward, flowBackward, rightFlowForward, rightFlowBackward;
 };
 
 } // namespace sward

@@ -33,6 +33,13 @@ static_assert(std::size(kClasses) == 7 + gpu::kMaxPlantCategories, "one entry pe
 
 } // namespace
 
+FlowFolders flowFolders(bool right, bool forward) {
+    if (forward) return right ? FlowFolders{"flow_forward_right", "flow_forward_mask_right"}
+                              : FlowFolders{"flow_forward", "flow_forward_mask"};
+    return right ? FlowFolders{"flow_backward_right", "flow_backward_mask_right"}
+                 : FlowFolders{"flow_backward", "flow_backward_mask"};
+}
+
 std::string frameName(uint32_t frame) {
     char name[16];
     std::snprintf(name, sizeof name, "%06u", frame);

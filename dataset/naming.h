@@ -28,6 +28,15 @@ inline constexpr const char* kOcclusionFolder = "occlusion";            // left 
 inline constexpr const char* kOcclusionRightFolder = "occlusion_right"; // right pixels visible in the left view
 inline constexpr const char* kNormalRightFolder = "normal_right";       // the right view's normals (stereo)
 inline constexpr const char* kRangeFolder = "range"; // range sensors: range/<sensor>/ (range/range_files.h)
+// Motion ground truth (render.flow; dataset/flow_truth.h): per view and direction the flow (.flo, KITTI .png, .exr)
+// and its visibility mask; frame 0 has no backward flow. Stereo: the left view's disparity change (.pfm).
+inline constexpr const char* kDisparityChangeForwardFolder = "disparity_change_forward";
+inline constexpr const char* kDisparityChangeBackwardFolder = "disparity_change_backward";
+struct FlowFolders {
+    const char* flow; // "flow_forward", "flow_backward", "flow_forward_right", "flow_backward_right"
+    const char* mask; // "flow_forward_mask", ...
+};
+FlowFolders flowFolders(bool right, bool forward);
 
 // Files of a dataset as a whole.
 inline constexpr const char* kCalibFile = "calib.txt";

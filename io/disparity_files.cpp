@@ -101,17 +101,22 @@ std::string formatMatrix(const std::array<double, 9>& m) {
 } // namespace
 
 void writePfm(const std::string& path, uint32_t width, uint32_t height, std::span<const float> disparity) {
+    std::vector<float> values(disparity.begin(), disparity.end());
+    for (float& v : values)
+        if (!isValidDisparity(v)) v = std::numeric_limits<float>::infinity();
+    writePfmValues(path, width, height, values);
+}
+
+void writePfmValues(const std::string& path, uint32_t width, uint32_t height, std::span<const float> disparity) {
     requireSize(path, width, height, disparity.size());
     std::string header = "Pf\n" + std::to_string(width) + " " + std::to_string(height) + "\n-1\n";
     std::string data(header.size() + disparity.size() * 4, '\0');
     std::memcpy(data.data(), header.data(), header.size());
     char* out = data.data() + header.size();
-    const float inf = std::numeric_limits<float>::infinity();
     for (uint32_t row = 0; row < height; ++row) {
         const float* src = disparity.data() + size_t(height - 1 - row) * width; // PFM stores the bottom row first
         for (uint32_t x = 0; x < width; ++x) {
-            float v = isValidDisparity(src[x]) ? src[x] : inf;
-            uint32_t bits = std::bit_cast<uint32_t>(v);
+            uint32_t bits = std::bit_cast<uint32_t>(src[x]);
             if constexpr (std::endian::native == std::endian::big) bits = __builtin_bswap32(bits);
             std::memcpy(out, &bits, 4);
             out += 4;

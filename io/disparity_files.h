@@ -36,6 +36,8 @@ inline bool isValidDisparity(float d) {
 // PFM: header "Pf\n<w> <h>\n-1\n", little-endian float32, rows stored bottom row first. Invalid pixels
 // (see isValidDisparity) are written as +inf.
 void writePfm(const std::string& path, uint32_t width, uint32_t height, std::span<const float> disparity);
+// The same layout with every value as it is (any sign, inf, NaN): e.g. the flow's disparity change.
+void writePfmValues(const std::string& path, uint32_t width, uint32_t height, std::span<const float> values);
 
 // Reads a one-channel ("Pf") PFM of either byte order (scale < 0: little-endian, > 0: big-endian). A three-channel
 // "PF" file is refused. Non-finite and non-positive values become 0.

@@ -47,7 +47,8 @@ ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Ground& t
     indices_ = createBufferWithData(ctx, bytesOf(indices),
                                     VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     const uint64_t align = ctx.device.properties().limits.minStorageBufferOffsetAlignment;
-    transformsStride_ = (uint64_t(transformCount_) * sizeof(gpu::ObjectTransform) + align - 1) / align * align;
+    // Three times per slot: this time's transforms, then the previous and the next tick's (the truth pass with flow).
+    transformsStride_ = (3 * uint64_t(transformCount_) * sizeof(gpu::ObjectTransform) + align - 1) / align * align;
     transforms_ = createBuffer(ctx, transformsStride_ * gpu::kFrameDataSlots, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                MemoryIntent::Upload);
 
@@ -90,6 +91,9 @@ ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Ground& t
         truthLayout.bindings.push_back(
             layoutBinding(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT));
     truthPipeline_ = createGraphicsPipeline(ctx.device, truth, truthLayout);
+    if (scene.render.flow)
+        truthFlowPipeline_ =
+            createGraphicsPipeline(ctx.device, truthFlowPipelineDesc(truth, formats.truthFlow), truthLayout);
     // Depth only from the sun, both faces and the terrain's bias: thin parts (mast, wheels) still cast shadows.
     desc.fragmentShader = "";
     desc.colorFormats = {};
@@ -109,6 +113,7 @@ ObjectRenderer::~ObjectRenderer() {
     ctx_.submitter.waitIdle();
     destroyPipeline(ctx_.device, mainPipeline_);
     destroyPipeline(ctx_.device, truthPipeline_);
+    destroyPipeline(ctx_.device, truthFlowPipeline_);
     destroyPipeline(ctx_.device, shadowPipeline_);
     destroyBuffer(ctx_, vertices_);
     destroyBuffer(ctx_, indices_);
@@ -128,16 +133,21 @@ void ObjectRenderer::setVisible(size_t k, bool visible) {
     hidden_[k] = visible ? 0 : 1;
 }
 
-void ObjectRenderer::update(double time, uint32_t slot) {
+void ObjectRenderer::update(double time, uint32_t slot, const std::array<double, 2>* flowTimes) {
     if (empty()) return;
     require(slot < gpu::kFrameDataSlots, "ObjectRenderer::update: slot out of range");
     std::vector<gpu::ObjectTransform> transforms;
-    transforms.reserve(transformCount_);
-    for (size_t k = 0; k < objects_.size(); ++k) {
-        const bool hidden = k < hidden_.size() && hidden_[k];
-        for (const glm::dmat4& m : objectNodeTransforms(objects_[k], models_[k], terrain_, time))
-            transforms.push_back(hidden ? gpu::ObjectTransform{glm::mat4(0.0f), glm::mat4(0.0f)}
-                                        : gpu::ObjectTransform{glm::mat4(m), glm::mat4(glm::transpose(glm::inverse(m)))});
+    transforms.reserve(3 * size_t(transformCount_));
+    std::vector<double> times{time};
+    if (flowTimes) times.insert(times.end(), flowTimes->begin(), flowTimes->end());
+    for (double t : times) {
+        for (size_t k = 0; k < objects_.size(); ++k) {
+            const bool hidden = k < hidden_.size() && hidden_[k];
+            for (const glm::dmat4& m : objectNodeTransforms(objects_[k], models_[k], terrain_, t))
+                transforms.push_back(hidden ? gpu::ObjectTransform{glm::mat4(0.0f), glm::mat4(0.0f)}
+                                            : gpu::ObjectTransform{glm::mat4(m),
+                                                                   glm::mat4(glm::transpose(glm::inverse(m)))});
+        }
     }
     if (transforms.empty()) return; // memcpy from an empty vector's null data() is undefined
     std::memcpy(transforms_.mapped() + slot * transformsStride_, transforms.data(),
@@ -146,7 +156,7 @@ void ObjectRenderer::update(double time, uint32_t slot) {
 
 DescriptorBinding ObjectRenderer::transformsBinding(uint32_t slot) const {
     return storageBuffer(gpu::kBindingObjectTransforms, transforms_.handle, slot * transformsStride_,
-                         uint64_t(transformCount_) * sizeof(gpu::ObjectTransform));
+                         3 * uint64_t(transformCount_) * sizeof(gpu::ObjectTransform));
 }
 
 void ObjectRenderer::draw(VkCommandBuffer cmd, const Pipeline& pipeline,
@@ -163,10 +173,12 @@ void ObjectRenderer::recordShadow(VkCommandBuffer cmd, const DescriptorBinding& 
     if (!empty()) draw(cmd, shadowPipeline_, {frame, transformsBinding(slot)});
 }
 
-void ObjectRenderer::recordTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot) {
+void ObjectRenderer::recordTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot, bool flow) {
     if (empty()) return;
-    bindPipeline(cmd, truthPipeline_);
-    pushDescriptors(ctx_.device, cmd, truthPipeline_,
+    const Pipeline& pipeline = flow ? truthFlowPipeline_ : truthPipeline_;
+    require(pipeline.handle, "ObjectRenderer::recordTruth: flow needs a scene with render.flow");
+    bindPipeline(cmd, pipeline);
+    pushDescriptors(ctx_.device, cmd, pipeline,
                     {frame, transformsBinding(slot), storageBuffer(gpu::kBindingMeshVertices, vertices_.handle),
                      storageBuffer(gpu::kBindingMeshIndices, indices_.handle)});
     vkCmdDraw(cmd, indexCount_, 1, 0, 0); // non-indexed: the shader reads the triangle list

@@ -41,12 +41,15 @@ public:
 
     // Writes the node transforms at simulation time `time` into slot `slot` (< gpu::kFrameDataSlots). The slot must not be
     // in use by a frame still executing on the GPU (the caller's frames-in-flight rotation guarantees this).
-    void update(double time, uint32_t slot = 0);
+    // `flowTimes` (the truth pass with flow): also those at the previous and the next tick, after this time's.
+    void update(double time, uint32_t slot = 0, const std::array<double, 2>* flowTimes = nullptr);
+    uint32_t transformCount() const { return transformCount_; } // per time
     // Draw calls into the current pass; `slot` as given to update(). `frame` is the frame-constants binding.
     void recordMain(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& shadowMap,
                     uint32_t slot = 0);
     void recordShadow(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot = 0);
-    void recordTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot = 0);
+    // `flow`: the truth pass with motion ground truth (PlantPass::TruthFlow; the scene's render.flow).
+    void recordTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot = 0, bool flow = false);
 
 private:
     void draw(VkCommandBuffer cmd, const Pipeline& pipeline, std::initializer_list<DescriptorBinding> bindings);
@@ -61,7 +64,7 @@ private:
     uint32_t transformCount_ = 0, indexCount_ = 0;
     Buffer vertices_, indices_, transforms_;
     uint64_t transformsStride_ = 0;
-    Pipeline mainPipeline_, shadowPipeline_, truthPipeline_;
+    Pipeline mainPipeline_, shadowPipeline_, truthPipeline_, truthFlowPipeline_;
 };
 
 } // namespace sward

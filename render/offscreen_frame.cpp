@@ -10,14 +10,16 @@
 
 namespace sward {
 
-OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples)
+OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples, bool flow)
     : ctx_(ctx), main_(ctx, mainPassTargetDesc(width, height, samples)),
-      truth_(ctx, truthPassTargetDesc(width, height)) {
+      truth_(ctx, truthPassTargetDesc(width, height, flow)) {
     uint64_t pixels = uint64_t(width) * height;
     color_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     depth_ = createBuffer(ctx, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     labels_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     normals_ = createBuffer(ctx, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    if (flow)
+        for (Buffer& b : flow_) b = createBuffer(ctx, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
 }
 
 namespace {
@@ -33,6 +35,12 @@ void splitLabels(const Buffer& pairs, uint64_t pixels, bool world, std::vector<u
     for (uint64_t i = 0; i < pixels; ++i) (*tiles)[i] = pair[2 * i + 1];
 }
 
+std::vector<float> floats(const Buffer& buffer, uint64_t count) {
+    std::vector<float> out(count);
+    std::memcpy(out.data(), buffer.mapped(), count * sizeof(float));
+    return out;
+}
+
 // The truth pass's normals without their unused w.
 std::vector<float> normalsXyz(const Buffer& xyzw, uint64_t pixels) {
     const float* normal = reinterpret_cast<const float*>(xyzw.mapped());
@@ -45,18 +53,20 @@ std::vector<float> normalsXyz(const Buffer& xyzw, uint64_t pixels) {
 } // namespace
 
 OffscreenFrame::~OffscreenFrame() {
-    for (Buffer* b : {&color_, &depth_, &labels_, &normals_, &rightColor_, &rightDepth_, &rightLabels_, &rightNormals_})
+    for (Buffer* b : {&color_, &depth_, &labels_, &normals_, &rightColor_, &rightDepth_, &rightLabels_, &rightNormals_,
+                      &flow_[0], &flow_[1], &rightFlow_[0], &rightFlow_[1]})
         retireBuffer(ctx_, *b);
 }
 
 FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera, double timeSeconds,
                                    uint32_t frameIndex, const std::function<void(VkCommandBuffer)>& prologue,
-                                   const Camera* right) {
+                                   const Camera* right, const FlowTicks* flow) {
     const RenderTargetDesc& desc = main_.desc();
     require(camera.width == desc.width && camera.height == desc.height, "camera and frame sizes differ");
     require(!right || (right->width == desc.width && right->height == desc.height), "left and right sizes differ");
     require(renderer.samples() == uint32_t(desc.samples), "renderer and frame sample counts differ");
     const uint64_t pixels = uint64_t(desc.width) * desc.height;
+    require(!flow || flow_[0], "OffscreenFrame::render: flow needs a frame made with flow");
     if (right && !rightMain_) {
         rightMain_ = std::make_unique<RenderTarget>(ctx_, desc);
         rightTruth_ = std::make_unique<RenderTarget>(ctx_, truth_.desc());
@@ -64,11 +74,14 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
         rightDepth_ = createBuffer(ctx_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
         rightLabels_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
         rightNormals_ = createBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+        if (flow_[0])
+            for (Buffer& b : rightFlow_)
+                b = createBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     }
     ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
         if (prologue) prologue(cmd);
         SceneRenderer::View views[2] = {{&camera, &main_, &truth_}, {right, rightMain_.get(), rightTruth_.get()}};
-        renderer.recordViews(cmd, {views, right ? 2u : 1u}, timeSeconds, frameIndex);
+        renderer.recordViews(cmd, {views, right ? 2u : 1u}, timeSeconds, frameIndex, nullptr, true, flow);
         main_.recordReadback(cmd, 0, color_);
         truth_.recordReadback(cmd, 0, depth_);
         truth_.recordReadback(cmd, 1, labels_);
@@ -78,6 +91,10 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
             rightTruth_->recordReadback(cmd, 0, rightDepth_);
             rightTruth_->recordReadback(cmd, 1, rightLabels_);
             rightTruth_->recordReadback(cmd, 2, rightNormals_);
+        }
+        for (uint32_t d = 0; flow && d < 2; ++d) {
+            truth_.recordReadback(cmd, 3 + d, flow_[d]);
+            if (right) rightTruth_->recordReadback(cmd, 3 + d, rightFlow_[d]);
         }
         transferToHostBarrier(cmd);
     });
@@ -95,6 +112,14 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
         std::memcpy(images.rightDepth.data(), rightDepth_.mapped(), pixels * 4);
         splitLabels(rightLabels_, pixels, false, images.rightLabels, nullptr);
         images.rightNormals = normalsXyz(rightNormals_, pixels);
+    }
+    if (flow) {
+        images.flowForward = floats(flow_[0], pixels * 4);
+        images.flowBackward = floats(flow_[1], pixels * 4);
+        if (right) {
+            images.rightFlowForward = floats(rightFlow_[0], pixels * 4);
+            images.rightFlowBackward = floats(rightFlow_[1], pixels * 4);
+        }
     }
     return images;
 }

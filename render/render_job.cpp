@@ -20,6 +20,8 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <set>
+#include <utility>
 #include <sstream>
 #include <unistd.h>
 
@@ -160,6 +162,34 @@ uint64_t bytesNeeded(const DatasetWriter& dataset, const JobPlan& plan, const st
     return dataset.frameBytesUpperBound(plan.width, plan.height) + sequenceBytes + manifestBytes + kSmallFiles;
 }
 
+// renderFrames with flow (render.flow): a frame's files need its neighbours' truth (dataset/flow_truth.h), so the
+// frames render in order from the one before the first to write to the one after the last (those not to be written
+// only for their truth), and frame f is written once f + 1 has rendered.
+void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, const JobPlan& plan,
+                      const std::vector<uint32_t>& todo, DatasetWriter& dataset, const std::optional<SensorModel>& sensor,
+                      const RenderJobOptions& options, BackgroundTask& writer, Progress& progress) {
+    const double baseline = r.scene.camera.rig.baseline;
+    const std::set<uint32_t> toWrite(todo.begin(), todo.end());
+    std::shared_ptr<const FrameImages> previous, current;
+    std::shared_ptr<const RigCameras> currentCameras;
+    uint32_t done = 0;
+    for (uint32_t frame = todo.front() > 0 ? todo.front() - 1 : 0; frame <= todo.back() + 1; ++frame) {
+        auto cameras = std::make_shared<RigCameras>();
+        auto images = std::make_shared<const FrameImages>(
+            renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras));
+        if (current && toWrite.contains(frame - 1)) {
+            writer.start([&dataset, &progress, &done, baseline, frame, previous, current, images, currentCameras] {
+                const FlowNeighbours neighbours{frame - 1 > 0 ? previous.get() : nullptr, images.get()};
+                dataset.writeFrame(frame - 1, *current, currentCameras->left, baseline, &neighbours);
+                progress.frameDone(++done, frame - 1);
+            });
+        }
+        previous = std::exchange(current, images);
+        currentCameras = cameras;
+    }
+    writer.wait();
+}
+
 // Renders and writes the frames of `todo` (in order). The simulation runs every tick from 0, so skipped frames
 // and other shards' frames still leave their tracks.
 void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const std::vector<uint32_t>& todo,
@@ -168,13 +198,17 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
     RutPatchCache ruts;
     SceneGpu gpu = createSceneGpu(ctx, r, plan.samples, SimulationMode::WhenSceneHasColliders);
     const RigParams& rig = r.scene.camera.rig;
-    OffscreenFrame target(ctx, plan.width, plan.height, plan.samples);
+    OffscreenFrame target(ctx, plan.width, plan.height, plan.samples, r.scene.render.flow);
     Progress progress{!options.quiet && isatty(fileno(stderr)), uint32_t(todo.size())};
     uint32_t done = 0;
     // A frame's files are encoded and written while the next frame renders (the CPU driver's vertex stage runs on
     // one thread, and a GPU renders on its own). One frame at a time: start() waits for the previous frame's files,
     // so a write error stops the run one frame later at the most, and progress counts frames on disk.
     BackgroundTask writer;
+    if (r.scene.render.flow) {
+        renderFlowFrames(gpu, target, r, plan, todo, dataset, sensor, options, writer, progress);
+        return;
+    }
     for (uint32_t frame : todo) {
         auto cameras = std::make_shared<RigCameras>();
         auto images = std::make_shared<const FrameImages>(
@@ -235,7 +269,7 @@ void runRenderJob(const RenderJobOptions& options) {
     const bool stereo = resources.scene.camera.rig.stereo();
 
     const std::vector<nlohmann::json> records = sequenceRecords(resources, plan, options.time);
-    DatasetWriter dataset(options.outDir, stereo, resources.scene.rangeSensors);
+    DatasetWriter dataset(options.outDir, stereo, resources.scene.rangeSensors, resources.scene.render.flow);
     std::vector<uint32_t> todo; // resume: frames whose files all exist are complete
     for (uint32_t frame = plan.firstFrame; frame < plan.endFrame; ++frame)
         if (options.overwrite || !dataset.frameComplete(frame)) todo.push_back(frame);

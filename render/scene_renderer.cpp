@@ -28,12 +28,12 @@ RenderTargetDesc mainPassTargetDesc(uint32_t width, uint32_t height, uint32_t sa
     };
 }
 
-RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height) {
+RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height, bool flow) {
     VkClearColorValue infinity{.uint32 = {gpu::kDepthInfinityBits, 0, 0, 0}};
     VkClearColorValue sky{.uint32 = {gpu::kSemanticSky << gpu::kInstanceBits, 0, 0, 0}};
     VkClearColorValue noNormal{.float32 = {0.0f, 0.0f, 0.0f, 0.0f}};
     // Normals in 32-bit floats: the dataset stores float32, and half floats would round a unit normal by 1e-3.
-    return RenderTargetDesc{
+    RenderTargetDesc desc{
         .width = width,
         .height = height,
         .samples = VK_SAMPLE_COUNT_1_BIT,
@@ -43,6 +43,9 @@ RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height) {
         .depthFormat = VK_FORMAT_D32_SFLOAT,
         .depthClear = 0.0f,
     };
+    if (flow) // flow to the next and to the previous tick: x, y pixels, z the depth there, w 1 (0: no surface)
+        desc.colors.insert(desc.colors.end(), 2, {VK_FORMAT_R32G32B32A32_SFLOAT, noNormal});
+    return desc;
 }
 
 namespace {
@@ -90,6 +93,7 @@ VegetationPassFormats SceneRenderer::plantPassFormats() const {
                                  .truthLabel = truthDesc.colors[1].format,
                                  .truthNormal = truthDesc.colors[2].format,
                                  .truthDepth = truthDesc.depthFormat,
+                                 .truthFlow = truthPassTargetDesc(1, 1, true).colors[3].format,
                                  .shadowDepth = VK_FORMAT_D32_SFLOAT};
 }
 
@@ -161,8 +165,13 @@ void SceneRenderer::createPipelines(const Atlas* atlas, uint32_t instanceCapacit
     truthLayout.pushConstantSize = sizeof(gpu::TerrainTileConstants);
     truthLayout.pushConstantStages = VK_SHADER_STAGE_FRAGMENT_BIT;
     terrainTruthPipeline_ = createGraphicsPipeline(ctx.device, truthTerrain, truthLayout);
+    const VkFormat flowFormat = scene.render.flow ? plantPassFormats().truthFlow : VK_FORMAT_UNDEFINED;
+    if (scene.render.flow)
+        terrainTruthFlowPipeline_ =
+            createGraphicsPipeline(ctx.device, truthFlowPipelineDesc(truthTerrain, flowFormat), truthLayout);
     if (sceneMakesRuts(scene))
-        tracks_ = std::make_unique<TrackRenderer>(ctx, terrainDesc, terrainLayout, truthTerrain, truthLayout);
+        tracks_ =
+            std::make_unique<TrackRenderer>(ctx, terrainDesc, terrainLayout, truthTerrain, truthLayout, flowFormat);
     terrainDesc.fragmentShader = "";
     terrainDesc.colorFormats = {};
     terrainDesc.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -201,6 +210,7 @@ SceneRenderer::~SceneRenderer() {
     vkDestroySampler(ctx_.vk(), groundSampler_, nullptr);
     destroyPipeline(ctx_.device, terrainPipeline_);
     destroyPipeline(ctx_.device, terrainTruthPipeline_);
+    destroyPipeline(ctx_.device, terrainTruthFlowPipeline_);
     destroyPipeline(ctx_.device, terrainShadowPipeline_);
     destroyPipeline(ctx_.device, skyPipeline_);
     destroyBuffer(ctx_, constants_);
@@ -240,7 +250,7 @@ void SceneRenderer::removeTile(TileCoord coord) {
 }
 
 void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const ShadowFit& shadow, double timeSeconds,
-                                   int shadowDraw) {
+                                   int shadowDraw, const FlowTicks* flow, uint32_t view) {
     gpu::FrameConstants c{};
     glm::dmat4 viewProj = camera.viewProjection();
     c.viewProj = glm::mat4(viewProj);
@@ -277,6 +287,14 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Sh
     }
     c.debug = glm::uvec4(debugFlags_, 0u, 0u, 0u);
     c.coverBand = glm::vec4(scene_.lod.farLimit, scene_.lod.band, 0.0f, 0.0f);
+    if (flow) {
+        c.viewProjPrevious = glm::mat4(flow->previous[view]->viewProjection());
+        c.viewProjNext = glm::mat4(flow->next[view]->viewProjection());
+        c.flowReferencePrevious = glm::vec4(glm::vec3(flow->previous[0]->position), 1.0f);
+        c.flowReferenceNext = glm::vec4(glm::vec3(flow->next[0]->position), 1.0f);
+        c.flowTimes = glm::vec4(float(timeSeconds - flow->timeStep), float(timeSeconds + flow->timeStep), 0.0f, 0.0f);
+        c.flowParams = glm::uvec4(objects_ ? objects_->transformCount() : 0u, 0u, 0u, 0u);
+    }
     std::memcpy(constants_.mapped() + slot * constantsStride_, &c, sizeof c);
 }
 
@@ -359,10 +377,12 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const Descr
                                 const glm::dvec3& reference) {
     // With ruts the ground has holes where their patches lie (render/track_renderer.h); not in the shadow pass.
     const bool ruts = tracks_ && tracks_->active() && pass != PlantPass::Shadow;
-    const Pipeline& pipeline = ruts                       ? tracks_->holedGround(pass)
-                               : pass == PlantPass::Main  ? terrainPipeline_
-                               : pass == PlantPass::Truth ? terrainTruthPipeline_
-                                                          : terrainShadowPipeline_;
+    const bool truth = pass == PlantPass::Truth || pass == PlantPass::TruthFlow;
+    const Pipeline& pipeline = ruts                           ? tracks_->holedGround(pass)
+                               : pass == PlantPass::Main      ? terrainPipeline_
+                               : pass == PlantPass::Truth     ? terrainTruthPipeline_
+                               : pass == PlantPass::TruthFlow ? terrainTruthFlowPipeline_
+                                                              : terrainShadowPipeline_;
     bindPipeline(cmd, pipeline);
     const DescriptorBinding textures = sampledImage(gpu::kBindingGroundTextures, groundTextures_.view, groundSampler_);
     for (const auto& [key, tile] : tiles_) {
@@ -378,7 +398,7 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const Descr
             else
                 pushDescriptors(ctx_.device, cmd, pipeline, {frame, shadowBinding(), cover, textures});
             pushConstants(cmd, pipeline, constants);
-        } else if (pass == PlantPass::Truth) {
+        } else if (truth) {
             const DescriptorBinding vertices = storageBuffer(gpu::kBindingMeshVertices, tile.vertices.handle);
             const DescriptorBinding indices = storageBuffer(gpu::kBindingMeshIndices, tile.indices.handle);
             if (ruts)
@@ -390,7 +410,7 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const Descr
         } else {
             pushDescriptors(ctx_.device, cmd, pipeline, {frame});
         }
-        if (pass != PlantPass::Truth) {
+        if (!truth) {
             VkDeviceSize offset = 0;
             vkCmdBindVertexBuffers(cmd, 0, 1, &tile.vertices.handle, &offset);
             vkCmdBindIndexBuffer(cmd, tile.indices.handle, 0, VK_INDEX_TYPE_UINT32);
@@ -400,7 +420,7 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const Descr
         if (pass == PlantPass::Main)
             tracks_->drawMain(cmd, frame, shadowBinding(), cover, textures, constants);
         else
-            tracks_->drawTruth(cmd, frame, cover, constants);
+            tracks_->drawTruth(cmd, frame, cover, constants, pass == PlantPass::TruthFlow);
     }
 }
 
@@ -486,15 +506,19 @@ void SceneRenderer::recordExpansion(VkCommandBuffer cmd, std::span<const View> v
 }
 
 void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views, double timeSeconds,
-                                uint32_t frameIndex, GpuTimers* timers, bool expand) {
+                                uint32_t frameIndex, GpuTimers* timers, bool expand, const FlowTicks* flow) {
     require(!views.empty() && views.size() <= kMaxViews, "a frame has one or two views");
     const Camera& reference = *views[0].camera;
+    if (flow && vegetation_) vegetation_->enableFlow();
     const uint32_t dataSlot = frameIndex % gpu::kFrameDataSlots; // objects' and vegetation's per-frame data
     const uint32_t firstSlot = dataSlot * kSlotsPerFrame;        // frame constants: views, then shadow cascades
     const ShadowFit shadowFit = fitShadows(reference); // once per frame: both views and every cascade's draw use it
-    for (uint32_t v = 0; v < views.size(); ++v) writeConstants(firstSlot + v, *views[v].camera, shadowFit, timeSeconds);
+    for (uint32_t v = 0; v < views.size(); ++v)
+        writeConstants(firstSlot + v, *views[v].camera, shadowFit, timeSeconds, -1, flow, v);
     const DescriptorBinding shadow = shadowBinding();
-    if (objects_) objects_->update(timeSeconds, dataSlot);
+    const std::array<double, 2> flowTimes{timeSeconds - (flow ? flow->timeStep : 0.0),
+                                          timeSeconds + (flow ? flow->timeStep : 0.0)};
+    if (objects_) objects_->update(timeSeconds, dataSlot, flow ? &flowTimes : nullptr);
     if (tracks_)
         tracks_->update(
             cmd, reference,
@@ -504,15 +528,21 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
 
     recordShadowPass(cmd, reference, shadowFit, firstSlot, dataSlot, timeSeconds, timers);
 
+    for (uint32_t v = 0; v < views.size(); ++v)
+        recordMainPass(cmd, *views[v].main, firstSlot + v, dataSlot, reference.position, timers, nullptr);
+    if (flow && flow->beforeTruth) {
+        flow->beforeTruth(cmd);
+        computeToVertexAndCopyBarrier(cmd); // the next tick's plant states -> the truth pass's vertex shaders
+    }
+    const PlantPass truthPass = flow ? PlantPass::TruthFlow : PlantPass::Truth;
     for (uint32_t v = 0; v < views.size(); ++v) {
         const uint32_t slot = firstSlot + v;
-        recordMainPass(cmd, *views[v].main, slot, dataSlot, reference.position, timers, nullptr);
         if (!views[v].truth) continue;
         if (timers) timers->begin(cmd, "truth");
         views[v].truth->begin(cmd);
-        drawTerrain(cmd, PlantPass::Truth, frameBinding(slot), reference.position);
-        if (objects_) objects_->recordTruth(cmd, frameBinding(slot), dataSlot);
-        if (vegetation_) vegetation_->draw(cmd, PlantPass::Truth, frameBinding(slot), shadow, dataSlot);
+        drawTerrain(cmd, truthPass, frameBinding(slot), reference.position);
+        if (objects_) objects_->recordTruth(cmd, frameBinding(slot), dataSlot, flow != nullptr);
+        if (vegetation_) vegetation_->draw(cmd, truthPass, frameBinding(slot), shadow, dataSlot);
         views[v].truth->end(cmd);
         if (timers) timers->end(cmd);
     }

@@ -42,7 +42,18 @@ struct BakedPlants;
 
 // Formats and clear values of the passes, in attachment order.
 RenderTargetDesc mainPassTargetDesc(uint32_t width, uint32_t height, uint32_t samples);
-RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height);
+// `flow`: with the two flow attachments (RGBA32F, forward then backward; shaders/shared/flow_fragment.glsl).
+RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height, bool flow = false);
+
+// Motion ground truth of a frame (the scene's render.flow; docs/dataset-format.md): the truth passes also write each
+// pixel's flow to the next and to the previous tick. The views' truth targets need truthPassTargetDesc(.., true).
+struct FlowTicks {
+    std::array<const Camera*, 2> previous{}, next{}; // each view's camera at the previous and the next tick
+    double timeStep = 0.0;                           // those ticks are at the frame's time -+ this
+    // Records the next tick, between the main passes and the truth passes, which read its plant states as the next
+    // tick's (the plants' state of this tick kept first: VegetationRenderer::recordKeepState).
+    std::function<void(VkCommandBuffer)> beforeTruth;
+};
 
 class SceneRenderer {
 public:
@@ -80,8 +91,9 @@ public:
     // eyes see exactly the same geometry and shadows (a stereo matcher must not be shown two scenes).
     // `expand` false: the expansion is left out, recorded before by recordExpansion() for the same views, time and
     // frame (benchmarks count pipeline statistics in a command buffer without compute: lavapipe crashes otherwise).
+    // `flow`: the truth passes with motion ground truth (a scene with render.flow).
     void recordViews(VkCommandBuffer cmd, std::span<const View> views, double timeSeconds, uint32_t frameIndex,
-                     GpuTimers* timers = nullptr, bool expand = true);
+                     GpuTimers* timers = nullptr, bool expand = true, const FlowTicks* flow = nullptr);
     // The expansion recordViews() would record for these views, alone.
     void recordExpansion(VkCommandBuffer cmd, std::span<const View> views, double timeSeconds, uint32_t frameIndex,
                          GpuTimers* timers = nullptr);
@@ -136,8 +148,9 @@ private:
     ShadowFit fitShadows(const Camera& reference) const;
     // Frame constants of `camera` with the frame's shadow cascades; `shadowDraw` >= 0 makes the slot the one the
     // shadow pass draws cascade `shadowDraw` with.
+    // `flow`: also view `view`'s cameras at the previous and next tick (the truth pass with flow).
     void writeConstants(uint32_t slot, const Camera& camera, const ShadowFit& shadow, double timeSeconds,
-                        int shadowDraw = -1);
+                        int shadowDraw = -1, const FlowTicks* flow = nullptr, uint32_t view = 0);
     // The shadow pass: each cascade into its tile of the shadow map, with the plants' LODs that can reach it.
     void recordShadowPass(VkCommandBuffer cmd, const Camera& reference, const ShadowFit& shadow, uint32_t firstSlot,
                           uint32_t dataSlot, double timeSeconds, GpuTimers* timers);
@@ -165,6 +178,7 @@ private:
     Buffer constants_; // gpu::kFrameDataSlots * kSlotsPerFrame slots of FrameConstants, host-visible
     uint64_t constantsStride_ = 0;
     Pipeline terrainPipeline_, terrainTruthPipeline_, terrainShadowPipeline_, skyPipeline_;
+    Pipeline terrainTruthFlowPipeline_; // render.flow
     std::unique_ptr<RenderTarget> shadowMap_;
     ShadowCascadeParams shadowParams_; // fixed once the vegetation is known
     VkSampler shadowSampler_ = VK_NULL_HANDLE;
@@ -181,7 +195,8 @@ private:
 // Targets and readback buffers for rendering frames of one size to host images, reused across a sequence.
 class OffscreenFrame {
 public:
-    OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples);
+    // `flow`: truth targets with the flow attachments, for render() with FlowTicks.
+    OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, uint32_t samples, bool flow = false);
     ~OffscreenFrame();
     OffscreenFrame(const OffscreenFrame&) = delete;
     OffscreenFrame& operator=(const OffscreenFrame&) = delete;
@@ -189,14 +204,20 @@ public:
     // Records `prologue` (e.g. the interaction tick), the frame and the readbacks in one submission and waits.
     // With `right`, also renders the right view of a stereo rig (see SceneRenderer::recordViews), colour and
     // ground truth.
+    // `flow` (an OffscreenFrame made with flow): the truth passes write the motion ground truth, read back too.
     FrameImages render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
-                       const std::function<void(VkCommandBuffer)>& prologue = {}, const Camera* right = nullptr);
+                       const std::function<void(VkCommandBuffer)>& prologue = {}, const Camera* right = nullptr,
+                       const FlowTicks* flow = nullptr);
 
 private:
     Context& ctx_;
     RenderTarget main_, truth_;
     std::unique_ptr<RenderTarget> rightMain_, rightTruth_; // created on the first stereo frame
     Buffer color_, depth_, labels_, normals_, rightColor_, rightDepth_, rightLabels_, rightNormals_;
+    Buffer flow_[2], rightFlow_[2]; // forward, backward (made with flow)
+
+public:
+    bool hasFlow() const { return bool(flow_[0]); }
 };
 
 // Renders one frame into fresh targets (the renderer's sample count) and reads colour and depth back (waits).

@@ -52,6 +52,38 @@ std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, uint32_t w
     return sensor;
 }
 
+namespace {
+
+// renderSequenceFrame with the motion ground truth (render.flow; one tile, no world simulation). The plants' state of
+// the previous tick is kept before this frame's tick runs, and this tick's before the next tick runs between the main
+// and the truth passes (VegetationRenderer::recordKeepState).
+FrameImages renderFlowFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t frame,
+                            double time, const RigCameras& cameras) {
+    const uint32_t width = cameras.left.width, height = cameras.left.height;
+    const RigCameras previous = sequenceRig(r, width, height, frame > 0 ? frame - 1 : 0); // frame 0 has no backward flow
+    const RigCameras next = sequenceRig(r, width, height, frame + 1);
+    VegetationRenderer* plants = gpu.renderer->vegetation();
+    Simulation* simulation = gpu.simulation.get();
+    if (plants) plants->enableFlow();
+    auto keepAndTick = [plants, simulation](VkCommandBuffer cmd, uint32_t tick) {
+        if (plants) plants->recordKeepState(cmd);
+        if (simulation) simulation->recordNextTick(cmd, tick);
+    };
+    const bool stereo = r.scene.camera.rig.stereo();
+    FlowTicks flow{.previous = {&previous.left, &previous.right},
+                   .next = {&next.left, &next.right},
+                   .timeStep = r.scene.sequence.timeStep,
+                   .beforeTruth = [&](VkCommandBuffer cmd) { keepAndTick(cmd, frame + 1); }};
+    // This frame's tick, unless the previous frame ran it before its truth passes.
+    const bool tickDone = simulation && simulation->nextTick() == uint64_t(frame) + 1;
+    auto prologue = [&](VkCommandBuffer cmd) {
+        if (!tickDone) keepAndTick(cmd, frame);
+    };
+    return target.render(*gpu.renderer, cameras.left, time, frame, prologue, stereo ? &cameras.right : nullptr, &flow);
+}
+
+} // namespace
+
 FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
                                 uint32_t height, uint32_t frame, double timeOffset, const std::optional<SensorModel>& sensor, RigCameras& cameras) {
     const double time = double(frame) * r.scene.sequence.timeStep;
@@ -74,8 +106,13 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
         gpu.simulation->runTicksBefore(frame); // ticks of frames skipped or rendered elsewhere (shards)
         tick = [&](VkCommandBuffer cmd) { gpu.simulation->recordNextTick(cmd, frame); };
     }
-    FrameImages images =
-        target.render(*gpu.renderer, cameras.left, timeOffset + time, frame, tick, stereo ? &cameras.right : nullptr);
+    FrameImages images;
+    if (target.hasFlow()) {
+        images = renderFlowFrame(gpu, target, r, frame, timeOffset + time, cameras);
+    } else {
+        images = target.render(*gpu.renderer, cameras.left, timeOffset + time, frame, tick,
+                               stereo ? &cameras.right : nullptr);
+    }
     if (sensor) {
         sensor->applyHalf(r.scene.seed, frame, 0, images.rgbaHalf);
         if (stereo) sensor->applyHalf(r.scene.seed, frame, 1, images.rightRgbaHalf);

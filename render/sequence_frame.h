@@ -32,6 +32,9 @@ std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, uint32_t w
 // Renders `frame` (width x height: `target`'s size): first simulates the ticks before it that have not run (each its own submission), then records
 // the frame's own tick, the views and the readbacks in one submission; applies the sensor model with the (seed,
 // frame, camera) noise key. `timeOffset` is added to the wind's time (--time). Returns the rig in `cameras`.
+// A `target` made with flow (render.flow) also gets the motion ground truth: the frame's tick runs unless the previous
+// frame's already ran it, and the next tick runs before the truth passes (FlowTicks), so the simulation ends one tick
+// ahead; frames must then come in increasing order.
 FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
                                 uint32_t height, uint32_t frame, double timeOffset, const std::optional<SensorModel>& sensor, RigCameras& cameras);
 

@@ -54,7 +54,8 @@ PipelineLayoutDesc with(PipelineLayoutDesc layout, VkDescriptorSetLayoutBinding 
 } // namespace
 
 TrackRenderer::TrackRenderer(Context& ctx, const GraphicsPipelineDesc& main, const PipelineLayoutDesc& mainLayout,
-                             const GraphicsPipelineDesc& truth, const PipelineLayoutDesc& truthLayout)
+                             const GraphicsPipelineDesc& truth, const PipelineLayoutDesc& truthLayout,
+                             VkFormat flowFormat)
     : ctx_(ctx) {
     const VkDescriptorSetLayoutBinding table =
         layoutBinding(gpu::kBindingTrackTable, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT);
@@ -68,6 +69,9 @@ TrackRenderer::TrackRenderer(Context& ctx, const GraphicsPipelineDesc& main, con
     desc = truth;
     desc.fragmentShader = "truth_holes.frag";
     holedTruth_ = createGraphicsPipeline(ctx.device, desc, with(truthLayout, table));
+    if (flowFormat != VK_FORMAT_UNDEFINED)
+        holedTruthFlow_ =
+            createGraphicsPipeline(ctx.device, truthFlowPipelineDesc(desc, flowFormat), with(truthLayout, table));
     // The patches pull their vertices (track.vert): indexed in the main pass (each grid vertex shaded once), three per
     // triangle in the truth pass (each vertex knows its triangle's normal).
     desc = main;
@@ -80,6 +84,8 @@ TrackRenderer::TrackRenderer(Context& ctx, const GraphicsPipelineDesc& main, con
     desc.vertexShader = "track.vert";
     desc.specialization = {/* PASS= */ gpu::kPassTruth};
     patchTruth_ = createGraphicsPipeline(ctx.device, desc, truthLayout); // its mesh indices: the patches drawn
+    if (flowFormat != VK_FORMAT_UNDEFINED)
+        patchTruthFlow_ = createGraphicsPipeline(ctx.device, truthFlowPipelineDesc(desc, flowFormat), truthLayout);
     const std::vector<uint32_t> indices = patchGridIndices(firstIndex_);
     gridIndices_ = createBufferWithData(
         ctx, std::span(reinterpret_cast<const uint8_t*>(indices.data()), indices.size() * sizeof(uint32_t)),
@@ -91,7 +97,8 @@ TrackRenderer::~TrackRenderer() {
     destroyBuffer(ctx_, table_);
     destroyBuffer(ctx_, visible_);
     destroyBuffer(ctx_, gridIndices_);
-    for (Pipeline* p : {&patchMain_, &patchTruth_, &holedMain_, &holedTruth_}) destroyPipeline(ctx_.device, *p);
+    for (Pipeline* p : {&patchMain_, &patchTruth_, &holedMain_, &holedTruth_, &patchTruthFlow_, &holedTruthFlow_})
+        destroyPipeline(ctx_.device, *p);
 }
 
 void TrackRenderer::setSource(const GroundTracks* tracks, const Ground* ground) {
@@ -272,12 +279,13 @@ void TrackRenderer::drawMain(VkCommandBuffer cmd, const DescriptorBinding& frame
 }
 
 void TrackRenderer::drawTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& cover,
-                              const gpu::TerrainTileConstants& tile) {
+                              const gpu::TerrainTileConstants& tile, bool flow) {
     if (visibleCount_ == 0) return;
-    bindPipeline(cmd, patchTruth_);
-    pushDescriptors(ctx_.device, cmd, patchTruth_,
+    const Pipeline& pipeline = flow ? patchTruthFlow_ : patchTruth_;
+    bindPipeline(cmd, pipeline);
+    pushDescriptors(ctx_.device, cmd, pipeline,
                     {frame, storageBuffer(gpu::kBindingMeshVertices, vertices_.handle), visibleBinding(), cover});
-    pushConstants(cmd, patchTruth_, tile);
+    pushConstants(cmd, pipeline, tile);
     drawVisible(cmd, false);
 }
 

@@ -42,9 +42,11 @@ std::vector<gpu::TerrainVertex> trackPatchVertices(const GroundTracks& tracks, c
 class TrackRenderer {
 public:
     // `main` / `truth`: the terrain's main and truth pipelines (terrain.vert + terrain.frag, terrain_truth.vert +
-    // truth.frag) with their layouts; the patches and the holed ground are drawn with the same state.
+    // truth.frag) with their layouts; the patches and the holed ground are drawn with the same state. `flowFormat`
+    // (not VK_FORMAT_UNDEFINED): also the truth pass with flow (PlantPass::TruthFlow), with this attachment format.
     TrackRenderer(Context& ctx, const GraphicsPipelineDesc& main, const PipelineLayoutDesc& mainLayout,
-                  const GraphicsPipelineDesc& truth, const PipelineLayoutDesc& truthLayout);
+                  const GraphicsPipelineDesc& truth, const PipelineLayoutDesc& truthLayout,
+                  VkFormat flowFormat = VK_FORMAT_UNDEFINED);
     ~TrackRenderer();
     TrackRenderer(const TrackRenderer&) = delete;
     TrackRenderer& operator=(const TrackRenderer&) = delete;
@@ -61,7 +63,9 @@ public:
     bool active() const { return blockCount_ > 0; } // some rut is drawn
     // The coarse ground's pipeline for the main or truth pass, with holes where patches lie (active() only), and
     // the table binding it needs beside the terrain's own.
-    const Pipeline& holedGround(PlantPass pass) const { return pass == PlantPass::Main ? holedMain_ : holedTruth_; }
+    const Pipeline& holedGround(PlantPass pass) const {
+        return pass == PlantPass::Main ? holedMain_ : pass == PlantPass::TruthFlow ? holedTruthFlow_ : holedTruth_;
+    }
     DescriptorBinding tableBinding() const;
     // Draw every patch into the current main / truth pass, with the terrain's bindings for that pass (less its mesh
     // buffers) and the tile's push constants.
@@ -69,7 +73,7 @@ public:
                   const DescriptorBinding& cover, const DescriptorBinding& textures,
                   const gpu::TerrainTileConstants& tile);
     void drawTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& cover,
-                   const gpu::TerrainTileConstants& tile);
+                   const gpu::TerrainTileConstants& tile, bool flow = false);
 
 private:
     void upload(VkCommandBuffer cmd);
@@ -93,7 +97,7 @@ private:
     Buffer visible_;     // per data slot, capacity_ uints: the slots of the patches drawn (host-visible)
     Buffer gridIndices_; // the main pass's grid triangles per level of detail (patchGridIndices)
     std::array<uint32_t, gpu::kTrackLodLevels + 1> firstIndex_{};
-    Pipeline patchMain_, patchTruth_, holedMain_, holedTruth_;
+    Pipeline patchMain_, patchTruth_, holedMain_, holedTruth_, patchTruthFlow_, holedTruthFlow_;
 };
 
 } // namespace sward

@@ -131,8 +131,9 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const A
 VegetationRenderer::~VegetationRenderer() {
     ctx_.submitter.waitIdle();
     tiles_.clear();
+    for (Buffer& b : keptStates_) destroyBuffer(ctx_, b);
     for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &truthPipeline_,
-                        &shadowPipeline_, &bakePipeline_, &staticPipeline_, &floorPipeline_})
+                        &truthFlowPipeline_, &shadowPipeline_, &bakePipeline_, &staticPipeline_, &floorPipeline_})
         destroyPipeline(ctx_.device, *p);
     for (Buffer* b : {&instances_, &instancePlants_, &cursor_, &atlasCells_}) destroyBuffer(ctx_, *b);
     destroyImage(ctx_, atlasImage_);
@@ -332,13 +333,14 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
     if (pass == PlantPass::Main && mainShading_ == MainShading::Floor && !floorPipeline_.handle)
         floorPipeline_ = createGraphicsPipeline(ctx_.device, mainPipelineDesc("plant_floor.frag"), drawLayout(true));
     const Pipeline& pipeline = pass == PlantPass::Truth             ? truthPipeline_
+                               : pass == PlantPass::TruthFlow       ? truthFlowPipeline_
                                : pass == PlantPass::Shadow          ? shadowPipeline_
                                : mainShading_ == MainShading::Floor ? floorPipeline_
                                                                     : mainPipeline_;
     bindPipeline(cmd, pipeline);
     DescriptorBinding instances = storageBuffer(gpu::kBindingPlantInstances, instances_.handle);
     DescriptorBinding plants = storageBuffer(gpu::kBindingInstancePlants, instancePlants_.handle);
-    const char* passName = pass == PlantPass::Main ? "main" : pass == PlantPass::Truth ? "truth" : "shadow";
+    const char* passName = pass == PlantPass::Main ? "main" : pass == PlantPass::Shadow ? "shadow" : "truth";
     static const char* const kLodNames[gpu::kLodCount] = {".near", ".mid", ".far"};
     for (const auto& [key, tile] : tiles_) {
         if (!tile->expanded) continue;
@@ -346,6 +348,12 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
             pushDescriptors(ctx_.device, cmd, pipeline,
                             {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(),
                              shadowMap, plants});
+        else if (pass == PlantPass::TruthFlow)
+            pushDescriptors(ctx_.device, cmd, pipeline,
+                            {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(), plants,
+                             storageBuffer(gpu::kBindingFlowStatics, tile->buffers.statics.handle),
+                             storageBuffer(gpu::kBindingFlowDynamicsPrevious, keptStates_[latestKept_ ^ 1u].handle),
+                             storageBuffer(gpu::kBindingFlowDynamicsNext, tile->buffers.dynamics.handle)});
         else
             pushDescriptors(ctx_.device, cmd, pipeline,
                             {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(), plants});
@@ -358,6 +366,52 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
             if (statistics_) statistics_->end(cmd);
         }
     }
+}
+
+GraphicsPipelineDesc truthFlowPipelineDesc(GraphicsPipelineDesc truth, VkFormat flowFormat) {
+    auto flowName = [](const std::string& name) {
+        const size_t dot = name.rfind('.');
+        return name.substr(0, dot) + "_flow" + name.substr(dot);
+    };
+    truth.vertexShader = flowName(truth.vertexShader);
+    truth.fragmentShader = flowName(truth.fragmentShader);
+    truth.colorFormats.insert(truth.colorFormats.end(), {flowFormat, flowFormat}); // forward, backward
+    return truth;
+}
+
+void VegetationRenderer::enableFlow() {
+    if (truthFlowPipeline_.handle) return;
+    require(tiles_.size() == 1, "motion ground truth (render.flow) needs a scene of one tile");
+    PipelineLayoutDesc layout = drawLayout(false);
+    for (uint32_t binding :
+         {gpu::kBindingFlowStatics, gpu::kBindingFlowDynamicsPrevious, gpu::kBindingFlowDynamicsNext})
+        layout.bindings.push_back(layoutBinding(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT));
+    GraphicsPipelineDesc truth = mainPipelineDesc("plant_truth.frag");
+    truth.colorFormats = {formats_.truthDepthBits, formats_.truthLabel, formats_.truthNormal};
+    truth.depthFormat = formats_.truthDepth;
+    truth.samples = VK_SAMPLE_COUNT_1_BIT;
+    truth.alphaToCoverage = false;
+    truth.specialization = {/* PASS= */ gpu::kPassTruth, /* ALPHA_TO_COVERAGE= */ 0};
+    truthFlowPipeline_ = createGraphicsPipeline(ctx_.device, truthFlowPipelineDesc(truth, formats_.truthFlow), layout);
+    const uint64_t bytes = onlyTile().buffers.dynamics.size;
+    for (Buffer& kept : keptStates_)
+        kept = createBuffer(ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                            MemoryIntent::DeviceLocal);
+}
+
+void VegetationRenderer::recordKeepState(VkCommandBuffer cmd) {
+    require(truthFlowPipeline_.handle, "VegetationRenderer::recordKeepState: enableFlow() first");
+    const Buffer& live = onlyTile().buffers.dynamics;
+    latestKept_ ^= 1u;
+    // The interaction tick's compute writes -> this copy; the copy's reads -> the next tick's writes (its barrier).
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                  VK_ACCESS_2_TRANSFER_READ_BIT);
+    const VkBufferCopy region{.size = live.size};
+    vkCmdCopyBuffer(cmd, live.handle, keptStates_[latestKept_].handle, 1, &region);
+    // The copy -> the truth pass's vertex reads, and the live records' next writers (a tick's compute).
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
 gpu::ExpansionStats VegetationRenderer::readStats() {

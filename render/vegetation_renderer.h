@@ -29,7 +29,9 @@
 
 namespace sward {
 
-enum class PlantPass { Main, Truth, Shadow };
+// TruthFlow: the truth pass with motion ground truth (render.flow): two more attachments, each pixel's flow to the next
+// and the previous tick (shaders/shared/flow_fragment.glsl).
+enum class PlantPass { Main, Truth, Shadow, TruthFlow };
 
 // The latest expansion baked into static vertices ([near | mid | far]), for baselines and reference tests.
 struct BakedPlants {
@@ -42,8 +44,13 @@ struct VegetationPassFormats {
     VkFormat mainColor, mainDepth;
     VkSampleCountFlagBits mainSamples;
     VkFormat truthDepthBits, truthLabel, truthNormal, truthDepth; // truth attachments: depth bits, label, normal
+    VkFormat truthFlow; // the two flow attachments of the truth pass with flow (PlantPass::TruthFlow)
     VkFormat shadowDepth;
 };
+
+// The truth pipeline `truth` with motion ground truth: its shaders built with SWARD_FLOW ("<name>_flow.<stage>",
+// shaders/CMakeLists.txt) and the two flow attachments after its three.
+GraphicsPipelineDesc truthFlowPipelineDesc(GraphicsPipelineDesc truth, VkFormat flowFormat);
 
 class VegetationRenderer {
 public:
@@ -74,6 +81,14 @@ public:
     // (the shadow pass leaves out the LODs that cannot reach a cascade).
     void draw(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame, const DescriptorBinding& shadowMap,
               uint32_t slot, uint32_t lodMask = (1u << gpu::kLodCount) - 1u);
+
+    // Motion ground truth (render.flow; one-tile scenes): the truth pass with flow places each plant's points with its
+    // state at the previous tick and at the next. enableFlow() makes the pipeline and two buffers for kept states;
+    // recordKeepState() copies the live dynamic records into one of them, alternately. A draw with TruthFlow reads
+    // the state kept before the latest keep as the previous tick's and the live records as the next tick's: so keep
+    // the state of tick t - 1, render tick t, keep tick t's state and run tick t + 1, then draw the truth.
+    void enableFlow();
+    void recordKeepState(VkCommandBuffer cmd);
 
     // Statistics of the latest expansion, summed over the tiles (reads back; waits for the GPU). info.w: 0.
     gpu::ExpansionStats readStats();
@@ -151,6 +166,9 @@ private:
     VkSampler atlasSampler_ = VK_NULL_HANDLE;
     Pipeline countPipeline_, scanPipeline_, writePipeline_;
     Pipeline mainPipeline_, truthPipeline_, shadowPipeline_;
+    Pipeline truthFlowPipeline_;   // enableFlow()
+    Buffer keptStates_[2];         // PlantDynamic[plants] of two earlier ticks (enableFlow())
+    uint32_t latestKept_ = 0;      // the buffer recordKeepState() wrote last
     Pipeline bakePipeline_, staticPipeline_, floorPipeline_; // created on first use (benchmarks, tests)
     MainShading mainShading_ = MainShading::Full;
     VegetationPassFormats formats_;

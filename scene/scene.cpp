@@ -158,6 +158,7 @@ void readRender(JsonReader r, RenderParams& render) {
     render.shadowMapSize = uint32_t(r.integer("shadow_map_size", render.shadowMapSize, 0, 8192));
     render.shadowDistance = r.numberF("shadow_distance", render.shadowDistance, 1.0, 2000.0);
     render.shadowCascades = uint32_t(r.integer("shadow_cascades", render.shadowCascades, 1, gpu::kMaxShadowCascades));
+    render.flow = r.boolean("flow", render.flow);
     r.finish();
 }
 
@@ -272,6 +273,10 @@ Scene parseScene(const nlohmann::json& json, const std::string& source, const As
     root.finish();
     checkSceneLimits(scene);
     if (scene.world.enabled) checkWorldScene(scene);
+    // The range sensors read the plants' state after the frame's tick; with flow the next tick has run by then.
+    if (scene.render.flow && !scene.rangeSensors.empty())
+        root.fail("'render.flow' together with 'range_sensors' is not supported yet: the range sensors would see the "
+                  "plants one tick later than the cameras");
     return scene;
 }
 

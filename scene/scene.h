@@ -92,6 +92,7 @@ struct RenderParams {
     uint32_t shadowMapSize = 2048; // texels per edge; 0 disables sun shadows
     float shadowDistance = 60.0f;  // metres from the camera covered by the first (finest) shadow cascade
     uint32_t shadowCascades = 3;   // cascades up to lod.far + lod.band (world/sun_shadow.h); 1..kMaxShadowCascades
+    bool flow = false;             // motion ground truth: optical flow of every pixel to the next and previous tick
 };
 
 struct Scene {

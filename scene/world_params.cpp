@@ -103,6 +103,9 @@ void checkWorldDrawable(const Scene& scene) {
     if (!scene.rangeSensors.empty())
         fail("'range_sensors' in a world are not supported yet: their rays are cast against one tile's ground and "
              "plants");
+    if (scene.render.flow)
+        fail("'render.flow' in a world is not supported yet: the motion ground truth keeps the plant states of one "
+             "tile");
 }
 
 uint64_t predictedTileBytes(const Scene& scene, bool farCover) {

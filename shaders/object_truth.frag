@@ -4,6 +4,7 @@
 // ((kSemanticObject << kInstanceBits) | (kInstanceObjectBase + object index)) and the triangle's normal
 // (object_truth.vert), as truth.frag does for terrain.
 #include "shared/frame.glsl"
+#include "shared/flow_fragment.glsl"
 
 layout(location = 2) in float inViewDepth;
 layout(location = 4) flat in uint inLabel;
@@ -17,4 +18,5 @@ void main() {
     outDepthBits = floatBitsToUint(inViewDepth);
     outLabel = uvec2(inLabel, 0u);
     outNormal = vec4(inNormal, 0.0);
+    writeFlowFragment();
 }

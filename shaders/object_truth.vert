@@ -5,6 +5,7 @@
 // Position, planar depth and label are computed exactly as object.vert computes them.
 #include "shared/frame.glsl"
 #include "shared/object_layout.h"
+#include "shared/flow_vertex.glsl"
 
 layout(set = 0, binding = kBindingObjectTransforms, std430) readonly buffer TransformBlock {
     ObjectTransform transforms[];
@@ -30,4 +31,8 @@ void main() {
     vec3 q2 = vertices[indices[first + 2u]].position.xyz;
     vec3 worldNormal = mat3(t.normalFromNode) * cross(q1 - q0, q2 - q0);
     outNormal = truthNormal(worldNormal, (t.worldFromNode * vec4(q0, 1.0)).xyz);
+    // The node's transforms at the previous and the next tick follow this tick's (ObjectRenderer::update).
+    const uint perTick = frame.flowParams.x;
+    writeFlowVertex((transforms[vertex.info.x + perTick].worldFromNode * vec4(vertex.position.xyz, 1.0)).xyz,
+                    (transforms[vertex.info.x + 2u * perTick].worldFromNode * vec4(vertex.position.xyz, 1.0)).xyz);
 }

@@ -5,12 +5,20 @@
 #include "shared/vegetation.glsl"
 #include "shared/plant_vertex.glsl"
 #include "shared/plant_shading.glsl"
+#include "shared/flow_vertex.glsl"
 
 layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain, kPassTruth or kPassShadow
 layout(push_constant) uniform Push { uint lod; } push;
 
 layout(set = 0, binding = kBindingPlantInstances, std430) readonly buffer Instances { ExpandedPlant instances[]; };
 layout(set = 0, binding = kBindingInstancePlants, std430) readonly buffer InstancePlants { uint instancePlants[]; };
+#ifdef SWARD_FLOW // the plants' records, and their state at the previous and the next tick
+layout(set = 0, binding = kBindingFlowStatics, std430) readonly buffer FlowStatics { PlantStatic flowStatics[]; };
+layout(set = 0, binding = kBindingFlowDynamicsPrevious, std430) readonly buffer FlowPrevious {
+    PlantDynamic flowDynamicsPrevious[];
+};
+layout(set = 0, binding = kBindingFlowDynamicsNext, std430) readonly buffer FlowNext { PlantDynamic flowDynamicsNext[]; };
+#endif
 
 layout(location = 0) out vec2 outUv;
 layout(location = 1) out vec3 outWorld;
@@ -38,7 +46,7 @@ void main() {
             return;
         }
     }
-    PlantVertex v = plantVertex(instance, push.lod, uint(gl_VertexIndex));
+    PlantVertex v = plantVertex(instance, push.lod, uint(gl_VertexIndex), veg.cameraPosition.xyz);
     outUv = v.uv;
     outWorld = v.position;
     outViewDepth = (frame.view * vec4(v.position, 1.0)).z;
@@ -55,10 +63,18 @@ void main() {
         // The whole triangle of this vertex (vertices 3t, 3t+1, 3t+2 of the instance), so the normal is the drawn
         // triangle's own plane: bent cards are flat per triangle, not per plant.
         uint first = uint(gl_VertexIndex) - uint(gl_VertexIndex) % 3u;
-        vec3 p0 = plantVertex(instance, push.lod, first).position;
-        vec3 p1 = plantVertex(instance, push.lod, first + 1u).position;
-        vec3 p2 = plantVertex(instance, push.lod, first + 2u).position;
+        vec3 p0 = plantVertex(instance, push.lod, first, veg.cameraPosition.xyz).position;
+        vec3 p1 = plantVertex(instance, push.lod, first + 1u, veg.cameraPosition.xyz).position;
+        vec3 p2 = plantVertex(instance, push.lod, first + 2u, veg.cameraPosition.xyz).position;
         outNormal = truthNormal(cross(p1 - p0, p2 - p0), p0);
+#ifdef SWARD_FLOW
+        // The same point of the same quad, with the plant's state and wind of the previous and the next tick.
+        uint plant = instancePlants[gl_InstanceIndex];
+        ExpandedPlant before = plantAtTick(instance, flowStatics[plant], flowDynamicsPrevious[plant], frame.flowTimes.x);
+        ExpandedPlant after = plantAtTick(instance, flowStatics[plant], flowDynamicsNext[plant], frame.flowTimes.y);
+        writeFlowVertex(plantVertex(before, push.lod, uint(gl_VertexIndex), frame.flowReferencePrevious.xyz).position,
+                        plantVertex(after, push.lod, uint(gl_VertexIndex), frame.flowReferenceNext.xyz).position);
+#endif
     }
     if (PASS == kPassMain) {
         PlantShading shading = plantShading(instance.fade, push.lod, octahedralDecode(instance.up), v.random);

@@ -15,7 +15,7 @@ void main() {
     if (i >= push.vertexCount) return;
     uint verticesPerPlant = plantVertexCount(push.lod, veg.options.x);
     ExpandedPlant instance = instances[push.firstInstance + i / verticesPerPlant];
-    PlantVertex v = plantVertex(instance, push.lod, i % verticesPerPlant);
+    PlantVertex v = plantVertex(instance, push.lod, i % verticesPerPlant, veg.cameraPosition.xyz);
     baked[push.firstVertex + i] = BakedVertex(vec4(v.position, v.heightFraction), vec4(v.uv, v.random, 0.0),
                                               uvec4(instance.up, instance.fade, 0u, 0u));
 }

@@ -4,6 +4,7 @@
 // Depth, label and normal come from the same fragment, so the masks, depth map and normals can never disagree.
 #include "shared/frame.glsl"
 #include "shared/plant_fragment.glsl"
+#include "shared/flow_fragment.glsl"
 
 layout(location = 8) flat in uint inTile;
 layout(location = 9) flat in vec3 inNormal;
@@ -17,4 +18,5 @@ void main() {
     outDepthBits = floatBitsToUint(inViewDepth);
     outLabel = uvec2(inLabel, inTile);
     outNormal = vec4(inNormal, 0.0);
+    writeFlowFragment();
 }

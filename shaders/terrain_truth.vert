@@ -6,6 +6,7 @@
 // are computed exactly as terrain.vert computes them, so depth and labels are the same bits as with its
 // vertex-input draw.
 #include "shared/frame.glsl"
+#include "shared/flow_vertex.glsl"
 
 layout(set = 0, binding = kBindingMeshVertices, std430) readonly buffer VertexBlock { TerrainVertex vertices[]; };
 layout(set = 0, binding = kBindingMeshIndices, std430) readonly buffer IndexBlock { uint indices[]; };
@@ -26,4 +27,5 @@ void main() {
     outViewDepth = (frame.view * world).z;
     outNormal = truthNormal(cross(p1 - p0, p2 - p0), p0);
     outRut = 0.0;
+    writeFlowVertex(world.xyz, world.xyz); // the ground does not move
 }

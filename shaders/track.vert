@@ -7,6 +7,7 @@
 // terrain.vert's, for terrain.frag, and terrain_truth.vert's, for truth.frag; the rut depth (position w) goes to both,
 // for the compacted soil's colour and the "track" label.
 #include "shared/frame.glsl"
+#include "shared/flow_vertex.glsl"
 
 layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain or kPassTruth
 
@@ -59,5 +60,7 @@ void main() {
              p1 = vertices[patchVertex(entry, c1)].positionHeight.xyz,
              p2 = vertices[patchVertex(entry, c2)].positionHeight.xyz;
         outTriangleNormal = truthNormal(cross(p1 - p0, p2 - p0), p0);
+        // A rut is pressed where a wheel stands, which hides it: its ground is taken as still, as the rest.
+        writeFlowVertex(world.xyz, world.xyz);
     }
 }

@@ -23,12 +23,6 @@ layout(set = 0, binding = kExpandBindingInstances, std430) writeonly buffer Inst
 // Parallel to instances: the plant's index in the tile's record buffers (ground-truth instance ids).
 layout(set = 0, binding = kExpandBindingInstancePlants, std430) writeonly buffer InstancePlants { uint instancePlants[]; };
 
-// A plant's height after its size and cut (what the draw uses).
-float plantHeight(PlantStatic plant, PlantDynamic dyn) {
-    float cut = plantState(dyn) == kPlantStateCut ? plantCutFraction(dyn) : 1.0;
-    return veg.categoryHeight[plantCategory(plant)] * plantSizeScale(plant) * cut;
-}
-
 // Sums over the cluster's plants of categoryCard * height^2 and categoryCard * height per m^2 (sliceHeight's cover2
 // and cover1), in plant order.
 vec2 clusterCardCover(uint first, uint count, PlantField field) {
@@ -109,17 +103,12 @@ void main() {
         if (width == 0u) continue;
         uint slice = sliceBits(choice, plant, height, position, first, count, field, cover);
         if (slice == uint(kSliceUnit)) continue;
-        float random = plantRandom(plant);
-        vec2 tip = plantBend(dyn) + windTip(position, random, time);
-        float len = length(tip);
-        if (len > kMaxTipOffset) tip *= kMaxTipOffset / len; // a blade bends, it does not stretch
         ExpandedPlant instance;
         instance.positionHeight = vec4(position, height);
         instance.up = plant.up;
         instance.attributes = bitfieldInsert(plant.attributes, slice, 24, 8);
-        instance.tip = packHalf2x16(tip);
-        uint fadeBits = uint(clamp(choice.t, 0.0, 1.0) * 255.0 + 0.5) | (width << 8) | (plantState(dyn) << 17) |
-                        (bitfieldExtract(dyn.state, 24, 8) << 24);
+        instance.tip = plantTip(plant, dyn, position, time);
+        uint fadeBits = uint(clamp(choice.t, 0.0, 1.0) * 255.0 + 0.5) | (width << 8) | plantStateFadeBits(dyn);
 
         instance.fade = fadeBits;
         if (slot[choice.lodA] < veg.counts.z) { // else: over capacity, dropped (counted by the scan)

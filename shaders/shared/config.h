@@ -59,6 +59,9 @@ SWARD_CONST(uint, kBindingMeshIndices, 3u);      // (TerrainVertex[]) and object
                                                  // triangle list (uint[]), so a vertex sees its whole triangle;
                                                  // rut patches' TerrainVertex[] and the patches in view (track.vert)
 SWARD_CONST(uint, kBindingTrackTable, 9u);       // the blocks drawn as rut patches (ground_tracks.glsl)
+SWARD_CONST(uint, kBindingFlowStatics, 10u);     // truth pass with flow: PlantStatic[] (plant.vert: a plant's size)
+SWARD_CONST(uint, kBindingFlowDynamicsPrevious, 11u); // PlantDynamic[] at the previous tick
+SWARD_CONST(uint, kBindingFlowDynamicsNext, 12u);     // PlantDynamic[] at the next tick
 
 // Vegetation expansion (vegetation_expand.comp), besides its constants at kBindingVegetation.
 SWARD_CONST(uint, kExpandBindingStatics, 0u);

@@ -77,6 +77,13 @@ struct FrameConstants {
     vec4 shadowEnds;     // far end of cascade k: distance to shadowOrigin
     vec4 shadowBias;     // cascade k's depth bias (5 cm along the light)
     vec4 shadowOrigin;   // xyz the reference (left) camera, so both views of a stereo pair pick the same cascade
+    // Motion ground truth (render.flow; flow_vertex.glsl): where each drawn point is at the previous and the next tick.
+    mat4 viewProjPrevious;      // this view's world -> clip at the previous tick
+    mat4 viewProjNext;          // ... and at the next tick
+    vec4 flowReferencePrevious; // xyz the reference camera at the previous tick (far billboards face it), w unused
+    vec4 flowReferenceNext;     // ... at the next tick
+    vec4 flowTimes;             // x the wind's time at the previous tick, y at the next, zw unused
+    uvec4 flowParams;           // x object transforms per tick (the previous tick's follow this tick's, then the next's)
 };
 
 // Per-tile constants of the terrain's main pass (push constants of terrain.frag): each tile has its own cover map.
@@ -347,7 +354,7 @@ struct ExpansionStats {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameConstants) == (4 + kMaxShadowCascades) * 64 + (14 + kMaxShadowCascades) * 16);
+static_assert(sizeof(FrameConstants) == (6 + kMaxShadowCascades) * 64 + (18 + kMaxShadowCascades) * 16);
 static_assert(sizeof(TerrainTileConstants) == 16);
 static_assert(sizeof(DebugLineVertex) == 32);
 static_assert(sizeof(VegetationConstants) == 17 * 16);

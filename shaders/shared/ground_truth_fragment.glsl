@@ -8,6 +8,7 @@
 // the shader computed.
 #include "shared/frame.glsl"
 #include "shared/ground_cover.glsl"
+#include "shared/flow_fragment.glsl"
 #ifdef SWARD_TERRAIN_HOLES
 #include "shared/ground_tracks.glsl"
 #endif
@@ -29,6 +30,7 @@ void main() {
     uint semantic = inRut >= kTrackLabelDepth ? kSemanticTrack : turf ? kSemanticTurf : kSemanticGround;
     outLabel = uvec2(semantic << kInstanceBits, 0u);
     outNormal = vec4(inNormal, 0.0);
+    writeFlowFragment();
 }
 
 #endif

@@ -60,7 +60,8 @@ PlantQuad felledQuad(PlantQuad q, vec2 tip, float orientation, uint quads, uint 
 }
 
 // `cell` returns the plant's atlas cell (an index: reading the whole cell with its polygon per vertex is a cost).
-PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, out uint cell) {
+// `camera`: the reference camera's position, which far billboards face.
+PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, vec3 camera, out uint cell) {
     PlantQuad q;
     q.base = instance.positionHeight.xyz;
     q.height = instance.positionHeight.w;
@@ -78,7 +79,7 @@ PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, out uint cell) 
 
     if (lod == kLodFar) {
         // Faces the camera: upright when seen from the side, lying towards the camera when seen from above.
-        vec3 toCamera = normalize(veg.cameraPosition.xyz - q.base);
+        vec3 toCamera = normalize(camera - q.base);
         q.side = cross(q.up, toCamera);
         if (dot(q.side, q.side) < 1e-4) q.side = vec3(cos(orientation), sin(orientation), 0.0);
         q.side = normalize(q.side);
@@ -121,11 +122,11 @@ float sliceBottom(ExpandedPlant instance, PlantQuad q) {
     return cut > 0.0 ? clamp(1.0 - q.baseAspect.y + cut, 0.0, 1.0) : 0.0;
 }
 
-PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex) {
+PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex, vec3 camera) {
     const bool cutout = veg.options.x >= 3u && lod != kLodFar;
     const uint perQuad = cutout ? 3u * (veg.options.x - 2u) : kVerticesPerQuad;
     uint cell;
-    PlantQuad q = plantQuad(instance, lod, vertexIndex / perQuad, cell);
+    PlantQuad q = plantQuad(instance, lod, vertexIndex / perQuad, camera, cell);
     float fraction;
     if (!cutout) {
         vec2 corner = kCorners[vertexIndex % 6u];

@@ -61,4 +61,34 @@ vec2 windTip(vec3 position, float random, float time) {
     return dir * (veg.wind.z * (0.8 + 0.2 * sway) + gust) + vec2(-dir.y, dir.x) * flutter;
 }
 
+// A plant's height after its size and cut (what the draw uses).
+float plantHeight(PlantStatic plant, PlantDynamic dyn) {
+    float cut = plantState(dyn) == kPlantStateCut ? plantCutFraction(dyn) : 1.0;
+    return veg.categoryHeight[plantCategory(plant)] * plantSizeScale(plant) * cut;
+}
+
+// ExpandedPlant::tip: the interaction's bend plus the wind at `time`, at most kMaxTipOffset (a blade bends, it does
+// not stretch).
+uint plantTip(PlantStatic plant, PlantDynamic dyn, vec3 position, float time) {
+    vec2 tip = plantBend(dyn) + windTip(position, plantRandom(plant), time);
+    float len = length(tip);
+    if (len > kMaxTipOffset) tip *= kMaxTipOffset / len;
+    return packHalf2x16(tip);
+}
+
+// ExpandedPlant::fade bits 17-20 (the plant's state) and 24-31 (its cut height byte).
+uint plantStateFadeBits(PlantDynamic dyn) {
+    return (plantState(dyn) << 17) | (bitfieldExtract(dyn.state, 24, 8) << 24);
+}
+
+// `instance` (expanded at this tick) with the state `dyn` of another tick and the wind at that tick's `time`: the
+// same plant in the same level of detail, cross-fade, slicing and merging, bent, felled or cut as at that tick.
+// The motion ground truth places each drawn point on it (plant.vert with SWARD_FLOW).
+ExpandedPlant plantAtTick(ExpandedPlant instance, PlantStatic plant, PlantDynamic dyn, float time) {
+    instance.positionHeight.w = plantHeight(plant, dyn);
+    instance.tip = plantTip(plant, dyn, instance.positionHeight.xyz, time);
+    instance.fade = (instance.fade & 0x1ffffu) | plantStateFadeBits(dyn);
+    return instance;
+}
+
 #endif
