@@ -27,6 +27,10 @@ inline constexpr const char* kDisparityRightFolder = "disparity_right"; // right
 inline constexpr const char* kOcclusionFolder = "occlusion";            // left pixels visible in the right view (stereo)
 inline constexpr const char* kOcclusionRightFolder = "occlusion_right"; // right pixels visible in the left view
 inline constexpr const char* kNormalRightFolder = "normal_right";       // the right view's normals (stereo)
+// Optical flow (scene key render.flow): flow_forward/NNNNNN.{flo,png,exr} is the left view's flow from frame NNNNNN
+// to the next (io/flow_files.h); its mask: 255 visible in both frames, 128 occluded or out of view, 0 no truth.
+inline constexpr const char* kFlowForwardFolder = "flow_forward";
+inline constexpr const char* kFlowForwardMaskFolder = "flow_forward_mask";
 inline constexpr const char* kRangeFolder = "range"; // range sensors: range/<sensor>/ (range/range_files.h)
 
 // Files of a dataset as a whole.
