@@ -9,7 +9,6 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
-#include <utility>
 
 int flowMain(int argc, char** argv) {
     CLI::App app{"sward-eval flow: optical-flow error of a sward dataset against its ground-truth forward flow"};
@@ -25,11 +24,7 @@ int flowMain(int argc, char** argv) {
                           "METHOD", [](const std::string& text) { sward::parseFlowMethod(text); });
     app.add_option("--flow", options.flowDir,
                    "Evaluate another method's forward flow NNNNNN.flo or KITTI NNNNNN.png files (method 'files')");
-    sward::addParsed(app, "--frames", options.frames, "Frame range A:B (frames A .. B-1); default: all", "A:B",
-                     [](const std::string& text, const std::string& flag) {
-                         const auto [first, end] = sward::parseHalfOpenRange(text, 0, sward::kFrameLimit, flag);
-                         return std::pair<uint32_t, uint32_t>(uint32_t(first), uint32_t(end));
-                     });
+    sward::addFrameRange(app, options.frames, "Frame range A:B (frames A .. B-1); default: all");
     sward::addParsed(app, "--bands", options.bandEdgesMetres, "Distance band edges in metres, e.g. 5,10,20,50",
                      "M,M,...", sward::parseBandEdges);
     sward::addUnsigned(app, "--threads", options.threads, 0, sward::kMaxThreadsOption,

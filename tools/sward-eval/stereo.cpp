@@ -10,7 +10,6 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
-#include <utility>
 #include <vector>
 
 int stereoMain(int argc, char** argv) {
@@ -41,11 +40,7 @@ int stereoMain(int argc, char** argv) {
     sward::addInteger(app, "--disp12-max-diff", sgbm.disp12MaxDiff, -1000000, 1000000,
                       "SGBM left-right check tolerance (negative: off)");
     app.add_flag("--gray", sgbm.gray, "Match grey images instead of colour");
-    sward::addParsed(app, "--frames", options.frames, "Frame range A:B (frames A .. B-1); default: all", "A:B",
-                     [](const std::string& text, const std::string& flag) {
-                         const auto [first, end] = sward::parseHalfOpenRange(text, 0, sward::kFrameLimit, flag);
-                         return std::pair<uint32_t, uint32_t>(uint32_t(first), uint32_t(end));
-                     });
+    sward::addFrameRange(app, options.frames, "Frame range A:B (frames A .. B-1); default: all");
     sward::addParsed(app, "--bands", options.bandEdgesMetres, "Distance band edges in metres, e.g. 5,10,20,50",
                      "M,M,...", sward::parseBandEdges);
     sward::addUnsigned(app, "--threads", options.threads, 0, sward::kMaxThreadsOption,
