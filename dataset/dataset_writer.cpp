@@ -52,8 +52,8 @@ constexpr const char* kAllFolders[] = {
     kLeftFolder,      kRightFolder,          kDepthFolder,        kDisparityFolder,  kSemanticFolder,
     kInstanceFolder,  kPreviewFolder,        kPreviewRightFolder, kDepthRightFolder, kDisparityRightFolder,
     kOcclusionFolder, kOcclusionRightFolder, kNormalFolder,       kNormalRightFolder,
-    "flow_forward",   "flow_backward",       "flow_forward_right", "flow_backward_right",
-    "flow_forward_mask", "flow_backward_mask", "flow_forward_mask_right", "flow_backward_mask_right",
+    kFlowForwardFolder, "flow_backward",     "flow_forward_right", "flow_backward_right",
+    kFlowForwardMaskFolder, "flow_backward_mask", "flow_forward_mask_right", "flow_backward_mask_right",
     kDisparityChangeForwardFolder, kDisparityChangeBackwardFolder};
 
 bool isSwardTemporaryName(const std::string& name) {

@@ -37,7 +37,7 @@ Visibility visibilityAt(uint32_t width, uint32_t height, double x, double y, dou
 FlowTruth flowTruth(uint32_t width, uint32_t height, std::span<const float> flow, std::span<const float> targetDepth) {
     const size_t pixels = size_t(width) * height;
     require(flow.size() == 4 * pixels && targetDepth.size() == pixels, "flowTruth: image sizes differ");
-    FlowTruth truth{.flow = {width, height, std::vector<float>(2 * pixels), std::vector<uint8_t>(pixels)},
+    FlowTruth truth{.flow = {width, height, std::vector<float>(2 * pixels)},
                     .exr = std::vector<float>(3 * pixels),
                     .visibility = std::vector<Visibility>(pixels, Visibility::NoTruth)};
     for (uint32_t y = 0; y < height; ++y)
@@ -45,9 +45,10 @@ FlowTruth flowTruth(uint32_t width, uint32_t height, std::span<const float> flow
             const size_t i = size_t(y) * width + x;
             const float* f = flow.data() + 4 * i;
             const bool surface = f[3] != 0.0f;
-            truth.flow.valid[i] = surface ? 1 : 0;
-            truth.flow.uv[2 * i] = truth.exr[3 * i] = surface ? f[0] : 0.0f;
-            truth.flow.uv[2 * i + 1] = truth.exr[3 * i + 1] = surface ? f[1] : 0.0f;
+            truth.flow.uv[2 * i] = surface ? f[0] : std::numeric_limits<float>::quiet_NaN();
+            truth.flow.uv[2 * i + 1] = surface ? f[1] : std::numeric_limits<float>::quiet_NaN();
+            truth.exr[3 * i] = surface ? f[0] : 0.0f;
+            truth.exr[3 * i + 1] = surface ? f[1] : 0.0f;
             truth.exr[3 * i + 2] = surface ? f[2] : std::numeric_limits<float>::infinity();
             if (surface)
                 truth.visibility[i] =

@@ -20,7 +20,7 @@ namespace sward {
 inline constexpr double kFlowOcclusionTolerance = 0.02;
 
 struct FlowTruth {
-    FlowField flow;                     // (u, v), valid where the pixel shows a surface
+    FlowField flow;                     // (u, v); NaN where the pixel shows sky
     std::vector<float> exr;             // width*height*3: u, v, the point's depth at the target (0, 0, +inf: sky)
     std::vector<Visibility> visibility; // of each pixel's point in the target frame
 };

@@ -22,20 +22,25 @@ bool isFile(const std::string& path) {
 
 } // namespace
 
-std::vector<uint32_t> listDatasetFrames(const std::string& dir) {
-    const std::string folder = dir + "/" + kDisparityFolder;
+std::vector<uint32_t> listFrameFiles(const std::string& dir, const char* folder,
+                                     const std::vector<std::string>& extensions, const std::string& what) {
+    const std::string path = dir + "/" + folder;
     std::error_code ec;
-    require(fs::is_directory(folder, ec), dir + " has no ground-truth folder '" + folder + "'");
+    require(fs::is_directory(path, ec), dir + " has no " + what + " '" + path + "'");
     std::vector<uint32_t> frames;
-    for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    for (const auto& entry : fs::directory_iterator(path, ec)) {
         const std::optional<uint32_t> frame = frameNumber(entry.path().stem().string());
         const std::string ext = entry.path().extension().string();
-        if (frame && (ext == ".pfm" || ext == ".exr" || ext == ".png")) frames.push_back(*frame);
+        if (frame && std::find(extensions.begin(), extensions.end(), ext) != extensions.end()) frames.push_back(*frame);
     }
-    require(!ec, "cannot list '" + folder + "': " + ec.message());
+    require(!ec, "cannot list '" + path + "': " + ec.message());
     std::sort(frames.begin(), frames.end());
     frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
     return frames;
+}
+
+std::vector<uint32_t> listDatasetFrames(const std::string& dir) {
+    return listFrameFiles(dir, kDisparityFolder, {".pfm", ".exr", ".png"}, "ground-truth folder");
 }
 
 DisparityMap readGroundTruth(const std::string& dir, uint32_t frame) {
@@ -83,6 +88,39 @@ cv::Mat readSemantic(const std::string& dir, uint32_t frame, uint32_t width, uin
 
 cv::Mat readOcclusion(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height) {
     return readByteImage(dir, kOcclusionFolder, frame, width, height, "occlusion mask");
+}
+
+FlowField readFlowTruth(const std::string& dir, uint32_t frame) {
+    const std::string base = dir + "/" + frameFile(kFlowForwardFolder, frame, "");
+    if (isFile(base + ".flo")) return readFlo(base + ".flo");
+    if (isFile(base + ".png")) return readKittiFlowPng(base + ".png");
+    throw Error("missing flow ground truth for frame " + frameName(frame) + ": no " + base + ".flo or .png");
+}
+
+cv::Mat readFlowMask(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height) {
+    return readByteImage(dir, kFlowForwardMaskFolder, frame, width, height, "flow mask");
+}
+
+std::vector<float> readDepth(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height) {
+    const std::string path = dir + "/" + frameFile(kDepthFolder, frame, ".exr");
+    require(isFile(path), "missing depth image '" + path + "'");
+    ImageData image = loadExrChannel(path, "Y"); // sward's depth EXR: Y, and a copy Z for other tools
+    require(image.width == width && image.height == height, path + " is " + std::to_string(image.width) + "x" +
+                                                                std::to_string(image.height) + ", the flow " +
+                                                                std::to_string(width) + "x" + std::to_string(height));
+    return std::move(image.samples);
+}
+
+FlowField readFlowEstimate(const std::string& flowDir, uint32_t frame, uint32_t width, uint32_t height) {
+    const std::string base = flowDir + "/" + frameName(frame);
+    const std::string path = isFile(base + ".flo") ? base + ".flo" : base + ".png";
+    require(isFile(path),
+            "no flow for frame " + frameName(frame) + ": neither '" + base + ".flo' nor '" + path + "' exists");
+    FlowField flow = readFlow(path);
+    require(flow.width == width && flow.height == height, path + " is " + std::to_string(flow.width) + "x" +
+                                                              std::to_string(flow.height) + ", the ground truth " +
+                                                              std::to_string(width) + "x" + std::to_string(height));
+    return flow;
 }
 
 std::vector<float> readEstimate(const std::string& disparitiesDir, uint32_t frame, uint32_t width, uint32_t height) {

@@ -1,9 +1,10 @@
-// Reading what the evaluation needs from a sward dataset (names: dataset/naming.h): the frame list, ground-truth
-// disparity, the preview views SGBM matches, the class images, and another matcher's estimates. Every function
-// throws sward::Error naming the file and the problem.
+// Reading what the evaluations need from a sward dataset (names: dataset/naming.h): the frame lists, ground-truth
+// disparity and optical flow, the preview views the matchers run on, class images, masks and depth, and another
+// method's estimates. Every function throws sward::Error naming the file and the problem.
 #pragma once
 
 #include "io/disparity_files.h"
+#include "io/flow_files.h"
 
 #include <opencv2/core.hpp>
 
@@ -12,6 +13,11 @@
 #include <vector>
 
 namespace sward {
+
+// Frame numbers of the files <dir>/<folder>/NNNNNN<extension> (6 digits, extension one of `extensions`, e.g.
+// ".pfm"), sorted; `what` names the folder in the error when it does not exist ("ground-truth folder").
+std::vector<uint32_t> listFrameFiles(const std::string& dir, const char* folder,
+                                     const std::vector<std::string>& extensions, const std::string& what);
 
 // Frame numbers of a dataset: every 6-digit NNNNNN.{pfm,exr,png} in <dir>/disparity, sorted.
 std::vector<uint32_t> listDatasetFrames(const std::string& dir);
@@ -28,6 +34,18 @@ cv::Mat readSemantic(const std::string& dir, uint32_t frame, uint32_t width, uin
 // occlusion/NNNNNN.png (dataset/occlusion.h: 255 = visible in both views), a one-channel 8-bit image of
 // width x height.
 cv::Mat readOcclusion(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height);
+
+// Ground-truth forward flow of one frame (to frame + 1): flow_forward/NNNNNN.flo, else the KITTI .png (lossy).
+FlowField readFlowTruth(const std::string& dir, uint32_t frame);
+
+// flow_forward_mask/NNNNNN.png (255 = visible in both frames), one-channel 8-bit of width x height.
+cv::Mat readFlowMask(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height);
+
+// depth/NNNNNN.exr: planar depth in metres (+inf for sky), channel Y, of width x height, top row first.
+std::vector<float> readDepth(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height);
+
+// Another method's forward flow <flowDir>/NNNNNN.flo, else the KITTI .png, of width x height.
+FlowField readFlowEstimate(const std::string& flowDir, uint32_t frame, uint32_t width, uint32_t height);
 
 // Another matcher's estimate <disparitiesDir>/NNNNNN.pfm, else the KITTI .png, of width x height.
 std::vector<float> readEstimate(const std::string& disparitiesDir, uint32_t frame, uint32_t width, uint32_t height);

@@ -1,11 +1,10 @@
 #include "eval/evaluation.h"
 
-#include "common/parallel_for.h"
-
 #include "common/error.h"
 #include "common/staged_folder.h"
 #include "dataset/naming.h"
 #include "eval/dataset_reader.h"
+#include "eval/frame_batches.h"
 #include "eval/frame_evaluation.h"
 #include "eval/number_format.h"
 #include "eval/report.h"
@@ -14,10 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <filesystem>
-#include <thread>
-
 
 namespace fs = std::filesystem;
 
@@ -25,22 +21,12 @@ namespace sward {
 
 namespace {
 
-// OpenCV parallelises some SGBM modes over image stripes; frames are our unit of parallelism instead, so its
-// result can never depend on the thread count. Restores OpenCV's setting on exit.
-struct SingleThreadedOpenCV {
-    int previous = cv::getNumThreads();
-    SingleThreadedOpenCV() { cv::setNumThreads(1); }
-    ~SingleThreadedOpenCV() { cv::setNumThreads(previous); }
-};
-
 void requireInputs(const std::string& datasetDir, const std::string& disparitiesDir, const std::vector<double>& edges) {
     std::error_code ec;
     require(fs::is_directory(datasetDir, ec), "dataset folder '" + datasetDir + "' does not exist");
     if (!disparitiesDir.empty())
         require(fs::is_directory(disparitiesDir, ec), "disparities folder '" + disparitiesDir + "' does not exist");
-    for (size_t i = 0; i < edges.size(); ++i)
-        require(edges[i] > 0 && std::isfinite(edges[i]) && (i == 0 || edges[i] > edges[i - 1]),
-                "distance band edges must be positive and increasing");
+    requireBandEdges(edges);
 }
 
 // The dataset's frames, restricted to options.frames; at least one.
@@ -74,14 +60,8 @@ void chooseMatcher(DatasetSetup& setup, DatasetEvaluation& result) {
 void addGroups(const DatasetSetup& setup, DatasetEvaluation& result) {
     if (setup.semantic)
         for (const char* name : kClassGroups) result.classes.push_back({name, 0, 0, {}});
-    const std::vector<double>& edges = setup.options->bandEdgesMetres;
-    for (size_t i = 0; i <= edges.size(); ++i) {
-        GroupMetrics band;
-        band.minMetres = i == 0 ? 0.0 : edges[i - 1];
-        band.maxMetres = i == edges.size() ? INFINITY : edges[i];
-        band.name = metres(band.minMetres) + (i == edges.size() ? "+ m" : "-" + metres(band.maxMetres) + " m");
-        result.bands.push_back(std::move(band));
-    }
+    for (DistanceBand& band : distanceBands(setup.options->bandEdgesMetres))
+        result.bands.push_back({std::move(band.name), band.minMetres, band.maxMetres, {}});
 }
 
 void merge(FrameWork& f, DatasetEvaluation& result) {
@@ -96,32 +76,10 @@ void merge(FrameWork& f, DatasetEvaluation& result) {
     result.matchSeconds += f.matchSeconds;
 }
 
-// Frames are matched in batches of `threads` and merged in frame order: double sums are then added in the
-// same order whatever the thread count, and at most `threads` frames' histograms are alive at once.
 void evaluateFrames(const DatasetSetup& setup, const std::vector<uint32_t>& frames, DatasetEvaluation& result) {
-    SingleThreadedOpenCV singleThreaded;
-    const EvaluationOptions& options = *setup.options;
-    unsigned threads = resolveThreadCount(options.threads);
-    threads = std::min<unsigned>(threads, unsigned(frames.size()));
-    for (size_t begin = 0; begin < frames.size(); begin += threads) {
-        const size_t count = std::min<size_t>(threads, frames.size() - begin);
-        std::vector<FrameWork> batch(count);
-        std::vector<std::exception_ptr> errors(count);
-        auto work = [&](size_t k) {
-            try {
-                batch[k] = evaluateFrame(setup, frames[begin + k]);
-            } catch (...) {
-                errors[k] = std::current_exception();
-            }
-        };
-        std::vector<std::thread> pool;
-        for (size_t k = 1; k < count; ++k) pool.emplace_back(work, k);
-        work(0);
-        for (std::thread& t : pool) t.join();
-        for (const std::exception_ptr& e : errors)
-            if (e) std::rethrow_exception(e);
-        for (FrameWork& f : batch) merge(f, result);
-    }
+    evaluateInFrameOrder<FrameWork>(
+        frames, setup.options->threads, [&](uint32_t frame) { return evaluateFrame(setup, frame); },
+        [&](FrameWork& f) { merge(f, result); });
 }
 
 void requireRunOptions(const EvaluationOptions& options) {

@@ -7,21 +7,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <string_view>
 
 namespace sward {
 
 namespace {
-
-// The kClassGroups index of every possible class byte.
-std::array<uint8_t, 256> classGroupTable() {
-    std::array<uint8_t, 256> table;
-    table.fill(uint8_t(kClassGroups.size() - 1)); // "other"
-    for (const SemanticClass& c : semanticClasses())
-        for (size_t g = 0; g + 1 < kClassGroups.size(); ++g)
-            if (std::string_view(c.group) == kClassGroups[g]) table[c.id] = uint8_t(g);
-    return table;
-}
 
 void requireSize(const std::string& what, uint32_t width, uint32_t height, const DisparityMap& truth) {
     require(width == truth.width && height == truth.height,
@@ -52,7 +41,6 @@ std::vector<float> estimateDisparity(const DatasetSetup& setup, const DisparityM
 void accumulateErrors(const DatasetSetup& setup, const DisparityMap& truth, const std::vector<float>& estimate,
                       FrameWork& work) {
     const uint32_t w = truth.width, h = truth.height;
-    static const std::array<uint8_t, 256> groupOf = classGroupTable();
     cv::Mat semantic, occlusion;
     if (setup.occlusion) {
         occlusion = readOcclusion(setup.dir, work.frame, w, h);
@@ -71,10 +59,8 @@ void accumulateErrors(const DatasetSetup& setup, const DisparityMap& truth, cons
             if (!isValidDisparity(gt)) continue;
             work.total.add(estimate[i], gt);
             if (setup.occlusion && occlusion.at<uint8_t>(int(y), int(x)) == 255) work.nonOccluded->add(estimate[i], gt);
-            if (setup.semantic) work.classes[groupOf[semantic.at<uint8_t>(int(y), int(x))]].add(estimate[i], gt);
-            const double z = setup.calib.depthMetres(gt);
-            const size_t band = size_t(std::upper_bound(edges.begin(), edges.end(), z) - edges.begin());
-            work.bands[band].add(estimate[i], gt);
+            if (setup.semantic) work.classes[classGroupOf(semantic.at<uint8_t>(int(y), int(x)))].add(estimate[i], gt);
+            work.bands[bandIndex(edges, setup.calib.depthMetres(gt))].add(estimate[i], gt);
         }
 }
 

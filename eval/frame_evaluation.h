@@ -3,6 +3,7 @@
 #pragma once
 
 #include "eval/evaluation.h"
+#include "eval/splits.h"
 
 #include <array>
 #include <cstdint>
@@ -11,10 +12,6 @@
 #include <vector>
 
 namespace sward {
-
-// The class groups errors are split into, in report order. Dataset classes (dataset/naming.h) join the group of
-// their broad class; sky and unknown ids fall into "other".
-inline constexpr std::array<const char*, 4> kClassGroups = {"vegetation", "ground", "object", "other"};
 
 // What every frame of one dataset is evaluated with.
 struct DatasetSetup {

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace sward {
 
@@ -110,20 +111,26 @@ void writePng(const std::string& path, const cv::Mat& image) {
     writeBytesAtomically(path, bytes.data(), bytes.size());
 }
 
-cv::Mat colourDisparity(const std::vector<float>& d, uint32_t width, uint32_t height, double lo, double hi) {
+cv::Mat colourValues(std::span<const float> values, uint32_t width, uint32_t height, double lo, double hi,
+                     bool (*valid)(float)) {
     cv::Mat level(int(height), int(width), CV_8UC1);
     const double scale = 255.0 / std::max(hi - lo, 1e-6);
     for (uint32_t y = 0; y < height; ++y)
         for (uint32_t x = 0; x < width; ++x) {
-            float v = d[size_t(y) * width + x];
-            level.at<uint8_t>(int(y), int(x)) = uint8_t(std::clamp(std::round((v - lo) * scale), 0.0, 255.0));
+            const float v = values[size_t(y) * width + x];
+            const double scaled = valid(v) ? std::round((v - lo) * scale) : 0.0;
+            level.at<uint8_t>(int(y), int(x)) = uint8_t(std::clamp(scaled, 0.0, 255.0));
         }
     cv::Mat colour;
     cv::applyColorMap(level, colour, cv::COLORMAP_TURBO);
     for (uint32_t y = 0; y < height; ++y)
         for (uint32_t x = 0; x < width; ++x)
-            if (!isValidDisparity(d[size_t(y) * width + x])) colour.at<cv::Vec3b>(int(y), int(x)) = {0, 0, 0};
+            if (!valid(values[size_t(y) * width + x])) colour.at<cv::Vec3b>(int(y), int(x)) = {0, 0, 0};
     return colour;
+}
+
+cv::Mat colourDisparity(const std::vector<float>& d, uint32_t width, uint32_t height, double lo, double hi) {
+    return colourValues(d, width, height, lo, hi, isValidDisparity);
 }
 
 cv::Mat differenceImage(const std::vector<float>& estimate, const std::vector<float>& truth, uint32_t width,
@@ -152,6 +159,53 @@ void plotHistograms(const std::string& path, const std::string& title, const std
     drawAxes(canvas, frame, title);
     for (size_t c = 0; c < curves.size(); ++c) drawCurve(canvas, frame, curves[c], densities[c], c, binWidth);
     writePng(path, canvas);
+}
+
+namespace {
+
+// The Middlebury colour wheel (Baker et al. 2011, flowToColor): 55 hues in six ramps, red -> yellow -> green ->
+// cyan -> blue -> magenta -> red, so every flow benchmark's pictures read the same way.
+std::vector<cv::Vec3d> middleburyColourWheel() {
+    const int ramps[6] = {15, 6, 4, 11, 13, 6}; // RY, YG, GC, CB, BM, MR
+    std::vector<cv::Vec3d> wheel;               // RGB, 0..255
+    for (int i = 0; i < ramps[0]; ++i) wheel.push_back({255, 255.0 * i / ramps[0], 0});
+    for (int i = 0; i < ramps[1]; ++i) wheel.push_back({255 - 255.0 * i / ramps[1], 255, 0});
+    for (int i = 0; i < ramps[2]; ++i) wheel.push_back({0, 255, 255.0 * i / ramps[2]});
+    for (int i = 0; i < ramps[3]; ++i) wheel.push_back({0, 255 - 255.0 * i / ramps[3], 255});
+    for (int i = 0; i < ramps[4]; ++i) wheel.push_back({255.0 * i / ramps[4], 0, 255});
+    for (int i = 0; i < ramps[5]; ++i) wheel.push_back({255, 0, 255 - 255.0 * i / ramps[5]});
+    return wheel;
+}
+
+// The wheel's colour of a flow vector already divided by the picture's maximum magnitude (BGR).
+cv::Vec3b wheelColour(const std::vector<cv::Vec3d>& wheel, double fx, double fy) {
+    const double radius = std::sqrt(fx * fx + fy * fy);
+    const double angle = std::atan2(-fy, -fx) / std::numbers::pi;
+    const double fk = (angle + 1.0) / 2.0 * double(wheel.size() - 1);
+    const size_t k0 = size_t(fk), k1 = (k0 + 1) % wheel.size();
+    const double f = fk - double(k0);
+    cv::Vec3b bgr;
+    for (int c = 0; c < 3; ++c) {
+        double col = ((1 - f) * wheel[k0][c] + f * wheel[k1][c]) / 255.0;
+        col = radius <= 1 ? 1 - radius * (1 - col) : col * 0.75; // saturation grows with speed; beyond: darker
+        bgr[2 - c] = uint8_t(std::clamp(255.0 * col, 0.0, 255.0));
+    }
+    return bgr;
+}
+
+} // namespace
+
+cv::Mat colourFlow(const FlowField& flow, double maxMagnitude) {
+    static const std::vector<cv::Vec3d> wheel = middleburyColourWheel();
+    cv::Mat colour(int(flow.height), int(flow.width), CV_8UC3, cv::Scalar(0, 0, 0));
+    const double scale = 1.0 / std::max(maxMagnitude, 1e-6);
+    for (uint32_t y = 0; y < flow.height; ++y)
+        for (uint32_t x = 0; x < flow.width; ++x) {
+            const size_t i = size_t(y) * flow.width + x;
+            if (isValidFlow(flow.u(i), flow.v(i)))
+                colour.at<cv::Vec3b>(int(y), int(x)) = wheelColour(wheel, flow.u(i) * scale, flow.v(i) * scale);
+        }
+    return colour;
 }
 
 } // namespace sward

@@ -2,89 +2,118 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
-#include "common/little_endian.h"
 #include "io/image_io.h"
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include <bit>
-#include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
-#include <iterator>
+#include <limits>
 
 namespace sward {
 
 namespace {
 
-constexpr float kFloTag = 202021.25f;
+// KITTI's flow PNG: 1/64 px steps around 32768.
+constexpr double kKittiFlowScale = 64.0;
+constexpr double kKittiFlowOffset = 32768.0;
 
-void requireShape(const std::string& path, const FlowField& flow) {
-    const size_t pixels = size_t(flow.width) * flow.height;
-    require(flow.width > 0 && flow.height > 0 && flow.uv.size() == 2 * pixels && flow.valid.size() == pixels,
-            "cannot write '" + path + "': the flow field's size does not match its width and height");
+void requireFlowSize(const std::string& path, const FlowField& flow) {
+    require(flow.width > 0 && flow.height > 0 && flow.width <= kMaxImageEdge && flow.height <= kMaxImageEdge,
+            "cannot write '" + path + "': flow field of " + std::to_string(flow.width) + "x" +
+                std::to_string(flow.height) + " is empty or too large");
+    require(flow.uv.size() == 2 * size_t(flow.width) * flow.height,
+            "cannot write '" + path + "': flow has " + std::to_string(flow.uv.size()) + " values, expected 2 x " +
+                std::to_string(flow.width) + "x" + std::to_string(flow.height));
 }
 
-template <typename T> T readLittle(const uint8_t* bytes) { // little_endian.h: sward builds for little-endian machines
-    T value;
-    std::memcpy(&value, bytes, sizeof value);
-    return value;
+// The file is little-endian whatever the machine: 4 bytes of `bits` at `out`.
+void putLittle32(char* out, uint32_t bits) {
+    if constexpr (std::endian::native == std::endian::big) bits = __builtin_bswap32(bits);
+    std::memcpy(out, &bits, 4);
+}
+
+uint32_t getLittle32(const char* in) {
+    uint32_t bits;
+    std::memcpy(&bits, in, 4);
+    if constexpr (std::endian::native == std::endian::big) bits = __builtin_bswap32(bits);
+    return bits;
+}
+
+// The file's size, checked against `expected` before anything is read or allocated: a header that claims more
+// than the file holds is "truncated", one that claims less has trailing bytes.
+void requireFloSize(const std::string& path, int32_t width, int32_t height) {
+    std::error_code ec;
+    const uintmax_t size = std::filesystem::file_size(path, ec);
+    require(!ec, "cannot read '" + path + "': " + ec.message());
+    const uint64_t expected = 12 + 8 * uint64_t(width) * uint64_t(height);
+    require(size >= expected, path + ": .flo is truncated: " + std::to_string(width) + "x" + std::to_string(height) +
+                                  " needs " + std::to_string(expected) + " bytes, the file has " +
+                                  std::to_string(size));
+    require(size == expected, path + ": .flo has " + std::to_string(size - expected) + " bytes after the " +
+                                  std::to_string(width) + "x" + std::to_string(height) + " flow its header announces");
 }
 
 } // namespace
 
 void writeFlo(const std::string& path, const FlowField& flow) {
-    requireShape(path, flow);
-    std::string bytes;
-    bytes.reserve(12 + flow.uv.size() * 4);
-    appendLittleEndian(bytes, kFloTag, flow.width, flow.height);
-    for (size_t i = 0; i < flow.valid.size(); ++i)
-        for (size_t c = 0; c < 2; ++c) appendLittleEndian(bytes, flow.valid[i] ? flow.uv[2 * i + c] : kFloUnknown);
-    writeBytesAtomically(path, bytes.data(), bytes.size());
+    requireFlowSize(path, flow);
+    std::string data(12 + 4 * flow.uv.size(), '\0');
+    putLittle32(data.data(), std::bit_cast<uint32_t>(kFloTag));
+    putLittle32(data.data() + 4, flow.width);
+    putLittle32(data.data() + 8, flow.height);
+    char* out = data.data() + 12;
+    for (size_t i = 0; i < flow.uv.size(); i += 2) {
+        const bool valid = isValidFlow(flow.uv[i], flow.uv[i + 1]);
+        putLittle32(out, std::bit_cast<uint32_t>(valid ? flow.uv[i] : kUnknownFlowValue));
+        putLittle32(out + 4, std::bit_cast<uint32_t>(valid ? flow.uv[i + 1] : kUnknownFlowValue));
+        out += 8;
+    }
+    writeBytesAtomically(path, data.data(), data.size());
 }
 
 FlowField readFlo(const std::string& path) {
+    std::error_code ec;
+    require(std::filesystem::is_regular_file(path, ec), "cannot open '" + path + "': no such file");
     std::ifstream file(path, std::ios::binary);
-    require(bool(file), "cannot read '" + path + "'");
-    const std::vector<uint8_t> bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-    require(bytes.size() >= 12 && std::bit_cast<float>(readLittle<uint32_t>(bytes.data())) == kFloTag,
-            path + ": not a Middlebury .flo file (no 202021.25 tag)");
-    const int32_t width = readLittle<int32_t>(bytes.data() + 4), height = readLittle<int32_t>(bytes.data() + 8);
-    require(width > 0 && height > 0 && width <= int32_t(kMaxImageEdge) && height <= int32_t(kMaxImageEdge),
-            path + ": bad .flo size " + std::to_string(width) + " x " + std::to_string(height));
-    FlowField flow{uint32_t(width), uint32_t(height), {}, {}};
-    const size_t pixels = size_t(width) * size_t(height);
-    require(bytes.size() == 12 + pixels * 8, path + ": a " + std::to_string(width) + " x " + std::to_string(height) +
-                                                 " .flo file must hold " + std::to_string(12 + pixels * 8) +
-                                                 " bytes, it holds " + std::to_string(bytes.size()));
-    flow.uv.resize(2 * pixels);
-    flow.valid.resize(pixels);
-    for (size_t i = 0; i < pixels; ++i) {
-        const float u = std::bit_cast<float>(readLittle<uint32_t>(bytes.data() + 12 + 8 * i));
-        const float v = std::bit_cast<float>(readLittle<uint32_t>(bytes.data() + 16 + 8 * i));
-        const bool known = std::isfinite(u) && std::isfinite(v) && std::abs(u) <= kFloUnknownThreshold &&
-                           std::abs(v) <= kFloUnknownThreshold;
-        flow.valid[i] = known ? 1 : 0;
-        flow.uv[2 * i] = known ? u : 0.0f;
-        flow.uv[2 * i + 1] = known ? v : 0.0f;
+    require(bool(file), "cannot open '" + path + "': permission denied");
+    char header[12];
+    require(bool(file.read(header, 12)), path + ": .flo is truncated: shorter than its 12-byte header");
+    require(getLittle32(header) == std::bit_cast<uint32_t>(kFloTag),
+            path + ": not a .flo file (the first 4 bytes are not the tag \"PIEH\", 202021.25)");
+    const int32_t width = int32_t(getLittle32(header + 4)), height = int32_t(getLittle32(header + 8));
+    require(width > 0 && height > 0 && uint32_t(width) <= kMaxImageEdge && uint32_t(height) <= kMaxImageEdge,
+            path + ": .flo size " + std::to_string(width) + "x" + std::to_string(height) + " is out of range (1.." +
+                std::to_string(kMaxImageEdge) + ")");
+    requireFloSize(path, width, height);
+    FlowField flow{uint32_t(width), uint32_t(height), std::vector<float>(2 * size_t(width) * size_t(height))};
+    std::vector<char> data(flow.uv.size() * 4);
+    require(bool(file.read(data.data(), std::streamsize(data.size()))), "cannot read '" + path + "'");
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (size_t i = 0; i < flow.uv.size(); i += 2) {
+        const float u = std::bit_cast<float>(getLittle32(data.data() + 4 * i));
+        const float v = std::bit_cast<float>(getLittle32(data.data() + 4 * i + 4));
+        const bool valid = isValidFlow(u, v);
+        flow.uv[i] = valid ? u : nan;
+        flow.uv[i + 1] = valid ? v : nan;
     }
     return flow;
 }
 
 void writeKittiFlowPng(const std::string& path, const FlowField& flow) {
-    requireShape(path, flow);
+    requireFlowSize(path, flow);
     cv::Mat image(int(flow.height), int(flow.width), CV_16UC3); // OpenCV's channel order: B, G, R
-    const double limit = kKittiFlowLimit - 1.0 / 64.0;
     for (uint32_t y = 0; y < flow.height; ++y) {
-        uint16_t* row = image.ptr<uint16_t>(int(y));
+        cv::Vec3w* row = image.ptr<cv::Vec3w>(int(y));
         for (uint32_t x = 0; x < flow.width; ++x) {
             const size_t i = size_t(y) * flow.width + x;
-            const double u = flow.uv[2 * i], v = flow.uv[2 * i + 1];
-            const bool fits = flow.valid[i] && std::abs(u) <= limit && std::abs(v) <= limit;
-            row[3 * x + 2] = fits ? uint16_t(std::lround(u * 64.0 + 32768.0)) : 0;
-            row[3 * x + 1] = fits ? uint16_t(std::lround(v * 64.0 + 32768.0)) : 0;
-            row[3 * x + 0] = fits ? 1 : 0;
+            const double u = std::round(double(flow.u(i)) * kKittiFlowScale) + kKittiFlowOffset;
+            const double v = std::round(double(flow.v(i)) * kKittiFlowScale) + kKittiFlowOffset;
+            const bool valid = isValidFlow(flow.u(i), flow.v(i)) && u >= 0 && u <= 65535 && v >= 0 && v <= 65535;
+            row[x] = valid ? cv::Vec3w(1, uint16_t(v), uint16_t(u)) : cv::Vec3w(0, 0, 0);
         }
     }
     std::vector<uint8_t> bytes;
@@ -93,22 +122,28 @@ void writeKittiFlowPng(const std::string& path, const FlowField& flow) {
 }
 
 FlowField readKittiFlowPng(const std::string& path) {
-    const ImageData image = loadImage(path); // sward's reader: the header is checked against the file first
+    // sward's PNG reader, not cv::imread: it checks the header against the file before allocating (disparity_files).
+    const ImageData image = loadImage(path);
     require(image.bitDepth == 16 && image.channels == 3,
             path + ": a KITTI flow PNG must be 16-bit with 3 channels (found " + std::to_string(image.bitDepth) +
                 "-bit, " + std::to_string(image.channels) + " channel(s))");
-    FlowField flow{image.width, image.height, {}, {}};
-    const size_t pixels = size_t(image.width) * image.height;
-    flow.uv.resize(2 * pixels);
-    flow.valid.resize(pixels);
+    FlowField flow{image.width, image.height, std::vector<float>(2 * size_t(image.width) * image.height)};
+    const float nan = std::numeric_limits<float>::quiet_NaN();
     // Samples are value / 65535 in float; the 16-bit value comes back exactly by rounding.
-    auto value = [&](size_t i, uint32_t c) { return double(std::lround(double(image.samples[3 * i + c]) * 65535.0)); };
-    for (size_t i = 0; i < pixels; ++i) {
-        flow.valid[i] = value(i, 2) != 0.0 ? 1 : 0;
-        flow.uv[2 * i] = flow.valid[i] ? float((value(i, 0) - 32768.0) / 64.0) : 0.0f;
-        flow.uv[2 * i + 1] = flow.valid[i] ? float((value(i, 1) - 32768.0) / 64.0) : 0.0f;
+    auto value = [&](size_t sample) { return double(std::lround(image.samples[sample] * 65535.0f)); };
+    for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {
+        const bool valid = value(3 * i + 2) != 0;
+        flow.uv[2 * i] = valid ? float((value(3 * i) - kKittiFlowOffset) / kKittiFlowScale) : nan;
+        flow.uv[2 * i + 1] = valid ? float((value(3 * i + 1) - kKittiFlowOffset) / kKittiFlowScale) : nan;
     }
     return flow;
+}
+
+FlowField readFlow(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    if (ext == "flo") return readFlo(path);
+    if (ext == "png") return readKittiFlowPng(path);
+    throw Error(path + ": unknown flow format '" + (ext.empty() ? "" : "." + ext) + "' (expected .flo or KITTI .png)");
 }
 
 } // namespace sward

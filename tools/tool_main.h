@@ -20,6 +20,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #ifndef SWARD_VERSION
@@ -142,6 +143,15 @@ template <class Target> CLI::Option* addSamples(CLI::App& app, Target& target, c
                          require(samples == 1 || samples == 4, flag + " must be 1 or 4, got '" + text + "'");
                          return uint32_t(samples);
                      });
+}
+
+// --frames A:B, the half-open range of frame numbers A .. B-1 every dataset tool takes.
+inline CLI::Option* addFrameRange(CLI::App& app, std::optional<std::pair<uint32_t, uint32_t>>& target,
+                                  const std::string& description) {
+    return addParsed(app, "--frames", target, description, "A:B", [](const std::string& text, const std::string& flag) {
+        const auto [first, end] = parseHalfOpenRange(text, 0, kFrameLimit, flag);
+        return std::pair<uint32_t, uint32_t>(uint32_t(first), uint32_t(end));
+    });
 }
 
 // A point "X,Y,Z" of finite numbers (metres), e.g. --camera 10,-4.5,2.

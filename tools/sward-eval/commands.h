@@ -2,3 +2,4 @@
 #pragma once
 
 int stereoMain(int argc, char** argv); // stereo.cpp: `sward-eval [stereo] DATASET`
+int flowMain(int argc, char** argv);   // flow.cpp: `sward-eval flow DATASET`

@@ -6,7 +6,8 @@
 
 int main(int argc, char** argv) {
     const std::string_view command = argc > 1 ? argv[1] : "";
-    // argv[0] becomes "stereo": the command's usage line reads "sward-eval stereo ..."
+    // argv[0] becomes the command word: the command's usage line reads "sward-eval stereo ..."
     if (command == "stereo") return stereoMain(argc - 1, argv + 1);
+    if (command == "flow") return flowMain(argc - 1, argv + 1);
     return stereoMain(argc, argv);
 }

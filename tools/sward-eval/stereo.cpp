@@ -2,6 +2,7 @@
 // else. `sward-eval DATASET` (no command word) is the stereo evaluation too.
 #include "common/error.h"
 #include "eval/evaluation.h"
+#include "eval/splits.h"
 
 #include "tools/sward-eval/commands.h"
 #include "tools/tool_main.h"
@@ -9,22 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
-#include <sstream>
-#include <utility>
 #include <vector>
-
-namespace {
-
-std::vector<double> parseBands(const std::string& text) {
-    std::vector<double> edges;
-    std::stringstream in(text);
-    for (std::string item; std::getline(in, item, ',');) {
-        edges.push_back(sward::parseReal(item, 0.001, 1e6, "--bands '" + text + "': band edge (metres)"));
-    }
-    return edges;
-}
-
-} // namespace
 
 int stereoMain(int argc, char** argv) {
     CLI::App app{"sward-eval stereo: stereo matching error of a sward dataset against its ground-truth disparity"};
@@ -54,13 +40,9 @@ int stereoMain(int argc, char** argv) {
     sward::addInteger(app, "--disp12-max-diff", sgbm.disp12MaxDiff, -1000000, 1000000,
                       "SGBM left-right check tolerance (negative: off)");
     app.add_flag("--gray", sgbm.gray, "Match grey images instead of colour");
-    sward::addParsed(app, "--frames", options.frames, "Frame range A:B (frames A .. B-1); default: all", "A:B",
-                     [](const std::string& text, const std::string& flag) {
-                         const auto [first, end] = sward::parseHalfOpenRange(text, 0, sward::kFrameLimit, flag);
-                         return std::pair<uint32_t, uint32_t>(uint32_t(first), uint32_t(end));
-                     });
+    sward::addFrameRange(app, options.frames, "Frame range A:B (frames A .. B-1); default: all");
     sward::addParsed(app, "--bands", options.bandEdgesMetres, "Distance band edges in metres, e.g. 5,10,20,50",
-                     "M,M,...", [](const std::string& text, const std::string&) { return parseBands(text); });
+                     "M,M,...", sward::parseBandEdges);
     sward::addUnsigned(app, "--threads", options.threads, 0, sward::kMaxThreadsOption,
                        "Frames matched at once (default 0: all cores)");
     app.add_flag("--no-pictures", noPictures, "Skip the per-frame disparity and difference PNGs");

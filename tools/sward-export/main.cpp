@@ -17,11 +17,7 @@ int main(int argc, char** argv) {
     sward::addParsed(app, "--layout", options.layout, "middlebury, eth3d, kitti, ply, colmap or nerfstudio", "LAYOUT",
                      [](const std::string& text, const std::string& flag) { return sward::parseExportLayout(text, flag); })
         ->required();
-    sward::addParsed(app, "--frames", options.frames, "Frame range A:B (frames A .. B-1); default: all rendered",
-                     "A:B", [](const std::string& text, const std::string& flag) {
-                         const auto [first, end] = sward::parseHalfOpenRange(text, 0, sward::kFrameLimit, flag);
-                         return std::pair<uint32_t, uint32_t>(uint32_t(first), uint32_t(end));
-                     });
+    sward::addFrameRange(app, options.frames, "Frame range A:B (frames A .. B-1); default: all rendered");
     sward::addParsed(app, "--point-frame", options.pointFrame, "PLY coordinates: world (default) or camera",
                      "world|camera",
                      [](const std::string& text, const std::string& flag) { return sward::parsePointFrame(text, flag); });
