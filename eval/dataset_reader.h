@@ -3,18 +3,27 @@
 // throws sward::Error naming the file and the problem.
 #pragma once
 
+#include "dataset/naming.h"
 #include "io/disparity_files.h"
 
 #include <opencv2/core.hpp>
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
 namespace sward {
 
-// Frame numbers of a dataset: every 6-digit NNNNNN.{pfm,exr,png} in <dir>/disparity, sorted.
-std::vector<uint32_t> listDatasetFrames(const std::string& dir);
+// Frame numbers of a dataset: every 6-digit NNNNNN.{pfm,exr,png} in <dir>/<folder> (default: the ground-truth
+// disparity), sorted.
+std::vector<uint32_t> listDatasetFrames(const std::string& dir, const char* folder = kDisparityFolder);
+
+// The left camera's pose of every record of frames.jsonl (4x4 camera-to-world, OpenCV axes), by frame number.
+std::map<uint32_t, cv::Matx44d> readLeftPoses(const std::string& dir);
+
+// depth/NNNNNN.exr (planar depth in metres, +inf for sky) of width x height, row-major.
+std::vector<float> readDepth(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height);
 
 // Ground-truth disparity of one frame: disparity/NNNNNN.pfm, else .exr, else the KITTI .png (lossy).
 DisparityMap readGroundTruth(const std::string& dir, uint32_t frame);

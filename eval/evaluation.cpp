@@ -8,6 +8,7 @@
 #include "eval/dataset_reader.h"
 #include "eval/frame_evaluation.h"
 #include "eval/number_format.h"
+#include "eval/opencv_threads.h"
 #include "eval/report.h"
 
 #include <opencv2/core.hpp>
@@ -24,14 +25,6 @@ namespace fs = std::filesystem;
 namespace sward {
 
 namespace {
-
-// OpenCV parallelises some SGBM modes over image stripes; frames are our unit of parallelism instead, so its
-// result can never depend on the thread count. Restores OpenCV's setting on exit.
-struct SingleThreadedOpenCV {
-    int previous = cv::getNumThreads();
-    SingleThreadedOpenCV() { cv::setNumThreads(1); }
-    ~SingleThreadedOpenCV() { cv::setNumThreads(previous); }
-};
 
 void requireInputs(const std::string& datasetDir, const std::string& disparitiesDir, const std::vector<double>& edges) {
     std::error_code ec;

@@ -19,7 +19,7 @@ packages=(
   # ray casting of the range sensors (range/ray_scene): Intel's Embree 3
   libembree-dev
   # OpenCV modules used by tests and sward-eval (the per-module packages avoid 40+ unrelated ones)
-  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-calib3d-dev
+  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-features2d-dev libopencv-calib3d-dev
   # configuration, command line, UI
   nlohmann-json3-dev libcli11-dev libimgui-dev
   # the Python module (python/): pybind11 and numpy; its tests run under pytest

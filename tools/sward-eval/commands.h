@@ -2,3 +2,4 @@
 #pragma once
 
 int stereoMain(int argc, char** argv); // stereo.cpp: `sward-eval [stereo] DATASET`
+int odometryMain(int argc, char** argv); // odometry.cpp: `sward-eval odometry DATASET`

@@ -8,5 +8,6 @@ int main(int argc, char** argv) {
     const std::string_view command = argc > 1 ? argv[1] : "";
     // argv[0] becomes "stereo": the command's usage line reads "sward-eval stereo ..."
     if (command == "stereo") return stereoMain(argc - 1, argv + 1);
+    if (command == "odometry") return odometryMain(argc - 1, argv + 1);
     return stereoMain(argc, argv);
 }
