@@ -4,10 +4,12 @@
 #include "dataset/naming.h"
 #include "io/image_io.h"
 
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 
 namespace fs = std::filesystem;
 
@@ -39,8 +41,40 @@ std::vector<uint32_t> listFrameFiles(const std::string& dir, const char* folder,
     return frames;
 }
 
-std::vector<uint32_t> listDatasetFrames(const std::string& dir) {
-    return listFrameFiles(dir, kDisparityFolder, {".pfm", ".exr", ".png"}, "ground-truth folder");
+std::vector<uint32_t> listDatasetFrames(const std::string& dir, const char* folder) {
+    return listFrameFiles(dir, folder, {".pfm", ".exr", ".png"},
+                          std::string(folder) == kDisparityFolder ? "ground-truth folder" : "folder");
+}
+
+std::map<uint32_t, cv::Matx44d> readLeftPoses(const std::string& dir) {
+    const std::string path = dir + "/" + kFrameLogFile;
+    std::ifstream file(path, std::ios::binary);
+    require(bool(file), "cannot read '" + path + "': not a complete sward dataset");
+    std::map<uint32_t, cv::Matx44d> poses;
+    uint32_t lineNumber = 0;
+    for (std::string line; std::getline(file, line);) {
+        ++lineNumber;
+        try {
+            const nlohmann::json record = nlohmann::json::parse(line);
+            cv::Matx44d pose;
+            for (int r = 0; r < 4; ++r)
+                for (int c = 0; c < 4; ++c) pose(r, c) = record.at("left_pose").at(r).at(c).get<double>();
+            poses[record.at("frame").get<uint32_t>()] = pose;
+        } catch (const nlohmann::json::exception& e) {
+            throw Error(path + " line " + std::to_string(lineNumber) + ": not a sward frame record (" + e.what() + ")");
+        }
+    }
+    return poses;
+}
+
+std::vector<float> readDepth(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height) {
+    const std::string path = dir + "/" + frameFile(kDepthFolder, frame, ".exr");
+    require(isFile(path), "missing depth image '" + path + "'");
+    ImageData image = loadExrChannel(path, "Y");
+    require(image.width == width && image.height == height && image.channels == 1,
+            path + ": expected a one-channel float depth image of " + std::to_string(width) + "x" +
+                std::to_string(height));
+    return std::move(image.samples);
 }
 
 DisparityMap readGroundTruth(const std::string& dir, uint32_t frame) {
@@ -99,16 +133,6 @@ FlowField readFlowTruth(const std::string& dir, uint32_t frame) {
 
 cv::Mat readFlowMask(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height) {
     return readByteImage(dir, kFlowForwardMaskFolder, frame, width, height, "flow mask");
-}
-
-std::vector<float> readDepth(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height) {
-    const std::string path = dir + "/" + frameFile(kDepthFolder, frame, ".exr");
-    require(isFile(path), "missing depth image '" + path + "'");
-    ImageData image = loadExrChannel(path, "Y"); // sward's depth EXR: Y, and a copy Z for other tools
-    require(image.width == width && image.height == height, path + " is " + std::to_string(image.width) + "x" +
-                                                                std::to_string(image.height) + ", the flow " +
-                                                                std::to_string(width) + "x" + std::to_string(height));
-    return std::move(image.samples);
 }
 
 FlowField readFlowEstimate(const std::string& flowDir, uint32_t frame, uint32_t width, uint32_t height) {

@@ -3,12 +3,14 @@
 // method's estimates. Every function throws sward::Error naming the file and the problem.
 #pragma once
 
+#include "dataset/naming.h"
 #include "io/disparity_files.h"
 #include "io/flow_files.h"
 
 #include <opencv2/core.hpp>
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -19,8 +21,15 @@ namespace sward {
 std::vector<uint32_t> listFrameFiles(const std::string& dir, const char* folder,
                                      const std::vector<std::string>& extensions, const std::string& what);
 
-// Frame numbers of a dataset: every 6-digit NNNNNN.{pfm,exr,png} in <dir>/disparity, sorted.
-std::vector<uint32_t> listDatasetFrames(const std::string& dir);
+// Frame numbers of a dataset: every 6-digit NNNNNN.{pfm,exr,png} in <dir>/<folder> (default: the ground-truth
+// disparity), sorted.
+std::vector<uint32_t> listDatasetFrames(const std::string& dir, const char* folder = kDisparityFolder);
+
+// The left camera's pose of every record of frames.jsonl (4x4 camera-to-world, OpenCV axes), by frame number.
+std::map<uint32_t, cv::Matx44d> readLeftPoses(const std::string& dir);
+
+// depth/NNNNNN.exr (planar depth in metres, +inf for sky) of width x height, row-major.
+std::vector<float> readDepth(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height);
 
 // Ground-truth disparity of one frame: disparity/NNNNNN.pfm, else .exr, else the KITTI .png (lossy).
 DisparityMap readGroundTruth(const std::string& dir, uint32_t frame);
@@ -41,8 +50,6 @@ FlowField readFlowTruth(const std::string& dir, uint32_t frame);
 // flow_forward_mask/NNNNNN.png (255 = visible in both frames), one-channel 8-bit of width x height.
 cv::Mat readFlowMask(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height);
 
-// depth/NNNNNN.exr: planar depth in metres (+inf for sky), channel Y, of width x height, top row first.
-std::vector<float> readDepth(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height);
 
 // Another method's forward flow <flowDir>/NNNNNN.flo, else the KITTI .png, of width x height.
 FlowField readFlowEstimate(const std::string& flowDir, uint32_t frame, uint32_t width, uint32_t height);

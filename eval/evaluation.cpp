@@ -7,6 +7,7 @@
 #include "eval/frame_batches.h"
 #include "eval/frame_evaluation.h"
 #include "eval/number_format.h"
+#include "eval/opencv_threads.h"
 #include "eval/report.h"
 
 #include <opencv2/core.hpp>

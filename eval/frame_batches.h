@@ -4,6 +4,7 @@
 #pragma once
 
 #include "common/parallel_for.h"
+#include "eval/opencv_threads.h"
 
 #include <opencv2/core.hpp>
 
@@ -12,16 +13,6 @@
 #include <vector>
 
 namespace sward {
-
-// OpenCV parallelises some matchers (SGBM modes, DIS) over image stripes; frames are our unit of parallelism
-// instead, so no result can depend on the thread count. Restores OpenCV's setting on exit.
-struct SingleThreadedOpenCV {
-    int previous = cv::getNumThreads();
-    SingleThreadedOpenCV() { cv::setNumThreads(1); }
-    ~SingleThreadedOpenCV() { cv::setNumThreads(previous); }
-    SingleThreadedOpenCV(const SingleThreadedOpenCV&) = delete;
-    SingleThreadedOpenCV& operator=(const SingleThreadedOpenCV&) = delete;
-};
 
 // Calls evaluate(frame) -> Work for every frame on up to `threads` threads (0: every core) and merge(Work&) for
 // each result in frame order. An exception of evaluate() is rethrown once its batch has finished (the lowest

@@ -18,9 +18,11 @@ packages=(
   libgdal-dev gdal-bin
   # ray casting of the range sensors (range/ray_scene): Intel's Embree 3
   libembree-dev
-  # OpenCV modules used by tests and sward-eval (the per-module packages avoid 40+ unrelated ones); video: the
-  # optical-flow baselines of sward-eval flow (DIS, Farneback)
-  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-calib3d-dev libopencv-video-dev
+  # OpenCV modules used by tests and sward-eval (the per-module packages avoid 40+ unrelated ones); features2d: the
+  # detectors of sward-eval odometry (ORB, AKAZE, SIFT); video: the optical-flow baselines of sward-eval flow (DIS,
+  # Farneback)
+  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-features2d-dev libopencv-calib3d-dev
+  libopencv-video-dev
   # configuration, command line, UI
   nlohmann-json3-dev libcli11-dev libimgui-dev
   # the Python module (python/): pybind11 and numpy; its tests run under pytest

@@ -9,5 +9,6 @@ int main(int argc, char** argv) {
     // argv[0] becomes the command word: the command's usage line reads "sward-eval stereo ..."
     if (command == "stereo") return stereoMain(argc - 1, argv + 1);
     if (command == "flow") return flowMain(argc - 1, argv + 1);
+    if (command == "odometry") return odometryMain(argc - 1, argv + 1);
     return stereoMain(argc, argv);
 }
