@@ -442,6 +442,15 @@ CASES = [
     Case("range sensors in a world", "sward-render",
          scene_with(lambda s, env: s.update(range_sensors=[{"mount": {"position": [50, 50, 0]}}], world={"tiles": [2, 2]})),
          1, r"'range_sensors' in a world are not supported yet"),
+    # Motion ground truth.
+    Case("flow in a world", "sward-render",
+         scene_with(lambda s, env: s.update(render=dict(s.get("render", {}), flow=True), world={"tiles": [2, 2]})),
+         1, r"'render\.flow' in a world is not supported yet"),
+    Case("flow with range sensors", "sward-render",
+         scene_with(lambda s, env: s.update(render=dict(s.get("render", {}), flow=True),
+                                            range_sensors=[{"mount": {"position": [50, 50, 0]}}])),
+         1, r"'render\.flow' together with 'range_sensors' is not supported yet"),
+    Case("flow not a boolean", "sward-render", scene_with(set_key(["render", "flow"], "yes")), 1, r"'render\.flow'"),
     # Worlds of many tiles.
     Case("world budget too small for the tiles around one camera", "sward-render",
          scene_with(set_key(["world"], {"tiles": [16, 16], "load_radius": 300, "memory_budget_mib": 1})), 1,
