@@ -48,13 +48,30 @@ void parseShard(const std::string& text, uint32_t& index, uint32_t& count) {
 namespace {
 
 // Every folder a dataset may have, whatever its rig: --overwrite clears them all.
-constexpr const char* kAllFolders[] = {
-    kLeftFolder,      kRightFolder,          kDepthFolder,        kDisparityFolder,  kSemanticFolder,
-    kInstanceFolder,  kPreviewFolder,        kPreviewRightFolder, kDepthRightFolder, kDisparityRightFolder,
-    kOcclusionFolder, kOcclusionRightFolder, kNormalFolder,       kNormalRightFolder,
-    kFlowForwardFolder, "flow_backward",     "flow_forward_right", "flow_backward_right",
-    kFlowForwardMaskFolder, "flow_backward_mask", "flow_forward_mask_right", "flow_backward_mask_right",
-    kDisparityChangeForwardFolder, kDisparityChangeBackwardFolder};
+constexpr const char* kAllFolders[] = {kLeftFolder,
+                                       kRightFolder,
+                                       kDepthFolder,
+                                       kDisparityFolder,
+                                       kSemanticFolder,
+                                       kInstanceFolder,
+                                       kPreviewFolder,
+                                       kPreviewRightFolder,
+                                       kDepthRightFolder,
+                                       kDisparityRightFolder,
+                                       kOcclusionFolder,
+                                       kOcclusionRightFolder,
+                                       kNormalFolder,
+                                       kNormalRightFolder,
+                                       kFlowForwardFolder,
+                                       "flow_backward",
+                                       "flow_forward_right",
+                                       "flow_backward_right",
+                                       kFlowForwardMaskFolder,
+                                       "flow_backward_mask",
+                                       "flow_forward_mask_right",
+                                       "flow_backward_mask_right",
+                                       kDisparityChangeForwardFolder,
+                                       kDisparityChangeBackwardFolder};
 
 bool isSwardTemporaryName(const std::string& name) {
     long pid = 0;
@@ -170,7 +187,8 @@ uint64_t DatasetWriter::frameBytesUpperBound(uint32_t width, uint32_t height) co
     std::vector<uint64_t> bytesPerPixel = {8, 8, 1, 4, 12, 3};
     if (stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {8, 4, 4, 2, 3, 8, 4, 4, 1, 1, 12});
     // Flow, per view and direction: .flo 8, KITTI PNG 6, EXR 12, mask 1; stereo: two disparity changes of 4.
-    for (uint32_t k = 0; flow_ && k < (stereo_ ? 4u : 2u); ++k) bytesPerPixel.insert(bytesPerPixel.end(), {8, 6, 12, 1});
+    for (uint32_t k = 0; flow_ && k < (stereo_ ? 4u : 2u); ++k)
+        bytesPerPixel.insert(bytesPerPixel.end(), {8, 6, 12, 1});
     if (flow_ && stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {4, 4});
     constexpr uint64_t kBlock = 4096;
     uint64_t total = 0;
@@ -275,7 +293,8 @@ std::vector<std::string> DatasetWriter::flowFiles(uint32_t frame) const {
         for (bool forward : {true, false}) {
             if (!forward && frame == 0) continue;
             const FlowFolders folders = flowFolders(view == 1, forward);
-            for (const char* extension : {".flo", ".png", ".exr"}) files.push_back(frameFile(folders.flow, frame, extension));
+            for (const char* extension : {".flo", ".png", ".exr"})
+                files.push_back(frameFile(folders.flow, frame, extension));
             files.push_back(frameFile(folders.mask, frame, ".png"));
         }
     if (stereo_) {
@@ -333,9 +352,10 @@ void DatasetWriter::writeFlowFiles(uint32_t frame, const FrameImages& images, co
             writeExr(target(frameFile(folders.flow, frame, ".exr")), w, h, 3, truth.exr);
             writePng8(target(frameFile(folders.mask, frame, ".png")), w, h, 1, occlusionMaskPixels(truth.visibility));
             if (stereo_ && !right)
-                writePfmValues(target(frameFile(forward ? kDisparityChangeForwardFolder : kDisparityChangeBackwardFolder,
-                                                frame, ".pfm")),
-                               w, h, disparityChange(flow, images.depth, focalBaseline));
+                writePfmValues(
+                    target(frameFile(forward ? kDisparityChangeForwardFolder : kDisparityChangeBackwardFolder, frame,
+                                     ".pfm")),
+                    w, h, disparityChange(flow, images.depth, focalBaseline));
         }
 }
 

@@ -51,8 +51,7 @@ FlowTruth flowTruth(uint32_t width, uint32_t height, std::span<const float> flow
             truth.exr[3 * i + 1] = surface ? f[1] : 0.0f;
             truth.exr[3 * i + 2] = surface ? f[2] : std::numeric_limits<float>::infinity();
             if (surface)
-                truth.visibility[i] =
-                    visibilityAt(width, height, x + 0.5 + f[0], y + 0.5 + f[1], f[2], targetDepth);
+                truth.visibility[i] = visibilityAt(width, height, x + 0.5 + f[0], y + 0.5 + f[1], f[2], targetDepth);
         }
     return truth;
 }

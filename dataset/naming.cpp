@@ -34,8 +34,9 @@ static_assert(std::size(kClasses) == 7 + gpu::kMaxPlantCategories, "one entry pe
 } // namespace
 
 FlowFolders flowFolders(bool right, bool forward) {
-    if (forward) return right ? FlowFolders{"flow_forward_right", "flow_forward_mask_right"}
-                              : FlowFolders{kFlowForwardFolder, kFlowForwardMaskFolder};
+    if (forward)
+        return right ? FlowFolders{"flow_forward_right", "flow_forward_mask_right"}
+                     : FlowFolders{kFlowForwardFolder, kFlowForwardMaskFolder};
     return right ? FlowFolders{"flow_backward_right", "flow_backward_mask_right"}
                  : FlowFolders{"flow_backward", "flow_backward_mask"};
 }

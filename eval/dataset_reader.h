@@ -50,7 +50,6 @@ FlowField readFlowTruth(const std::string& dir, uint32_t frame);
 // flow_forward_mask/NNNNNN.png (255 = visible in both frames), one-channel 8-bit of width x height.
 cv::Mat readFlowMask(const std::string& dir, uint32_t frame, uint32_t width, uint32_t height);
 
-
 // Another method's forward flow <flowDir>/NNNNNN.flo, else the KITTI .png, of width x height.
 FlowField readFlowEstimate(const std::string& flowDir, uint32_t frame, uint32_t width, uint32_t height);
 

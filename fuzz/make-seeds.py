@@ -167,6 +167,9 @@ def main():
 
     put("pfm", "little.pfm", pfm(3, 2, [1.5, 2.0, float("inf"), 0.0, 4.25, 8.0]))
     put("pfm", "big.pfm", pfm(2, 1, [3.0, -1.0], little=False))
+    # fuzz_flow: the first byte picks the reader (even: .flo, odd: KITTI flow PNG).
+    put("flow", "small.flo", b"\x00" + struct.pack("<fii", 202021.25, 2, 1) + struct.pack("<4f", 1.5, -2.0, 1e10, 1e10))
+    put("flow", "kitti.png", b"\x01" + png(2, 1, 16, 2, [struct.pack(">HHHHHH", 32832, 32640, 1, 0, 0, 0)]))
     put("kitti_png", "kitti.png", png(2, 2, 16, 0, [struct.pack(">HH", 0, 256), struct.pack(">HH", 1000, 65535)]))
     put("exr", "depth_y.exr", exr(3, 2, ["Y"]))
     put("exr", "rgb_half.exr", exr(2, 2, ["R", "G", "B"], pixel_type=1))

@@ -144,9 +144,9 @@ void ObjectRenderer::update(double time, uint32_t slot, const std::array<double,
         for (size_t k = 0; k < objects_.size(); ++k) {
             const bool hidden = k < hidden_.size() && hidden_[k];
             for (const glm::dmat4& m : objectNodeTransforms(objects_[k], models_[k], terrain_, t))
-                transforms.push_back(hidden ? gpu::ObjectTransform{glm::mat4(0.0f), glm::mat4(0.0f)}
-                                            : gpu::ObjectTransform{glm::mat4(m),
-                                                                   glm::mat4(glm::transpose(glm::inverse(m)))});
+                transforms.push_back(
+                    hidden ? gpu::ObjectTransform{glm::mat4(0.0f), glm::mat4(0.0f)}
+                           : gpu::ObjectTransform{glm::mat4(m), glm::mat4(glm::transpose(glm::inverse(m)))});
         }
     }
     if (transforms.empty()) return; // memcpy from an empty vector's null data() is undefined

@@ -19,7 +19,8 @@ OffscreenFrame::OffscreenFrame(Context& ctx, uint32_t width, uint32_t height, ui
     labels_ = createBuffer(ctx, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     normals_ = createBuffer(ctx, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
     if (flow)
-        for (Buffer& b : flow_) b = createBuffer(ctx, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+        for (Buffer& b : flow_)
+            b = createBuffer(ctx, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
 }
 
 namespace {

@@ -21,9 +21,9 @@
 #include <fstream>
 #include <memory>
 #include <set>
-#include <utility>
 #include <sstream>
 #include <unistd.h>
+#include <utility>
 
 #ifndef SWARD_REVISION
 #define SWARD_REVISION "unknown"
@@ -166,8 +166,9 @@ uint64_t bytesNeeded(const DatasetWriter& dataset, const JobPlan& plan, const st
 // frames render in order from the one before the first to write to the one after the last (those not to be written
 // only for their truth), and frame f is written once f + 1 has rendered.
 void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, const JobPlan& plan,
-                      const std::vector<uint32_t>& todo, DatasetWriter& dataset, const std::optional<SensorModel>& sensor,
-                      const RenderJobOptions& options, BackgroundTask& writer, Progress& progress) {
+                      const std::vector<uint32_t>& todo, DatasetWriter& dataset,
+                      const std::optional<SensorModel>& sensor, const RenderJobOptions& options, BackgroundTask& writer,
+                      Progress& progress) {
     const double baseline = r.scene.camera.rig.baseline;
     const std::set<uint32_t> toWrite(todo.begin(), todo.end());
     std::shared_ptr<const FrameImages> previous, current;

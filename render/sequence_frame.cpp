@@ -57,10 +57,11 @@ namespace {
 // renderSequenceFrame with the motion ground truth (render.flow; one tile, no world simulation). The plants' state of
 // the previous tick is kept before this frame's tick runs, and this tick's before the next tick runs between the main
 // and the truth passes (VegetationRenderer::recordKeepState).
-FrameImages renderFlowFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t frame,
-                            double time, const RigCameras& cameras) {
+FrameImages renderFlowFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t frame, double time,
+                            const RigCameras& cameras) {
     const uint32_t width = cameras.left.width, height = cameras.left.height;
-    const RigCameras previous = sequenceRig(r, width, height, frame > 0 ? frame - 1 : 0); // frame 0 has no backward flow
+    const RigCameras previous =
+        sequenceRig(r, width, height, frame > 0 ? frame - 1 : 0); // frame 0 has no backward flow
     const RigCameras next = sequenceRig(r, width, height, frame + 1);
     VegetationRenderer* plants = gpu.renderer->vegetation();
     Simulation* simulation = gpu.simulation.get();

@@ -350,8 +350,8 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
                              shadowMap, plants});
         else if (pass == PlantPass::TruthFlow)
             pushDescriptors(ctx_.device, cmd, pipeline,
-                            {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(), plants,
-                             storageBuffer(gpu::kBindingFlowStatics, tile->buffers.statics.handle),
+                            {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(),
+                             plants, storageBuffer(gpu::kBindingFlowStatics, tile->buffers.statics.handle),
                              storageBuffer(gpu::kBindingFlowDynamicsPrevious, keptStates_[latestKept_ ^ 1u].handle),
                              storageBuffer(gpu::kBindingFlowDynamicsNext, tile->buffers.dynamics.handle)});
         else
@@ -385,7 +385,8 @@ void VegetationRenderer::enableFlow() {
     PipelineLayoutDesc layout = drawLayout(false);
     for (uint32_t binding :
          {gpu::kBindingFlowStatics, gpu::kBindingFlowDynamicsPrevious, gpu::kBindingFlowDynamicsNext})
-        layout.bindings.push_back(layoutBinding(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT));
+        layout.bindings.push_back(
+            layoutBinding(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT));
     GraphicsPipelineDesc truth = mainPipelineDesc("plant_truth.frag");
     truth.colorFormats = {formats_.truthDepthBits, formats_.truthLabel, formats_.truthNormal};
     truth.depthFormat = formats_.truthDepth;
@@ -404,8 +405,8 @@ void VegetationRenderer::recordKeepState(VkCommandBuffer cmd) {
     const Buffer& live = onlyTile().buffers.dynamics;
     latestKept_ ^= 1u;
     // The interaction tick's compute writes -> this copy; the copy's reads -> the next tick's writes (its barrier).
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                  VK_ACCESS_2_TRANSFER_READ_BIT);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     const VkBufferCopy region{.size = live.size};
     vkCmdCopyBuffer(cmd, live.handle, keptStates_[latestKept_].handle, 1, &region);
     // The copy -> the truth pass's vertex reads, and the live records' next writers (a tick's compute).

@@ -166,9 +166,9 @@ private:
     VkSampler atlasSampler_ = VK_NULL_HANDLE;
     Pipeline countPipeline_, scanPipeline_, writePipeline_;
     Pipeline mainPipeline_, truthPipeline_, shadowPipeline_;
-    Pipeline truthFlowPipeline_;   // enableFlow()
-    Buffer keptStates_[2];         // PlantDynamic[plants] of two earlier ticks (enableFlow())
-    uint32_t latestKept_ = 0;      // the buffer recordKeepState() wrote last
+    Pipeline truthFlowPipeline_;                             // enableFlow()
+    Buffer keptStates_[2];                                   // PlantDynamic[plants] of two earlier ticks (enableFlow())
+    uint32_t latestKept_ = 0;                                // the buffer recordKeepState() wrote last
     Pipeline bakePipeline_, staticPipeline_, floorPipeline_; // created on first use (benchmarks, tests)
     MainShading mainShading_ = MainShading::Full;
     VegetationPassFormats formats_;

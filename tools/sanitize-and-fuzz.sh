@@ -18,15 +18,17 @@ fuzz_seconds=${FUZZ_SECONDS:-30}
 fuzz_budget=(-max_total_time="$fuzz_seconds")
 [ -n "${FUZZ_RUNS:-}" ] && fuzz_budget=(-runs="$FUZZ_RUNS")
 jobs=${JOBS:-$(nproc)}
-all_targets="scene grass_map atlas gltf glb state_file pfm kitti_png exr calib"
+all_targets="scene grass_map atlas gltf glb state_file pfm kitti_png flow exr calib"
 targets=${FUZZ_TARGETS:-$all_targets}
 cpu_suites="common io world vegetation interaction scene dataset eval export range"
 # A GPU smoke subset: engine basics, the validation self-test, one renderer of each kind (ruts: in sward-render and
-# in a Session), the GPU simulation and a range-sensor dataset (sward-render with a LiDAR, the ruts, the GPU state).
+# in a Session), the GPU simulation, a range-sensor dataset (sward-render with a LiDAR, the ruts, the GPU state) and a
+# dataset with motion ground truth (the flow truth pass, the kept plant states, the flow files).
 gpu_filter="RangeAllocator.*:Validation.*:GpuTest.ComputeRoundTrip*:GpuTest.BuffersAreSubAllocated*"
 gpu_filter+=":GpuTest.ExpansionMatchesTheCpuReference:GpuTest.RecoveryMatchesTheCpuReference"
 gpu_filter+=":ObjectRenderTest.RoverIsDrawnWithExactDepthAndItsLabel:RenderTest.TwoRendersAreBitwiseIdentical"
 gpu_filter+=":GpuTest.WheelsPressRuts*:GpuTest.RutsAreTheSameBits*:RangeSensorDatasets.LidarPoints*"
+gpu_filter+=":FlowTruth.StillSceneFlowIsTheDepthReprojectedWithBothPoses"
 
 fail() { echo "sanitize-and-fuzz: $*" >&2; exit 1; }
 seconds_since() { echo $(( $(date +%s) - $1 )); }

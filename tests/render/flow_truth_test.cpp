@@ -224,15 +224,14 @@ TEST(FlowTruth, WindMovedPlantsFollowTheCpuExpansionReference) {
             uint32_t triangle = 0;
             for (uint32_t k = 0; k < sward::PlantQuads::kTriangles; ++k) {
                 double t, u, v;
-                if (!hitTriangle(origin, ray, corner(k, now.p0), corner(k, now.e1), corner(k, now.e2), t,
-                                 u, v))
+                if (!hitTriangle(origin, ray, corner(k, now.p0), corner(k, now.e1), corner(k, now.e2), t, u, v))
                     continue;
                 const double miss = std::abs(t - cv::norm(point - origin));
                 if (miss < best) best = miss, b1 = u, b2 = v, triangle = k;
             }
             if (best > 1e-3) continue; // a plant whose triangle the float ray misses at an edge
-            const cv::Vec3d moved = corner(triangle, then.p0) + b1 * corner(triangle, then.e1) +
-                                    b2 * corner(triangle, then.e2);
+            const cv::Vec3d moved =
+                corner(triangle, then.p0) + b1 * corner(triangle, then.e1) + b2 * corner(triangle, then.e2);
             const cv::Vec3d p = project(pose, moved);
             const size_t at = size_t(y) * depth.cols + x;
             errors.push_back(std::hypot(p[0] - x - flo.uv[2 * at], p[1] - y - flo.uv[2 * at + 1]));
@@ -266,7 +265,8 @@ cv::Vec3f bilinear(const cv::Mat& image, double x, double y) { // pixel centres 
         const cv::Vec4f v = image.at<cv::Vec4f>(std::clamp(yy, 0, image.rows - 1), std::clamp(xx, 0, image.cols - 1));
         return cv::Vec3f(v[0], v[1], v[2]);
     };
-    return (at(x0, y0) * (1 - fx) + at(x0 + 1, y0) * fx) * (1 - fy) + (at(x0, y0 + 1) * (1 - fx) + at(x0 + 1, y0 + 1) * fx) * fy;
+    return (at(x0, y0) * (1 - fx) + at(x0 + 1, y0) * fx) * (1 - fy) +
+           (at(x0, y0 + 1) * (1 - fx) + at(x0 + 1, y0 + 1) * fx) * fy;
 }
 
 } // namespace
@@ -280,7 +280,8 @@ TEST(FlowTruth, WarpingTheNextFrameByTheFlowReproducesThisOneBest) {
     const cv::Mat mask = cv::imread(out + "/flow_forward_mask/000001.png", cv::IMREAD_UNCHANGED);
     ASSERT_EQ(here.type(), CV_32FC4);
     const Flo flo = readFlo(out + "/flow_forward/000001.flo");
-    const double shifts[9][2] = {{0, 0}, {0.5, 0}, {-0.5, 0}, {0, 0.5}, {0, -0.5}, {0.5, 0.5}, {-0.5, -0.5}, {0.5, -0.5}, {-0.5, 0.5}};
+    const double shifts[9][2] = {{0, 0},     {0.5, 0},     {-0.5, 0},   {0, 0.5},   {0, -0.5},
+                                 {0.5, 0.5}, {-0.5, -0.5}, {0.5, -0.5}, {-0.5, 0.5}};
     double error[9] = {};
     size_t pixels = 0;
     for (int y = 0; y < here.rows; ++y)
@@ -306,7 +307,8 @@ TEST(FlowTruth, WarpingTheNextFrameByTheFlowReproducesThisOneBest) {
 // pixels around the target show the same plant or surface.
 TEST(FlowTruth, ForwardAndBackwardFlowsAgree) {
     const std::string& out = movingDataset();
-    const Flo forward = readFlo(out + "/flow_forward/000001.flo"), backward = readFlo(out + "/flow_backward/000002.flo");
+    const Flo forward = readFlo(out + "/flow_forward/000001.flo"),
+              backward = readFlo(out + "/flow_backward/000002.flo");
     const cv::Mat mask = cv::imread(out + "/flow_forward_mask/000001.png", cv::IMREAD_UNCHANGED);
     const cv::Mat label1 = cv::imread(out + "/instance/000001.exr", cv::IMREAD_UNCHANGED);
     const cv::Mat label2 = cv::imread(out + "/instance/000002.exr", cv::IMREAD_UNCHANGED);
@@ -352,8 +354,8 @@ TEST(FlowTruth, FlowFilesAgreeWithEachOther) {
         const Flo flo = readFlo(base + "/000002.flo");
         const cv::Mat kitti = cv::imread(base + "/000002.png", cv::IMREAD_UNCHANGED); // B, G, R = valid, v, u
         const cv::Mat exr = cv::imread(base + "/000002.exr", cv::IMREAD_UNCHANGED);
-        const std::string maskFolder = folder.ends_with("_right") ? folder.substr(0, folder.size() - 6) + "_mask_right"
-                                                                  : folder + "_mask";
+        const std::string maskFolder =
+            folder.ends_with("_right") ? folder.substr(0, folder.size() - 6) + "_mask_right" : folder + "_mask";
         const cv::Mat mask = cv::imread(out + "/" + maskFolder + "/000002.png", cv::IMREAD_UNCHANGED);
         ASSERT_EQ(kitti.type(), CV_16UC3) << folder;
         ASSERT_FALSE(exr.empty() || mask.empty()) << folder;
