@@ -169,6 +169,7 @@ void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, 
                       const std::vector<uint32_t>& todo, DatasetWriter& dataset,
                       const std::optional<SensorModel>& sensor, const RenderJobOptions& options, BackgroundTask& writer,
                       Progress& progress) {
+    if (todo.empty()) return; // a complete dataset
     const double baseline = r.scene.camera.rig.baseline;
     const std::set<uint32_t> toWrite(todo.begin(), todo.end());
     std::shared_ptr<const FrameImages> previous, current;

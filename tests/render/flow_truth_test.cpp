@@ -4,6 +4,7 @@
 // next frame by the flow reproduces this one; forward and backward flows agree; shards and resumed runs write the
 // same bytes.
 #include "gpu_test.h"
+#include "plate_gltf.h"
 
 #include "range/plant_quads.h"
 #include "scene/scene.h"
@@ -19,6 +20,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <sys/wait.h>
 
@@ -43,8 +45,9 @@ int render(const std::string& args, std::string& err) {
 }
 
 // The test dataset's scene with flow, every plant in view in the near LOD (the CPU reference's), the camera driving
-// 2 m/s along a path; `wind`, `vehicle` and `moving` switch the motions on.
-std::string flowScene(const std::string& name, bool wind, bool vehicle, bool moving) {
+// 2 m/s along a path; `wind`, `vehicle` and `moving` switch the motions on; `plate`: a 3 x 3 m plate flies through
+// the view, 1.2 m above the ground.
+std::string flowScene(const std::string& name, bool wind, bool vehicle, bool moving, bool plate = false) {
     nlohmann::json scene = nlohmann::json::parse(readFile(SWARD_TEST_DATA_DIR "/dataset_scene.json"));
     scene["render"]["flow"] = true;
     scene["lod"] = {{"near", 60}, {"mid", 70}, {"far", 80}, {"band", 2}};
@@ -52,7 +55,14 @@ std::string flowScene(const std::string& name, bool wind, bool vehicle, bool mov
                          : nlohmann::json{{"strength", 0.0}, {"gust_strength", 0.0}, {"flutter", 0.0}};
     if (!vehicle) scene.erase("vehicles");
     if (moving) scene["camera"]["path"] = {{"points", {{53.5, 46.0}, {51.0, 50.0}}}, {"speed", 2.0}};
-    const std::string path = tempDir("flow-scene-" + name) + "/scene.json";
+    const std::string dir = tempDir("flow-scene-" + name), path = dir + "/scene.json";
+    if (plate) {
+        sward::test::writePlate(dir);
+        scene["objects"] = {{{"name", "plate"},
+                             {"model", "plate.gltf"},
+                             {"align_to_terrain", false},
+                             {"path", {{"points", {{48.0, 50.0}, {54.0, 53.0}}}, {"speed", 3.0}, {"height_above_ground", 1.2}}}}};
+    }
     std::ofstream(path) << scene.dump(2);
     return path;
 }
@@ -395,6 +405,43 @@ TEST(FlowTruth, FlowFilesAgreeWithEachOther) {
         }
 }
 
+// A plate flying past a moving camera: its pixels' flow is their point moved with the plate's pose (frames.jsonl) and
+// seen from the next frame's camera.
+TEST(FlowTruth, MovingObjectsMoveWithTheirPose) {
+    const std::string out = tempDir("flow-plate");
+    std::string err;
+    ASSERT_EQ(render(flowScene("plate", false, false, true, true) + " --out " + out + " --frames 1:2", err), 0) << err;
+    const cv::Mat depth = cv::imread(out + "/depth/000001.exr", cv::IMREAD_UNCHANGED);
+    const cv::Mat semantic = cv::imread(out + "/semantic/000001.png", cv::IMREAD_UNCHANGED);
+    const Flo flo = readFlo(out + "/flow_forward/000001.flo");
+    std::istringstream lines(readFile(out + "/frames.jsonl"));
+    std::map<int, cv::Matx44d> plate;
+    for (std::string line; std::getline(lines, line);) {
+        const nlohmann::json record = nlohmann::json::parse(line);
+        for (int r = 0; r < 4; ++r)
+            for (int c = 0; c < 4; ++c) plate[record["frame"]](r, c) = record["objects"][0]["pose"][r][c];
+    }
+    const Pose here = framePose(out, 1), there = framePose(out, 2);
+    const cv::Matx44d move = plate[2] * plate[1].inv(); // world at tick 1 -> world at tick 2, for the plate's points
+    std::vector<double> errors;
+    double motion = 0.0;
+    for (int y = 0; y < depth.rows; ++y)
+        for (int x = 0; x < depth.cols; ++x) {
+            if (semantic.at<uint8_t>(y, x) != sward::gpu::kSemanticObject) continue;
+            const cv::Vec3d p = worldPoint(here, x, y, depth.at<float>(y, x));
+            const cv::Vec4d q = move * cv::Vec4d(p[0], p[1], p[2], 1.0);
+            const cv::Vec3d seen = project(there, {q[0], q[1], q[2]});
+            const size_t i = size_t(y) * depth.cols + x;
+            errors.push_back(std::hypot(seen[0] - x - flo.uv[2 * i], seen[1] - y - flo.uv[2 * i + 1]));
+            motion += std::hypot(seen[0] - x, seen[1] - y);
+        }
+    ASSERT_GT(errors.size(), 300u) << "the plate must be in view";
+    std::printf("plate: %zu pixels, mean motion %.2f px, flow error median %.2e max %.2e px\n", errors.size(),
+                motion / double(errors.size()), percentile(errors, 0.5), percentile(errors, 1.0));
+    EXPECT_GT(motion / double(errors.size()), 2.0);
+    EXPECT_LT(percentile(errors, 1.0), 1e-3);
+}
+
 // A run in two shards, and a run resumed after two flow files were lost, write the very same flow files as one run.
 TEST(FlowTruth, FilesAreTheSameRenderedWholeInShardsOrResumed) {
     const std::string scene = flowScene("shards", true, true, true);
@@ -423,4 +470,7 @@ TEST(FlowTruth, FilesAreTheSameRenderedWholeInShardsOrResumed) {
     ASSERT_EQ(render(scene + " --out " + sharded + " --frames 0:4", err), 0) << err;
     compare();
     EXPECT_TRUE(std::filesystem::exists(sharded + "/flow_forward/000002.flo"));
+    // A complete dataset: nothing to render, nothing changed.
+    ASSERT_EQ(render(scene + " --out " + sharded + " --frames 0:4", err), 0) << err;
+    compare();
 }

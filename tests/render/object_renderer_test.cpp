@@ -3,6 +3,7 @@
 // depth, the object label, the faces' normals, and the shadow of a second object falling on it.
 #include "common/half_float.h"
 #include "gpu_test.h"
+#include "plate_gltf.h"
 
 #include "io/image_files.h"
 #include "render/object_renderer.h"
@@ -21,6 +22,7 @@
 using namespace sward;
 using sward::test::GpuTest;
 using sward::test::tempDir;
+using sward::test::writePlate;
 
 namespace {
 
@@ -28,31 +30,6 @@ constexpr uint32_t kWidth = 160, kHeight = 120;
 constexpr float kGround = 1.0f;
 
 // A 3 m x 3 m two-sided plate (glTF y = 0 plane), to cast a shadow.
-std::string writePlate(const std::string& dir) {
-    const float p[12] = {-1.5f, 0, -1.5f, 1.5f, 0, -1.5f, 1.5f, 0, 1.5f, -1.5f, 0, 1.5f};
-    const uint16_t idx[12] = {0, 2, 1, 0, 3, 2, 0, 1, 2, 0, 2, 3}; // up-facing pair, then down-facing pair
-    std::vector<uint8_t> bytes(sizeof p + sizeof idx);
-    std::memcpy(bytes.data(), p, sizeof p);
-    std::memcpy(bytes.data() + sizeof p, idx, sizeof idx);
-    static const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string b64;
-    for (size_t i = 0; i < bytes.size(); i += 3) { // 72 bytes: a multiple of 3, no padding
-        uint32_t v = uint32_t(bytes[i]) << 16 | uint32_t(bytes[i + 1]) << 8 | bytes[i + 2];
-        for (int k = 0; k < 4; ++k) b64 += alphabet[(v >> (18 - 6 * k)) & 63];
-    }
-    const std::string path = dir + "/plate.gltf";
-    std::ofstream(path) << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
-        "nodes": [{"name": "plate", "mesh": 0}],
-        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
-        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
-                       "min": [-1.5, 0, -1.5], "max": [1.5, 0, 1.5]},
-                      {"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}],
-        "bufferViews": [{"buffer": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 24}],
-        "buffers": [{"byteLength": 72, "uri": "data:application/octet-stream;base64,)"
-                        << b64 << R"("}]})";
-    return path;
-}
-
 struct Images {
     std::vector<uint16_t> color;
     std::vector<uint32_t> depthBits, labels;
