@@ -1,9 +1,21 @@
 # sward_add_shaders(TARGET target OUTPUT_DIR dir EMBED source.cpp SOURCES a.comp b.vert ... DEPENDS shared headers
 #                   FLOW_SOURCES c.vert ...)
 # Compiles GLSL to SPIR-V in the build folder at build time. FLOW_SOURCES are compiled a second time with
-# SWARD_FLOW defined, as "<name>_flow.<stage>" (the truth pass's motion ground truth, shaders/shared/flow_*.glsl). Every shader depends on every shared include,
-# so a change to the GPU layout header rebuilds all of them. EMBED names a C++ source holding every module as an
+# SWARD_FLOW defined, as "<name>_flow.<stage>" (the truth pass's motion ground truth, shaders/shared/flow_*.glsl).
+# Every shader depends on every shared include, so a change to the GPU layout header rebuilds all of them. EMBED names a C++ source holding every module as an
 # array (tools/embed-spirv.py), compiled into sward_engine: programs carry their shaders and look up no folder.
+# One GLSL source to `output` with `ARGN` as extra glslangValidator options (defines).
+function(sward_compile_shader source output debug_flags depends)
+  get_filename_component(name ${output} NAME_WLE)
+  add_custom_command(
+    OUTPUT ${output}
+    COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.3 -I${CMAKE_CURRENT_SOURCE_DIR} ${ARGN}
+            ${debug_flags} -o ${output} ${CMAKE_CURRENT_SOURCE_DIR}/${source}
+    DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${source} ${depends}
+    COMMENT "GLSL ${name}"
+    VERBATIM)
+endfunction()
+
 function(sward_add_shaders)
   cmake_parse_arguments(ARG "" "TARGET;OUTPUT_DIR;EMBED" "SOURCES;DEPENDS;FLOW_SOURCES" ${ARGN})
   set(outputs)
@@ -13,27 +25,14 @@ function(sward_add_shaders)
   endif()
   foreach(source ${ARG_SOURCES})
     get_filename_component(name ${source} NAME)
-    set(output ${ARG_OUTPUT_DIR}/${name}.spv)
-    add_custom_command(
-      OUTPUT ${output}
-      COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.3 -I${CMAKE_CURRENT_SOURCE_DIR}
-              ${debug_flags} -o ${output} ${CMAKE_CURRENT_SOURCE_DIR}/${source}
-      DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${source} ${ARG_DEPENDS}
-      COMMENT "GLSL ${name}"
-      VERBATIM)
-    list(APPEND outputs ${output})
+    sward_compile_shader(${source} ${ARG_OUTPUT_DIR}/${name}.spv "${debug_flags}" "${ARG_DEPENDS}")
+    list(APPEND outputs ${ARG_OUTPUT_DIR}/${name}.spv)
   endforeach()
   foreach(source ${ARG_FLOW_SOURCES})
     get_filename_component(stem ${source} NAME_WE)
     get_filename_component(stage ${source} LAST_EXT)
     set(output ${ARG_OUTPUT_DIR}/${stem}_flow${stage}.spv)
-    add_custom_command(
-      OUTPUT ${output}
-      COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.3 -I${CMAKE_CURRENT_SOURCE_DIR} -DSWARD_FLOW
-              ${debug_flags} -o ${output} ${CMAKE_CURRENT_SOURCE_DIR}/${source}
-      DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${source} ${ARG_DEPENDS}
-      COMMENT "GLSL ${stem}_flow${stage}"
-      VERBATIM)
+    sward_compile_shader(${source} ${output} "${debug_flags}" "${ARG_DEPENDS}" -DSWARD_FLOW)
     list(APPEND outputs ${output})
   endforeach()
   add_custom_command(

@@ -24,24 +24,13 @@
 #include <sstream>
 #include <sys/wait.h>
 
+using sward::test::readFile;
 using sward::test::tempDir;
 
 namespace {
 
-std::string readFile(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::stringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
-
 int render(const std::string& args, std::string& err) {
-    const std::string dir = tempDir("flow-log");
-    const std::string command =
-        SWARD_RENDER_EXE " " + args + " --validation --quiet >" + dir + "/out.txt 2>" + dir + "/err.txt";
-    const int status = std::system(command.c_str());
-    err = readFile(dir + "/err.txt");
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return sward::test::runSwardRender(args, err);
 }
 
 // The test dataset's scene with flow, every plant in view in the near LOD (the CPU reference's), the camera driving
