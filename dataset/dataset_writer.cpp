@@ -48,30 +48,15 @@ void parseShard(const std::string& text, uint32_t& index, uint32_t& count) {
 namespace {
 
 // Every folder a dataset may have, whatever its rig: --overwrite clears them all.
-constexpr const char* kAllFolders[] = {kLeftFolder,
-                                       kRightFolder,
-                                       kDepthFolder,
-                                       kDisparityFolder,
-                                       kSemanticFolder,
-                                       kInstanceFolder,
-                                       kPreviewFolder,
-                                       kPreviewRightFolder,
-                                       kDepthRightFolder,
-                                       kDisparityRightFolder,
-                                       kOcclusionFolder,
-                                       kOcclusionRightFolder,
-                                       kNormalFolder,
-                                       kNormalRightFolder,
-                                       kFlowForwardFolder,
-                                       "flow_backward",
-                                       "flow_forward_right",
-                                       "flow_backward_right",
-                                       kFlowForwardMaskFolder,
-                                       "flow_backward_mask",
-                                       "flow_forward_mask_right",
-                                       "flow_backward_mask_right",
-                                       kDisparityChangeForwardFolder,
-                                       kDisparityChangeBackwardFolder};
+// clang-format off
+constexpr const char* kAllFolders[] = {
+    kLeftFolder,        kRightFolder,         kDepthFolder,          kDisparityFolder,      kSemanticFolder,
+    kInstanceFolder,    kPreviewFolder,       kPreviewRightFolder,   kDepthRightFolder,     kDisparityRightFolder,
+    kOcclusionFolder,   kOcclusionRightFolder, kNormalFolder,        kNormalRightFolder,
+    kFlowForwardFolder, kFlowForwardMaskFolder, kFlowBackwardFolder, kFlowBackwardMaskFolder,
+    kFlowForwardRightFolder, kFlowForwardMaskRightFolder, kFlowBackwardRightFolder, kFlowBackwardMaskRightFolder,
+    kDisparityChangeForwardFolder, kDisparityChangeBackwardFolder};
+// clang-format on
 
 bool isSwardTemporaryName(const std::string& name) {
     long pid = 0;

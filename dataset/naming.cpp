@@ -35,10 +35,10 @@ static_assert(std::size(kClasses) == 7 + gpu::kMaxPlantCategories, "one entry pe
 
 FlowFolders flowFolders(bool right, bool forward) {
     if (forward)
-        return right ? FlowFolders{"flow_forward_right", "flow_forward_mask_right"}
+        return right ? FlowFolders{kFlowForwardRightFolder, kFlowForwardMaskRightFolder}
                      : FlowFolders{kFlowForwardFolder, kFlowForwardMaskFolder};
-    return right ? FlowFolders{"flow_backward_right", "flow_backward_mask_right"}
-                 : FlowFolders{"flow_backward", "flow_backward_mask"};
+    return right ? FlowFolders{kFlowBackwardRightFolder, kFlowBackwardMaskRightFolder}
+                 : FlowFolders{kFlowBackwardFolder, kFlowBackwardMaskFolder};
 }
 
 std::string frameName(uint32_t frame) {

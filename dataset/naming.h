@@ -34,11 +34,17 @@ inline constexpr const char* kRangeFolder = "range"; // range sensors: range/<se
 // view (flowFolders); stereo: the left view's disparity change (.pfm).
 inline constexpr const char* kFlowForwardFolder = "flow_forward";
 inline constexpr const char* kFlowForwardMaskFolder = "flow_forward_mask";
+inline constexpr const char* kFlowBackwardFolder = "flow_backward";
+inline constexpr const char* kFlowBackwardMaskFolder = "flow_backward_mask";
+inline constexpr const char* kFlowForwardRightFolder = "flow_forward_right";
+inline constexpr const char* kFlowForwardMaskRightFolder = "flow_forward_mask_right";
+inline constexpr const char* kFlowBackwardRightFolder = "flow_backward_right";
+inline constexpr const char* kFlowBackwardMaskRightFolder = "flow_backward_mask_right";
 inline constexpr const char* kDisparityChangeForwardFolder = "disparity_change_forward";
 inline constexpr const char* kDisparityChangeBackwardFolder = "disparity_change_backward";
 struct FlowFolders {
-    const char* flow; // "flow_forward", "flow_backward", "flow_forward_right", "flow_backward_right"
-    const char* mask; // "flow_forward_mask", ...
+    const char* flow; // kFlowForwardFolder, ...
+    const char* mask; // kFlowForwardMaskFolder, ...
 };
 FlowFolders flowFolders(bool right, bool forward);
 

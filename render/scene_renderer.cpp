@@ -509,7 +509,6 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
                                 uint32_t frameIndex, GpuTimers* timers, bool expand, const FlowTicks* flow) {
     require(!views.empty() && views.size() <= kMaxViews, "a frame has one or two views");
     const Camera& reference = *views[0].camera;
-    if (flow && vegetation_) vegetation_->enableFlow();
     const uint32_t dataSlot = frameIndex % gpu::kFrameDataSlots; // objects' and vegetation's per-frame data
     const uint32_t firstSlot = dataSlot * kSlotsPerFrame;        // frame constants: views, then shadow cascades
     const ShadowFit shadowFit = fitShadows(reference); // once per frame: both views and every cascade's draw use it

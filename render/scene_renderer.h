@@ -91,7 +91,7 @@ public:
     // eyes see exactly the same geometry and shadows (a stereo matcher must not be shown two scenes).
     // `expand` false: the expansion is left out, recorded before by recordExpansion() for the same views, time and
     // frame (benchmarks count pipeline statistics in a command buffer without compute: lavapipe crashes otherwise).
-    // `flow`: the truth passes with motion ground truth (a scene with render.flow).
+    // `flow`: the truth passes with motion ground truth (a scene with render.flow; the vegetation's enableFlow() first).
     void recordViews(VkCommandBuffer cmd, std::span<const View> views, double timeSeconds, uint32_t frameIndex,
                      GpuTimers* timers = nullptr, bool expand = true, const FlowTicks* flow = nullptr);
     // The expansion recordViews() would record for these views, alone.

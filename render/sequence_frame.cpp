@@ -66,9 +66,11 @@ FrameImages renderFlowFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneRe
     VegetationRenderer* plants = gpu.renderer->vegetation();
     Simulation* simulation = gpu.simulation.get();
     if (plants) plants->enableFlow();
+    // Without a simulation the plants' records never change: the kept states enableFlow() made stay right.
     auto keepAndTick = [plants, simulation](VkCommandBuffer cmd, uint32_t tick) {
+        if (!simulation) return;
         if (plants) plants->recordKeepState(cmd);
-        if (simulation) simulation->recordNextTick(cmd, tick);
+        simulation->recordNextTick(cmd, tick);
     };
     const bool stereo = r.scene.camera.rig.stereo();
     FlowTicks flow{.previous = {&previous.left, &previous.right},

@@ -112,13 +112,9 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const A
     PipelineLayoutDesc shadowLayout = drawLayout(false);
     GraphicsPipelineDesc plants = mainPipelineDesc("plant.frag");
     mainPipeline_ = createGraphicsPipeline(ctx.device, plants, drawLayout(true));
-    plants.fragmentShader = "plant_truth.frag";
-    plants.colorFormats = {formats.truthDepthBits, formats.truthLabel, formats.truthNormal};
-    plants.depthFormat = formats.truthDepth;
+    truthPipeline_ = createGraphicsPipeline(ctx.device, truthPipelineDesc(), shadowLayout);
     plants.samples = VK_SAMPLE_COUNT_1_BIT;
     plants.alphaToCoverage = false;
-    plants.specialization = {/* PASS= */ gpu::kPassTruth, /* ALPHA_TO_COVERAGE= */ 0};
-    truthPipeline_ = createGraphicsPipeline(ctx.device, plants, shadowLayout);
     plants.fragmentShader = "plant_shadow.frag";
     plants.colorFormats = {};
     plants.depthFormat = formats.shadowDepth;
@@ -330,6 +326,7 @@ void VegetationRenderer::expandTile(VkCommandBuffer cmd, const Tile& tile, uint3
 void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame,
                               const DescriptorBinding& shadowMap, uint32_t slot, uint32_t lodMask) {
     if (pass == PlantPass::Main && mainShading_ == MainShading::Off) return;
+    require(pass != PlantPass::TruthFlow || truthFlowPipeline_.handle, "VegetationRenderer::draw: enableFlow() first");
     if (pass == PlantPass::Main && mainShading_ == MainShading::Floor && !floorPipeline_.handle)
         floorPipeline_ = createGraphicsPipeline(ctx_.device, mainPipelineDesc("plant_floor.frag"), drawLayout(true));
     const Pipeline& pipeline = pass == PlantPass::Truth             ? truthPipeline_
@@ -379,6 +376,16 @@ GraphicsPipelineDesc truthFlowPipelineDesc(GraphicsPipelineDesc truth, VkFormat 
     return truth;
 }
 
+GraphicsPipelineDesc VegetationRenderer::truthPipelineDesc() const {
+    GraphicsPipelineDesc truth = mainPipelineDesc("plant_truth.frag");
+    truth.colorFormats = {formats_.truthDepthBits, formats_.truthLabel, formats_.truthNormal};
+    truth.depthFormat = formats_.truthDepth;
+    truth.samples = VK_SAMPLE_COUNT_1_BIT;
+    truth.alphaToCoverage = false;
+    truth.specialization = {/* PASS= */ gpu::kPassTruth, /* ALPHA_TO_COVERAGE= */ 0};
+    return truth;
+}
+
 void VegetationRenderer::enableFlow() {
     if (truthFlowPipeline_.handle) return;
     require(tiles_.size() == 1, "motion ground truth (render.flow) needs a scene of one tile");
@@ -387,17 +394,17 @@ void VegetationRenderer::enableFlow() {
          {gpu::kBindingFlowStatics, gpu::kBindingFlowDynamicsPrevious, gpu::kBindingFlowDynamicsNext})
         layout.bindings.push_back(
             layoutBinding(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT));
-    GraphicsPipelineDesc truth = mainPipelineDesc("plant_truth.frag");
-    truth.colorFormats = {formats_.truthDepthBits, formats_.truthLabel, formats_.truthNormal};
-    truth.depthFormat = formats_.truthDepth;
-    truth.samples = VK_SAMPLE_COUNT_1_BIT;
-    truth.alphaToCoverage = false;
-    truth.specialization = {/* PASS= */ gpu::kPassTruth, /* ALPHA_TO_COVERAGE= */ 0};
-    truthFlowPipeline_ = createGraphicsPipeline(ctx_.device, truthFlowPipelineDesc(truth, formats_.truthFlow), layout);
-    const uint64_t bytes = onlyTile().buffers.dynamics.size;
+    truthFlowPipeline_ =
+        createGraphicsPipeline(ctx_.device, truthFlowPipelineDesc(truthPipelineDesc(), formats_.truthFlow), layout);
+    // Both kept states start as the live records, so neither is ever read uninitialised.
+    const Buffer& live = onlyTile().buffers.dynamics;
+    const VkBufferCopy region{.size = live.size};
     for (Buffer& kept : keptStates_)
-        kept = createBuffer(ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        kept = createBuffer(ctx_, live.size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                             MemoryIntent::DeviceLocal);
+    ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
+        for (const Buffer& kept : keptStates_) vkCmdCopyBuffer(cmd, live.handle, kept.handle, 1, &region);
+    });
 }
 
 void VegetationRenderer::recordKeepState(VkCommandBuffer cmd) {

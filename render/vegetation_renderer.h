@@ -86,7 +86,8 @@ public:
     // state at the previous tick and at the next. enableFlow() makes the pipeline and two buffers for kept states;
     // recordKeepState() copies the live dynamic records into one of them, alternately. A draw with TruthFlow reads
     // the state kept before the latest keep as the previous tick's and the live records as the next tick's: so keep
-    // the state of tick t - 1, render tick t, keep tick t's state and run tick t + 1, then draw the truth.
+    // the state of tick t - 1, render tick t, keep tick t's state and run tick t + 1, then draw the truth. enableFlow()
+    // fills both with the live records: plants no simulation moves need no keep at all.
     void enableFlow();
     void recordKeepState(VkCommandBuffer cmd);
 
@@ -143,6 +144,7 @@ private:
     void uploadCellTable(); // cellTables_[cutoutCorners_]
     PipelineLayoutDesc drawLayout(bool withShadowMap) const; // the plant draws' layout: main (shadow map) or not
     GraphicsPipelineDesc mainPipelineDesc(const char* fragmentShader) const;
+    GraphicsPipelineDesc truthPipelineDesc() const; // the truth pass's plant draw (without flow)
     void writeConstants(const Tile& tile, const Camera& camera, double timeSeconds, uint32_t slot,
                         const std::array<glm::vec4, 5>& planes);
     void expandTile(VkCommandBuffer cmd, const Tile& tile, uint32_t slot, bool firstTile);
