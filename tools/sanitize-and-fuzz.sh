@@ -3,7 +3,7 @@
 #
 # One extra build (clang, ASan + UBSan, libraries instrumented for libFuzzer) serves both halves:
 #   1. the Vulkan-free CPU suites and a GPU smoke subset on lavapipe with validation on, under ASan/UBSan/LSan;
-#   2. every fuzz target for FUZZ_SECONDS (default 30) from its seed corpus and saved regressions, two at a time.
+#   2. every fuzz target for FUZZ_SECONDS (default 20) from its seed corpus and saved regressions, two at a time.
 # Any sanitizer report, crash, leak, timeout or test failure fails the script. Nothing is skipped: a missing clang
 # or libFuzzer is an error (tools/setup-deps.sh installs them).
 #
@@ -14,7 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 build=${SANITIZE_BUILD_DIR:-build-sanitize}
-fuzz_seconds=${FUZZ_SECONDS:-30}
+fuzz_seconds=${FUZZ_SECONDS:-20}
 fuzz_budget=(-max_total_time="$fuzz_seconds")
 [ -n "${FUZZ_RUNS:-}" ] && fuzz_budget=(-runs="$FUZZ_RUNS")
 jobs=${JOBS:-$(nproc)}
@@ -52,7 +52,7 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=clan
   "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -gline-tables-only" "-DCMAKE_C_FLAGS_DEBUG=-O1 -gline-tables-only" \
   -DSWARD_SANITIZE=ON -DSWARD_FUZZ=ON -DSWARD_WERROR=OFF "${launcher[@]}" > "$build.configure.log" 2>&1 \
   || { cat "$build.configure.log"; fail "configuring $build failed"; }
-build_targets=(sward_fuzz_all sward_gpu_tests sward-render)
+build_targets=(sward_fuzz_all sward_gpu_smoke_tests sward-render)
 for suite in $cpu_suites; do build_targets+=("sward_${suite}_tests"); done
 cmake --build "$build" -j "$jobs" --target "${build_targets[@]}" || fail "building $build failed"
 echo "sanitize-and-fuzz: build took $(seconds_since "$start") s"
@@ -71,7 +71,7 @@ for suite in $cpu_suites; do
 done
 # The driver stack stays loaded to exit so that its leaks can be attributed to it (tests/sanitize/keep_loaded.c).
 clang -shared -fPIC -O1 tests/sanitize/keep_loaded.c -o "$build/libkeep_loaded.so" || fail "cannot build keep_loaded.so"
-LD_PRELOAD="$root/$build/libkeep_loaded.so" "$build/bin/sward_gpu_tests" --gtest_brief=1 --gtest_filter="$gpu_filter" > "$build/sanitize-gpu.log" 2>&1 \
+LD_PRELOAD="$root/$build/libkeep_loaded.so" "$build/bin/sward_gpu_smoke_tests" --gtest_brief=1 --gtest_filter="$gpu_filter" > "$build/sanitize-gpu.log" 2>&1 \
   || { tail -n 60 "$build/sanitize-gpu.log"; fail "the GPU smoke subset failed under ASan/UBSan ($build/sanitize-gpu.log)"; }
 echo "sanitize-and-fuzz: GPU smoke subset passed ($(grep -o '[0-9]* tests\? from [0-9]* test suites\? ran' "$build/sanitize-gpu.log"))"
 render_out="$build/sanitize-render"
