@@ -14,7 +14,7 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
     vec3 n = normalize(inNormal);
-    float sun = max(dot(n, frame.sunDirection.xyz), 0.0) * sunShadow(inWorld, 4u);
+    float sun = max(dot(n, frame.sunDirection.xyz), 0.0) * sunShadow(inWorld);
     vec3 light = frame.sunRadiance.rgb * sun + ambientLight(n);
     outColor = vec4(inBaseColor * light, 1.0);
 }

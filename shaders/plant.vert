@@ -5,6 +5,7 @@
 #include "shared/vegetation.glsl"
 #include "shared/plant_vertex.glsl"
 #include "shared/plant_shading.glsl"
+#include "shared/shadow.glsl"
 #include "shared/flow_vertex.glsl"
 
 layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain, kPassTruth or kPassShadow
@@ -23,6 +24,7 @@ layout(set = 0, binding = kBindingFlowDynamicsNext, std430) readonly buffer Flow
 layout(location = 0) out vec2 outUv;
 layout(location = 1) out vec3 outWorld;
 layout(location = 2) out float outViewDepth;
+layout(location = 3) out vec4 outShadow; // colour pass: plantShadowCoordinate
 layout(location = 4) flat out uint outFade;
 layout(location = 5) out float outHeightFraction;
 layout(location = 6) flat out float outRandom;
@@ -46,7 +48,10 @@ void main() {
             return;
         }
     }
-    PlantVertex v = plantVertex(instance, push.lod, uint(gl_VertexIndex), veg.cameraPosition.xyz);
+    uint cell;
+    PlantQuad quad = plantQuad(instance, push.lod, uint(gl_VertexIndex) / quadVertexCount(push.lod, veg.options.x),
+                               veg.cameraPosition.xyz, cell);
+    PlantVertex v = quadVertex(instance, quad, cell, push.lod, uint(gl_VertexIndex));
     outUv = v.uv;
     outWorld = v.position;
     outViewDepth = (frame.view * vec4(v.position, 1.0)).z;
@@ -61,11 +66,11 @@ void main() {
         outLabel = (semantic << kInstanceBits) | (instancePlants[gl_InstanceIndex] + 1u);
         outTile = veg.tile.x;
         // The whole triangle of this vertex (vertices 3t, 3t+1, 3t+2 of the instance), so the normal is the drawn
-        // triangle's own plane: bent cards are flat per triangle, not per plant.
+        // triangle's own plane: bent cards are flat per triangle, not per plant. A triangle lies in one quad.
         uint first = uint(gl_VertexIndex) - uint(gl_VertexIndex) % 3u;
-        vec3 p0 = plantVertex(instance, push.lod, first, veg.cameraPosition.xyz).position;
-        vec3 p1 = plantVertex(instance, push.lod, first + 1u, veg.cameraPosition.xyz).position;
-        vec3 p2 = plantVertex(instance, push.lod, first + 2u, veg.cameraPosition.xyz).position;
+        vec3 p0 = quadVertex(instance, quad, cell, push.lod, first).position;
+        vec3 p1 = quadVertex(instance, quad, cell, push.lod, first + 1u).position;
+        vec3 p2 = quadVertex(instance, quad, cell, push.lod, first + 2u).position;
         outNormal = truthNormal(cross(p1 - p0, p2 - p0), p0);
 #ifdef SWARD_FLOW
         // The same point of the same quad, with the plant's state and wind of the previous and the next tick.
@@ -82,7 +87,10 @@ void main() {
         outAlbedoOffset = shading.albedoOffset;
         outSunLight = shading.sunLight;
         outAmbient = shading.ambient;
+        uint plant = instancePlants[gl_InstanceIndex];
+        outShadow = plantShadowCoordinate(v.position, instance.positionHeight.xyz, plantShadowHash(plant));
     }
+    if (PASS != kPassMain) outShadow = vec4(0.0);
     if (PASS != kPassTruth) {
         outLabel = 0u;
         outTile = 0u;

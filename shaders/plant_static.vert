@@ -4,6 +4,7 @@
 #include "shared/frame.glsl"
 #include "shared/vegetation.glsl"
 #include "shared/plant_shading.glsl"
+#include "shared/shadow.glsl"
 
 layout(set = 0, binding = kBindingPlantInstances, std430) readonly buffer Baked { BakedVertex baked[]; };
 // Unused here, declared so the pipeline layout matches plant.vert's.
@@ -12,6 +13,7 @@ layout(set = 0, binding = kBindingAtlasCells, std430) readonly buffer Cells { At
 layout(location = 0) out vec2 outUv;
 layout(location = 1) out vec3 outWorld;
 layout(location = 2) out float outViewDepth;
+layout(location = 3) out vec4 outShadow;
 layout(location = 4) flat out uint outFade;
 layout(location = 5) out float outHeightFraction;
 layout(location = 6) flat out float outRandom;
@@ -31,6 +33,8 @@ void main() {
     outAlbedoOffset = shading.albedoOffset;
     outSunLight = shading.sunLight;
     outAmbient = shading.ambient;
+    // Baked vertices keep no root: the cascade is chosen per vertex (a timing baseline; its images are not compared).
+    outShadow = plantShadowCoordinate(v.positionFraction.xyz, v.positionFraction.xyz, v.uvRandom.z);
     outFade = v.upFade.y;
     outHeightFraction = v.positionFraction.w;
     outRandom = v.uvRandom.z;

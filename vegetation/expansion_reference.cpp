@@ -252,7 +252,7 @@ std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, u
                                               uint32_t cutoutCorners) {
     static const glm::vec2 corners[6] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}};
     const bool fan = cutout && cutoutCorners >= 4 && lod != gpu::kLodFar;
-    const uint32_t perQuad = fan ? 3 * (cutoutCorners - 2) : gpu::kVerticesPerQuad;
+    const uint32_t perQuad = gpu::quadVertexCount(lod, fan ? cutoutCorners : 0u);
     std::vector<glm::vec3> vertices;
     for (uint32_t v = 0; v < gpu::plantVertexCount(lod, fan ? cutoutCorners : 0u); ++v) {
         const ReferenceQuad q = referenceQuad(plant, lod, v / perQuad, cameraPosition, cellBaseAspect);

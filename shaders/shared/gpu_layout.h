@@ -128,14 +128,22 @@ SWARD_CONST(uint, kMaxCutoutCorners, 8u);
 SWARD_CONST(uint, kCutoutMaxLevel, 4u);
 SWARD_CONST(float, kCutoutMarginTexels, 2.0);
 
-// Vertices drawn per plant in `lod` (the draws' vertex count per instance): whole quads, or with cutoutCorners >= 3
-// a fan over the cut-out polygon per near and mid quad. The same text is a GLSL and a C++ function.
+// Vertices drawn per quad in `lod`: two triangles, or with cutoutCorners >= 3 a fan over the cut-out polygon for near
+// and mid quads. The same text is a GLSL and a C++ function.
+#ifdef __cplusplus
+constexpr
+#endif
+uint quadVertexCount(uint lod, uint cutoutCorners) {
+    return cutoutCorners >= 3u && lod != kLodFar ? 3u * (cutoutCorners - 2u) : kVerticesPerQuad;
+}
+
+// Vertices drawn per plant in `lod` (the draws' vertex count per instance).
 #ifdef __cplusplus
 constexpr
 #endif
 uint plantVertexCount(uint lod, uint cutoutCorners) {
     uint quads = lod == kLodNear ? kQuadsNear : lod == kLodMid ? kQuadsMid : kQuadsFar;
-    return quads * (cutoutCorners >= 3u && lod != kLodFar ? 3u * (cutoutCorners - 2u) : kVerticesPerQuad);
+    return quads * quadVertexCount(lod, cutoutCorners);
 }
 
 // Largest horizontal tip offset of an expanded plant (interaction bend + wind), in plant heights: a blade

@@ -122,11 +122,11 @@ float sliceBottom(ExpandedPlant instance, PlantQuad q) {
     return cut > 0.0 ? clamp(1.0 - q.baseAspect.y + cut, 0.0, 1.0) : 0.0;
 }
 
-PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex, vec3 camera) {
+// Vertex `vertexIndex` of the instance, on its quad `q` (plantQuad of quad vertexIndex / quadVertexCount, whose
+// atlas cell is `cell`): callers that need several vertices of one quad build the quad once.
+PlantVertex quadVertex(ExpandedPlant instance, PlantQuad q, uint cell, uint lod, uint vertexIndex) {
     const bool cutout = veg.options.x >= 3u && lod != kLodFar;
-    const uint perQuad = cutout ? 3u * (veg.options.x - 2u) : kVerticesPerQuad;
-    uint cell;
-    PlantQuad q = plantQuad(instance, lod, vertexIndex / perQuad, camera, cell);
+    const uint perQuad = quadVertexCount(lod, veg.options.x);
     float fraction;
     if (!cutout) {
         vec2 corner = kCorners[vertexIndex % 6u];
@@ -154,6 +154,12 @@ PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex, vec3
     vec3 bottom = quadPoint(q, vec2(at.x, 0.0), bottomFraction), top = quadPoint(q, vec2(at.x, 1.0), topFraction);
     return PlantVertex(mix(bottom, top, at.y), mix(q.uvRect.xy, q.uvRect.zw, uv), mix(bottomFraction, topFraction, at.y),
                        q.random);
+}
+
+PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex, vec3 camera) {
+    uint cell;
+    PlantQuad q = plantQuad(instance, lod, vertexIndex / quadVertexCount(lod, veg.options.x), camera, cell);
+    return quadVertex(instance, q, cell, lod, vertexIndex);
 }
 
 #endif

@@ -97,7 +97,7 @@ void main() {
     if (inAlbedo.a > 0.0) albedo = inAlbedo.rgb;
     if (inUvLayer.z >= 0.0) albedo *= texture(groundTextures, vec3(inUvLayer.xy, round(inUvLayer.z))).rgb;
     albedo *= 1.0 - kRutDarkening * pressed;
-    float shadow = sunShadow(inWorld, 4u);
+    float shadow = sunShadow(inWorld);
     float sun = max(dot(n, frame.sunDirection.xyz), 0.0) * shadow;
     vec3 color = albedo * (frame.sunRadiance.rgb * sun + ambientLight(n));
     vec2 uv = coverUv(inWorld);
