@@ -3,7 +3,7 @@
 #
 # One extra build (clang, ASan + UBSan, libraries instrumented for libFuzzer) serves both halves:
 #   1. the Vulkan-free CPU suites and a GPU smoke subset on lavapipe with validation on, under ASan/UBSan/LSan;
-#   2. every fuzz target for FUZZ_SECONDS (default 20) from its seed corpus and saved regressions, two at a time.
+#   2. every fuzz target for FUZZ_SECONDS (default 10) from its seed corpus and saved regressions, two at a time.
 # Any sanitizer report, crash, leak, timeout or test failure fails the script. Nothing is skipped: a missing clang
 # or libFuzzer is an error (tools/setup-deps.sh installs them).
 #
@@ -14,7 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 build=${SANITIZE_BUILD_DIR:-build-sanitize}
-fuzz_seconds=${FUZZ_SECONDS:-20}
+fuzz_seconds=${FUZZ_SECONDS:-10}
 fuzz_budget=(-max_total_time="$fuzz_seconds")
 [ -n "${FUZZ_RUNS:-}" ] && fuzz_budget=(-runs="$FUZZ_RUNS")
 jobs=${JOBS:-$(nproc)}
