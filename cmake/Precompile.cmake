@@ -6,10 +6,10 @@ set(SWARD_PCH_STD <algorithm> <cmath> <cstdint> <filesystem> <functional> <memor
 
 function(sward_precompile target)
   # GCC 12 with optimisation reports false -Wstringop-overflow errors in std::string code reached through a
-  # precompiled header (the family of the -Wrestrict false positive in CMakeLists.txt). There only the test
-  # executables, compiled at -O0, are precompiled; the clang sanitizer build precompiles everything.
-  get_target_property(type ${target} TYPE)
-  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND NOT type STREQUAL "EXECUTABLE" AND NOT CMAKE_BUILD_TYPE STREQUAL "Debug")
+  # precompiled header (the family of the -Wrestrict false positive in CMakeLists.txt). There only targets compiled
+  # at -O0 (the tests' header, tests/CMakeLists.txt) are precompiled; the clang sanitizer build precompiles everything.
+  get_target_property(options ${target} COMPILE_OPTIONS)
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND NOT "-O0" IN_LIST options AND NOT CMAKE_BUILD_TYPE STREQUAL "Debug")
     return()
   endif()
   target_precompile_headers(${target} PRIVATE ${SWARD_PCH_STD} ${ARGN})
