@@ -7,9 +7,10 @@ namespace sward {
 namespace {
 // Results come in the order of the bits, lowest first (Vulkan spec, "Pipeline Statistics Queries").
 constexpr VkQueryPipelineStatisticFlags kFigures = VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_PRIMITIVES_BIT |
+                                                   VK_QUERY_PIPELINE_STATISTIC_VERTEX_SHADER_INVOCATIONS_BIT |
                                                    VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT |
                                                    VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT;
-constexpr uint32_t kFigureCount = 3;
+constexpr uint32_t kFigureCount = 4;
 } // namespace
 
 PipelineStatistics::PipelineStatistics(Device& device, uint32_t maxRanges) : device_(device), maxRanges_(maxRanges) {
@@ -54,9 +55,10 @@ std::vector<std::pair<std::string, DrawStatistics>> PipelineStatistics::read() {
                                    values.data(), kFigureCount * 8, VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     for (size_t i = 0; i < ranges_.size(); ++i) {
         const uint64_t* v = &values[i * kFigureCount];
-        result.emplace_back(
-            ranges_[i],
-            DrawStatistics{.inputAssemblyPrimitives = v[0], .clippingPrimitives = v[1], .fragmentInvocations = v[2]});
+        result.emplace_back(ranges_[i], DrawStatistics{.inputAssemblyPrimitives = v[0],
+                                                       .vertexInvocations = v[1],
+                                                       .clippingPrimitives = v[2],
+                                                       .fragmentInvocations = v[3]});
     }
     return result;
 }

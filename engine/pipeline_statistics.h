@@ -1,6 +1,6 @@
 // Pipeline-statistics queries per named range of draws: begin(cmd, "main") ... end(cmd), then read() after the
-// submission has completed. For benchmarks: how many fragment-shader invocations ("lanes") and primitives a
-// pass costs. lavapipe crashes on a statistics query in a command buffer that also dispatches compute, so record
+// submission has completed. For benchmarks: how many fragment-shader invocations ("lanes"), vertex-shader
+// invocations and primitives a pass costs. lavapipe crashes on a statistics query in a command buffer that also dispatches compute, so record
 // the measured draws in a command buffer of their own.
 #pragma once
 
@@ -17,6 +17,7 @@ class Device;
 
 struct DrawStatistics {
     uint64_t inputAssemblyPrimitives = 0; // primitives the input assembler made (triangles drawn)
+    uint64_t vertexInvocations = 0;       // vertex-shader invocations (a vertex an indexed draw reuses may count once)
     uint64_t clippingPrimitives = 0;      // primitives that left clipping (after frustum culling and clipping)
     uint64_t fragmentInvocations = 0;     // fragment-shader invocations, helper lanes included where counted
 };

@@ -53,6 +53,10 @@ void retireImage(Context& ctx, Image& image);
 
 // Copies `data` into a device-local buffer through a temporary staging buffer, and waits. For load-time data.
 Buffer createBufferWithData(Context& ctx, std::span<const uint8_t> data, VkBufferUsageFlags usage);
+// The bytes of a vector of plain records (vertices, indices, tables), for createBufferWithData and uploadToBuffer.
+template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) {
+    return {reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(T)};
+}
 // Creates a sampled image (desc.usage gains SAMPLED | TRANSFER_DST) and fills mip level i from levels[i] (an array
 // image: every layer of that level, one after the other) through one staging buffer, and waits; the image ends in
 // SHADER_READ_ONLY_OPTIMAL, visible to fragment shaders.

@@ -67,6 +67,7 @@ struct PassCounts {
         for (const auto& [name, s] : plants)
             if (name.compare(0, prefix.size(), prefix) == 0) {
                 total.inputAssemblyPrimitives += s.inputAssemblyPrimitives;
+                total.vertexInvocations += s.vertexInvocations;
                 total.clippingPrimitives += s.clippingPrimitives;
                 total.fragmentInvocations += s.fragmentInvocations;
             }
@@ -124,6 +125,7 @@ nlohmann::json fragmentFigures(const PassCounts& counts) {
     auto figures = [&](const std::string& name, bool perPixel) {
         const DrawStatistics s = counts.sum(name);
         nlohmann::json out = {{"triangles", s.inputAssemblyPrimitives},
+                              {"vertex_invocations", s.vertexInvocations},
                               {"triangles_after_clipping", s.clippingPrimitives},
                               {"fragment_invocations", s.fragmentInvocations}};
         if (perPixel)

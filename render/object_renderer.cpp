@@ -7,14 +7,6 @@
 
 namespace sward {
 
-namespace {
-
-template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) {
-    return {reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(T)};
-}
-
-} // namespace
-
 ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Ground& terrain,
                                const VegetationPassFormats& formats)
     : ObjectRenderer(ctx, scene, terrain, formats, loadObjectModels(scene.objects, scene.source)) {}

@@ -48,14 +48,6 @@ RenderTargetDesc truthPassTargetDesc(uint32_t width, uint32_t height, bool flow)
     return desc;
 }
 
-namespace {
-
-template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) {
-    return {reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(T)};
-}
-
-} // namespace
-
 SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& terrain, VkSampleCountFlagBits samples,
                              const VegetationTile* vegetation, const Atlas* atlas,
                              const std::vector<ObjectModel>* models, const CoverMap* cover)

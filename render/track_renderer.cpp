@@ -87,9 +87,7 @@ TrackRenderer::TrackRenderer(Context& ctx, const GraphicsPipelineDesc& main, con
     if (flowFormat != VK_FORMAT_UNDEFINED)
         patchTruthFlow_ = createGraphicsPipeline(ctx.device, truthFlowPipelineDesc(desc, flowFormat), truthLayout);
     const std::vector<uint32_t> indices = patchGridIndices(firstIndex_);
-    gridIndices_ = createBufferWithData(
-        ctx, std::span(reinterpret_cast<const uint8_t*>(indices.data()), indices.size() * sizeof(uint32_t)),
-        VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    gridIndices_ = createBufferWithData(ctx, bytesOf(indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
 }
 
 TrackRenderer::~TrackRenderer() {

@@ -46,7 +46,7 @@ VegetationRenderer::Tile::Tile(Context& ctx, const VegetationTile& tile, uint64_
     constants = createBuffer(ctx, constantsBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryIntent::Upload);
     clusterCounts = createBuffer(ctx, uint64_t(std::max(buffers.clusterCount, 1u)) * 16, kStorage,
                                  MemoryIntent::DeviceLocal);
-    draws = createBuffer(ctx, gpu::kLodCount * sizeof(VkDrawIndirectCommand),
+    draws = createBuffer(ctx, gpu::kLodCount * sizeof(VkDrawIndexedIndirectCommand),
                          kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryIntent::DeviceLocal);
     stats = createBuffer(ctx, sizeof(gpu::ExpansionStats), kStorage, MemoryIntent::DeviceLocal);
 }
@@ -131,7 +131,8 @@ VegetationRenderer::~VegetationRenderer() {
     for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &truthPipeline_,
                         &truthFlowPipeline_, &shadowPipeline_, &bakePipeline_, &staticPipeline_, &floorPipeline_})
         destroyPipeline(ctx_.device, *p);
-    for (Buffer* b : {&instances_, &instancePlants_, &cursor_, &atlasCells_}) destroyBuffer(ctx_, *b);
+    for (Buffer* b : {&instances_, &instancePlants_, &cursor_, &atlasCells_, &cornerIndices_, &vertexIndices_})
+        destroyBuffer(ctx_, *b);
     destroyImage(ctx_, atlasImage_);
     vkDestroySampler(ctx_.vk(), atlasSampler_, nullptr);
 }
@@ -176,10 +177,18 @@ void VegetationRenderer::uploadAtlas(const Atlas& atlas) {
 
 void VegetationRenderer::uploadCellTable() {
     const std::vector<gpu::AtlasCellGpu>& table = cellTables_[cutoutCorners_];
-    if (atlasCells_.handle) retireBuffer(ctx_, atlasCells_); // frames in flight may still read the old one
-    atlasCells_ = createBufferWithData(
-        ctx_, {reinterpret_cast<const uint8_t*>(table.data()), table.size() * sizeof(gpu::AtlasCellGpu)},
-        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    // Frames in flight may still read the old buffers.
+    for (Buffer* b : {&atlasCells_, &cornerIndices_, &vertexIndices_})
+        if (b->handle) retireBuffer(ctx_, *b);
+    atlasCells_ = createBufferWithData(ctx_, bytesOf(table), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    std::vector<uint32_t> corners, vertices;
+    for (uint32_t lod = 0; lod < gpu::kLodCount; ++lod)
+        for (uint32_t k = 0; k < gpu::plantVertexCount(lod, cutoutCorners_); ++k) {
+            corners.push_back(gpu::plantIndex(lod, cutoutCorners_, k));
+            vertices.push_back(k);
+        }
+    cornerIndices_ = createBufferWithData(ctx_, bytesOf(corners), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    vertexIndices_ = createBufferWithData(ctx_, bytesOf(vertices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
 }
 
 void VegetationRenderer::setCutout(uint32_t corners, const Atlas& atlas) {
@@ -335,6 +344,8 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
                                : mainShading_ == MainShading::Floor ? floorPipeline_
                                                                     : mainPipeline_;
     bindPipeline(cmd, pipeline);
+    const bool truth = pass == PlantPass::Truth || pass == PlantPass::TruthFlow;
+    vkCmdBindIndexBuffer(cmd, truth ? vertexIndices_.handle : cornerIndices_.handle, 0, VK_INDEX_TYPE_UINT32);
     DescriptorBinding instances = storageBuffer(gpu::kBindingPlantInstances, instances_.handle);
     DescriptorBinding plants = storageBuffer(gpu::kBindingInstancePlants, instancePlants_.handle);
     const char* passName = pass == PlantPass::Main ? "main" : pass == PlantPass::Shadow ? "shadow" : "truth";
@@ -358,8 +369,8 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
             if (!(lodMask & (1u << lod))) continue;
             pushConstants(cmd, pipeline, lod);
             if (statistics_) statistics_->begin(cmd, std::string(passName) + kLodNames[lod]);
-            vkCmdDrawIndirect(cmd, tile->draws.handle, lod * sizeof(VkDrawIndirectCommand), 1,
-                              sizeof(VkDrawIndirectCommand));
+            vkCmdDrawIndexedIndirect(cmd, tile->draws.handle, lod * sizeof(VkDrawIndexedIndirectCommand), 1,
+                                     sizeof(VkDrawIndexedIndirectCommand));
             if (statistics_) statistics_->end(cmd);
         }
     }

@@ -141,7 +141,7 @@ private:
     using TileKey = std::pair<int32_t, int32_t>; // (y, x): the map iterates in the frame's tile order
 
     void uploadAtlas(const Atlas& atlas);
-    void uploadCellTable(); // cellTables_[cutoutCorners_]
+    void uploadCellTable(); // cellTables_[cutoutCorners_], and the plant index buffers of that corner count
     PipelineLayoutDesc drawLayout(bool withShadowMap) const; // the plant draws' layout: main (shadow map) or not
     GraphicsPipelineDesc mainPipelineDesc(const char* fragmentShader) const;
     GraphicsPipelineDesc truthPipelineDesc() const; // the truth pass's plant draw (without flow)
@@ -163,6 +163,9 @@ private:
     glm::vec4 cardCover_{0.0f};   // cardCover(atlas): far slicing's card area per category
     glm::vec4 meanAspects_{0.0f}; // meanAspects(atlas): far merging's width per height per category
     Buffer instances_, instancePlants_, cursor_, atlasCells_;
+    // Each LOD's indices for one plant (plantFirstIndex), uint32: its quads' corners (colour and shadow passes:
+    // plantIndex), or the unindexed vertices 0, 1, 2, ... (truth pass).
+    Buffer cornerIndices_, vertexIndices_;
     uint64_t constantsStride_ = 0;
     Image atlasImage_;
     VkSampler atlasSampler_ = VK_NULL_HANDLE;

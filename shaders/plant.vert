@@ -1,6 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Plant quads from expanded instances: one indirect draw per LOD (push constant lod), 6 vertices per quad.
+// Plant quads from expanded instances: one indexed indirect draw per LOD (push constant lod). The colour and shadow
+// passes index each quad's corners (gl_VertexIndex = quad * quadCornerCount + corner: plantIndex); the truth pass
+// draws every triangle's own vertices (gl_VertexIndex = the unindexed vertex), whose first vertex writes the
+// triangle's flat normal.
 #include "shared/frame.glsl"
 #include "shared/vegetation.glsl"
 #include "shared/plant_vertex.glsl"
@@ -49,9 +52,11 @@ void main() {
         }
     }
     uint cell;
-    PlantQuad quad = plantQuad(instance, push.lod, uint(gl_VertexIndex) / quadVertexCount(push.lod, veg.options.x),
-                               veg.cameraPosition.xyz, cell);
-    PlantVertex v = quadVertex(instance, quad, cell, push.lod, uint(gl_VertexIndex));
+    const uint perQuad = PASS == kPassTruth ? quadVertexCount(push.lod, veg.options.x)
+                                            : quadCornerCount(push.lod, veg.options.x);
+    PlantQuad quad = plantQuad(instance, push.lod, uint(gl_VertexIndex) / perQuad, veg.cameraPosition.xyz, cell);
+    PlantVertex v = PASS == kPassTruth ? quadVertex(instance, quad, cell, push.lod, uint(gl_VertexIndex))
+                                       : quadCorner(instance, quad, cell, push.lod, uint(gl_VertexIndex) % perQuad);
     outUv = v.uv;
     outWorld = v.position;
     outViewDepth = (frame.view * vec4(v.position, 1.0)).z;

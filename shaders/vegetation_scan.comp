@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Exclusive prefix sum of the per-cluster LOD counts, in cluster order, by a single workgroup; turns counts
-// into instance offsets (in place) and writes the three indirect draw commands. A tile's instances are laid out as
+// into instance offsets (in place) and writes the three indexed indirect draw commands (the plant index buffers hold
+// each LOD's pattern: plantFirstIndex). A tile's instances are laid out as
 // [all near | all mid | all far], each LOD in cluster order, from the pool's cursor on; the scan advances the
 // cursor past what it kept, so the tiles of a frame (expanded one after another, in tile order) share one pool.
 #include "shared/config.h"
@@ -9,15 +10,16 @@
 
 layout(local_size_x = kScanGroupSize) in;
 
-struct DrawIndirectCommand {
-    uint vertexCount;
+struct DrawIndexedIndirectCommand { // VkDrawIndexedIndirectCommand
+    uint indexCount;
     uint instanceCount;
-    uint firstVertex;
+    uint firstIndex;
+    int vertexOffset;
     uint firstInstance;
 };
 
 layout(set = 0, binding = kScanBindingClusterCounts, std430) buffer ClusterCounts { uvec4 clusterCounts[]; };
-layout(set = 0, binding = kScanBindingDraws, std430) writeonly buffer Draws { DrawIndirectCommand draws[]; };
+layout(set = 0, binding = kScanBindingDraws, std430) writeonly buffer Draws { DrawIndexedIndirectCommand draws[]; };
 layout(set = 0, binding = kScanBindingStats, std430) writeonly buffer Stats { ExpansionStats stats; };
 layout(set = 0, binding = kScanBindingCursor, std430) buffer Cursor { uint cursor; };
 layout(push_constant) uniform Push { ScanConstants push; };
@@ -60,7 +62,8 @@ void main() {
         uint base = lodBase[lane];
         uint count = total[lane];
         uint kept = base >= push.capacity ? 0u : min(count, push.capacity - base);
-        draws[lane] = DrawIndirectCommand(plantVertexCount(lane, push.cutoutCorners), kept, 0u, base);
+        draws[lane] = DrawIndexedIndirectCommand(plantVertexCount(lane, push.cutoutCorners), kept,
+                                                 plantFirstIndex(lane, push.cutoutCorners), 0, base);
     }
     barrier();
     if (lane == 0u) {

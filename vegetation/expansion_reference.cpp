@@ -213,7 +213,7 @@ ReferenceQuad referenceQuad(const gpu::ExpandedPlant& plant, uint32_t lod, uint3
 // Corner (x across, y up) of cut-out fan vertex k (plant_vertex.glsl: fanCorner, cutoutCorner, kFullQuadFan).
 glm::vec2 cutoutFanCorner(const gpu::ExpandedPlant& plant, const CutoutPolygon& cutout, uint32_t k) {
     static const glm::vec2 fullQuad[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    const uint32_t j = k % 3u, corner = j == 0u ? 0u : k / 3u + j;
+    const uint32_t corner = gpu::fanCorner(k);
     if ((plant.fade >> 24) != 255u) return fullQuad[std::min(corner, 3u)];
     const glm::vec2 uv = cutout.corners[corner];
     const float random = float((plant.attributes >> 16) & 0xffu) * (1.0f / 255.0f);

@@ -115,7 +115,9 @@ SWARD_CONST(uint, kLodNear, 0u); // 4 textured quads at different horizontal and
 SWARD_CONST(uint, kLodMid, 1u);  // 2 crossed vertical quads
 SWARD_CONST(uint, kLodFar, 2u);  // 1 camera-facing billboard
 SWARD_CONST(uint, kLodCount, 3u);
-// Quads per plant in each level of detail; each quad is two triangles, drawn as 6 vertices without indices.
+// Quads per plant in each level of detail; each quad is two triangles. The truth pass draws each triangle's own 3
+// vertices (6 a quad: its flat normal is the triangle's, written by the triangle's first vertex); the colour and
+// shadow passes index the quad's 4 corners (plantIndex), so a CPU driver shades 4 vertices a quad instead of 6.
 SWARD_CONST(uint, kQuadsNear, 4u);
 SWARD_CONST(uint, kQuadsMid, 2u);
 SWARD_CONST(uint, kQuadsFar, 1u);
@@ -137,13 +139,52 @@ uint quadVertexCount(uint lod, uint cutoutCorners) {
     return cutoutCorners >= 3u && lod != kLodFar ? 3u * (cutoutCorners - 2u) : kVerticesPerQuad;
 }
 
-// Vertices drawn per plant in `lod` (the draws' vertex count per instance).
+// Vertices drawn per plant in `lod` (the draws' index count per instance).
 #ifdef __cplusplus
 constexpr
 #endif
 uint plantVertexCount(uint lod, uint cutoutCorners) {
     uint quads = lod == kLodNear ? kQuadsNear : lod == kLodMid ? kQuadsMid : kQuadsFar;
     return quads * quadVertexCount(lod, cutoutCorners);
+}
+
+// Distinct corners per quad in `lod`: the whole quad's 4, or the cut-out polygon's.
+#ifdef __cplusplus
+constexpr
+#endif
+uint quadCornerCount(uint lod, uint cutoutCorners) {
+    return cutoutCorners >= 3u && lod != kLodFar ? cutoutCorners : 4u;
+}
+
+// Corner of fan vertex k of a quad: triangle t = k / 3 of the fan over the quad's corners is (0, t + 1, t + 2). The
+// whole quad is the fan (0, 1, 2), (0, 2, 3) over (0, 0), (1, 0), (1, 1), (0, 1).
+#ifdef __cplusplus
+constexpr
+#endif
+uint fanCorner(uint k) {
+    uint j = k % 3u;
+    return j == 0u ? 0u : k / 3u + j;
+}
+
+// Index k of a plant's indexed draw in `lod` (colour and shadow passes): fan vertex k % perQuad of quad k / perQuad
+// is that quad's corner, numbered quad * quadCornerCount + corner (the vertex shader's gl_VertexIndex). The triangles
+// and their vertex order are those of the unindexed draw, so the rasterised fragments are the same.
+#ifdef __cplusplus
+constexpr
+#endif
+uint plantIndex(uint lod, uint cutoutCorners, uint k) {
+    uint perQuad = quadVertexCount(lod, cutoutCorners);
+    return k / perQuad * quadCornerCount(lod, cutoutCorners) + fanCorner(k % perQuad);
+}
+
+// First index of `lod`'s pattern in the plant index buffers: the LODs' patterns lie one after another.
+#ifdef __cplusplus
+constexpr
+#endif
+uint plantFirstIndex(uint lod, uint cutoutCorners) {
+    uint first = 0u;
+    for (uint l = 0u; l < lod; ++l) first += plantVertexCount(l, cutoutCorners);
+    return first;
 }
 
 // Largest horizontal tip offset of an expanded plant (interaction bend + wind), in plant heights: a blade

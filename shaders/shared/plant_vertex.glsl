@@ -8,13 +8,12 @@
 
 layout(set = 0, binding = kBindingAtlasCells, std430) readonly buffer Cells { AtlasCellGpu cells[]; };
 
-// Corners of the two triangles of a quad: x across (0 left, 1 right), y up (0 bottom, 1 top).
-const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
 // (angle offset about up, tilt away from vertical) per quad, radians. Near: two upright crossed quads and two
 // leaning ones; mid: two crossed quads leaning apart. The lean is what covers the ground seen from above.
 const vec2 kNearQuads[4] = vec2[](vec2(0.0, 0.0), vec2(1.5707963, 0.0), vec2(0.7853982, 0.95), vec2(3.9269908, 0.95));
 const vec2 kMidQuads[2] = vec2[](vec2(0.0, 0.6), vec2(4.712389, 0.6));
-// The whole quad as a fan (corners x across, y up): (0, 1, 2), (0, 2, 3), then empty triangles (0, 3, 3).
+// The whole quad's corners (x across: 0 left, 1 right; y up: 0 bottom, 1 top), drawn as the fan (0, 1, 2), (0, 2, 3)
+// (fanCorner); a cut plant in a cut-out draw repeats corner 3 for its fan's further, empty triangles.
 const vec2 kFullQuadFan[4] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 1));
 
 struct PlantVertex {
@@ -23,12 +22,6 @@ struct PlantVertex {
     float heightFraction; // 0 at the base, 1 at the top of the (uncut) plant
     float random;         // the plant's random value
 };
-
-// Corner of fan vertex k: triangle k / 3 of a fan over a polygon is (0, t + 1, t + 2).
-uint fanCorner(uint k) {
-    uint j = k % 3u;
-    return j == 0u ? 0u : k / 3u + j;
-}
 
 // Corner i of cell `cell`'s cut-out polygon, in cell uv (u right, v down).
 vec2 cutoutCorner(uint cell, uint i) {
@@ -122,25 +115,23 @@ float sliceBottom(ExpandedPlant instance, PlantQuad q) {
     return cut > 0.0 ? clamp(1.0 - q.baseAspect.y + cut, 0.0, 1.0) : 0.0;
 }
 
-// Vertex `vertexIndex` of the instance, on its quad `q` (plantQuad of quad vertexIndex / quadVertexCount, whose
-// atlas cell is `cell`): callers that need several vertices of one quad build the quad once.
-PlantVertex quadVertex(ExpandedPlant instance, PlantQuad q, uint cell, uint lod, uint vertexIndex) {
+// Corner `corner` (0 .. quadCornerCount - 1) of the instance's quad `q` (plantQuad; its atlas cell is `cell`):
+// callers that need several vertices of one quad build the quad once.
+PlantVertex quadCorner(ExpandedPlant instance, PlantQuad q, uint cell, uint lod, uint corner) {
     const bool cutout = veg.options.x >= 3u && lod != kLodFar;
-    const uint perQuad = quadVertexCount(lod, veg.options.x);
     float fraction;
     if (!cutout) {
-        vec2 corner = kCorners[vertexIndex % 6u];
+        vec2 at = kFullQuadFan[corner];
         // Far slicing (sliceHeight): the quad starts at the cut height, so its bottom rows of the cell are not drawn.
-        corner.y = mix(sliceBottom(instance, q), 1.0, corner.y);
-        vec3 position = quadPoint(q, corner, fraction);
+        at.y = mix(sliceBottom(instance, q), 1.0, at.y);
+        vec3 position = quadPoint(q, at, fraction);
         // Cut plants show the lower part of the texture (stalks), not a squashed plant.
-        float u = (q.random > 0.5) ? 1.0 - corner.x : corner.x; // mirror half of the plants for variety
-        float v = 1.0 - corner.y * q.cutFraction;
+        float u = (q.random > 0.5) ? 1.0 - at.x : at.x; // mirror half of the plants for variety
+        float v = 1.0 - at.y * q.cutFraction;
         return PlantVertex(position, mix(q.uvRect.xy, q.uvRect.zw, vec2(u, v)), fraction, q.random);
     }
     // Cut-out: corner (x across, y up) of a point of the cell's polygon; cut plants, which stretch the lower part of
     // their texture over the quad, keep the whole quad (a fan of two triangles and empty ones).
-    uint corner = fanCorner(vertexIndex % perQuad);
     vec2 at, uv;
     if ((instance.fade >> 24) == 255u) {
         uv = cutoutCorner(cell, corner);
@@ -154,6 +145,12 @@ PlantVertex quadVertex(ExpandedPlant instance, PlantQuad q, uint cell, uint lod,
     vec3 bottom = quadPoint(q, vec2(at.x, 0.0), bottomFraction), top = quadPoint(q, vec2(at.x, 1.0), topFraction);
     return PlantVertex(mix(bottom, top, at.y), mix(q.uvRect.xy, q.uvRect.zw, uv), mix(bottomFraction, topFraction, at.y),
                        q.random);
+}
+
+// Vertex `vertexIndex` of the instance's unindexed draw (fan vertex vertexIndex % quadVertexCount of quad
+// vertexIndex / quadVertexCount, q): the truth pass and the bake.
+PlantVertex quadVertex(ExpandedPlant instance, PlantQuad q, uint cell, uint lod, uint vertexIndex) {
+    return quadCorner(instance, q, cell, lod, fanCorner(vertexIndex % quadVertexCount(lod, veg.options.x)));
 }
 
 PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex, vec3 camera) {
