@@ -17,8 +17,15 @@ double shadowCasterReach(double sunUp) {
 
 namespace {
 
-// `count` shell ends from `first` geometrically up to `last` (just `last` when first >= last or count is 1).
+// Each shell ends at least this many times farther than the one before: a shell that extends its predecessor by
+// less than half (say 30-32 m when shadow_distance is just short of where the far billboards start) would cost a
+// cascade's draws for almost no finer texels, so fewer, wider shells are used instead.
+constexpr double kMinShellRatio = 1.5;
+
+// At most `count` shell ends from `first` geometrically up to `last`, each at least kMinShellRatio times the one
+// before (just `last` when first >= last or count is 1).
 std::vector<double> geometricEnds(uint32_t count, double first, double last) {
+    while (count > 1 && first < last && std::pow(last / first, 1.0 / double(count - 1)) < kMinShellRatio) --count;
     if (first >= last || count <= 1) return {last};
     std::vector<double> ends(count);
     for (uint32_t k = 0; k < count; ++k) ends[k] = first * std::pow(last / first, double(k) / double(count - 1));

@@ -57,6 +57,15 @@ TEST(SunShadow, FarBillboardsFallIntoTheLastCascadeAlone) {
     EXPECT_EQ(ends[0], 20.0);
     EXPECT_EQ(ends[1], 33.0);
     EXPECT_EQ(ends[2], 154.0);
+    // A shadow distance just short of the far billboards' cascade would leave a 31-33 m shell between them: the first
+    // cascade reaches 33 m instead (each shell ends at least 1.5 times farther than the one before).
+    params.firstDistance = 31.0;
+    EXPECT_EQ(shadowSplits(params), (std::vector<double>{33.0, 154.0}));
+    params.firstDistance = 22.0; // 33 / 22 = 1.5: still three
+    EXPECT_EQ(shadowSplits(params).size(), 3u);
+    params.cascades = 4; // 20 -> 33 m in two steps would be 1.28 a step: one step
+    params.firstDistance = 20.0;
+    EXPECT_EQ(shadowSplits(params), (std::vector<double>{20.0, 33.0, 154.0}));
 }
 
 TEST(SunShadow, EveryPointOfTheFrustumLiesInsideTheMapOfItsShell) {
