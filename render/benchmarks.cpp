@@ -4,6 +4,7 @@
 #include "engine/context.h"
 #include "engine/pipeline_statistics.h"
 #include "engine/render_target.h"
+#include "engine/resources.h"
 #include "engine/timestamps.h"
 #include "interaction/interaction.h"
 #include "interaction/state_file.h"
@@ -332,7 +333,7 @@ namespace {
 
 // FNV-1a 64 of a vector's bytes.
 template <class T> uint64_t bytesHash(const std::vector<T>& values) {
-    return fnv1a64({reinterpret_cast<const uint8_t*>(values.data()), values.size() * sizeof(T)});
+    return fnv1a64(bytesOf(values));
 }
 
 // One measured tick of benchCollide.

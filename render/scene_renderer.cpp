@@ -428,7 +428,7 @@ void SceneRenderer::uploadCoverMap(TerrainTile& tile, const CoverMap* cover) {
     if (present)
         for (size_t i = 0; i < cover->texels.size(); ++i)
             for (int k = 0; k < 4; ++k) texels[4 * i + size_t(k)] = floatToHalfBits(cover->texels[i][k]);
-    const std::span<const uint8_t> bytes(reinterpret_cast<const uint8_t*>(texels.data()), texels.size() * 2);
+    const std::span<const uint8_t> bytes = bytesOf(texels);
     tile.cover = createImageWithData(
         ctx_, {.format = VK_FORMAT_R16G16B16A16_SFLOAT, .width = width, .height = height, .mipLevels = 1}, {&bytes, 1});
     tile.coverRect = present ? glm::vec4(cover->origin, 1.0f / cover->size, 0.0f) : glm::vec4(0.0f);

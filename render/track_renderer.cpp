@@ -157,7 +157,7 @@ void TrackRenderer::uploadTable(VkCommandBuffer cmd) {
         table_ = createBuffer(ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                               MemoryIntent::DeviceLocal);
     }
-    updateBuffer(cmd, table_, 0, std::span(reinterpret_cast<const uint8_t*>(entries.data()), bytes));
+    updateBuffer(cmd, table_, 0, bytesOf(entries));
 }
 
 // Room for `blocks` patches; a larger buffer starts empty (every block is uploaded again).

@@ -162,7 +162,7 @@ void VegetationRenderer::uploadAtlas(const Atlas& atlas) {
     for (gpu::AtlasCellGpu& cell : cellTables_[0])
         for (uint32_t k = 0; k < gpu::kMaxCutoutCorners / 2; ++k)
             cell.cutout[k] = glm::vec4(full.corners[2 * k], full.corners[2 * k + 1]);
-    uploadCellTable();
+    uploadCutoutBuffers();
 
     const uint32_t levels = uint32_t(atlas.mips.size());
     std::vector<std::span<const uint8_t>> data;
@@ -175,7 +175,7 @@ void VegetationRenderer::uploadAtlas(const Atlas& atlas) {
     atlasSampler_ = createLinearSampler(ctx_, levels);
 }
 
-void VegetationRenderer::uploadCellTable() {
+void VegetationRenderer::uploadCutoutBuffers() {
     const std::vector<gpu::AtlasCellGpu>& table = cellTables_[cutoutCorners_];
     // Frames in flight may still read the old buffers.
     for (Buffer* b : {&atlasCells_, &cornerIndices_, &vertexIndices_})
@@ -204,7 +204,7 @@ void VegetationRenderer::setCutout(uint32_t corners, const Atlas& atlas) {
                 table[i].cutout[k] = glm::vec4(polygons[i].corners[2 * k], polygons[i].corners[2 * k + 1]);
     }
     cutoutCorners_ = corners;
-    uploadCellTable();
+    uploadCutoutBuffers();
 }
 
 DescriptorBinding VegetationRenderer::atlasCellsBinding() const {

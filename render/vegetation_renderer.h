@@ -141,7 +141,7 @@ private:
     using TileKey = std::pair<int32_t, int32_t>; // (y, x): the map iterates in the frame's tile order
 
     void uploadAtlas(const Atlas& atlas);
-    void uploadCellTable(); // cellTables_[cutoutCorners_], and the plant index buffers of that corner count
+    void uploadCutoutBuffers(); // what cutoutCorners_ decides: cellTables_[cutoutCorners_] and the plant index buffers
     PipelineLayoutDesc drawLayout(bool withShadowMap) const; // the plant draws' layout: main (shadow map) or not
     GraphicsPipelineDesc mainPipelineDesc(const char* fragmentShader) const;
     GraphicsPipelineDesc truthPipelineDesc() const; // the truth pass's plant draw (without flow)
