@@ -131,8 +131,7 @@ VegetationRenderer::~VegetationRenderer() {
     for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &truthPipeline_,
                         &truthFlowPipeline_, &shadowPipeline_, &bakePipeline_, &staticPipeline_, &floorPipeline_})
         destroyPipeline(ctx_.device, *p);
-    for (Buffer* b : {&instances_, &instancePlants_, &cursor_, &atlasCells_, &cornerIndices_, &vertexIndices_})
-        destroyBuffer(ctx_, *b);
+    for (Buffer* b : {&instances_, &instancePlants_, &cursor_, &atlasCells_, &cornerIndices_}) destroyBuffer(ctx_, *b);
     destroyImage(ctx_, atlasImage_);
     vkDestroySampler(ctx_.vk(), atlasSampler_, nullptr);
 }
@@ -178,17 +177,14 @@ void VegetationRenderer::uploadAtlas(const Atlas& atlas) {
 void VegetationRenderer::uploadCutoutBuffers() {
     const std::vector<gpu::AtlasCellGpu>& table = cellTables_[cutoutCorners_];
     // Frames in flight may still read the old buffers.
-    for (Buffer* b : {&atlasCells_, &cornerIndices_, &vertexIndices_})
+    for (Buffer* b : {&atlasCells_, &cornerIndices_})
         if (b->handle) retireBuffer(ctx_, *b);
     atlasCells_ = createBufferWithData(ctx_, bytesOf(table), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    std::vector<uint32_t> corners, vertices;
+    std::vector<uint32_t> corners;
     for (uint32_t lod = 0; lod < gpu::kLodCount; ++lod)
-        for (uint32_t k = 0; k < gpu::plantVertexCount(lod, cutoutCorners_); ++k) {
+        for (uint32_t k = 0; k < gpu::plantVertexCount(lod, cutoutCorners_); ++k)
             corners.push_back(gpu::plantIndex(lod, cutoutCorners_, k));
-            vertices.push_back(k);
-        }
     cornerIndices_ = createBufferWithData(ctx_, bytesOf(corners), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-    vertexIndices_ = createBufferWithData(ctx_, bytesOf(vertices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
 }
 
 void VegetationRenderer::setCutout(uint32_t corners, const Atlas& atlas) {
@@ -344,8 +340,7 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
                                : mainShading_ == MainShading::Floor ? floorPipeline_
                                                                     : mainPipeline_;
     bindPipeline(cmd, pipeline);
-    const bool truth = pass == PlantPass::Truth || pass == PlantPass::TruthFlow;
-    vkCmdBindIndexBuffer(cmd, truth ? vertexIndices_.handle : cornerIndices_.handle, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdBindIndexBuffer(cmd, cornerIndices_.handle, 0, VK_INDEX_TYPE_UINT32);
     DescriptorBinding instances = storageBuffer(gpu::kBindingPlantInstances, instances_.handle);
     DescriptorBinding plants = storageBuffer(gpu::kBindingInstancePlants, instancePlants_.handle);
     const char* passName = pass == PlantPass::Main ? "main" : pass == PlantPass::Shadow ? "shadow" : "truth";
@@ -520,7 +515,9 @@ void VegetationRenderer::drawBaked(VkCommandBuffer cmd, const BakedPlants& baked
     pushDescriptors(ctx_.device, cmd, staticPipeline_,
                     {frame, constantsBinding(onlyTile(), slot), storageBuffer(gpu::kBindingPlantInstances, baked.vertices.handle),
                      atlasCellsBinding(), atlasBinding(), shadowMap});
+    if (statistics_) statistics_->begin(cmd, "main.static");
     if (baked.vertexCount) vkCmdDraw(cmd, baked.vertexCount, 1, 0, 0);
+    if (statistics_) statistics_->end(cmd);
 }
 
 void VegetationRenderer::destroyBaked(BakedPlants& baked) {

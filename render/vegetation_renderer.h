@@ -110,7 +110,7 @@ public:
     enum class MainShading { Full, Floor, Off };
     void setMainShading(MainShading shading) { mainShading_ = shading; }
     // Benchmarks: while set, draw() wraps each tile's draw of each LOD in a statistics range named after the pass
-    // and the LOD ("main.near", "truth.far", "shadow.mid", ...). The command buffers draw() then records into must
+    // and the LOD ("main.near", "truth.far", "shadow.mid", ...; drawBaked: "main.static"). The command buffers draw() then records into must
     // not dispatch compute (lavapipe crashes).
     void setStatistics(PipelineStatistics* statistics) { statistics_ = statistics; }
     // Live changes from the viewer's panel; used by the next expand().
@@ -163,9 +163,8 @@ private:
     glm::vec4 cardCover_{0.0f};   // cardCover(atlas): far slicing's card area per category
     glm::vec4 meanAspects_{0.0f}; // meanAspects(atlas): far merging's width per height per category
     Buffer instances_, instancePlants_, cursor_, atlasCells_;
-    // Each LOD's indices for one plant (plantFirstIndex), uint32: its quads' corners (colour and shadow passes:
-    // plantIndex), or the unindexed vertices 0, 1, 2, ... (truth pass).
-    Buffer cornerIndices_, vertexIndices_;
+    // Each LOD's indices for one plant (plantFirstIndex), uint32: its quads' corners (plantIndex), for every pass.
+    Buffer cornerIndices_;
     uint64_t constantsStride_ = 0;
     Image atlasImage_;
     VkSampler atlasSampler_ = VK_NULL_HANDLE;

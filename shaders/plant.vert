@@ -1,9 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Plant quads from expanded instances: one indexed indirect draw per LOD (push constant lod). The colour and shadow
-// passes index each quad's corners (gl_VertexIndex = quad * quadCornerCount + corner: plantIndex); the truth pass
-// draws every triangle's own vertices (gl_VertexIndex = the unindexed vertex), whose first vertex writes the
-// triangle's flat normal.
+// Plant quads from expanded instances: one indexed indirect draw per LOD (push constant lod), every pass indexing
+// each quad's corners (gl_VertexIndex = quad * quadCornerCount + corner: plantIndex), so each corner is shaded once.
 #include "shared/frame.glsl"
 #include "shared/vegetation.glsl"
 #include "shared/plant_vertex.glsl"
@@ -52,11 +50,9 @@ void main() {
         }
     }
     uint cell;
-    const uint perQuad = PASS == kPassTruth ? quadVertexCount(push.lod, veg.options.x)
-                                            : quadCornerCount(push.lod, veg.options.x);
+    const uint perQuad = quadCornerCount(push.lod, veg.options.x);
     PlantQuad quad = plantQuad(instance, push.lod, uint(gl_VertexIndex) / perQuad, veg.cameraPosition.xyz, cell);
-    PlantVertex v = PASS == kPassTruth ? quadVertex(instance, quad, cell, push.lod, uint(gl_VertexIndex))
-                                       : quadCorner(instance, quad, cell, push.lod, uint(gl_VertexIndex) % perQuad);
+    PlantVertex v = quadCorner(instance, quad, cell, push.lod, uint(gl_VertexIndex) % perQuad);
     outUv = v.uv;
     outWorld = v.position;
     outViewDepth = (frame.view * vec4(v.position, 1.0)).z;
@@ -70,20 +66,23 @@ void main() {
                                                    : kSemanticVegetation + bitfieldExtract(instance.attributes, 0, 2);
         outLabel = (semantic << kInstanceBits) | (instancePlants[gl_InstanceIndex] + 1u);
         outTile = veg.tile.x;
-        // The whole triangle of this vertex (vertices 3t, 3t+1, 3t+2 of the instance), so the normal is the drawn
-        // triangle's own plane: bent cards are flat per triangle, not per plant. A triangle lies in one quad.
-        uint first = uint(gl_VertexIndex) - uint(gl_VertexIndex) % 3u;
-        vec3 p0 = quadVertex(instance, quad, cell, push.lod, first).position;
-        vec3 p1 = quadVertex(instance, quad, cell, push.lod, first + 1u).position;
-        vec3 p2 = quadVertex(instance, quad, cell, push.lod, first + 2u).position;
+        // Corner c, 1 <= c <= n - 2, is the first vertex of the triangle (c, c + 1, 0) (fanCorner), whose flat outputs
+        // the triangle takes: its normal comes from the three corners as every pass draws them, the drawn triangle's
+        // own plane (bent cards are flat per triangle, not per plant). Corners 0 and n - 1 start no triangle; they
+        // compute the normal of the two corners after them instead of branching, and it is never used.
+        uint own = uint(gl_VertexIndex) % perQuad;
+        uint last = own == 0u || own == perQuad - 1u ? (own + 2u) % perQuad : 0u;
+        vec3 p0 = v.position;
+        vec3 p1 = quadCorner(instance, quad, cell, push.lod, (own + 1u) % perQuad).position;
+        vec3 p2 = quadCorner(instance, quad, cell, push.lod, last).position;
         outNormal = truthNormal(cross(p1 - p0, p2 - p0), p0);
 #ifdef SWARD_FLOW
         // The same point of the same quad, with the plant's state and wind of the previous and the next tick.
         uint plant = instancePlants[gl_InstanceIndex];
         ExpandedPlant before = plantAtTick(instance, flowStatics[plant], flowDynamicsPrevious[plant], frame.flowTimes.x);
         ExpandedPlant after = plantAtTick(instance, flowStatics[plant], flowDynamicsNext[plant], frame.flowTimes.y);
-        writeFlowVertex(plantVertex(before, push.lod, uint(gl_VertexIndex), frame.flowReferencePrevious.xyz).position,
-                        plantVertex(after, push.lod, uint(gl_VertexIndex), frame.flowReferenceNext.xyz).position);
+        writeFlowVertex(plantCorner(before, push.lod, uint(gl_VertexIndex), frame.flowReferencePrevious.xyz).position,
+                        plantCorner(after, push.lod, uint(gl_VertexIndex), frame.flowReferenceNext.xyz).position);
 #endif
     }
     if (PASS == kPassMain) {

@@ -17,6 +17,7 @@ layout(location = 3) out vec4 outShadow;
 layout(location = 4) flat out uint outFade;
 layout(location = 5) out float outHeightFraction;
 layout(location = 6) flat out float outRandom;
+layout(location = 7) flat out uint outLabel; // ground truth only: plant_fragment.glsl declares it for every pass
 layout(location = 10) flat out mat3 outAlbedo; // plantShading (locations 10-15)
 layout(location = 13) flat out vec3 outAlbedoOffset;
 layout(location = 14) flat out vec3 outSunLight;
@@ -38,5 +39,6 @@ void main() {
     outFade = v.upFade.y;
     outHeightFraction = v.positionFraction.w;
     outRandom = v.uvRandom.z;
+    outLabel = 0u;
     gl_Position = frame.viewProj * vec4(v.positionFraction.xyz, 1.0);
 }

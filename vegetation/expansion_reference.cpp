@@ -250,7 +250,7 @@ void plantQuadCorners(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 c
 std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cameraPosition,
                                               glm::vec3 cellBaseAspect, const CutoutPolygon* cutout,
                                               uint32_t cutoutCorners) {
-    static const glm::vec2 corners[6] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}};
+    static const glm::vec2 fullQuad[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}; // kFullQuadFan
     const bool fan = cutout && cutoutCorners >= 4 && lod != gpu::kLodFar;
     const uint32_t perQuad = gpu::quadVertexCount(lod, fan ? cutoutCorners : 0u);
     std::vector<glm::vec3> vertices;
@@ -260,7 +260,7 @@ std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, u
             // plant_vertex.glsl's sliceBottom: a sliced far billboard starts at its cut height.
             const float cut = float(plant.attributes >> 24) * (1.0f / gpu::kSliceUnit);
             const float bottom = cut > 0.0f ? std::clamp(1.0f - cellBaseAspect.y + cut, 0.0f, 1.0f) : 0.0f;
-            const glm::vec2 corner = corners[v % perQuad];
+            const glm::vec2 corner = fullQuad[gpu::fanCorner(v % perQuad)];
             vertices.push_back(q.point({corner.x, bottom + (1.0f - bottom) * corner.y}));
             continue;
         }

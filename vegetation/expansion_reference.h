@@ -40,8 +40,8 @@ gpu::ExpandedPlant expandWholePlant(const VegetationParams& vegetation, const Wi
                                     double time);
 
 // The corners of each quad of `plant` drawn at `lod` (whole quads, no slicing), four per quad in the order (x across,
-// y up) (0, 0), (1, 0), (1, 1), (0, 1): the quad's triangles are corners (0, 1, 2) and (0, 2, 3), as kFullQuadFan and fanCorner draw
-// them. `corners` holds 4 * quads entries (16 for the near LOD).
+// y up) (0, 0), (1, 0), (1, 1), (0, 1): the quad's triangles are corners 0, 1, 2 and 0, 2, 3, as kFullQuadFan and
+// fanCorner draw them. `corners` holds 4 * quads entries (16 for the near LOD).
 void plantQuadCorners(const gpu::ExpandedPlant& plant, uint32_t lod, glm::vec3 cameraPosition, glm::vec3 cellBaseAspect,
                       glm::vec3* corners);
 

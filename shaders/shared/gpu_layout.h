@@ -115,9 +115,8 @@ SWARD_CONST(uint, kLodNear, 0u); // 4 textured quads at different horizontal and
 SWARD_CONST(uint, kLodMid, 1u);  // 2 crossed vertical quads
 SWARD_CONST(uint, kLodFar, 2u);  // 1 camera-facing billboard
 SWARD_CONST(uint, kLodCount, 3u);
-// Quads per plant in each level of detail; each quad is two triangles. The truth pass draws each triangle's own 3
-// vertices (6 a quad: its flat normal is the triangle's, written by the triangle's first vertex); the colour and
-// shadow passes index the quad's 4 corners (plantIndex), so a CPU driver shades 4 vertices a quad instead of 6.
+// Quads per plant in each level of detail; each quad is two triangles (6 vertices unindexed). The draws index the
+// quad's 4 corners (plantIndex), so a CPU driver shades 4 vertices a quad instead of 6.
 SWARD_CONST(uint, kQuadsNear, 4u);
 SWARD_CONST(uint, kQuadsMid, 2u);
 SWARD_CONST(uint, kQuadsFar, 1u);
@@ -156,17 +155,19 @@ uint quadCornerCount(uint lod, uint cutoutCorners) {
     return cutoutCorners >= 3u && lod != kLodFar ? cutoutCorners : 4u;
 }
 
-// Corner of fan vertex k of a quad: triangle t = k / 3 of the fan over the quad's corners is (0, t + 1, t + 2). The
-// whole quad is the fan (0, 1, 2), (0, 2, 3) over (0, 0), (1, 0), (1, 1), (0, 1).
+// Corner of fan vertex k of a quad: triangle t = k / 3 of the fan over the quad's corners is (t + 1, t + 2, 0), the
+// fan triangle (0, t + 1, t + 2) with its vertices rotated (same winding). So each triangle's first vertex, whose flat
+// outputs it takes, is a corner of its own (t + 1), and in the indexed draw that corner writes its triangle's normal
+// (plant.vert). The whole quad is (1, 2, 0), (2, 3, 0) over (0, 0), (1, 0), (1, 1), (0, 1).
 #ifdef __cplusplus
 constexpr
 #endif
 uint fanCorner(uint k) {
     uint j = k % 3u;
-    return j == 0u ? 0u : k / 3u + j;
+    return j == 2u ? 0u : k / 3u + 1u + j;
 }
 
-// Index k of a plant's indexed draw in `lod` (colour and shadow passes): fan vertex k % perQuad of quad k / perQuad
+// Index k of a plant's indexed draw in `lod` (every pass): fan vertex k % perQuad of quad k / perQuad
 // is that quad's corner, numbered quad * quadCornerCount + corner (the vertex shader's gl_VertexIndex). The triangles
 // and their vertex order are those of the unindexed draw, so the rasterised fragments are the same.
 #ifdef __cplusplus

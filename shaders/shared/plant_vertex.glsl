@@ -12,7 +12,7 @@ layout(set = 0, binding = kBindingAtlasCells, std430) readonly buffer Cells { At
 // leaning ones; mid: two crossed quads leaning apart. The lean is what covers the ground seen from above.
 const vec2 kNearQuads[4] = vec2[](vec2(0.0, 0.0), vec2(1.5707963, 0.0), vec2(0.7853982, 0.95), vec2(3.9269908, 0.95));
 const vec2 kMidQuads[2] = vec2[](vec2(0.0, 0.6), vec2(4.712389, 0.6));
-// The whole quad's corners (x across: 0 left, 1 right; y up: 0 bottom, 1 top), drawn as the fan (0, 1, 2), (0, 2, 3)
+// The whole quad's corners (x across: 0 left, 1 right; y up: 0 bottom, 1 top), drawn as the fan (1, 2, 0), (2, 3, 0)
 // (fanCorner); a cut plant in a cut-out draw repeats corner 3 for its fan's further, empty triangles.
 const vec2 kFullQuadFan[4] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 1));
 
@@ -148,15 +148,19 @@ PlantVertex quadCorner(ExpandedPlant instance, PlantQuad q, uint cell, uint lod,
 }
 
 // Vertex `vertexIndex` of the instance's unindexed draw (fan vertex vertexIndex % quadVertexCount of quad
-// vertexIndex / quadVertexCount, q): the truth pass and the bake.
-PlantVertex quadVertex(ExpandedPlant instance, PlantQuad q, uint cell, uint lod, uint vertexIndex) {
-    return quadCorner(instance, q, cell, lod, fanCorner(vertexIndex % quadVertexCount(lod, veg.options.x)));
+// vertexIndex / quadVertexCount): the bake, whose static vertices are drawn unindexed.
+PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex, vec3 camera) {
+    uint cell, perQuad = quadVertexCount(lod, veg.options.x);
+    PlantQuad q = plantQuad(instance, lod, vertexIndex / perQuad, camera, cell);
+    return quadCorner(instance, q, cell, lod, fanCorner(vertexIndex % perQuad));
 }
 
-PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex, vec3 camera) {
-    uint cell;
-    PlantQuad q = plantQuad(instance, lod, vertexIndex / quadVertexCount(lod, veg.options.x), camera, cell);
-    return quadVertex(instance, q, cell, lod, vertexIndex);
+// Corner `index` of the instance's indexed draw (corner index % quadCornerCount of quad index / quadCornerCount,
+// plantIndex): the draws' vertex shader's gl_VertexIndex.
+PlantVertex plantCorner(ExpandedPlant instance, uint lod, uint index, vec3 camera) {
+    uint cell, perQuad = quadCornerCount(lod, veg.options.x);
+    PlantQuad q = plantQuad(instance, lod, index / perQuad, camera, cell);
+    return quadCorner(instance, q, cell, lod, index % perQuad);
 }
 
 #endif
