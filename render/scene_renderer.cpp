@@ -54,6 +54,7 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& ter
     : ctx_(ctx), scene_(scene), samples_(samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1), objectGround_(&terrain) {
     terrainMinHeight_ = terrain.minHeight();
     terrainMaxHeight_ = terrain.maxHeight();
+    fitShadowImage(vegetation && atlas);
     uploadGroundTextures(&terrain);
     createPipelines(vegetation ? atlas : nullptr,
                     vegetation ? VegetationRenderer::instanceCapacityFor(countVegetation(*vegetation).plants) : 0);
@@ -71,6 +72,7 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, VkSampleCountFlag
     // whichever tiles are resident.
     terrainMinHeight_ = -0.5f * std::abs(scene.terrain.procedural.amplitude);
     terrainMaxHeight_ = 0.5f * std::abs(scene.terrain.procedural.amplitude);
+    fitShadowImage(atlas != nullptr);
     uploadGroundTextures(nullptr);
     createPipelines(atlas, VegetationRenderer::instanceCapacityFor(UINT32_MAX));
 }
@@ -175,7 +177,6 @@ void SceneRenderer::createPipelines(const Atlas* atlas, uint32_t instanceCapacit
 
     if (atlas)
         vegetation_ = std::make_unique<VegetationRenderer>(ctx, scene, *atlas, plantPassFormats(), instanceCapacity);
-    shadowParams_ = makeShadowCascadeParams(); // after the vegetation: its LODs place the cascades
     createShadowMap();
     skyPipeline_ = createGraphicsPipeline(ctx.device,
                                           {.vertexShader = "sky.vert",
@@ -290,16 +291,23 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Sh
     std::memcpy(constants_.mapped() + slot * constantsStride_, &c, sizeof c);
 }
 
+void SceneRenderer::fitShadowImage(bool vegetation) {
+    // The vegetation's LODs place the cascades. Checked before any Vulkan object is made, so a scene the device
+    // cannot render is one error that leaves nothing behind.
+    shadowParams_ = makeShadowCascadeParams(vegetation);
+    const uint32_t width = shadowMapExtent(shadowParams_).x;
+    const uint32_t largest = ctx_.device.properties().limits.maxImageDimension2D;
+    require(width <= largest, scene_.source + ": 'render.shadow_map_size' " +
+                                  std::to_string(scene_.render.shadowMapSize) + " with " +
+                                  std::to_string(scene_.render.shadowCascades) + " 'render.shadow_cascades' needs a " +
+                                  std::to_string(width) + " texel wide shadow image; this device's largest is " +
+                                  std::to_string(largest));
+}
+
 void SceneRenderer::createShadowMap() {
     // Sun shadow map: the cascades' square maps in a row, always present (1x1 and disabled when shadow_map_size is
     // 0) so bindings stay valid.
     const glm::uvec2 shadowExtent = shadowMapExtent(shadowParams_);
-    const uint32_t largest = ctx_.device.properties().limits.maxImageDimension2D;
-    require(shadowExtent.x <= largest, scene_.source + ": 'render.shadow_map_size' " +
-                                           std::to_string(scene_.render.shadowMapSize) + " with " +
-                                           std::to_string(scene_.render.shadowCascades) +
-                                           " 'render.shadow_cascades' needs a " + std::to_string(shadowExtent.x) +
-                                           " texel wide shadow image; this device's largest is " + std::to_string(largest));
     shadowMap_ = std::make_unique<RenderTarget>(ctx_, RenderTargetDesc{.width = shadowExtent.x,
                                                                       .height = shadowExtent.y,
                                                                       .depthFormat = VK_FORMAT_D32_SFLOAT,
@@ -307,11 +315,12 @@ void SceneRenderer::createShadowMap() {
                                                                       .sampleDepth = true});
 }
 
-ShadowCascadeParams SceneRenderer::makeShadowCascadeParams() const {
+ShadowCascadeParams SceneRenderer::makeShadowCascadeParams(bool vegetation) const {
     return ShadowCascadeParams{.cascades = scene_.render.shadowCascades,
                                .firstDistance = scene_.render.shadowDistance,
                                .lastDistance = double(scene_.lod.farLimit) + double(scene_.lod.band),
-                               .farPlantsFrom = vegetation_ ? double(scene_.lod.midToFar) - 0.5 * double(scene_.lod.band) : 0.0,
+                               .farPlantsFrom =
+                                   vegetation ? double(scene_.lod.midToFar) - 0.5 * double(scene_.lod.band) : 0.0,
                                .mapSize = std::max(scene_.render.shadowMapSize, 1u),
                                .casterMargin = shadowCasterReach(scene_.sun.direction().z),
                                .heightRange = double(terrainMaxHeight_ - terrainMinHeight_),

@@ -154,7 +154,8 @@ private:
     // The shadow pass: each cascade into its tile of the shadow map, with the plants' LODs that can reach it.
     void recordShadowPass(VkCommandBuffer cmd, const Camera& reference, const ShadowFit& shadow, uint32_t firstSlot,
                           uint32_t dataSlot, double timeSeconds, GpuTimers* timers);
-    ShadowCascadeParams makeShadowCascadeParams() const;
+    ShadowCascadeParams makeShadowCascadeParams(bool vegetation) const;
+    void fitShadowImage(bool vegetation); // shadowParams_; throws if the device cannot hold the shadow image
     void createShadowMap();
     // The tiles' ground within the view distance of `reference`; the main pass binds each tile's cover.
     void drawTerrain(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame, const glm::dvec3& reference);

@@ -49,10 +49,14 @@ VegetationRenderer::Tile::Tile(Context& ctx, const VegetationTile& tile, uint64_
     draws = createBuffer(ctx, gpu::kLodCount * sizeof(VkDrawIndexedIndirectCommand),
                          kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryIntent::DeviceLocal);
     stats = createBuffer(ctx, sizeof(gpu::ExpansionStats), kStorage, MemoryIntent::DeviceLocal);
+    clusterBoxes = sward::clusterBoxes(tile);
+    const uint64_t align = ctx.device.properties().limits.minStorageBufferOffsetAlignment;
+    orderStride = (uint64_t(std::max(buffers.clusterCount, 1u)) * sizeof(uint32_t) + align - 1) / align * align;
+    clusterOrder = createBuffer(ctx, orderStride * gpu::kFrameDataSlots, kStorage, MemoryIntent::Upload);
 }
 
 VegetationRenderer::Tile::~Tile() {
-    for (Buffer* b : {&constants, &clusterCounts, &draws, &stats}) retireBuffer(ctx, *b);
+    for (Buffer* b : {&constants, &clusterCounts, &draws, &stats, &clusterOrder}) retireBuffer(ctx, *b);
 }
 
 PipelineLayoutDesc VegetationRenderer::drawLayout(bool withShadowMap) const {
@@ -105,7 +109,8 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const A
     scanPipeline_ =
         createComputePipeline(ctx.device, "vegetation_scan.comp",
                               {.bindings = {ssbo(gpu::kScanBindingClusterCounts, cs), ssbo(gpu::kScanBindingDraws, cs),
-                                            ssbo(gpu::kScanBindingStats, cs), ssbo(gpu::kScanBindingCursor, cs)},
+                                            ssbo(gpu::kScanBindingStats, cs), ssbo(gpu::kScanBindingCursor, cs),
+                                            ssbo(gpu::kScanBindingClusterOrder, cs)},
                                .pushConstantSize = sizeof(gpu::ScanConstants),
                                .pushConstantStages = cs});
 
@@ -266,6 +271,9 @@ void VegetationRenderer::writeConstants(const Tile& tile, const Camera& camera, 
     c.categoryAspect = meanAspects_;
     c.farLod = glm::vec4(scene_.lod.sliceLayers, scene_.lod.mergeWidth, float(camera.fy), 0.0f);
     std::memcpy(tile.constants.mapped() + (slot % gpu::kFrameDataSlots) * constantsStride_, &c, sizeof c);
+    frontToBack(tile.clusterBoxes, glm::vec3(camera.position), orderScratch_);
+    std::memcpy(tile.clusterOrder.mapped() + (slot % gpu::kFrameDataSlots) * tile.orderStride, orderScratch_.data(),
+                orderScratch_.size() * sizeof(uint32_t));
 }
 
 void VegetationRenderer::expand(VkCommandBuffer cmd, const Camera& camera, double timeSeconds, uint32_t slot,
@@ -318,7 +326,9 @@ void VegetationRenderer::expandTile(VkCommandBuffer cmd, const Tile& tile, uint3
                     {storageBuffer(gpu::kScanBindingClusterCounts, tile.clusterCounts.handle),
                      storageBuffer(gpu::kScanBindingDraws, tile.draws.handle),
                      storageBuffer(gpu::kScanBindingStats, tile.stats.handle),
-                     storageBuffer(gpu::kScanBindingCursor, cursor_.handle)});
+                     storageBuffer(gpu::kScanBindingCursor, cursor_.handle),
+                     storageBuffer(gpu::kScanBindingClusterOrder, tile.clusterOrder.handle,
+                                   (slot % gpu::kFrameDataSlots) * tile.orderStride, tile.orderStride)});
     pushConstants(cmd, scanPipeline_, gpu::ScanConstants{.clusterCount = b.clusterCount, .capacity = capacity_, .firstTile = firstTile ? 1u : 0u, .cutoutCorners = cutoutCorners_});
     vkCmdDispatch(cmd, 1, 1, 1); // one workgroup scans every cluster
     computeToComputeBarrier(cmd);

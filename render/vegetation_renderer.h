@@ -136,6 +136,11 @@ private:
         glm::dvec2 boundsMin, boundsMax; // xy of the tile: its plants' roots lie in it
         VegetationBuffers buffers;
         Buffer constants, clusterCounts, draws, stats;
+        // The clusters' boxes, and per frame slot the order the expansion lays their instances out in (frontToBack
+        // from the camera): written by the CPU each frame, read by the scan.
+        std::vector<ClusterBox> clusterBoxes;
+        Buffer clusterOrder;
+        uint64_t orderStride = 0;
         bool expanded = false; // by the latest expand(): within reach of the camera; draw() draws only these
     };
     using TileKey = std::pair<int32_t, int32_t>; // (y, x): the map iterates in the frame's tile order
@@ -178,6 +183,7 @@ private:
     VegetationPassFormats formats_;
     PipelineStatistics* statistics_ = nullptr;
     uint32_t cutoutCorners_ = 0;
+    std::vector<uint32_t> orderScratch_; // writeConstants: a tile's frontToBack order, kept between frames
     // The atlas cell table with each cut-out corner count's polygons (index = corners; 0: the whole cells).
     std::array<std::vector<gpu::AtlasCellGpu>, gpu::kMaxCutoutCorners + 1> cellTables_;
 };

@@ -1,10 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Exclusive prefix sum of the per-cluster LOD counts, in cluster order, by a single workgroup; turns counts
-// into instance offsets (in place) and writes the three indexed indirect draw commands (the plant index buffers hold
-// each LOD's pattern: plantFirstIndex). A tile's instances are laid out as
-// [all near | all mid | all far], each LOD in cluster order, from the pool's cursor on; the scan advances the
-// cursor past what it kept, so the tiles of a frame (expanded one after another, in tile order) share one pool.
+// Exclusive prefix sum of the per-cluster LOD counts, in the frame's cluster order (front to back from the camera:
+// vegetation_tile.h, frontToBack), by a single workgroup; turns counts into instance offsets (in place) and writes
+// the three indexed indirect draw commands (the plant index buffers hold each LOD's pattern: plantFirstIndex). A
+// tile's instances are laid out as [all near | all mid | all far], each LOD in that cluster order, from the pool's
+// cursor on; the scan advances the cursor past what it kept, so the tiles of a frame (expanded one after another, in
+// tile order) share one pool.
 #include "shared/config.h"
 #include "shared/gpu_layout.h"
 
@@ -22,6 +23,7 @@ layout(set = 0, binding = kScanBindingClusterCounts, std430) buffer ClusterCount
 layout(set = 0, binding = kScanBindingDraws, std430) writeonly buffer Draws { DrawIndexedIndirectCommand draws[]; };
 layout(set = 0, binding = kScanBindingStats, std430) writeonly buffer Stats { ExpansionStats stats; };
 layout(set = 0, binding = kScanBindingCursor, std430) buffer Cursor { uint cursor; };
+layout(set = 0, binding = kScanBindingClusterOrder, std430) readonly buffer Order { uint clusterOrder[]; };
 layout(push_constant) uniform Push { ScanConstants push; };
 
 shared uvec4 partial[kScanGroupSize];
@@ -36,7 +38,7 @@ void main() {
     uvec4 sum = uvec4(0u);
     uint visible = 0u;
     for (uint i = begin; i < end; ++i) {
-        uvec4 counts = clusterCounts[i]; // w: plants of the cluster if it was visible, else 0
+        uvec4 counts = clusterCounts[clusterOrder[i]]; // w: plants of the cluster if it was visible, else 0
         sum += counts;
         visible += counts.w > 0u ? 1u : 0u;
     }
@@ -54,8 +56,9 @@ void main() {
     uvec4 lodBase = uvec4(first, first + total.x, first + total.x + total.y, 0u);
     uvec4 running = partial[lane] - sum; // exclusive prefix of this lane's chunk
     for (uint i = begin; i < end; ++i) {
-        uvec4 counts = clusterCounts[i];
-        clusterCounts[i] = uvec4(lodBase.xyz + running.xyz, 0u);
+        uint cluster = clusterOrder[i];
+        uvec4 counts = clusterCounts[cluster];
+        clusterCounts[cluster] = uvec4(lodBase.xyz + running.xyz, 0u);
         running += counts;
     }
     if (lane < kLodCount) {

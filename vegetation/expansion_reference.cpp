@@ -97,51 +97,55 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
     ReferenceExpansion out;
     const auto planes = camera.frustumPlanes();
     const glm::vec3 eye(camera.position);
-    uint32_t fieldFirst = 0; // the field's first plant in the tile's record buffers (fields packed in order)
-    for (const FieldVegetation& field : tile.fields) {
-        for (const gpu::PlantCluster& box : field.clusters) {
-            if (box.range.y == 0 || !clusterVisible(planes, lod, eye, glm::vec3(box.boundsMin), glm::vec3(box.boundsMax)))
-                continue;
-            ++out.visibleClusters;
-            out.plantsConsidered += box.range.y;
-            glm::vec2 cover(-1.0f);
-            for (uint32_t i = box.range.x; i < box.range.x + box.range.y; ++i) {
-                const gpu::PlantStatic& plant = field.staticRecords[i];
-                glm::vec3 position = decodePlantPosition(plant, field.origin, field.positionStep);
-                const float distance = glm::distance(position, eye);
-                LodChoice choice = chooseLod(lod, distance);
-                if (choice.lodA == kNoLod) continue;
-                float height = plantHeight(vegetation, plant, field.dynamicRecords[i]);
-                uint32_t width = uint32_t(gpu::kWidthScaleUnit); // widthBits()
-                if (choice.lodA == gpu::kLodFar && choice.lodB == kNoLod) {
-                    float widthPixels =
-                        height * atlas.aspect[plant.attributes & 3u] * float(camera.fy) / std::max(distance, 1e-3f);
-                    float scale = gpu::mergeWidthScale(lod.mergeWidth, widthPixels, gpu::mergeHash(fieldFirst + i));
-                    width = uint32_t(std::min(scale * gpu::kWidthScaleUnit + 0.5f, 255.0f));
-                    if (width == 0) continue;
-                }
-                uint32_t slice = 0; // sliceBits()
-                if (choice.lodA == gpu::kLodFar && choice.lodB == kNoLod && lod.sliceLayers > 0.0f) {
-                    if (cover.x < 0.0f) cover = clusterCardCover(vegetation, field, box, atlas.card);
-                    float sinView = glm::dot(glm::normalize(eye - position), decodeOctahedral(plant.up));
-                    float cut = gpu::sliceHeight(lod.sliceLayers, cover.x, cover.y, sinView);
-                    slice = uint32_t(std::min(cut / std::max(height, 1e-6f), 1.0f) * gpu::kSliceUnit);
-                    if (slice == uint32_t(gpu::kSliceUnit)) continue;
-                }
-                gpu::ExpandedPlant expanded =
-                    expandWholePlant(vegetation, wind, field, i, field.dynamicRecords[i], time);
-                expanded.attributes |= slice << 24;
-                expanded.fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 255.0f + 0.5f) | (width << 8) |
-                                (expanded.fade & 0xffff0000u);
-                const uint32_t fade = expanded.fade;
-                out.lods[choice.lodA].push_back(expanded);
-                if (choice.lodB != kNoLod) {
-                    expanded.fade = fade | 0x10000u;
-                    out.lods[choice.lodB].push_back(expanded);
-                }
+    // Each field's first plant in the tile's record buffers (fields packed in order).
+    std::vector<uint32_t> fieldFirsts(1, 0u);
+    for (const FieldVegetation& field : tile.fields) fieldFirsts.push_back(fieldFirsts.back() + field.plantCount());
+    const uint32_t perField = tile.clustersPerField * tile.clustersPerField;
+    std::vector<uint32_t> order;
+    frontToBack(clusterBoxes(tile), eye, order);
+    for (uint32_t cluster : order) {
+        const FieldVegetation& field = tile.fields[cluster / perField];
+        const gpu::PlantCluster& box = field.clusters[cluster % perField];
+        const uint32_t fieldFirst = fieldFirsts[cluster / perField];
+        if (box.range.y == 0 || !clusterVisible(planes, lod, eye, glm::vec3(box.boundsMin), glm::vec3(box.boundsMax)))
+            continue;
+        ++out.visibleClusters;
+        out.plantsConsidered += box.range.y;
+        glm::vec2 cover(-1.0f);
+        for (uint32_t i = box.range.x; i < box.range.x + box.range.y; ++i) {
+            const gpu::PlantStatic& plant = field.staticRecords[i];
+            glm::vec3 position = decodePlantPosition(plant, field.origin, field.positionStep);
+            const float distance = glm::distance(position, eye);
+            LodChoice choice = chooseLod(lod, distance);
+            if (choice.lodA == kNoLod) continue;
+            float height = plantHeight(vegetation, plant, field.dynamicRecords[i]);
+            uint32_t width = uint32_t(gpu::kWidthScaleUnit); // widthBits()
+            if (choice.lodA == gpu::kLodFar && choice.lodB == kNoLod) {
+                float widthPixels =
+                    height * atlas.aspect[plant.attributes & 3u] * float(camera.fy) / std::max(distance, 1e-3f);
+                float scale = gpu::mergeWidthScale(lod.mergeWidth, widthPixels, gpu::mergeHash(fieldFirst + i));
+                width = uint32_t(std::min(scale * gpu::kWidthScaleUnit + 0.5f, 255.0f));
+                if (width == 0) continue;
+            }
+            uint32_t slice = 0; // sliceBits()
+            if (choice.lodA == gpu::kLodFar && choice.lodB == kNoLod && lod.sliceLayers > 0.0f) {
+                if (cover.x < 0.0f) cover = clusterCardCover(vegetation, field, box, atlas.card);
+                float sinView = glm::dot(glm::normalize(eye - position), decodeOctahedral(plant.up));
+                float cut = gpu::sliceHeight(lod.sliceLayers, cover.x, cover.y, sinView);
+                slice = uint32_t(std::min(cut / std::max(height, 1e-6f), 1.0f) * gpu::kSliceUnit);
+                if (slice == uint32_t(gpu::kSliceUnit)) continue;
+            }
+            gpu::ExpandedPlant expanded = expandWholePlant(vegetation, wind, field, i, field.dynamicRecords[i], time);
+            expanded.attributes |= slice << 24;
+            expanded.fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 255.0f + 0.5f) | (width << 8) |
+                            (expanded.fade & 0xffff0000u);
+            const uint32_t fade = expanded.fade;
+            out.lods[choice.lodA].push_back(expanded);
+            if (choice.lodB != kNoLod) {
+                expanded.fade = fade | 0x10000u;
+                out.lods[choice.lodB].push_back(expanded);
             }
         }
-        fieldFirst += uint32_t(field.staticRecords.size());
     }
     return out;
 }

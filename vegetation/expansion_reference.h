@@ -17,7 +17,8 @@
 namespace sward {
 
 struct ReferenceExpansion {
-    std::array<std::vector<gpu::ExpandedPlant>, gpu::kLodCount> lods; // each in cluster order, then plant order
+    std::array<std::vector<gpu::ExpandedPlant>, gpu::kLodCount>
+        lods; // each in frontToBack cluster order, then plant order
     uint32_t visibleClusters = 0;
     uint64_t plantsConsidered = 0; // plants of visible clusters
 };

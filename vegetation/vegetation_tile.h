@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace sward {
@@ -74,5 +75,18 @@ VegetationStats countVegetation(const VegetationTile& tile);
 
 // The per-field GPU table (decoding origin, record and cluster ranges), in field order.
 std::vector<gpu::PlantField> makeFieldTable(const VegetationTile& tile);
+
+// A cluster's box (gpu::PlantCluster's bounds), by tile cluster index: field index * clustersPerField^2 + the
+// cluster's index in its field, the expansion's numbering.
+struct ClusterBox {
+    glm::vec3 min{0.0f}, max{0.0f};
+};
+std::vector<ClusterBox> clusterBoxes(const VegetationTile& tile);
+
+// The tile's cluster indices front to back from `eye`: by the squared distance from the eye to the cluster's box
+// (0 inside it), ties by index, so the order is a pure function of the boxes and the eye. The expansion lays each
+// LOD's instances out in this order, so nearer plants are drawn first and the depth test rejects what they hide
+// before it is shaded.
+void frontToBack(std::span<const ClusterBox> boxes, glm::vec3 eye, std::vector<uint32_t>& order);
 
 } // namespace sward

@@ -77,6 +77,7 @@ SWARD_CONST(uint, kScanBindingClusterCounts, 0u);
 SWARD_CONST(uint, kScanBindingDraws, 1u);
 SWARD_CONST(uint, kScanBindingStats, 2u);
 SWARD_CONST(uint, kScanBindingCursor, 3u); // uint: first free instance of the frame's shared pool (tiles chain)
+SWARD_CONST(uint, kScanBindingClusterOrder, 4u); // uint[clusters]: the order instances are laid out in (frontToBack)
 
 // Interaction recovery (plant_recovery.comp).
 SWARD_CONST(uint, kRecoveryBindingDynamics, 0u);
