@@ -18,8 +18,8 @@ layout(location = 15) flat in vec3 inAmbient;
 layout(location = 0) out vec4 outColor;
 
 void main() {
+    vec4 texel = plantTexel(); // before any discard: its mip level needs the whole 2x2 quad
     if (!keepFragment()) discard;
-    vec4 texel = texture(atlas, inUv);
     float alpha = texel.a;
     if (ALPHA_TO_COVERAGE) {
         alpha = (alpha - 0.5) / max(fwidth(alpha), 1e-4) + 0.5;

@@ -36,6 +36,8 @@ layout(location = 10) flat out mat3 outAlbedo; // colour pass: plantShading (loc
 layout(location = 13) flat out vec3 outAlbedoOffset;
 layout(location = 14) flat out vec3 outSunLight;
 layout(location = 15) flat out vec3 outAmbient;
+layout(location = 18) flat out vec4 outUvRect; // the cell's atlas rectangle (outUv is in cell coordinates)
+layout(location = 19) flat out float outRepeat; // copies of the plant across the quad (PlantQuad::repeat)
 
 void main() {
     ExpandedPlant instance = instances[gl_InstanceIndex];
@@ -54,6 +56,8 @@ void main() {
     PlantQuad quad = plantQuad(instance, push.lod, uint(gl_VertexIndex) / perQuad, veg.cameraPosition.xyz, cell);
     PlantVertex v = quadCorner(instance, quad, cell, push.lod, uint(gl_VertexIndex) % perQuad);
     outUv = v.uv;
+    outUvRect = quad.uvRect;
+    outRepeat = quad.repeat;
     outWorld = v.position;
     outViewDepth = (frame.view * vec4(v.position, 1.0)).z;
     outFade = instance.fade | (push.lod << 21); // bits 21-22: the LOD, for the viewer's LOD colours

@@ -15,7 +15,12 @@ void main() {
     if (i >= push.vertexCount) return;
     uint verticesPerPlant = plantVertexCount(push.lod, veg.options.x);
     ExpandedPlant instance = instances[push.firstInstance + i / verticesPerPlant];
-    PlantVertex v = plantVertex(instance, push.lod, i % verticesPerPlant, veg.cameraPosition.xyz);
-    baked[push.firstVertex + i] = BakedVertex(vec4(v.position, v.heightFraction), vec4(v.uv, v.random, 0.0),
+    // Vertex k of the plant's unindexed draw: fan vertex k % perQuad of quad k / perQuad.
+    uint k = i % verticesPerPlant, cell, perQuad = quadVertexCount(push.lod, veg.options.x);
+    PlantQuad q = plantQuad(instance, push.lod, k / perQuad, veg.cameraPosition.xyz, cell);
+    PlantVertex v = quadCorner(instance, q, cell, push.lod, fanCorner(k % perQuad));
+    // Static vertices carry atlas coordinates: a merged billboard shows its plant stretched (a timing baseline).
+    vec2 uv = mix(q.uvRect.xy, q.uvRect.zw, vec2(v.uv.x / q.repeat, v.uv.y));
+    baked[push.firstVertex + i] = BakedVertex(vec4(v.position, v.heightFraction), vec4(uv, v.random, 0.0),
                                               uvec4(instance.up, instance.fade, 0u, 0u));
 }

@@ -5,5 +5,6 @@
 #include "shared/plant_fragment.glsl"
 
 void main() {
-    if (!keepFragment() || texture(atlas, inUv).a < 0.5) discard;
+    float alpha = plantTexel().a; // before any discard: its mip level needs the whole 2x2 quad
+    if (!keepFragment() || alpha < 0.5) discard;
 }

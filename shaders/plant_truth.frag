@@ -14,7 +14,8 @@ layout(location = 1) out uvec2 outLabel; // label, tile label
 layout(location = 2) out vec4 outNormal; // the triangle's camera-frame unit normal (plant.vert), w 0
 
 void main() {
-    if (!keepFragment() || texture(atlas, inUv).a < 0.5) discard;
+    float alpha = plantTexel().a; // before any discard: its mip level needs the whole 2x2 quad
+    if (!keepFragment() || alpha < 0.5) discard;
     outDepthBits = floatBitsToUint(inViewDepth);
     outLabel = uvec2(inLabel, inTile);
     outNormal = vec4(inNormal, 0.0);

@@ -44,8 +44,9 @@ struct LodParams {
     // with probability exp(-sliceLayers). 0: off.
     float sliceLayers = 8.0f;
     // Far billboards narrower on screen than this many pixels are merged into fewer, wider ones
-    // (gpu::mergeWidthScale): the same expected coverage from fewer triangles. 0: off.
-    float mergeWidth = 6.0f;
+    // (gpu::mergeWidthScale), each showing as many copies of its plant side by side: the same expected coverage
+    // from fewer triangles. 0: off.
+    float mergeWidth = 12.0f;
 };
 
 // Procedural wind (a pure function of simulation time; see shaders/shared/vegetation.glsl).

@@ -286,13 +286,14 @@ float sliceHeight(float layersWanted, float cover2, float cover1, float sinView)
 SWARD_CONST(float, kSliceUnit, 255.0);
 
 // Merging of far billboards narrower than a few pixels (LodParams::mergeWidth) into fewer, wider ones: a far plant
-// `widthPixels` wide on screen is kept with probability widthPixels / mergeWidth (by its hash `u` in [0, 1)) and
-// drawn that much wider, up to kMaxMergeWiden times. The expected drawn width per plant is its own, so coverage and
-// the height at which a grazing ray meets the plants are unchanged (Boolean model: density times width is what
-// blocks a ray), while the rasteriser sees a few billboards a block wide instead of many smaller ones, each of which
-// costs at least a 4 x 4 block of fragment lanes on a CPU driver (a 2 x 2 quad on a GPU) and a vertex stage. The kept
-// plants nearest the threshold (the top kMergeFade of the kept range) shrink to nothing as the camera moves away, so
-// none pops. Returns the plant's width scale (0: not drawn); exactly 1 where nothing is merged.
+// `widthPixels` wide on screen is kept with probability widthPixels / mergeWidth (by its hash `u` in [0, 1)) and drawn
+// that much wider, up to kMaxMergeWiden times, showing that many copies of its plant side by side (plant_fragment.glsl,
+// plantTexel), not one plant stretched. The expected drawn width per plant is its own, so coverage and the height at
+// which a grazing ray meets the plants are unchanged (Boolean model: density times width is what blocks a ray), while
+// the rasteriser sees a few billboards a block wide instead of many smaller ones, each of which costs at least a 4 x 4
+// block of fragment lanes on a CPU driver (a 2 x 2 quad on a GPU) and a vertex stage. The kept plants nearest the
+// threshold (the top kMergeFade of the kept range) shrink to nothing as the camera moves away, so none pops. Returns
+// the plant's width scale (0: not drawn); exactly 1 where nothing is merged.
 SWARD_CONST(float, kMergeFade, 0.25);
 SWARD_CONST(float, kMaxMergeWiden, 6.0);
 #ifdef __cplusplus

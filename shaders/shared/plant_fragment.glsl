@@ -13,6 +13,25 @@ layout(location = 4) flat in uint inFade;
 layout(location = 5) in float inHeightFraction;
 layout(location = 6) flat in float inRandom;
 layout(location = 7) flat in uint inLabel; // ground truth only
+layout(location = 18) flat in vec4 inUvRect; // the cell's atlas rectangle: u0, v0, u1, v1
+layout(location = 19) flat in float inRepeat;
+
+// The plant's atlas texel here. inUv is in cell coordinates; on a merged far billboard (inRepeat > 1) u runs over
+// 0..inRepeat and shows that many copies of the plant side by side, every other one mirrored so each seam is
+// continuous: plants at their own width, not one plant stretched. The mip level comes from the unwrapped
+// coordinate, the same on both sides of a seam. Colour, truth and shadow passes all sample through here, so they
+// keep the same texels.
+vec4 plantTexel() {
+    vec2 size = inUvRect.zw - inUvRect.xy;
+    vec2 dx = dFdx(inUv) * size, dy = dFdy(inUv) * size;
+    float u = inUv.x;
+    if (inRepeat > 1.0) {
+        float copy = floor(u);
+        u -= copy;
+        if (mod(copy, 2.0) == 1.0) u = 1.0 - u;
+    }
+    return textureGrad(atlas, inUvRect.xy + size * vec2(u, inUv.y), dx, dy);
+}
 
 // Cross-fade between two LOD copies of one plant: both copies compute the same threshold per pixel, the lower
 // copy keeps the pixel when threshold >= t, the upper copy when threshold < t: exactly one survives.

@@ -18,7 +18,7 @@ const vec2 kFullQuadFan[4] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 
 
 struct PlantVertex {
     vec3 position;        // world, metres
-    vec2 uv;              // atlas texture coordinates
+    vec2 uv;              // cell coordinates (u across, v down, 0..1 the cell; u runs to PlantQuad::repeat)
     float heightFraction; // 0 at the base, 1 at the top of the (uncut) plant
     float random;         // the plant's random value
 };
@@ -36,6 +36,7 @@ struct PlantQuad {
     vec2 tip;
     vec3 baseAspect; // the cell's base u, base v, aspect
     vec4 uvRect;
+    float repeat; // copies of the plant side by side across the quad: a merged far billboard's widening, else 1
 };
 
 // Quad `quad` of `quads` of a felled plant (gpu_layout.h, kFelledLean): across the lay direction (the push that
@@ -65,7 +66,9 @@ PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, vec3 camera, ou
     q.random = float(bitfieldExtract(instance.attributes, 16, 8)) * (1.0 / 255.0);
     cell = category * veg.counts.w + variant;
     vec4 baseAspect = cells[cell].baseAspect;
-    q.width = q.height * baseAspect.z * (float(bitfieldExtract(instance.fade, 8, 8)) / kWidthScaleUnit); // merging
+    float widen = float(bitfieldExtract(instance.fade, 8, 8)) / kWidthScaleUnit; // far merging (mergeWidthScale)
+    q.width = q.height * baseAspect.z * widen;
+    q.repeat = max(widen, 1.0);
     q.baseAspect = baseAspect.xyz;
     q.uvRect = cells[cell].uvRect;
     q.cutFraction = float(instance.fade >> 24) * (1.0 / 255.0); // height is already cut to this fraction
@@ -125,10 +128,12 @@ PlantVertex quadCorner(ExpandedPlant instance, PlantQuad q, uint cell, uint lod,
         // Far slicing (sliceHeight): the quad starts at the cut height, so its bottom rows of the cell are not drawn.
         at.y = mix(sliceBottom(instance, q), 1.0, at.y);
         vec3 position = quadPoint(q, at, fraction);
-        // Cut plants show the lower part of the texture (stalks), not a squashed plant.
-        float u = (q.random > 0.5) ? 1.0 - at.x : at.x; // mirror half of the plants for variety
+        // Cut plants show the lower part of the texture (stalks), not a squashed plant. A merged billboard shows
+        // `repeat` copies of its plant side by side (plantTexel), not one plant stretched.
+        float u = at.x * q.repeat;
+        if (q.random > 0.5) u = q.repeat - u; // mirror half of the plants for variety
         float v = 1.0 - at.y * q.cutFraction;
-        return PlantVertex(position, mix(q.uvRect.xy, q.uvRect.zw, vec2(u, v)), fraction, q.random);
+        return PlantVertex(position, vec2(u, v), fraction, q.random);
     }
     // Cut-out: corner (x across, y up) of a point of the cell's polygon; cut plants, which stretch the lower part of
     // their texture over the quad, keep the whole quad (a fan of two triangles and empty ones).
@@ -143,16 +148,7 @@ PlantVertex quadCorner(ExpandedPlant instance, PlantQuad q, uint cell, uint lod,
     // On the quad's plane between its bottom and top edges: exactly where the whole quad shows that texel.
     float bottomFraction, topFraction;
     vec3 bottom = quadPoint(q, vec2(at.x, 0.0), bottomFraction), top = quadPoint(q, vec2(at.x, 1.0), topFraction);
-    return PlantVertex(mix(bottom, top, at.y), mix(q.uvRect.xy, q.uvRect.zw, uv), mix(bottomFraction, topFraction, at.y),
-                       q.random);
-}
-
-// Vertex `vertexIndex` of the instance's unindexed draw (fan vertex vertexIndex % quadVertexCount of quad
-// vertexIndex / quadVertexCount): the bake, whose static vertices are drawn unindexed.
-PlantVertex plantVertex(ExpandedPlant instance, uint lod, uint vertexIndex, vec3 camera) {
-    uint cell, perQuad = quadVertexCount(lod, veg.options.x);
-    PlantQuad q = plantQuad(instance, lod, vertexIndex / perQuad, camera, cell);
-    return quadCorner(instance, q, cell, lod, fanCorner(vertexIndex % perQuad));
+    return PlantVertex(mix(bottom, top, at.y), uv, mix(bottomFraction, topFraction, at.y), q.random);
 }
 
 // Corner `index` of the instance's indexed draw (corner index % quadCornerCount of quad index / quadCornerCount,

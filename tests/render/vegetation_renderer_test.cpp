@@ -236,6 +236,51 @@ TEST_F(VegetationTest, SlicingAndMergingFarBillboardsKeepCoverageAndColour) {
     EXPECT_NEAR(sliced.green / whole.green, 1.0, 0.02) << "mean plant colour within 2 %";
 }
 
+// A merged far billboard (LodParams::mergeWidth) is drawn wider than its plant: it shows copies of the plant side by
+// side (plant_fragment.glsl, plantTexel), not one plant stretched, so the far plants keep their detail across the
+// image (here the mean difference of green between horizontal neighbours), as they keep it up the image.
+TEST_F(VegetationTest, MergedFarBillboardsKeepTheirDetailAcrossTheImage) {
+    struct Detail {
+        double across = 0.0, up = 0.0;
+        uint64_t pairs = 0;
+    };
+    // Across the tile's diagonal, just above the plants, so that far plants fill much of the image.
+    const glm::dvec3 eye(3.0, 3.0, terrain.height({3.0f, 3.0f}) + 1.0);
+    const glm::dvec3 target(97.0, 97.0, terrain.height({97.0f, 97.0f}) + 0.3);
+    const Camera grazing = Camera::lookAt(eye, target, {0, 0, 1}, 30.0, kWidth, kHeight);
+    auto measure = [&](float mergeWidth) {
+        scene.lod.mergeWidth = mergeWidth;
+        auto r = renderer(true);
+        FrameImages frame = renderFrame(*ctx, *r, grazing);
+        auto farPlant = [&](size_t i) {
+            const uint32_t semantic = frame.labels[i] >> gpu::kInstanceBits;
+            return semantic >= gpu::kSemanticVegetation &&
+                   semantic < gpu::kSemanticVegetation + gpu::kMaxPlantCategories &&
+                   frame.depth[i] > scene.lod.midToFar + scene.lod.band;
+        };
+        auto green = [&](size_t i) { return double(halfBitsToFloat(frame.rgbaHalf[4 * i + 1])); };
+        Detail d;
+        for (uint32_t y = 1; y < kHeight; ++y)
+            for (uint32_t x = 1; x < kWidth; ++x) {
+                const size_t i = size_t(y) * kWidth + x;
+                if (!farPlant(i) || !farPlant(i - 1) || !farPlant(i - kWidth)) continue; // one far plant or another
+                d.across += std::abs(green(i) - green(i - 1));
+                d.up += std::abs(green(i) - green(i - kWidth));
+                ++d.pairs;
+            }
+        d.across /= std::max<double>(double(d.pairs), 1.0);
+        d.up /= std::max<double>(double(d.pairs), 1.0);
+        return d;
+    };
+    const Detail whole = measure(0.0f), merged = measure(12.0f);
+    std::printf("far plant pixels %llu / %llu, detail across %.4f -> %.4f, up %.4f -> %.4f\n",
+                (unsigned long long)whole.pairs, (unsigned long long)merged.pairs, whole.across, merged.across,
+                whole.up, merged.up);
+    ASSERT_GT(whole.pairs, uint64_t(kWidth * kHeight / 20)) << "too few far plant pixels to measure";
+    EXPECT_NEAR(merged.across / whole.across, 1.0, 0.05) << "detail across the image within 5 %";
+    EXPECT_NEAR(merged.up / whole.up, 1.0, 0.05) << "detail up the image within 5 %";
+}
+
 TEST_F(VegetationTest, ClusterCullingSkipsWhatTheCameraCannotSee) {
     auto r = renderer(true);
     renderFrame(*ctx, *r, camera);
