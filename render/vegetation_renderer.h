@@ -150,6 +150,7 @@ private:
     PipelineLayoutDesc drawLayout(bool withShadowMap) const; // the plant draws' layout: main (shadow map) or not
     GraphicsPipelineDesc mainPipelineDesc(const char* fragmentShader) const;
     GraphicsPipelineDesc truthPipelineDesc() const; // the truth pass's plant draw (without flow)
+    // The tile's expansion inputs for this frame slot: its constants and its clusters' frontToBack order.
     void writeConstants(const Tile& tile, const Camera& camera, double timeSeconds, uint32_t slot,
                         const std::array<glm::vec4, 5>& planes);
     void expandTile(VkCommandBuffer cmd, const Tile& tile, uint32_t slot, bool firstTile);
