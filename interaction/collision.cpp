@@ -125,17 +125,15 @@ gpu::PlantContact combineTouches(std::span<const PlantTouch> touches, const Reco
 // --- Pass --------------------------------------------------------------------------------------------------------
 
 struct CollisionPass::Scratch {
-    static constexpr uint32_t kNone = ~0u;
-    std::vector<uint32_t> candidates;
     std::array<std::vector<Run>, 2> runs; // of the field being tested and of the next one
-    std::vector<uint32_t> slot;    // per plant of the field: its index in sums, or kNone
+    std::vector<TouchSum> sums;           // per plant of the field: its touches so far (reset once emitted)
     std::vector<uint64_t> touched; // per plant of the field, one bit: has a touch (read back in plant order)
-    std::vector<TouchSum> sums;
+    uint32_t touchedPlants = 0;
 };
 
 CollisionPass::CollisionPass(const VegetationTile& tile, const VegetationParams& vegetation,
                              const InteractionParams& params)
-    : tile_(&tile), index_(tile, vegetation), params_(params), outputs_(tile.fields.size()) {
+    : tile_(&tile), index_(tile, vegetation), params_(params), grid_(tile), outputs_(tile.fields.size()) {
     for (uint32_t category = 0; category < pushGains_.size(); ++category)
         pushGains_[category] = params.categories[category].pushGain;
 }
@@ -170,16 +168,12 @@ inline void prefetchStems(const TileCollisionIndex::Stem* stems, uint32_t begin,
 bool CollisionPass::prepareField(uint32_t f, Scratch& s, uint32_t buffer, FieldOutput& out) const {
     const FieldVegetation& field = tile_->fields[f];
     if (field.plantCount() == 0) return false;
-    // The cluster table is read for every candidate below: fetch it while the BVH is searched.
-    for (size_t offset = 0; offset < field.clusters.size() * sizeof(gpu::PlantCluster); offset += 64)
-        __builtin_prefetch(reinterpret_cast<const char*>(field.clusters.data()) + offset);
-    s.candidates.clear();
-    bvh_.query({field.boundsMin, field.boundsMax}, s.candidates);
-    if (s.candidates.empty()) return false;
+    const std::span<const uint32_t> candidates = grid_.ranks(f);
+    if (candidates.empty()) return false;
     out.tested = true;
     const TileCollisionIndex::Field& index = index_.field(f);
     out.clustersTested = index.clustersWithPlants;
-    findCellRuns(field, index, s, s.runs[buffer]);
+    findCellRuns(field, index, candidates, s.runs[buffer]);
     return true;
 }
 
@@ -188,14 +182,14 @@ void CollisionPass::finishField(uint32_t f, std::span<const Collider> colliders,
                                 FieldOutput& out) const {
     const FieldVegetation& field = tile_->fields[f];
     out.plantsTested = touchStems(index_.field(f), field.plantCount(), colliders, s.runs[buffer], s);
-    if (s.sums.empty()) return;
+    if (s.touchedPlants == 0) return;
     emitContacts(f, field, s, out);
 }
 
 // Step 1: the runs of stems under each candidate's footprint, candidates in rank (= id) order so each plant's
 // touches are summed in id order. Only clusters under the collider's box are visited.
 void CollisionPass::findCellRuns(const FieldVegetation& field, const TileCollisionIndex::Field& index,
-                                 const Scratch& s, std::vector<Run>& runs) const {
+                                 std::span<const uint32_t> candidates, std::vector<Run>& runs) const {
     constexpr uint32_t kSide = TileCollisionIndex::kCellsPerSide;
     const float invCell = 1.0f / index_.cellSize();
     const uint32_t perSide = tile_->clustersPerField;
@@ -203,16 +197,14 @@ void CollisionPass::findCellRuns(const FieldVegetation& field, const TileCollisi
     // Cluster boxes may reach a little beyond their grid squares (position rounding, plant extents): the margin
     // keeps the range of clusters visited conservative, the exact cluster box test below decides.
     const float margin = index.overhang + 1e-3f;
+    const glm::vec2 o = field.origin;
     runs.clear();
-    for (uint32_t rank : s.candidates) {
-        const Aabb& b = bvh_.bounds(rank);
-        auto clusterCell = [&](float v, float o) {
-            return uint32_t(std::clamp(int32_t(std::floor((v - o) * invCluster)), 0, int32_t(perSide) - 1));
-        };
-        const uint32_t kx0 = clusterCell(b.min.x - margin, field.origin.x);
-        const uint32_t kx1 = clusterCell(b.max.x + margin, field.origin.x);
-        const uint32_t ky0 = clusterCell(b.min.y - margin, field.origin.y);
-        const uint32_t ky1 = clusterCell(b.max.y + margin, field.origin.y);
+    for (uint32_t rank : candidates) {
+        const Aabb& b = grid_.bounds(rank);
+        const uint32_t kx0 = gridCell(b.min.x - margin, o.x, invCluster, perSide);
+        const uint32_t kx1 = gridCell(b.max.x + margin, o.x, invCluster, perSide);
+        const uint32_t ky0 = gridCell(b.min.y - margin, o.y, invCluster, perSide);
+        const uint32_t ky1 = gridCell(b.max.y + margin, o.y, invCluster, perSide);
         for (uint32_t ky = ky0; ky <= ky1; ++ky)
             for (uint32_t kx = kx0; kx <= kx1; ++kx) {
                 const uint32_t k = ky * perSide + kx;
@@ -223,11 +215,10 @@ void CollisionPass::findCellRuns(const FieldVegetation& field, const TileCollisi
                 // Stems are vertical, so only plants whose base lies in the collider's xy footprint can be
                 // touched. Clamping keeps the cell range conservative for plants that a rounding put on the
                 // cluster's edge.
-                auto cell = [&](float v, float o) {
-                    return uint32_t(std::clamp(int32_t(std::floor((v - o) * invCell)), 0, int32_t(kSide) - 1));
-                };
-                const uint32_t x0 = cell(b.min.x, origin.x), x1 = cell(b.max.x, origin.x);
-                const uint32_t y0 = cell(b.min.y, origin.y), y1 = cell(b.max.y, origin.y);
+                const uint32_t x0 = gridCell(b.min.x, origin.x, invCell, kSide);
+                const uint32_t x1 = gridCell(b.max.x, origin.x, invCell, kSide);
+                const uint32_t y0 = gridCell(b.min.y, origin.y, invCell, kSide);
+                const uint32_t y1 = gridCell(b.max.y, origin.y, invCell, kSide);
                 for (uint32_t cy = y0; cy <= y1; ++cy) {
                     const uint32_t row = k * kSide * kSide + cy * kSide;
                     __builtin_prefetch(&index.cellStart[row + x0]);
@@ -357,7 +348,7 @@ PlantTouch CollisionPass::touchStem(const Collider& c, const Aabb& b, const Tile
 uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint32_t plantCount,
                                    std::span<const Collider> colliders, std::span<const Run> runs,
                                    Scratch& s) const {
-    if (s.slot.size() < plantCount) s.slot.resize(plantCount, Scratch::kNone);
+    if (s.sums.size() < plantCount) s.sums.resize(plantCount);
     if (s.touched.size() * 64 < plantCount) s.touched.resize(plantCount / 64 + 1, 0);
     const TileCollisionIndex::Stem* stems = index.stems;
     uint64_t tested = 0;
@@ -366,20 +357,18 @@ uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint3
             prefetchStems(stems, runs[r + kPrefetchRuns].begin, runs[r + kPrefetchRuns].end);
         const Run run = runs[r];
         tested += run.end - run.begin;
-        const Aabb& b = bvh_.bounds(run.rank);
-        const Collider& c = colliders[bvh_.inputIndex(run.rank)];
+        const Aabb& b = grid_.bounds(run.rank);
+        const Collider& c = colliders[grid_.inputIndex(run.rank)];
         const bool sphere = c.shape == ColliderShape::Sphere;
         const Footprint footprint{b.min.x, b.min.y, b.max.x, b.max.y, sphere ? c.centre.x : 0.0f,
                                   sphere ? c.centre.y : 0.0f, sphere ? c.radius * c.radius : INFINITY};
         // Groups of four may read up to three stems past the run (the index pads its end): their bits are dropped.
         auto add = [&](uint32_t plant, const PlantTouch& t) {
-            uint32_t& slot = s.slot[plant];
-            if (slot == Scratch::kNone) {
-                slot = uint32_t(s.sums.size());
-                s.touched[plant >> 6] |= uint64_t(1) << (plant & 63);
-                s.sums.emplace_back();
-            }
-            s.sums[slot].add(t);
+            uint64_t& word = s.touched[plant >> 6];
+            const uint64_t bit = uint64_t(1) << (plant & 63);
+            s.touchedPlants += (word & bit) == 0 ? 1u : 0u;
+            word |= bit;
+            s.sums[plant].add(t);
         };
         for (uint32_t i = run.begin; i < run.end; i += 4) {
             uint32_t mask = footprintMask4(stems + i, footprint);
@@ -408,27 +397,33 @@ uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint3
 }
 
 // Step 3: contacts leave sorted by plant, which is also cluster order (records are ordered by cluster); the bits
-// and slots are reset for the next field.
+// and sums are reset for the next field.
 void CollisionPass::emitContacts(uint32_t f, const FieldVegetation& field, Scratch& s, FieldOutput& out) const {
     const uint32_t plantCount = field.plantCount();
-    out.contacts.reserve(s.sums.size());
-    uint32_t k = 0;
+    out.contacts.resize(s.touchedPlants);
+    gpu::PlantContact* contact = out.contacts.data();
+    uint32_t k = 0, clusterEnd = field.clusters[0].range.x + field.clusters[0].range.y, listed = ~0u;
     for (uint32_t word = 0; word * 64 < plantCount; ++word) {
-        for (uint64_t bits = s.touched[word]; bits != 0; bits &= bits - 1) {
-            const uint32_t plant = word * 64 + uint32_t(std::countr_zero(bits));
-            uint32_t& slot = s.slot[plant];
-            gpu::PlantContact contact = s.sums[slot].contact(params_.recovery);
-            contact.plant = field.firstPlant + plant;
-            contact.field = f;
-            out.contacts.push_back(contact);
-            slot = Scratch::kNone;
-            while (plant >= field.clusters[k].range.x + field.clusters[k].range.y) ++k;
-            if (out.clusters.empty() || out.clusters.back() != field.firstCluster + k)
-                out.clusters.push_back(field.firstCluster + k);
-        }
+        uint64_t bits = s.touched[word];
+        if (bits == 0) continue;
         s.touched[word] = 0;
+        for (; bits != 0; bits &= bits - 1) {
+            const uint32_t plant = word * 64 + uint32_t(std::countr_zero(bits));
+            TouchSum& sum = s.sums[plant];
+            *contact = sum.contact(params_.recovery);
+            contact->plant = field.firstPlant + plant;
+            contact->field = f;
+            ++contact;
+            sum = TouchSum{};
+            while (plant >= clusterEnd) {
+                ++k;
+                clusterEnd = field.clusters[k].range.x + field.clusters[k].range.y;
+            }
+            if (k != listed) out.clusters.push_back(field.firstCluster + k);
+            listed = k;
+        }
     }
-    s.sums.clear();
+    s.touchedPlants = 0;
 }
 
 // Every field into its own output slot, on `threads` threads.
@@ -440,7 +435,7 @@ void CollisionPass::collideFields(std::span<const Collider> colliders, uint32_t 
         o.plantsTested = 0;
         o.tested = false;
     }
-    if (bvh_.size() == 0) return;
+    if (grid_.size() == 0) return;
     const uint32_t fieldCount = uint32_t(outputs_.size());
     const uint32_t used = std::min(threads, std::max((fieldCount + kFieldsPerTask - 1) / kFieldsPerTask, 1u));
     if (scratch_.size() < used) scratch_.resize(used);
@@ -468,7 +463,7 @@ void CollisionPass::collideFields(std::span<const Collider> colliders, uint32_t 
 CollisionResult CollisionPass::mergeFields(std::span<const Collider> colliders) const {
     CollisionResult result;
     result.stats.colliders = uint32_t(colliders.size());
-    result.stats.collidersKept = bvh_.size();
+    result.stats.collidersKept = grid_.size();
     size_t contactCount = 0;
     for (const FieldOutput& o : outputs_) contactCount += o.contacts.size();
     result.contacts.reserve(contactCount);
@@ -489,7 +484,7 @@ CollisionResult CollisionPass::mergeFields(std::span<const Collider> colliders) 
 CollisionResult CollisionPass::run(std::span<const Collider> colliders, uint32_t threads) {
     assert(threads >= 1);
     const auto start = std::chrono::steady_clock::now();
-    bvh_.build(colliders, index_.bounds());
+    grid_.build(colliders, index_.bounds());
     const auto built = std::chrono::steady_clock::now();
     collideFields(colliders, threads);
     CollisionResult result = mergeFields(colliders);

@@ -1,7 +1,7 @@
 // The CPU collision pass of paper 3.3 / issue 6: each fixed tick, colliders become per-plant contacts for the GPU.
 //
-// Colliders overlapping the tile's vegetation go into a BVH rebuilt every tick (Morton order with the rank as
-// tie break, so the tree and every result are deterministic). Each field whose box meets a collider is visited, then
+// Colliders overlapping the tile's vegetation are binned into the fields their boxes meet every tick (ColliderGrid:
+// ranks in collider id order, so every result is deterministic). Each field whose box meets a collider is visited, then
 // only its clusters whose boxes meet one, then only the plants of the cluster's sub-cells under the collider's
 // footprint (TileCollisionIndex: positions decoded once, bucketed in an 8x8 grid per cluster). A plant is its
 // upright stem, the vertical segment from its base up by its full height; it is touched when the collider
@@ -22,7 +22,7 @@
 // the smallest one. Output: at most one gpu::PlantContact per plant, sorted by plant index.
 #pragma once
 
-#include "interaction/collider_bvh.h"
+#include "interaction/collider_grid.h"
 #include "interaction/collision_index.h"
 #include "interaction/interaction_params.h"
 
@@ -40,13 +40,13 @@ class ParallelFor;
 
 struct CollisionStats {
     uint32_t colliders = 0;      // given
-    uint32_t collidersKept = 0;  // overlapping the vegetation's bounds (inserted in the BVH)
+    uint32_t collidersKept = 0;  // overlapping the vegetation's bounds (binned into fields)
     uint32_t fieldsTested = 0;   // fields whose box met at least one collider box
     uint32_t clustersTested = 0; // cluster boxes tested in those fields
     uint64_t plantsTested = 0;   // stems tested against a collider hull
     uint64_t contactBytes = 0;   // contacts * sizeof(gpu::PlantContact): the upload
     double cpuMs = 0.0;          // wall time of the pass (steady_clock; reported, never fed back into results)
-    double buildMs = 0.0;        // of which building the BVH
+    double buildMs = 0.0;        // of which binning the colliders into fields
 };
 
 struct CollisionResult {
@@ -99,8 +99,8 @@ private:
     bool prepareField(uint32_t f, Scratch& scratch, uint32_t buffer, FieldOutput& out) const;
     void finishField(uint32_t f, std::span<const Collider> colliders, Scratch& scratch, uint32_t buffer,
                      FieldOutput& out) const;
-    void findCellRuns(const FieldVegetation& field, const TileCollisionIndex::Field& index, const Scratch& s,
-                      std::vector<Run>& runs) const;
+    void findCellRuns(const FieldVegetation& field, const TileCollisionIndex::Field& index,
+                      std::span<const uint32_t> candidates, std::vector<Run>& runs) const;
     PlantTouch touchStem(const Collider& c, const Aabb& box, const TileCollisionIndex::Stem& stem) const;
     uint64_t touchStems(const TileCollisionIndex::Field& index, uint32_t plantCount,
                         std::span<const Collider> colliders, std::span<const Run> runs, Scratch& s) const;
@@ -112,7 +112,7 @@ private:
     TileCollisionIndex index_;
     InteractionParams params_;
     std::array<float, gpu::kMaxPlantCategories> pushGains_{}; // categories[c].pushGain by c, read per plant
-    ColliderBvh bvh_;
+    ColliderGrid grid_;
     std::vector<FieldOutput> outputs_;
     std::vector<Scratch> scratch_;      // one per thread, kept between ticks
     std::unique_ptr<ParallelFor> pool_; // threads - 1 helpers, started on first use

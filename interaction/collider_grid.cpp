@@ -1,0 +1,80 @@
+#include "interaction/collider_grid.h"
+
+#include "vegetation/vegetation_tile.h"
+
+#include <algorithm>
+
+namespace sward {
+
+ColliderGrid::ColliderGrid(const VegetationTile& tile)
+    : tile_(&tile), fieldBoxes_(tile.fields.size()), fieldStart_(tile.fields.size() + 1, 0) {
+    for (uint32_t f = 0; f < tile.fields.size(); ++f) {
+        const FieldVegetation& field = tile.fields[f];
+        if (field.plantCount() == 0) {
+            fieldBoxes_[f] = {glm::vec3(INFINITY), glm::vec3(-INFINITY)};
+            continue;
+        }
+        fieldBoxes_[f] = {field.boundsMin, field.boundsMax};
+        const glm::vec2 square =
+            tile.origin + tile.fieldSize * glm::vec2(float(f % tile.fieldsPerSide), float(f / tile.fieldsPerSide));
+        const glm::vec2 below = square - glm::vec2(field.boundsMin);
+        const glm::vec2 above = glm::vec2(field.boundsMax) - (square + tile.fieldSize);
+        margin_ = std::max({margin_, below.x, below.y, above.x, above.y});
+    }
+    // The grid arithmetic below rounds: a millimetre more keeps the range of fields visited conservative, and the
+    // exact box test decides.
+    margin_ += 1e-3f;
+}
+
+template <class Visit> void ColliderGrid::forEachField(const Aabb& box, Visit&& visit) const {
+    const uint32_t n = tile_->fieldsPerSide;
+    const float inverse = 1.0f / tile_->fieldSize;
+    const glm::vec2 o = tile_->origin;
+    const uint32_t x0 = gridCell(box.min.x - margin_, o.x, inverse, n),
+                   x1 = gridCell(box.max.x + margin_, o.x, inverse, n);
+    const uint32_t y0 = gridCell(box.min.y - margin_, o.y, inverse, n),
+                   y1 = gridCell(box.max.y + margin_, o.y, inverse, n);
+    for (uint32_t y = y0; y <= y1; ++y)
+        for (uint32_t x = x0; x <= x1; ++x) {
+            const uint32_t f = y * n + x;
+            if (fieldBoxes_[f].overlaps(box)) visit(f);
+        }
+}
+
+void ColliderGrid::build(std::span<const Collider> colliders, const Aabb& keep) {
+    std::vector<Kept>& kept = kept_;
+    kept.clear();
+    // Colliders far from any plant (high above, off the tile) are dropped before sorting: they are the bulk of a
+    // large scene and must cost one box test each.
+    for (uint32_t i = 0; i < colliders.size(); ++i) {
+        Aabb b = worldBounds(colliders[i]);
+        if (b.overlaps(keep)) kept.push_back({colliders[i].id, i, b});
+    }
+    // Callers usually list colliders in id order already: then the O(n) check is all this costs.
+    auto byId = [](const Kept& a, const Kept& b) { return a.id != b.id ? a.id < b.id : a.input < b.input; };
+    if (!std::is_sorted(kept.begin(), kept.end(), byId)) std::sort(kept.begin(), kept.end(), byId);
+    const uint32_t n = uint32_t(kept.size());
+    input_.resize(n);
+    bounds_.resize(n);
+    for (uint32_t r = 0; r < n; ++r) {
+        input_[r] = kept[r].input;
+        bounds_[r] = kept[r].box;
+    }
+    // A counting sort of the (field, rank) pairs, made in ascending rank order and stable: each field's list comes
+    // out ascending, whatever the input order.
+    pairs_.clear();
+    std::fill(fieldStart_.begin(), fieldStart_.end(), 0u);
+    for (uint32_t r = 0; r < n; ++r)
+        forEachField(bounds_[r], [&](uint32_t f) {
+            pairs_.emplace_back(f, r);
+            ++fieldStart_[f + 1];
+        });
+    for (size_t f = 1; f < fieldStart_.size(); ++f) fieldStart_[f] += fieldStart_[f - 1];
+    fieldRanks_.resize(pairs_.size());
+    for (auto [f, r] : pairs_) fieldRanks_[fieldStart_[f]++] = r;
+    // The fill moved each start to the next field's: shift back.
+    for (size_t f = fieldStart_.size() - 1; f > 0; --f) fieldStart_[f] = fieldStart_[f - 1];
+    fieldStart_[0] = 0;
+}
+
+} // namespace sward

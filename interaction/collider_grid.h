@@ -1,0 +1,65 @@
+// The colliders of one tick binned into the tile's grid of fields, so the collision pass meets each field with only
+// the colliders whose boxes overlap the field's.
+#pragma once
+
+#include "interaction/colliders.h"
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace sward {
+
+struct VegetationTile;
+
+// The cell of a regular grid of `count` cells of 1 / inverseSize metres from origin that holds v, clamped to the grid
+// (so NaN and values far beyond it cannot overflow the conversion). floor without libm: truncation is floor for the
+// positive values it is applied to.
+inline uint32_t gridCell(float v, float origin, float inverseSize, uint32_t count) {
+    const float c = (v - origin) * inverseSize;
+    return c > 0.0f ? (c < float(count) ? uint32_t(c) : count - 1) : 0u;
+}
+
+// Per field, the ranks of the colliders overlapping its box. Fields tile a regular grid, so each collider's box
+// names the few fields it can meet by arithmetic: binning is O(colliders + pairs) with no tree to build or walk
+// (a linear BVH over 10,000 colliders cost 0.2 ms to build and 1 us per field query). Ranks are positions in
+// (id, input index) order, and each field's list is ascending, so results never depend on the input's order beyond
+// ids.
+class ColliderGrid {
+public:
+    ColliderGrid() = default;
+    // tile must outlive the grid; its fields' boxes are read at every build.
+    explicit ColliderGrid(const VegetationTile& tile);
+
+    // Keeps the colliders whose bounds overlap `keep` (the vegetation's bounds) and bins them into the fields.
+    void build(std::span<const Collider> colliders, const Aabb& keep);
+    // The ranks of the kept colliders whose bounds overlap field f's box, ascending (empty for an empty field).
+    std::span<const uint32_t> ranks(uint32_t field) const {
+        return {fieldRanks_.data() + fieldStart_[field], fieldStart_[field + 1] - fieldStart_[field]};
+    }
+
+    uint32_t size() const { return uint32_t(input_.size()); }
+    uint32_t inputIndex(uint32_t rank) const { return input_[rank]; } // index into build()'s span
+    const Aabb& bounds(uint32_t rank) const { return bounds_[rank]; }
+
+private:
+    // Calls visit(field) for every field whose box overlaps box.
+    template <class Visit> void forEachField(const Aabb& box, Visit&& visit) const;
+
+    struct Kept {
+        uint32_t id, input;
+        Aabb box;
+    };
+    const VegetationTile* tile_ = nullptr;
+    std::vector<Aabb> fieldBoxes_; // by field; empty fields hold an inverted box that overlaps nothing
+    float margin_ = 0.0f;          // how far any field's box reaches beyond its grid square, metres (+ rounding)
+    std::vector<Kept> kept_;       // scratch of build(), kept for its capacity
+    std::vector<uint32_t> input_;  // rank -> input index
+    std::vector<Aabb> bounds_;     // by rank
+    std::vector<std::pair<uint32_t, uint32_t>> pairs_; // scratch of build(): (field, rank), ranks ascending
+    std::vector<uint32_t> fieldStart_;                 // fields + 1 offsets into fieldRanks_
+    std::vector<uint32_t> fieldRanks_;                 // by field, then rank
+};
+
+} // namespace sward
