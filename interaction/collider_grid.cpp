@@ -42,23 +42,30 @@ template <class Visit> void ColliderGrid::forEachField(const Aabb& box, Visit&& 
 }
 
 void ColliderGrid::build(std::span<const Collider> colliders, const Aabb& keep) {
-    std::vector<Kept>& kept = kept_;
-    kept.clear();
-    // Colliders far from any plant (high above, off the tile) are dropped before sorting: they are the bulk of a
-    // large scene and must cost one box test each.
+    // Colliders far from any plant (high above, off the tile) are dropped first: they are the bulk of a large scene
+    // and must cost one box test each. Callers usually list colliders in id order already: then the kept ones are
+    // the ranks as they come, and sorting is skipped.
+    input_.clear();
+    bounds_.clear();
+    bool sorted = true;
     for (uint32_t i = 0; i < colliders.size(); ++i) {
-        Aabb b = worldBounds(colliders[i]);
-        if (b.overlaps(keep)) kept.push_back({colliders[i].id, i, b});
+        const Aabb b = worldBounds(colliders[i]);
+        if (!b.overlaps(keep)) continue;
+        sorted = sorted && (input_.empty() || colliders[input_.back()].id <= colliders[i].id);
+        input_.push_back(i);
+        bounds_.push_back(b);
     }
-    // Callers usually list colliders in id order already: then the O(n) check is all this costs.
-    auto byId = [](const Kept& a, const Kept& b) { return a.id != b.id ? a.id < b.id : a.input < b.input; };
-    if (!std::is_sorted(kept.begin(), kept.end(), byId)) std::sort(kept.begin(), kept.end(), byId);
-    const uint32_t n = uint32_t(kept.size());
-    input_.resize(n);
-    bounds_.resize(n);
-    for (uint32_t r = 0; r < n; ++r) {
-        input_[r] = kept[r].input;
-        bounds_[r] = kept[r].box;
+    const uint32_t n = uint32_t(input_.size());
+    if (!sorted) {
+        std::vector<Kept>& kept = kept_;
+        kept.resize(n);
+        for (uint32_t r = 0; r < n; ++r) kept[r] = {colliders[input_[r]].id, input_[r], bounds_[r]};
+        std::sort(kept.begin(), kept.end(),
+                  [](const Kept& a, const Kept& b) { return a.id != b.id ? a.id < b.id : a.input < b.input; });
+        for (uint32_t r = 0; r < n; ++r) {
+            input_[r] = kept[r].input;
+            bounds_[r] = kept[r].box;
+        }
     }
     // A counting sort of the (field, rank) pairs, made in ascending rank order and stable: each field's list comes
     // out ascending, whatever the input order.

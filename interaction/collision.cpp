@@ -487,9 +487,13 @@ CollisionResult CollisionPass::run(std::span<const Collider> colliders, uint32_t
     grid_.build(colliders, index_.bounds());
     const auto built = std::chrono::steady_clock::now();
     collideFields(colliders, threads);
+    const auto collided = std::chrono::steady_clock::now();
     CollisionResult result = mergeFields(colliders);
-    result.stats.buildMs = std::chrono::duration<double, std::milli>(built - start).count();
-    result.stats.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const auto end = std::chrono::steady_clock::now();
+    auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
+    result.stats.buildMs = ms(start, built);
+    result.stats.mergeMs = ms(collided, end);
+    result.stats.cpuMs = ms(start, end);
     return result;
 }
 

@@ -46,7 +46,8 @@ struct CollisionStats {
     uint64_t plantsTested = 0;   // stems tested against a collider hull
     uint64_t contactBytes = 0;   // contacts * sizeof(gpu::PlantContact): the upload
     double cpuMs = 0.0;          // wall time of the pass (steady_clock; reported, never fed back into results)
-    double buildMs = 0.0;        // of which binning the colliders into fields
+    double buildMs = 0.0;        // of which binning the colliders into fields (on the calling thread)
+    double mergeMs = 0.0;        // and merging the fields' contacts in field order (likewise)
 };
 
 struct CollisionResult {

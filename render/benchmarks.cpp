@@ -338,7 +338,7 @@ template <class T> uint64_t bytesHash(const std::vector<T>& values) {
 
 // One measured tick of benchCollide.
 struct CollideTick {
-    double cpuMs = 0.0, cpuTimeMs = 0.0, uploadMs = 0.0, gpuMs = 0.0;
+    double cpuMs = 0.0, cpuTimeMs = 0.0, binningMs = 0.0, mergeMs = 0.0, uploadMs = 0.0, gpuMs = 0.0;
     uint64_t uploadBytes = 0, dispatches = 0, contactsHash = 0;
     size_t contacts = 0, activeFields = 0;
     double total() const { return cpuMs + uploadMs + gpuMs; }
@@ -394,6 +394,8 @@ public:
         TickResult r = world.step(colliders);
         t.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         t.cpuTimeMs = double(std::clock() - cpuStart) * 1000.0 / CLOCKS_PER_SEC;
+        t.binningMs = r.stats.buildMs;
+        t.mergeMs = r.stats.mergeMs;
         t.contacts = r.contacts.size();
         t.contactsHash = bytesHash(r.contacts);
         t.activeFields = r.activeFields.size();
@@ -453,11 +455,15 @@ nlohmann::json measureFields(CollideBench& bench, InteractionWorld& world, uint3
         {"active_fields", uint64_t(medianOf(measured, [](const CollideTick& t) { return t.activeFields; }))},
         {"cpu_collision_ms", medianOf(measured, [](const CollideTick& t) { return t.cpuMs; })},
         {"cpu_collision_cpu_time_ms", medianOf(measured, [](const CollideTick& t) { return t.cpuTimeMs; })},
+        // The pass's two steps on the calling thread alone (the rest runs on every thread).
+        {"cpu_collision_binning_ms", medianOf(measured, [](const CollideTick& t) { return t.binningMs; })},
+        {"cpu_collision_merge_ms", medianOf(measured, [](const CollideTick& t) { return t.mergeMs; })},
         {"upload_bytes", uint64_t(medianOf(measured, [](const CollideTick& t) { return t.uploadBytes; }))},
         {"upload_ms", medianOf(measured, [](const CollideTick& t) { return t.uploadMs; })},
         {"gpu_recovery_ms", medianOf(measured, [](const CollideTick& t) { return t.gpuMs; })},
         {"gpu_recovery_ms_per_field",
-         medianOf(measured, [](const CollideTick& t) { return t.activeFields ? t.gpuMs / double(t.activeFields) : 0.0; })},
+         medianOf(measured,
+                  [](const CollideTick& t) { return t.activeFields ? t.gpuMs / double(t.activeFields) : 0.0; })},
         {"total_ms", medianOf(measured, [](const CollideTick& t) { return t.total(); })},
     };
 }
@@ -523,14 +529,16 @@ nlohmann::json benchCollide(const CollideBenchOptions& options) {
 }
 
 std::string collideTable(const nlohmann::json& result) {
-    std::string out = "fields  colliders  contacts  cpu_collision_ms  (cpu time)  upload_bytes  upload_ms  "
-                      "gpu_recovery_ms  gpu_ms_per_field  total_ms  contacts_fnv1a\n";
+    std::string out = "fields  colliders  contacts  cpu_collision_ms  (cpu time)  (binning, merge)  upload_bytes  "
+                      "upload_ms  gpu_recovery_ms  gpu_ms_per_field  total_ms  contacts_fnv1a\n";
     char line[256];
     for (const nlohmann::json& r : result.at("results")) {
-        std::snprintf(line, sizeof(line), "%6u  %9u  %8.0f  %16.3f  %10.3f  %12.0f  %9.3f  %15.3f  %16.4f  %8.3f  %016llx\n",
-                      r.at("fields").get<uint32_t>(), r.at("colliders").get<uint32_t>(), double(r.at("contacts").get<uint64_t>()),
-                      r.at("cpu_collision_ms").get<double>(), r.at("cpu_collision_cpu_time_ms").get<double>(),
-                      double(r.at("upload_bytes").get<uint64_t>()),
+        std::snprintf(line, sizeof(line),
+                      "%6u  %9u  %8.0f  %16.3f  %10.3f  %7.3f, %7.3f  %12.0f  %9.3f  %15.3f  %16.4f  %8.3f  %016llx\n",
+                      r.at("fields").get<uint32_t>(), r.at("colliders").get<uint32_t>(),
+                      double(r.at("contacts").get<uint64_t>()), r.at("cpu_collision_ms").get<double>(),
+                      r.at("cpu_collision_cpu_time_ms").get<double>(), r.at("cpu_collision_binning_ms").get<double>(),
+                      r.at("cpu_collision_merge_ms").get<double>(), double(r.at("upload_bytes").get<uint64_t>()),
                       r.at("upload_ms").get<double>(), r.at("gpu_recovery_ms").get<double>(),
                       r.at("gpu_recovery_ms_per_field").get<double>(), r.at("total_ms").get<double>(),
                       (unsigned long long)r.at("contacts_fnv1a").get<uint64_t>());
