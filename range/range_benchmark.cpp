@@ -3,6 +3,7 @@
 #include "common/error.h"
 #include "common/json_reader.h"
 #include "common/parallel_for.h"
+#include "common/statistics.h"
 #include "range/range_recorder.h"
 #include "scene/scene.h"
 
@@ -14,11 +15,6 @@
 namespace sward {
 
 namespace {
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-}
 
 // The scene with one sensor of the preset, driving from the camera's xy towards its target at `speed` m/s.
 Scene lidarScene(const LidarBenchOptions& options) {

@@ -1,6 +1,7 @@
 #include "render/benchmarks.h"
 
 #include "common/parallel_for.h"
+#include "common/statistics.h"
 #include "engine/context.h"
 #include "engine/pipeline_statistics.h"
 #include "engine/render_target.h"
@@ -31,10 +32,6 @@ namespace sward {
 namespace {
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    return values.empty() ? 0.0 : values[values.size() / 2];
 }
 nlohmann::json medians(const std::map<std::string, std::vector<double>>& series) {
     nlohmann::json out = nlohmann::json::object();

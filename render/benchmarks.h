@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -98,5 +99,23 @@ struct WorldBenchOptions {
 nlohmann::json benchWorld(const WorldBenchOptions& options);
 // The memory figures of benchWorld's result as an aligned text table.
 std::string worldTable(const nlohmann::json& result);
+
+struct DatasetBenchOptions {
+    std::string scenePath;                 // empty: examples/rover-track.json of this source tree
+    std::vector<std::string> allowAssets;  // --allow-assets
+    std::optional<std::string> resolution; // "WxH"; default: the scene's
+    std::optional<uint32_t> samples;       // 1 or 4; default: the scene's
+    uint32_t frames = 6;                   // frames 0 .. frames - 1; the first is the warm-up (at least 2)
+    std::string device;
+};
+
+// sward-render's whole job (render_job.h: render, read back, write every file) into a temporary folder, removed
+// afterwards. Keys: frames_per_second and seconds_per_frame over the frames after the first (the first frame's files
+// on disk to the last's), cpu_seconds_per_frame (process CPU time over the same span: every thread, the driver's
+// too), cpu_utilisation (CPU seconds per wall second), render_seconds, write_seconds and wait_seconds (medians over
+// those frames: rendering and reading back, encoding and writing the files on the writer's thread beside the next
+// render, waiting for the writer), setup_seconds (the run's start to the first frame), first_frame_seconds,
+// bytes_per_frame (the frames' files), frames, scene, resolution, samples, device.
+nlohmann::json benchDataset(const DatasetBenchOptions& options);
 
 } // namespace sward

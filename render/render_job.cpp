@@ -17,8 +17,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -45,6 +47,24 @@ struct Progress {
         std::fprintf(stderr, "\rsward-render: frame %u (%u/%u)  %.2f frames/s  ETA %.0f s   ", frame, done, total, fps,
                      double(total - done) / fps);
         if (done == total) std::fprintf(stderr, "\n");
+    }
+};
+
+// The run's clock and the timings it fills (RenderJobReport): frame f's entry is sized before the writer's thread
+// fills its part, and read only after the writer has finished.
+struct JobClock {
+    using Clock = std::chrono::steady_clock;
+    Clock::time_point start = Clock::now();
+    RenderJobReport timings;
+
+    double now() const { return std::chrono::duration<double>(Clock::now() - start).count(); }
+    // Runs `write` (a frame's files) and records how long it took, when it ended and the process's CPU time then.
+    void timeWrite(RenderJobReport::Frame& frame, const std::function<void()>& write) const {
+        const double begin = now();
+        write();
+        frame.doneSeconds = now();
+        frame.writeSeconds = frame.doneSeconds - begin;
+        frame.cpuSeconds = double(std::clock()) / CLOCKS_PER_SEC;
     }
 };
 
@@ -168,23 +188,31 @@ uint64_t bytesNeeded(const DatasetWriter& dataset, const JobPlan& plan, const st
 void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, const JobPlan& plan,
                       const std::vector<uint32_t>& todo, DatasetWriter& dataset,
                       const std::optional<SensorModel>& sensor, const RenderJobOptions& options, BackgroundTask& writer,
-                      Progress& progress) {
+                      Progress& progress, JobClock& clock) {
     if (todo.empty()) return; // a complete dataset
     const double baseline = r.scene.camera.rig.baseline;
     const std::set<uint32_t> toWrite(todo.begin(), todo.end());
     std::shared_ptr<const FrameImages> previous, current;
     std::shared_ptr<const RigCameras> currentCameras;
-    uint32_t done = 0;
+    uint32_t done = 0, started = 0;
     for (uint32_t frame = todo.front() > 0 ? todo.front() - 1 : 0; frame <= todo.back() + 1; ++frame) {
+        const double renderStart = clock.now();
         auto cameras = std::make_shared<RigCameras>();
         auto images = std::make_shared<const FrameImages>(
             renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras));
         if (current && toWrite.contains(frame - 1)) {
-            writer.start([&dataset, &progress, &done, baseline, frame, previous, current, images, currentCameras] {
-                const FlowNeighbours neighbours{frame - 1 > 0 ? previous.get() : nullptr, images.get()};
-                dataset.writeFrame(frame - 1, *current, currentCameras->left, baseline, &neighbours);
-                progress.frameDone(++done, frame - 1);
-            });
+            RenderJobReport::Frame& t = clock.timings.frames[started++]; // the render that completed its truth
+            t.renderSeconds = clock.now() - renderStart;
+            const double rendered = clock.now();
+            writer.start(
+                [&dataset, &progress, &done, &clock, &t, baseline, frame, previous, current, images, currentCameras] {
+                    clock.timeWrite(t, [&] {
+                        const FlowNeighbours neighbours{frame - 1 > 0 ? previous.get() : nullptr, images.get()};
+                        dataset.writeFrame(frame - 1, *current, currentCameras->left, baseline, &neighbours);
+                    });
+                    progress.frameDone(++done, frame - 1);
+                });
+            t.waitSeconds = clock.now() - rendered;
         }
         previous = std::exchange(current, images);
         currentCameras = cameras;
@@ -195,7 +223,8 @@ void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, 
 // Renders and writes the frames of `todo` (in order). The simulation runs every tick from 0, so skipped frames
 // and other shards' frames still leave their tracks.
 void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const std::vector<uint32_t>& todo,
-                  DatasetWriter& dataset, const std::optional<SensorModel>& sensor, const RenderJobOptions& options) {
+                  DatasetWriter& dataset, const std::optional<SensorModel>& sensor, const RenderJobOptions& options,
+                  JobClock& clock) {
     RangeRecorder range(r); // before createSceneGpu releases the atlas
     RutPatchCache ruts;
     SceneGpu gpu = createSceneGpu(ctx, r, plan.samples, SimulationMode::WhenSceneHasColliders);
@@ -207,21 +236,31 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
     // one thread, and a GPU renders on its own). One frame at a time: start() waits for the previous frame's files,
     // so a write error stops the run one frame later at the most, and progress counts frames on disk.
     BackgroundTask writer;
+    clock.timings.setupSeconds = clock.now();
+    clock.timings.frames.resize(todo.size());
     if (r.scene.render.flow) {
-        renderFlowFrames(gpu, target, r, plan, todo, dataset, sensor, options, writer, progress);
+        renderFlowFrames(gpu, target, r, plan, todo, dataset, sensor, options, writer, progress, clock);
         return;
     }
-    for (uint32_t frame : todo) {
+    for (size_t i = 0; i < todo.size(); ++i) {
+        const uint32_t frame = todo[i];
+        RenderJobReport::Frame& t = clock.timings.frames[i];
+        const double renderStart = clock.now();
         auto cameras = std::make_shared<RigCameras>();
         auto images = std::make_shared<const FrameImages>(
             renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras));
         auto state = std::make_shared<RangeFrameState>();
         if (range.active()) *state = rangeFrameState(gpu, r, ruts);
-        writer.start([&dataset, &progress, &done, &rig, &range, &options, frame, images, cameras, state] {
-            dataset.writeFrame(frame, *images, cameras->left, rig.baseline);
-            if (range.active()) range.record(dataset, frame, state->view(options.time));
+        const double rendered = clock.now();
+        t.renderSeconds = rendered - renderStart;
+        writer.start([&dataset, &progress, &done, &rig, &range, &options, &clock, &t, frame, images, cameras, state] {
+            clock.timeWrite(t, [&] {
+                dataset.writeFrame(frame, *images, cameras->left, rig.baseline);
+                if (range.active()) range.record(dataset, frame, state->view(options.time));
+            });
             progress.frameDone(++done, frame);
         });
+        t.waitSeconds = clock.now() - rendered;
     }
     writer.wait();
 }
@@ -258,8 +297,8 @@ void writeJobManifest(DatasetWriter& dataset, const Scene& scene, const JobPlan&
 
 } // namespace
 
-void runRenderJob(const RenderJobOptions& options) {
-    const auto start = std::chrono::steady_clock::now();
+RenderJobReport runRenderJob(const RenderJobOptions& options) {
+    JobClock clock;
 
     // Everything that can be checked without a GPU is checked first, so bad input fails fast and writes nothing.
     Scene scene = loadSceneInput(sceneInput(options));
@@ -293,7 +332,7 @@ void runRenderJob(const RenderJobOptions& options) {
         if (rig.stereo()) dataset.writeCalib(firstRig.left, rig.baseline, rig.minDepth);
         dataset.writeFrameLog(records);
         dataset.writeSceneFiles(sceneText, classesText(resources.scene));
-        renderFrames(ctx, resources, plan, todo, dataset, sensor, options);
+        renderFrames(ctx, resources, plan, todo, dataset, sensor, options, clock);
         uint32_t messages = ctx.device.validationMessageCount();
         require(messages == 0, std::to_string(messages) + " Vulkan validation message(s) were reported (see above)");
         writeJobManifest(dataset, resources.scene, plan, fingerprint, assets, options);
@@ -302,10 +341,14 @@ void runRenderJob(const RenderJobOptions& options) {
         throw;
     }
 
-    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("sward-render: %s, frames %u:%u (%zu rendered, %u already complete), %ux%u, %ux MSAA, %s -> %s in %.2f s\n",
-                resources.scene.name.c_str(), plan.firstFrame, plan.endFrame, todo.size(), skipped, plan.width,
-                plan.height, plan.samples, stereo ? "stereo" : "mono", options.outDir.c_str(), seconds);
+    char seconds[32];
+    std::snprintf(seconds, sizeof(seconds), "%.2f s", clock.now());
+    clock.timings.summary = resources.scene.name + ", frames " + std::to_string(plan.firstFrame) + ":" +
+                            std::to_string(plan.endFrame) + " (" + std::to_string(todo.size()) + " rendered, " +
+                            std::to_string(skipped) + " already complete), " + std::to_string(plan.width) + "x" +
+                            std::to_string(plan.height) + ", " + std::to_string(plan.samples) + "x MSAA, " +
+                            (stereo ? "stereo" : "mono") + " -> " + options.outDir + " in " + seconds;
+    return std::move(clock.timings);
 }
 
 void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end) {

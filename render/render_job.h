@@ -34,6 +34,21 @@ struct RenderJobOptions {
 // Parses "A:B" (0 <= A < B <= kFrameLimit, digits only): frames A .. B-1. Throws a clear error otherwise.
 void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end);
 
+// What a run did, for the tool to print, and what it measured, for sward-bench dataset (the dataset's files hold no
+// timings).
+struct RenderJobReport {
+    std::string summary; // one line: scene, frames rendered and skipped, size, samples, views, folder, seconds
+    struct Frame {
+        double renderSeconds = 0.0; // rendering the frame and reading it back (the caller's thread)
+        double waitSeconds = 0.0;   // then waiting for the previous frame's files (the writer is one frame behind)
+        double writeSeconds = 0.0;  // encoding and writing its files (the writer's thread, beside the next render)
+        double doneSeconds = 0.0;   // since the run started, when its files were on disk
+        double cpuSeconds = 0.0;    // the process's CPU time (every thread, the driver's too) at that moment
+    };
+    double setupSeconds = 0.0; // the run's start until the first frame starts to render
+    std::vector<Frame> frames; // per frame written, in order
+};
+
 // Runs the job; throws sward::Error with a one-line message on bad input or failure. Writes the dataset described
 // in docs/dataset-format.md (dataset_writer.h). Frame i shows simulation tick i (time i * sequence.time_step;
 // the wind sees options.time added). Frames whose files all exist already are skipped (resume); the interaction
@@ -41,6 +56,6 @@ void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end);
 // Resume is safe: a folder holding a dataset of another fingerprint (dataset/fingerprint.h) is refused unless
 // options.overwrite. Every check (scene, plan, device, output folder, free space for one frame) runs before the
 // first byte is written, and a run that fails removes every file and folder it created.
-void runRenderJob(const RenderJobOptions& options);
+RenderJobReport runRenderJob(const RenderJobOptions& options);
 
 } // namespace sward

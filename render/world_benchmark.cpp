@@ -5,6 +5,7 @@
 
 #include "common/error.h"
 #include "common/parallel_for.h"
+#include "common/statistics.h"
 #include "engine/timestamps.h"
 #include "io/sha256.h"
 #include "render/scene_gpu.h"
@@ -29,11 +30,6 @@ double cpuMsSince(std::clock_t start) {
     return double(std::clock() - start) * 1000.0 / CLOCKS_PER_SEC;
 }
 
-double medianOf(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    return values.empty() ? 0.0 : values[values.size() / 2];
-}
-
 // The scene with `tiles` x `tiles` tiles and a budget that never limits the figures (they measure, not refuse).
 Scene sizedWorld(Scene scene, uint32_t tiles) {
     scene.world.tilesX = scene.world.tilesY = tiles;
@@ -53,10 +49,10 @@ nlohmann::json generationFigures(const Scene& scene, uint32_t count, uint32_t th
         cpu.push_back(cpuMsSince(cpuStart));
         plants.push_back(double(countVegetation(tile.vegetation).plants));
     }
-    const double ms = medianOf(wall), plantsPerTile = medianOf(plants);
+    const double ms = median(wall), plantsPerTile = median(plants);
     return {{"tiles", count},
             {"ms_per_tile", ms},
-            {"cpu_ms_per_tile", medianOf(cpu)},
+            {"cpu_ms_per_tile", median(cpu)},
             {"plants_per_tile", plantsPerTile},
             {"plants_per_second", plantsPerTile / (ms / 1000.0)},
             {"runs_ms", wall}};
@@ -150,8 +146,8 @@ nlohmann::json gpuFigures(const Scene& base, const WorldBenchOptions& options, u
         if (firstHash.empty()) firstHash = hash;
         rows.push_back({{"resident_tiles", gpu.renderer->tileCount()},
                         {"upload_ms_per_tile", uploaded ? uploadMs / uploaded : 0.0},
-                        {"frame_ms", medianOf(wall)},
-                        {"frame_cpu_ms", medianOf(cpu)},
+                        {"frame_ms", median(wall)},
+                        {"frame_cpu_ms", median(cpu)},
                         {"same_image_as_one_tile", hash == firstHash}});
     }
     return {{"device", ctx.device.name()},

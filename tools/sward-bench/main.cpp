@@ -39,6 +39,45 @@ CLI::App* addLidarCommand(CLI::App& app, sward::LidarBenchOptions& lidar, std::s
     return ldr;
 }
 
+CLI::App* addDatasetCommand(CLI::App& app, sward::DatasetBenchOptions& options, std::string& json) {
+    CLI::App* dst = app.add_subcommand(
+        "dataset", "sward-render's whole job (render, read back, write every file) into a temporary folder: frames per "
+                   "second after the first frame, CPU time per frame, and render, write and wait time per frame");
+    dst->add_option("scene", options.scenePath, "Scene JSON (default: examples/rover-track.json)");
+    dst->add_option("--allow-assets", options.allowAssets,
+                    "Also read the scene's assets from this folder (repeatable)");
+    sward::addChecked(*dst, "--resolution", options.resolution, "Image size WIDTHxHEIGHT (default: the scene's)", "WxH",
+                      [](const std::string& text) {
+                          uint32_t width = 0, height = 0;
+                          sward::parseResolution(text, width, height);
+                      });
+    sward::addSamples(*dst, options.samples, "MSAA samples: 1 or 4 (default: the scene's)");
+    sward::addUnsigned(*dst, "--frames", options.frames, 2, 10000,
+                       "Frames 0 .. N-1; the figures are over all but the first");
+    dst->add_option("--device", options.device, "Vulkan device name substring");
+    dst->add_option("--json", json, "Also write the figures as a JSON object to this file");
+    return dst;
+}
+
+CLI::App* addWorldCommand(CLI::App& app, sward::WorldBenchOptions& options, std::string& json) {
+    CLI::App* wld = app.add_subcommand(
+        "world", "World of many tiles, CPU side: tile generation time, resident memory against resident tiles in a "
+                 "4 x 4 and a 16 x 16 world");
+    wld->add_option("scene", options.scenePath, "Scene JSON with a 'world' (default: examples/world.json)");
+    wld->add_option("--allow-assets", options.allowAssets,
+                    "Also read the scene's assets from this folder (repeatable)");
+    sward::addReal(*wld, "--density-multiplier", options.densityMultiplier, 0.0001, 100.0,
+                   "Replaces vegetation.density_multiplier (default: the scene's)");
+    sward::addUnsigned(*wld, "--threads", options.threads, 0, sward::kMaxThreadsOption,
+                       "Threads per tile generation (0 = all cores)");
+    sward::addUnsigned(*wld, "--tiles", options.tiles, 1, 256, "Tiles generated one by one for the generation figures");
+    wld->add_flag("--no-gpu", options.noGpu, "CPU figures only (no upload and frame times)");
+    wld->add_option("--device", options.device, "Vulkan device name filter for the GPU figures");
+    sward::addUnsigned(*wld, "--frames", options.frames, 1, 1000, "Timed frames per resident-tile count");
+    wld->add_option("--json", json, "Also write the figures as a JSON object to this file");
+    return wld;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -113,26 +152,17 @@ int main(int argc, char** argv) {
     col->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
     sward::WorldBenchOptions world;
-    CLI::App* wld = app.add_subcommand(
-        "world", "World of many tiles, CPU side: tile generation time, resident memory against resident tiles in a "
-                 "4 x 4 and a 16 x 16 world");
-    wld->add_option("scene", world.scenePath, "Scene JSON with a 'world' (default: examples/world.json)");
-    wld->add_option("--allow-assets", world.allowAssets, "Also read the scene's assets from this folder (repeatable)");
-    sward::addReal(*wld, "--density-multiplier", world.densityMultiplier, 0.0001, 100.0,
-                   "Replaces vegetation.density_multiplier (default: the scene's)");
-    sward::addUnsigned(*wld, "--threads", world.threads, 0, sward::kMaxThreadsOption,
-                       "Threads per tile generation (0 = all cores)");
-    sward::addUnsigned(*wld, "--tiles", world.tiles, 1, 256, "Tiles generated one by one for the generation figures");
-    wld->add_flag("--no-gpu", world.noGpu, "CPU figures only (no upload and frame times)");
-    wld->add_option("--device", world.device, "Vulkan device name filter for the GPU figures");
-    sward::addUnsigned(*wld, "--frames", world.frames, 1, 1000, "Timed frames per resident-tile count");
-    wld->add_option("--json", json, "Also write the figures as a JSON object to this file");
+    CLI::App* wld = addWorldCommand(app, world, json);
 
     sward::LidarBenchOptions lidar;
     CLI::App* ldr = addLidarCommand(app, lidar, json);
 
+    sward::DatasetBenchOptions dataset;
+    CLI::App* dst = addDatasetCommand(app, dataset, json);
+
     return sward::runTool(app, argc, argv, "sward-bench", [&] {
         if (ldr->parsed()) emit(sward::benchLidar(lidar), json);
+        if (dst->parsed()) emit(sward::benchDataset(dataset), json);
         if (gen->parsed()) emit(sward::benchGenerate(generate), json);
         if (frm->parsed()) emit(sward::benchFrame(frame), json);
         if (wld->parsed()) {

@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
+
 int main(int argc, char** argv) {
     CLI::App app{"sward-render: render a sward scene to a stereo dataset: HDR EXR colour, depth, disparity, semantic "
                  "and instance ground truth"};
@@ -47,7 +49,7 @@ int main(int argc, char** argv) {
                  "Remove the dataset already in --out (sward's files only) and start over, e.g. after changing an option");
     app.add_flag("--validation", options.validation, "Enable Vulkan validation; any message fails the run");
     return sward::runTool(app, argc, argv, "sward-render", [&] {
-        sward::runRenderJob(options);
+        std::printf("sward-render: %s\n", sward::runRenderJob(options).summary.c_str());
         return 0;
     });
 }
