@@ -540,9 +540,11 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
         if (!views[v].truth) continue;
         if (timers) timers->begin(cmd, "truth");
         views[v].truth->begin(cmd);
-        drawTerrain(cmd, truthPass, frameBinding(slot), reference.position);
+        // The main pass's order (recordMainPass): a depth tie resolves alike in both, and the ground's fragments
+        // behind plants and objects fail the early depth test.
         if (objects_) objects_->recordTruth(cmd, frameBinding(slot), dataSlot, flow != nullptr);
         if (vegetation_) vegetation_->draw(cmd, truthPass, frameBinding(slot), shadow, dataSlot);
+        drawTerrain(cmd, truthPass, frameBinding(slot), reference.position);
         views[v].truth->end(cmd);
         if (timers) timers->end(cmd);
     }
