@@ -52,8 +52,8 @@ nlohmann::json benchDataset(const DatasetBenchOptions& options) {
     job.frames = "0:" + std::to_string(options.frames);
     job.outDir = (folder.path / "dataset").string();
     job.quiet = true;
-    const RenderJobReport timings = runRenderJob(job);
-    const std::vector<RenderJobReport::Frame>& f = timings.frames;
+    const RenderJobReport report = runRenderJob(job);
+    const std::vector<RenderJobReport::Frame>& f = report.frames;
     require(f.size() == options.frames, "sward-bench dataset: the job rendered " + std::to_string(f.size()) +
                                             " frames, not " + std::to_string(options.frames));
 
@@ -76,8 +76,8 @@ nlohmann::json benchDataset(const DatasetBenchOptions& options) {
             {"render_seconds", median(render)},
             {"write_seconds", median(write)},
             {"wait_seconds", median(wait)},
-            {"setup_seconds", timings.setupSeconds},
-            {"first_frame_seconds", f.front().doneSeconds - timings.setupSeconds},
+            {"setup_seconds", report.setupSeconds},
+            {"first_frame_seconds", f.front().doneSeconds - report.setupSeconds},
             {"bytes_per_frame", folderBytes(folder.path / "dataset") / f.size()},
             {"frames", f.size()},
             {"scene", job.scenePath},

@@ -50,12 +50,12 @@ struct Progress {
     }
 };
 
-// The run's clock and the timings it fills (RenderJobReport): frame f's entry is sized before the writer's thread
+// The run's clock and the report it fills (RenderJobReport): frame f's entry is sized before the writer's thread
 // fills its part, and read only after the writer has finished.
 struct JobClock {
     using Clock = std::chrono::steady_clock;
     Clock::time_point start = Clock::now();
-    RenderJobReport timings;
+    RenderJobReport report;
 
     double now() const { return std::chrono::duration<double>(Clock::now() - start).count(); }
     // Runs `write` (a frame's files) and records how long it took, when it ended and the process's CPU time then.
@@ -201,7 +201,7 @@ void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, 
         auto images = std::make_shared<const FrameImages>(
             renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras));
         if (current && toWrite.contains(frame - 1)) {
-            RenderJobReport::Frame& t = clock.timings.frames[started++]; // the render that completed its truth
+            RenderJobReport::Frame& t = clock.report.frames[started++]; // the render that completed its truth
             t.renderSeconds = clock.now() - renderStart;
             const double rendered = clock.now();
             writer.start(
@@ -236,15 +236,15 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
     // one thread, and a GPU renders on its own). One frame at a time: start() waits for the previous frame's files,
     // so a write error stops the run one frame later at the most, and progress counts frames on disk.
     BackgroundTask writer;
-    clock.timings.setupSeconds = clock.now();
-    clock.timings.frames.resize(todo.size());
+    clock.report.setupSeconds = clock.now();
+    clock.report.frames.resize(todo.size());
     if (r.scene.render.flow) {
         renderFlowFrames(gpu, target, r, plan, todo, dataset, sensor, options, writer, progress, clock);
         return;
     }
     for (size_t i = 0; i < todo.size(); ++i) {
         const uint32_t frame = todo[i];
-        RenderJobReport::Frame& t = clock.timings.frames[i];
+        RenderJobReport::Frame& t = clock.report.frames[i];
         const double renderStart = clock.now();
         auto cameras = std::make_shared<RigCameras>();
         auto images = std::make_shared<const FrameImages>(
@@ -343,12 +343,12 @@ RenderJobReport runRenderJob(const RenderJobOptions& options) {
 
     char seconds[32];
     std::snprintf(seconds, sizeof(seconds), "%.2f s", clock.now());
-    clock.timings.summary = resources.scene.name + ", frames " + std::to_string(plan.firstFrame) + ":" +
-                            std::to_string(plan.endFrame) + " (" + std::to_string(todo.size()) + " rendered, " +
-                            std::to_string(skipped) + " already complete), " + std::to_string(plan.width) + "x" +
-                            std::to_string(plan.height) + ", " + std::to_string(plan.samples) + "x MSAA, " +
-                            (stereo ? "stereo" : "mono") + " -> " + options.outDir + " in " + seconds;
-    return std::move(clock.timings);
+    clock.report.summary = resources.scene.name + ", frames " + std::to_string(plan.firstFrame) + ":" +
+                           std::to_string(plan.endFrame) + " (" + std::to_string(todo.size()) + " rendered, " +
+                           std::to_string(skipped) + " already complete), " + std::to_string(plan.width) + "x" +
+                           std::to_string(plan.height) + ", " + std::to_string(plan.samples) + "x MSAA, " +
+                           (stereo ? "stereo" : "mono") + " -> " + options.outDir + " in " + seconds;
+    return std::move(clock.report);
 }
 
 void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end) {

@@ -55,7 +55,8 @@ struct RenderJobReport {
 // simulation still runs every tick from 0, so any frame range or shard shows exactly what a full run shows.
 // Resume is safe: a folder holding a dataset of another fingerprint (dataset/fingerprint.h) is refused unless
 // options.overwrite. Every check (scene, plan, device, output folder, free space for one frame) runs before the
-// first byte is written, and a run that fails removes every file and folder it created.
+// first byte is written, and a run that fails removes every file and folder it created. Returns what the run did
+// and how long each frame took (RenderJobReport).
 RenderJobReport runRenderJob(const RenderJobOptions& options);
 
 } // namespace sward
