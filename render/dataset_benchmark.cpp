@@ -7,7 +7,6 @@
 #include "render/render_job.h"
 
 #include <filesystem>
-#include <fstream>
 #include <unistd.h>
 
 namespace sward {
@@ -67,8 +66,6 @@ nlohmann::json benchDataset(const DatasetBenchOptions& options) {
         write.push_back(f[i].writeSeconds);
         wait.push_back(f[i].waitSeconds);
     }
-    nlohmann::json manifest;
-    std::ifstream(folder.path / "dataset" / "manifest.json") >> manifest;
     return {{"frames_per_second", frames / wall},
             {"seconds_per_frame", wall / frames},
             {"cpu_seconds_per_frame", cpu / frames},
@@ -81,9 +78,9 @@ nlohmann::json benchDataset(const DatasetBenchOptions& options) {
             {"bytes_per_frame", folderBytes(folder.path / "dataset") / f.size()},
             {"frames", f.size()},
             {"scene", job.scenePath},
-            {"resolution", manifest["options"]["resolution"]},
-            {"samples", manifest["options"]["samples"]},
-            {"device", manifest["device"]}};
+            {"resolution", std::to_string(report.width) + "x" + std::to_string(report.height)},
+            {"samples", report.samples},
+            {"device", report.device}};
 }
 
 } // namespace sward

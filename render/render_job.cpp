@@ -323,6 +323,7 @@ RenderJobReport runRenderJob(const RenderJobOptions& options) {
 
     Context ctx(DeviceOptions{.deviceFilter = options.device, .validation = options.validation || DeviceOptions{}.validation});
     fingerprint["device"] = ctx.device.name();
+    clock.report.device = ctx.device.name();
     fingerprint["driver"] = ctx.device.driver();
     dataset.check(fingerprint, options.overwrite, needed);
     // From here on files are written; a failure removes what this run created (a kill leaves complete files only).
@@ -343,6 +344,9 @@ RenderJobReport runRenderJob(const RenderJobOptions& options) {
 
     char seconds[32];
     std::snprintf(seconds, sizeof(seconds), "%.2f s", clock.now());
+    clock.report.width = plan.width;
+    clock.report.height = plan.height;
+    clock.report.samples = plan.samples;
     clock.report.summary = resources.scene.name + ", frames " + std::to_string(plan.firstFrame) + ":" +
                            std::to_string(plan.endFrame) + " (" + std::to_string(todo.size()) + " rendered, " +
                            std::to_string(skipped) + " already complete), " + std::to_string(plan.width) + "x" +

@@ -38,6 +38,8 @@ void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end);
 // timings).
 struct RenderJobReport {
     std::string summary; // one line: scene, frames rendered and skipped, size, samples, views, folder, seconds
+    uint32_t width = 0, height = 0, samples = 0; // of the images rendered
+    std::string device;                          // the Vulkan device's name
     struct Frame {
         double renderSeconds = 0.0; // rendering the frame and reading it back (the caller's thread)
         double waitSeconds = 0.0;   // then waiting for the previous frame's files (the writer is one frame behind)
