@@ -6,9 +6,15 @@
 #include <condition_variable>
 #include <exception>
 #include <mutex>
+#include <span>
 #include <thread>
 #include <utility>
 #include <vector>
+
+#if defined(__linux__)
+#include <pthread.h>
+#include <sched.h>
+#endif
 
 namespace sward {
 
@@ -50,6 +56,35 @@ uint32_t resolveThreadCount(uint32_t requested) {
     return requested != 0 ? requested : std::max(1u, std::thread::hardware_concurrency());
 }
 
+// Keeps the helpers off the CPU the caller runs on (Linux). A helper woken after a sleep is queued on the waker's CPU
+// often enough (wake-affine placement) that, on a 2-CPU machine, the caller or the helper then waits a whole time
+// slice for the other: measured there with 50 indices of 20 us each after a 1-16 ms pause, the median run took
+// 1,010-1,030 us instead of 530-570 us, and the helper took no index at all in 30-40 % of the runs. Only where
+// the scheduler runs the threads changes, never which index a body gets or what it computes.
+class HelperPlacement {
+public:
+#if defined(__linux__)
+    void steer(std::span<std::thread> helpers) {
+        cpu_set_t allowed;
+        const int caller = sched_getcpu();
+        if (caller < 0 || caller >= CPU_SETSIZE || sched_getaffinity(0, sizeof allowed, &allowed) != 0) return;
+        if (caller == steeredFrom_ && CPU_EQUAL(&allowed, &allowed_)) return; // unchanged: no system call
+        steeredFrom_ = caller;
+        allowed_ = allowed;
+        cpu_set_t others = allowed;
+        CPU_CLR(caller, &others);
+        if (CPU_COUNT(&others) == 0) return; // one CPU: nowhere else to go
+        for (std::thread& helper : helpers) pthread_setaffinity_np(helper.native_handle(), sizeof others, &others);
+    }
+
+private:
+    int steeredFrom_ = -1;
+    cpu_set_t allowed_{};
+#else
+    void steer(std::span<std::thread>) {}
+#endif
+};
+
 // Helper threads sleeping on a generation counter: run() bumps it and wakes them, each drains the shared index
 // counter, and the last one to finish wakes the caller.
 class ParallelFor::Pool {
@@ -68,6 +103,7 @@ public:
     uint32_t helpers() const { return uint32_t(threads_.size()); }
 
     void run(uint32_t count, const ParallelBody& body) {
+        placement_.steer(threads_);
         next_.store(0, std::memory_order_relaxed);
         {
             std::lock_guard lock(mutex_);
@@ -115,6 +151,7 @@ private:
     bool quit_ = false;
     alignas(64) std::atomic<uint32_t> next_{0}; // taken by every index: on a cache line of its own
     FirstError error_;
+    HelperPlacement placement_;
     std::vector<std::thread> threads_;
 };
 

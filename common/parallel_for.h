@@ -7,6 +7,10 @@
 // results are bitwise the same for any thread count. An exception thrown by the body does not stop the other
 // indices; once all have run, run() rethrows the one of the lowest index, so even the reported error does not
 // depend on the schedule.
+//
+// Placement (Linux): each run first keeps the helpers off the CPU the caller is on, so that a helper woken after a
+// sleep is not queued behind the caller (on a 2-CPU machine that made a paced 2-thread run as slow as one thread;
+// docs/benchmarks.md). It changes where threads run, never what they compute.
 #pragma once
 
 #include <cstdint>

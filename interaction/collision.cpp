@@ -274,10 +274,13 @@ inline uint32_t footprintMask4(const TileCollisionIndex::Stem* stems, const Foot
 // touchStem's sphere test and bend (Push, Gust, Mower: bend = gain * force * depth / height) for four stems at
 // once: the square roots and divisions of a plant in contact are most of the pass, and one instruction computes
 // four of them. Every lane performs touchStem's operations in its order, each correctly rounded, so the bits are
-// the same. Bit j of `hits` is set when stem j (of those in `mask`) is touched.
+// the same. Bit j of `hits` is set when stem j (of those in `mask`) lies in the sphere's reach by its squared
+// distance; it is touched when bit j of `inside` is set too (the square root's test, which a rounding can flip at
+// the surface). The loop over `hits` must not wait for the square root: its branches would then be decided only
+// after the longest chain of the group.
 struct SphereLanes {
     alignas(16) float bend[4], dirX[4], dirY[4], height[4];
-    uint32_t hits = 0;
+    uint32_t hits = 0, inside = 0;
 };
 
 inline __m128 select(__m128 condition, __m128 a, __m128 b) {
@@ -308,8 +311,8 @@ inline SphereLanes sphereLanes4(const TileCollisionIndex::Stem* stems, uint32_t 
     const __m128 sd = _mm_sub_ps(_mm_sqrt_ps(d2), _mm_set1_ps(c.radius));
     __m128 in = _mm_and_ps(_mm_cmple_ps(z, _mm_set1_ps(b.max.z)), _mm_cmpge_ps(top, _mm_set1_ps(b.min.z)));
     in = _mm_and_ps(in, _mm_cmplt_ps(d2, _mm_set1_ps(c.radius * c.radius)));
-    in = _mm_and_ps(in, _mm_cmplt_ps(sd, _mm_setzero_ps()));
     out.hits = mask & uint32_t(_mm_movemask_ps(in));
+    out.inside = uint32_t(_mm_movemask_ps(_mm_cmplt_ps(sd, _mm_setzero_ps())));
     const __m128 depth = _mm_xor_ps(sd, _mm_set1_ps(-0.0f));
     const __m128 bend = _mm_div_ps(_mm_mul_ps(_mm_mul_ps(_mm_load_ps(gain), _mm_set1_ps(c.force)), depth), height);
     // awayDirection: (dx, dy) / sqrt(len2), or (1, 0) on the axis.
@@ -379,6 +382,7 @@ uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint3
                 const SphereLanes lanes = sphereLanes4(stems + i, mask, c, b, index_.heights(), pushGains_.data());
                 for (uint32_t hits = lanes.hits; hits != 0; hits &= hits - 1) {
                     const uint32_t j = uint32_t(std::countr_zero(hits));
+                    if ((lanes.inside >> j & 1u) == 0) continue;
                     const TileCollisionIndex::Stem& p = stems[i + j];
                     add(p.plant(), touchResponse(c, lanes.bend[j], {lanes.dirX[j], lanes.dirY[j]}, lanes.height[j],
                                                  params_.categories[p.category()], params_.recovery));
@@ -400,8 +404,8 @@ uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint3
 // and sums are reset for the next field.
 void CollisionPass::emitContacts(uint32_t f, const FieldVegetation& field, Scratch& s, FieldOutput& out) const {
     const uint32_t plantCount = field.plantCount();
-    out.contacts.resize(s.touchedPlants);
-    gpu::PlantContact* contact = out.contacts.data();
+    // Appended into reserved room: resizing would first zero-fill what is then overwritten (a fifth of this step).
+    out.contacts.reserve(s.touchedPlants);
     uint32_t k = 0, clusterEnd = field.clusters[0].range.x + field.clusters[0].range.y, listed = ~0u;
     for (uint32_t word = 0; word * 64 < plantCount; ++word) {
         uint64_t bits = s.touched[word];
@@ -410,10 +414,9 @@ void CollisionPass::emitContacts(uint32_t f, const FieldVegetation& field, Scrat
         for (; bits != 0; bits &= bits - 1) {
             const uint32_t plant = word * 64 + uint32_t(std::countr_zero(bits));
             TouchSum& sum = s.sums[plant];
-            *contact = sum.contact(params_.recovery);
-            contact->plant = field.firstPlant + plant;
-            contact->field = f;
-            ++contact;
+            gpu::PlantContact& contact = out.contacts.emplace_back(sum.contact(params_.recovery));
+            contact.plant = field.firstPlant + plant;
+            contact.field = f;
             sum = TouchSum{};
             while (plant >= clusterEnd) {
                 ++k;

@@ -438,7 +438,13 @@ nlohmann::json measureFields(CollideBench& bench, InteractionWorld& world, uint3
     std::vector<CollideTick> measured;
     std::vector<Collider> colliders;
     std::vector<uint64_t> hashes; // of every tick's contacts, warm-up included: a check that they never change
+    // Paced, the threads sleep between ticks as they do in a real-time loop, and each tick pays for waking them.
+    const auto start = std::chrono::steady_clock::now();
+    const std::chrono::duration<double> period(options.tickRate > 0.0 ? 1.0 / options.tickRate : 0.0);
     for (uint32_t i = 0; i < options.warmup + options.ticks; ++i) {
+        if (options.tickRate > 0.0)
+            std::this_thread::sleep_until(start +
+                                          std::chrono::duration_cast<std::chrono::steady_clock::duration>(i * period));
         colliders = circlingSpheres(bench.tile, fields, options.radius, world.tick());
         CollideTick t = bench.runTick(world, colliders);
         hashes.push_back(t.contactsHash);
@@ -499,6 +505,7 @@ nlohmann::json benchCollide(const CollideBenchOptions& options) {
     require(options.ticks >= 1, "--ticks must be at least 1");
     require(options.density > 0.0f && options.density <= 1000.0f, "--density must be in (0, 1000] plants per m^2");
     require(options.radius > 0.0f && options.radius <= 2.0f, "--radius must be in (0, 2] metres");
+    require(options.tickRate >= 0.0 && options.tickRate <= 1000.0, "--tick-rate must be in [0, 1000] ticks per second");
     CollideBench bench(options);
 
     nlohmann::json results = nlohmann::json::array();
@@ -519,6 +526,7 @@ nlohmann::json benchCollide(const CollideBenchOptions& options) {
         {"plants", countVegetation(bench.tile).plants},
         {"density", options.density},
         {"radius", options.radius},
+        {"tick_rate", options.tickRate},
         {"threads", bench.threads},
         {"ticks", options.ticks},
         {"device", bench.ctx ? bench.ctx->device.name() : std::string("none (--no-gpu)")},

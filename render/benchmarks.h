@@ -59,6 +59,7 @@ struct CollideBenchOptions {
     uint32_t threads = 0;  // collision threads, 0 = all cores
     float density = 16.0f; // grass plants per m^2 (flat 500 x 500 m tile: 400 fields of 25 clusters)
     float radius = 0.5f;   // collider sphere radius, metres
+    double tickRate = 0.0; // > 0: ticks start 1 / tickRate s apart, as in a real-time loop; 0: back to back
     std::string device;
     bool gpu = true;       // false: CPU collision only, no Vulkan device (GPU and upload figures are 0)
 };
@@ -70,7 +71,7 @@ struct CollideBenchOptions {
 // upload_bytes, upload_ms, gpu_recovery_ms, gpu_recovery_ms_per_field, total_ms; medians per tick),
 // idle_colliders (10,000 spheres 50 m above the grass), idle_colliders_ms (their collision + upload + GPU cost per
 // tick), zero_active_recovery_dispatches (GPU dispatches over ticks with no active field: must be 0),
-// zero_active_ticks, plants, density, radius, threads, ticks, device.
+// zero_active_ticks, plants, density, radius, tick_rate, threads, ticks, device.
 nlohmann::json benchCollide(const CollideBenchOptions& options);
 // The per-case figures of benchCollide's result as an aligned text table.
 std::string collideTable(const nlohmann::json& result);

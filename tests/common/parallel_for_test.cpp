@@ -4,6 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <chrono>
+#include <thread>
+#if defined(__linux__)
+#include <sched.h>
+#endif
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -90,3 +95,56 @@ TEST(ParallelFor, APoolRunsManyTimesAndZeroThreadsMeansEveryCore) {
     EXPECT_GE(resolveThreadCount(0), 1u);
     EXPECT_EQ(resolveThreadCount(5), 5u);
 }
+
+#if defined(__linux__)
+// A helper woken onto the caller's CPU makes one of the two wait a time slice (docs/benchmarks.md, "Helpers kept off
+// the caller's CPU"): each run first keeps the helpers off the CPU the caller runs on, within the CPUs the process
+// may use, and a process bound to one CPU is left alone.
+TEST(ParallelFor, HelpersRunOffTheCallersCpu) {
+    cpu_set_t allowed;
+    ASSERT_EQ(sched_getaffinity(0, sizeof allowed, &allowed), 0);
+    if (CPU_COUNT(&allowed) < 2) GTEST_SKIP() << "the process may use one CPU only";
+    ParallelFor pool(3);
+    uint32_t checked = 0;
+    for (int round = 0; round < 50; ++round) {
+        const int before = sched_getcpu();
+        std::vector<int> helperMayUseCaller(64, -1);
+        pool.run(64, [&](uint32_t i, uint32_t worker) {
+            if (worker == 0) { // leaves indices to the helpers
+                std::this_thread::sleep_for(std::chrono::microseconds(200));
+                return;
+            }
+            cpu_set_t mine;
+            if (sched_getaffinity(0, sizeof mine, &mine) != 0) return;
+            helperMayUseCaller[i] = CPU_ISSET(before, &mine) ? 1 : 0;
+            // Every CPU a helper may use is one the process may use.
+            cpu_set_t outside;
+            CPU_XOR(&outside, &mine, &allowed);
+            CPU_AND(&outside, &outside, &mine);
+            EXPECT_EQ(CPU_COUNT(&outside), 0);
+        });
+        if (sched_getcpu() != before) continue; // the caller moved during the run: its CPU is not known
+        for (int v : helperMayUseCaller) {
+            if (v < 0) continue;
+            EXPECT_EQ(v, 0) << "a helper may run on the caller's CPU " << before;
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 0u);
+}
+
+TEST(ParallelFor, AProcessBoundToOneCpuStillRunsEveryIndex) {
+    cpu_set_t saved, one;
+    ASSERT_EQ(sched_getaffinity(0, sizeof saved, &saved), 0);
+    CPU_ZERO(&one);
+    CPU_SET(sched_getcpu(), &one);
+    ASSERT_EQ(sched_setaffinity(0, sizeof one, &one), 0);
+    std::vector<uint32_t> slots(100, 0);
+    {
+        ParallelFor pool(2);
+        pool.run(100, [&](uint32_t i, uint32_t) { slots[i] += i + 1; });
+    }
+    ASSERT_EQ(sched_setaffinity(0, sizeof saved, &saved), 0);
+    for (uint32_t i = 0; i < 100; ++i) EXPECT_EQ(slots[i], i + 1);
+}
+#endif

@@ -128,6 +128,7 @@ class Convention(unittest.TestCase):
             ("sward-bench", ["frame", "--resolution", "4294967616x240"], r"width"),
             ("sward-bench", ["collide", "--fields", "4294967297"], r"--fields must be a whole number from 1 to 400"),
             ("sward-bench", ["dataset", "--frames", "1"], r"--frames must be a whole number from 2 to 10000"),
+            ("sward-bench", ["collide", "--tick-rate", "-1"], r"--tick-rate must be a number from 0 to 1000"),
             ("merge-manifests.py", ["d", "--jobs", "-3"], r"--jobs: must be a whole number"),
         ]
         for tool, args, pattern in cases:

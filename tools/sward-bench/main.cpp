@@ -147,6 +147,8 @@ int main(int argc, char** argv) {
                        "Collision threads (0 = all cores)");
     sward::addReal(*col, "--density", collide.density, 0.001, 1000.0, "Grass plants per m^2");
     sward::addReal(*col, "--radius", collide.radius, 0.001, 2.0, "Collider sphere radius, metres");
+    sward::addReal(*col, "--tick-rate", collide.tickRate, 0.0, 1000.0,
+                   "Ticks per second, paced like a real-time loop (threads idle between ticks); 0 = back to back");
     col->add_option("--device", collide.device, "Vulkan device name substring");
     col->add_flag("!--no-gpu", collide.gpu, "CPU collision only: no Vulkan device, no upload or GPU figures");
     col->add_option("--json", json, "Also write the figures as a JSON object to this file");
