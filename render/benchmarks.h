@@ -116,7 +116,8 @@ struct DatasetBenchOptions {
 // too), cpu_utilisation (CPU seconds per wall second), render_seconds, write_seconds and wait_seconds (medians over
 // those frames: rendering and reading back, encoding and writing the files on the writer's thread beside the next
 // render, waiting for the writer), setup_seconds (the run's start to the first frame), first_frame_seconds,
-// bytes_per_frame (the frames' files), frames, scene, resolution, samples, device.
+// manifest_seconds (after the last frame: hashing every file, writing the manifest), bytes_per_frame (the frames'
+// files), frames, scene, resolution, samples, device.
 nlohmann::json benchDataset(const DatasetBenchOptions& options);
 
 } // namespace sward

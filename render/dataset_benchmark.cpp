@@ -75,6 +75,7 @@ nlohmann::json benchDataset(const DatasetBenchOptions& options) {
             {"wait_seconds", median(wait)},
             {"setup_seconds", report.setupSeconds},
             {"first_frame_seconds", f.front().doneSeconds - report.setupSeconds},
+            {"manifest_seconds", report.manifestSeconds},
             {"bytes_per_frame", folderBytes(folder.path / "dataset") / f.size()},
             {"frames", f.size()},
             {"scene", job.scenePath},

@@ -336,7 +336,9 @@ RenderJobReport runRenderJob(const RenderJobOptions& options) {
         renderFrames(ctx, resources, plan, todo, dataset, sensor, options, clock);
         uint32_t messages = ctx.device.validationMessageCount();
         require(messages == 0, std::to_string(messages) + " Vulkan validation message(s) were reported (see above)");
+        const double manifestStart = clock.now();
         writeJobManifest(dataset, resources.scene, plan, fingerprint, assets, options);
+        clock.report.manifestSeconds = clock.now() - manifestStart;
     } catch (...) {
         dataset.discardCreated();
         throw;

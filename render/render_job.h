@@ -47,7 +47,8 @@ struct RenderJobReport {
         double doneSeconds = 0.0;   // since the run started, when its files were on disk
         double cpuSeconds = 0.0;    // the process's CPU time (every thread, the driver's too) at that moment
     };
-    double setupSeconds = 0.0; // the run's start until the first frame starts to render
+    double setupSeconds = 0.0;    // the run's start until the first frame starts to render
+    double manifestSeconds = 0.0; // after the last frame: hashing every file and writing the manifest
     std::vector<Frame> frames; // per frame written, in order
 };
 

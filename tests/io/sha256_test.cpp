@@ -79,3 +79,42 @@ TEST(Sha256, MissingFileNamesIt) {
         EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
     }
 }
+
+// The SHA extensions (Sha256::Implementation::Fastest on a CPU that has them) against the portable code: every
+// length around the block and padding boundaries, many blocks at once, and streamed in uneven pieces.
+TEST(Sha256, ShaExtensionsGiveThePortableDigests) {
+    if (!Sha256::accelerated()) GTEST_SKIP() << "this CPU has no SHA extensions: Fastest is the portable code";
+    std::string message;
+    uint32_t x = 12345u;
+    for (size_t i = 0; i < (1u << 20) + 77; ++i) {
+        x = x * 1664525u + 1013904223u; // any bytes will do; these are the same every run
+        message.push_back(char(x >> 24));
+    }
+    auto digest = [&](Sha256::Implementation implementation, size_t length, size_t piece) {
+        Sha256 hasher(implementation);
+        for (size_t at = 0; at < length; at += piece)
+            hasher.update(std::string_view(message).substr(at, std::min(piece, length - at)));
+        return toHex(hasher.finish());
+    };
+    for (size_t length = 0; length <= 300; ++length)
+        ASSERT_EQ(digest(Sha256::Implementation::Fastest, length, 1000),
+                  digest(Sha256::Implementation::Portable, length, 1000))
+            << "length " << length;
+    for (size_t piece : {1u, 63u, 64u, 4096u, 1u << 20})
+        ASSERT_EQ(digest(Sha256::Implementation::Fastest, message.size(), piece),
+                  digest(Sha256::Implementation::Portable, message.size(), piece))
+            << "piece " << piece;
+}
+
+// The NIST vectors through the portable code too (the other tests take Fastest, the SHA extensions where present).
+TEST(Sha256, PortableCodeGivesTheNistDigests) {
+    auto portable = [](std::string_view text) {
+        Sha256 hasher(Sha256::Implementation::Portable);
+        hasher.update(text);
+        return toHex(hasher.finish());
+    };
+    EXPECT_EQ(portable("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+    EXPECT_EQ(portable("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
+              "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+    EXPECT_EQ(portable(std::string(1000000, 'a')), "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+}

@@ -29,7 +29,7 @@ def main() -> int:
     assert fig["cpu_seconds_per_frame"] > 0, fig
     # A frame's files are on disk one frame after it rendered: each interval holds at least one render.
     assert 0 < fig["render_seconds"] and 0 < fig["write_seconds"] and fig["wait_seconds"] >= 0, fig
-    assert fig["setup_seconds"] > 0 and fig["first_frame_seconds"] > 0, fig
+    assert fig["setup_seconds"] > 0 and fig["first_frame_seconds"] > 0 and fig["manifest_seconds"] > 0, fig
     assert fig["bytes_per_frame"] > 64 * 48, fig  # at least one byte a pixel: the colour EXRs alone are more
     print(json.dumps(fig, indent=1))
     return 0
