@@ -33,6 +33,10 @@ constexpr std::array<uint32_t, 64> kRound = {
     0x19a4c116, 0x1e376c08, 0x2748774c, 0x34b0bcb5, 0x391c0cb3, 0x4ed8aa4a, 0x5b9cca4f, 0x682e6ff3,
     0x748f82ee, 0x78a5636f, 0x84c87814, 0x8cc70208, 0x90befffa, 0xa4506ceb, 0xbef9a3f7, 0xc67178f2};
 
+// FIPS 180-4 5.3.3: the state before the first block.
+constexpr std::array<uint32_t, 8> kInitialState = {0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a,
+                                                   0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19};
+
 uint32_t loadBigEndian(const uint8_t* p) {
     return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | uint32_t(p[3]);
 }
@@ -115,10 +119,7 @@ __attribute__((target("sha,sse4.1,ssse3"))) void compressWithShaExtensions(std::
 } // namespace
 
 Sha256::Sha256(Implementation implementation)
-    : accelerated_(implementation == Implementation::Fastest && accelerated()), state_{0x6a09e667, 0xbb67ae85,
-                                                                                       0x3c6ef372, 0xa54ff53a,
-                                                                                       0x510e527f, 0x9b05688c,
-                                                                                       0x1f83d9ab, 0x5be0cd19} {}
+    : accelerated_(implementation == Implementation::Fastest && accelerated()), state_(kInitialState) {}
 
 bool Sha256::accelerated() {
 #if SWARD_SHA_EXTENSIONS
