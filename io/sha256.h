@@ -1,7 +1,7 @@
 // SHA-256 (FIPS 180-4) of bytes and files, as lowercase hex: the per-file hashes of dataset manifests.
 //
 // Own implementation so the core needs no crypto library: the portable code (FIPS 180-4 written out) and, chosen at
-// run time, the x86 SHA extensions, about 8x faster (docs/benchmarks.md). Not constant-time: meant for integrity
+// run time, the x86 SHA extensions, 5-8x faster (docs/benchmarks.md). Not constant-time: meant for integrity
 // checks, not secrets.
 #pragma once
 
@@ -17,8 +17,8 @@ namespace sward {
 // Incremental hasher: update() any number of times, then finish() once.
 class Sha256 {
 public:
-    // Fastest: the x86 SHA extensions where the CPU has them (about 7x the portable code; a dataset's manifest hashes
-    // every file it wrote), else the portable code. Both give the same digest; tests compare them.
+    // Fastest: the x86 SHA extensions where the CPU has them (5x the portable code on a dataset's files, which its
+    // manifest hashes), else the portable code. Both give the same digest; tests compare them.
     enum class Implementation { Fastest, Portable };
     explicit Sha256(Implementation implementation = Implementation::Fastest);
     // Whether Fastest uses the SHA extensions on this CPU.

@@ -51,11 +51,10 @@ def knows(bench: str, option: str) -> bool:
     return option in run([bench, "frame", "--help"], capture_output=True).stdout
 
 
-def frame(bench: str, arguments: list[str], frames: int, scratch: str) -> dict:
-    """One `sward-bench frame` run: its pass medians in ms, and their sum over the passes both builds have."""
+def frame(bench: list[str], arguments: list[str], frames: int, scratch: str) -> dict:
+    """One `sward-bench frame` run (bench: the binary and its own options): its pass medians in ms, and their sum."""
     out = os.path.join(scratch, "frame.json")
-    extra = ["--no-floor"] if knows(bench, "--no-floor") else []
-    run([bench, "--json", out, "frame", *arguments, "--frames", str(frames), "--cutout-corners", "0", *extra],
+    run([bench[0], "--json", out, "frame", *arguments, "--frames", str(frames), *bench[1:]],
         stdout=subprocess.DEVNULL, cwd=ROOT)
     with open(out) as f:
         passes = json.load(f)["pass_ms"]
@@ -80,7 +79,10 @@ def main() -> int:
         sys.exit("bench-against: --pairs and --frames must be at least 1")
     if not os.path.exists(args.new_bench):
         sys.exit(f"bench-against: '{args.new_bench}' does not exist: build this tree first (./sward.sh build)")
-    benches = {"old": args.old_bench or build_old(args.rev), "new": args.new_bench}
+    # Each binary with the options that make it draw whole quads only, asked of it once.
+    benches = {}
+    for build, path in (("old", args.old_bench or build_old(args.rev)), ("new", args.new_bench)):
+        benches[build] = [path, "--cutout-corners", "0", *(["--no-floor"] if knows(path, "--no-floor") else [])]
 
     runs = {"old": [], "new": []}
     with tempfile.TemporaryDirectory() as scratch:
