@@ -8,6 +8,7 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -41,24 +42,34 @@ inline float bendOf(const Collider& c, glm::vec3 q, float depth, float height, c
     return 0.0f;
 }
 
+// Whether collider c fells a plant of that response that it bends by `bend`. Only solid bodies carry weight: air
+// (gusts, downwash) bends, and a mower's weight is on its wheels. A solid body fells by its weight or by bending the
+// plant beyond what it takes.
+inline bool fells(const Collider& c, float bend, const CategoryInteraction& response) {
+    return c.kind == ColliderKind::Push && (c.force > response.fellForce || bend > response.maxBend);
+}
+
+// A mower's cut of a plant it pushes (t.kind kContactPush): below the plant's top it cuts.
+inline void mowerCut(const Collider& c, float height, PlantTouch& t) {
+    if (c.kind == ColliderKind::Mower && c.cutHeight < height) {
+        t.kind = gpu::kContactCut;
+        t.cut = uint32_t(std::clamp(std::floor(255.0f * c.cutHeight / height + 0.5f), 0.0f, 254.0f));
+    }
+}
+
 // The touch of a plant bent by `bend` along dir (the rules in collision.h). Shared by touchPlant and the pass's
-// sphere paths, so all give identical bits.
+// general path; the sphere lanes compute the same with fells' and mowerCut's rules, so all give identical bits.
 inline PlantTouch touchResponse(const Collider& c, float bend, glm::vec2 dir, float height,
                                 const CategoryInteraction& response, const RecoveryParams& recovery) {
     PlantTouch t;
-    // Only solid bodies carry weight: air (gusts, downwash) bends, and a mower's weight is on its wheels. A solid body
-    // fells by its weight or by bending the plant beyond what it takes.
-    if (c.kind == ColliderKind::Push && (c.force > response.fellForce || bend > response.maxBend)) {
+    if (fells(c, bend, response)) {
         t.kind = gpu::kContactFell;
         t.push = dir * recovery.fellBend;
         return t;
     }
     t.push = dir * std::min(bend, kMaxPush);
     t.kind = gpu::kContactPush;
-    if (c.kind == ColliderKind::Mower && c.cutHeight < height) {
-        t.kind = gpu::kContactCut;
-        t.cut = uint32_t(std::clamp(std::floor(255.0f * c.cutHeight / height + 0.5f), 0.0f, 254.0f));
-    }
+    mowerCut(c, height, t);
     return t;
 }
 
@@ -109,7 +120,7 @@ struct TouchSum {
             push = len2 > kMaxPush * kMaxPush ? sum * (kMaxPush / std::sqrt(len2)) : sum;
             flags = cut ? gpu::kContactCut | (cutByte << 8) : gpu::kContactPush;
         }
-        return {0u, packSnorm(push.x, 16) | (packSnorm(push.y, 16) << 16), flags, 0u};
+        return {0u, packSnorm2x16(push.x, push.y), flags, 0u};
     }
 };
 
@@ -124,7 +135,9 @@ gpu::PlantContact combineTouches(std::span<const PlantTouch> touches, const Reco
 
 // --- Pass --------------------------------------------------------------------------------------------------------
 
-struct CollisionPass::Scratch {
+// Per worker, aligned apart (kWorkerScratchAlignment): touchedPlants is written at every touch, next to the vectors
+// whose pointers every touch reads.
+struct alignas(kWorkerScratchAlignment) CollisionPass::Scratch {
     std::array<std::vector<Run>, 2> runs; // of the field being tested and of the next one
     std::vector<TouchSum> sums;           // per plant of the field: its touches so far (reset once emitted)
     std::vector<uint64_t> touched; // per plant of the field, one bit: has a touch (read back in plant order)
@@ -133,10 +146,7 @@ struct CollisionPass::Scratch {
 
 CollisionPass::CollisionPass(const VegetationTile& tile, const VegetationParams& vegetation,
                              const InteractionParams& params)
-    : tile_(&tile), index_(tile, vegetation), params_(params), grid_(tile), outputs_(tile.fields.size()) {
-    for (uint32_t category = 0; category < pushGains_.size(); ++category)
-        pushGains_[category] = params.categories[category].pushGain;
-}
+    : tile_(&tile), index_(tile, vegetation), params_(params), grid_(tile), outputs_(tile.fields.size()) {}
 
 CollisionPass::~CollisionPass() = default;
 CollisionPass::CollisionPass(CollisionPass&&) noexcept = default;
@@ -271,56 +281,98 @@ inline uint32_t footprintMask4(const TileCollisionIndex::Stem* stems, const Foot
 }
 
 #if defined(__SSE2__)
-// touchStem's sphere test and bend (Push, Gust, Mower: bend = gain * force * depth / height) for four stems at
-// once: the square roots and divisions of a plant in contact are most of the pass, and one instruction computes
-// four of them. Every lane performs touchStem's operations in its order, each correctly rounded, so the bits are
-// the same. Bit j of `hits` is set when stem j (of those in `mask`) lies in the sphere's reach by its squared
-// distance; it is touched when bit j of `inside` is set too (the square root's test, which a rounding can flip at
-// the surface). The loop over `hits` must not wait for the square root: its branches would then be decided only
-// after the longest chain of the group.
-struct SphereLanes {
-    alignas(16) float bend[4], dirX[4], dirY[4], height[4];
-    uint32_t hits = 0, inside = 0;
-};
-
 inline __m128 select(__m128 condition, __m128 a, __m128 b) {
     return _mm_or_ps(_mm_and_ps(condition, a), _mm_andnot_ps(condition, b));
 }
 
-inline SphereLanes sphereLanes4(const TileCollisionIndex::Stem* stems, uint32_t mask, const Collider& c,
-                                const Aabb& b, const float* heights, const float* gains) {
-    SphereLanes out;
-    alignas(16) float gain[4];
-    for (uint32_t j = 0; j < 4; ++j) {
-        out.height[j] = heights[stems[j].shape()];
-        gain[j] = gains[stems[j].category()];
+// A sphere collider (Push, Gust, Mower) for sphereLanes4: its numbers broadcast to four lanes once per collider
+// rather than per group (the compiler reloads them after every store into the plants' sums, which it cannot prove
+// do not alias them), and its response per category: gain * force, and the bend beyond which it fells (fells: a
+// Push collider fells by its force alone, -INFINITY, or by bending beyond maxBend; other kinds never, INFINITY).
+struct SphereRun {
+    __m128 minX, maxX, minY, maxY, centreX, centreY, centreZ, r2, radius, zMin, zMax, maxPush, fellBend;
+    std::array<float, gpu::kMaxPlantCategories> gainForce, fellAbove;
+
+    SphereRun(const Collider& c, const Aabb& b, const InteractionParams& params) {
+        minX = _mm_set1_ps(b.min.x), maxX = _mm_set1_ps(b.max.x), minY = _mm_set1_ps(b.min.y);
+        maxY = _mm_set1_ps(b.max.y), zMin = _mm_set1_ps(b.min.z), zMax = _mm_set1_ps(b.max.z);
+        centreX = _mm_set1_ps(c.centre.x), centreY = _mm_set1_ps(c.centre.y), centreZ = _mm_set1_ps(c.centre.z);
+        r2 = _mm_set1_ps(c.radius * c.radius), radius = _mm_set1_ps(c.radius);
+        maxPush = _mm_set1_ps(kMaxPush), fellBend = _mm_set1_ps(params.recovery.fellBend);
+        for (uint32_t k = 0; k < gpu::kMaxPlantCategories; ++k) {
+            const CategoryInteraction& response = params.categories[k];
+            gainForce[k] = response.pushGain * c.force; // bend's first product (bendOf)
+            fellAbove[k] = c.kind != ColliderKind::Push   ? INFINITY
+                           : c.force > response.fellForce ? -INFINITY // any bend, a plant in contact being finite
+                                                          : response.maxBend;
+        }
     }
+};
+
+// Four stems against a sphere: touchStem's tests and touchResponse's push (bend = gain * force * depth / height,
+// fells, the kMaxPush clamp) four plants at a time, the square roots and divisions of a plant in contact being most
+// of the pass. Every lane performs the scalar code's operations in its order, each correctly rounded, so the bits
+// are the same. Bit j of `hits` is set when stem j (of those in `valid`) lies in the footprint's box and the
+// sphere's reach by its squared distance; it is touched when bit j of `inside` is set too (the square root's test,
+// which a rounding can flip at the surface). The loop over `hits` must not wait for the square root: its branches
+// would then be decided only after the longest chain of the group. The box and disc test comes first and alone:
+// most groups end there.
+struct SphereLanes {
+    alignas(16) float pushX[4], pushY[4], height[4];
+    alignas(16) uint32_t kind[4]; // kContactFell or kContactPush (a mower's cut is the caller's: mowerCut)
+    uint32_t hits = 0, inside = 0;
+};
+
+inline bool sphereLanes4(const TileCollisionIndex::Stem* stems, uint32_t valid, const SphereRun& c,
+                         const float* heights, SphereLanes& out) {
     const float* p = &stems->x;
     const __m128 s0 = _mm_loadu_ps(p), s1 = _mm_loadu_ps(p + 4), s2 = _mm_loadu_ps(p + 8), s3 = _mm_loadu_ps(p + 12);
     const __m128 a = _mm_unpacklo_ps(s0, s1), e = _mm_unpacklo_ps(s2, s3); // x0 x1 y0 y1, x2 x3 y2 y3
     const __m128 x = _mm_movelh_ps(a, e), y = _mm_movehl_ps(e, a);
+    const __m128 dx = _mm_sub_ps(x, c.centreX), dy = _mm_sub_ps(y, c.centreY);
+    const __m128 xy2 = _mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy));
+    const __m128 inX = _mm_and_ps(_mm_cmpge_ps(x, c.minX), _mm_cmple_ps(x, c.maxX));
+    const __m128 inY = _mm_and_ps(_mm_cmpge_ps(y, c.minY), _mm_cmple_ps(y, c.maxY));
+    // The disc: dz * dz >= 0 is added to the same xy2 below, and a rounded sum never falls below a summand.
+    const uint32_t footprint =
+        valid & uint32_t(_mm_movemask_ps(_mm_and_ps(_mm_and_ps(inX, inY), _mm_cmplt_ps(xy2, c.r2))));
+    if (footprint == 0) return false;
+
+    alignas(16) float gainForce[4], fellAbove[4];
+    for (uint32_t j = 0; j < 4; ++j) {
+        const uint32_t category = stems[j].category();
+        out.height[j] = heights[stems[j].shape()];
+        gainForce[j] = c.gainForce[category];
+        fellAbove[j] = c.fellAbove[category];
+    }
     const __m128 z = _mm_movelh_ps(_mm_unpackhi_ps(s0, s1), _mm_unpackhi_ps(s2, s3));
     const __m128 height = _mm_load_ps(out.height), top = _mm_add_ps(z, height);
     // std::clamp(centre.z, z, top): below z -> z, else above top -> top.
-    const __m128 cz = _mm_set1_ps(c.centre.z);
-    const __m128 qz = select(_mm_cmplt_ps(cz, z), z, select(_mm_cmplt_ps(top, cz), top, cz));
-    const __m128 dx = _mm_sub_ps(x, _mm_set1_ps(c.centre.x)), dy = _mm_sub_ps(y, _mm_set1_ps(c.centre.y));
-    const __m128 dz = _mm_sub_ps(qz, cz);
-    const __m128 xy2 = _mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy));
+    const __m128 qz = select(_mm_cmplt_ps(c.centreZ, z), z, select(_mm_cmplt_ps(top, c.centreZ), top, c.centreZ));
+    const __m128 dz = _mm_sub_ps(qz, c.centreZ);
     const __m128 d2 = _mm_add_ps(xy2, _mm_mul_ps(dz, dz));
-    const __m128 sd = _mm_sub_ps(_mm_sqrt_ps(d2), _mm_set1_ps(c.radius));
-    __m128 in = _mm_and_ps(_mm_cmple_ps(z, _mm_set1_ps(b.max.z)), _mm_cmpge_ps(top, _mm_set1_ps(b.min.z)));
-    in = _mm_and_ps(in, _mm_cmplt_ps(d2, _mm_set1_ps(c.radius * c.radius)));
-    out.hits = mask & uint32_t(_mm_movemask_ps(in));
+    const __m128 in =
+        _mm_and_ps(_mm_and_ps(_mm_cmple_ps(z, c.zMax), _mm_cmpge_ps(top, c.zMin)), _mm_cmplt_ps(d2, c.r2));
+    out.hits = footprint & uint32_t(_mm_movemask_ps(in));
+    if (out.hits == 0) return false;
+    const __m128 sd = _mm_sub_ps(_mm_sqrt_ps(d2), c.radius);
     out.inside = uint32_t(_mm_movemask_ps(_mm_cmplt_ps(sd, _mm_setzero_ps())));
     const __m128 depth = _mm_xor_ps(sd, _mm_set1_ps(-0.0f));
-    const __m128 bend = _mm_div_ps(_mm_mul_ps(_mm_mul_ps(_mm_load_ps(gain), _mm_set1_ps(c.force)), depth), height);
-    // awayDirection: (dx, dy) / sqrt(len2), or (1, 0) on the axis.
+    const __m128 bend = _mm_div_ps(_mm_mul_ps(_mm_load_ps(gainForce), depth), height);
+    const __m128 fell = _mm_cmpgt_ps(bend, _mm_load_ps(fellAbove));
+    const __m128i push = _mm_set1_epi32(int32_t(gpu::kContactPush));
+    const __m128i fellKind = _mm_set1_epi32(int32_t(gpu::kContactFell ^ gpu::kContactPush));
+    _mm_store_si128(reinterpret_cast<__m128i*>(out.kind),
+                    _mm_xor_si128(push, _mm_and_si128(_mm_castps_si128(fell), fellKind)));
+    // awayDirection: (dx, dy) / sqrt(len2), or (1, 0) on the axis; then touchResponse's push: fellBend when the
+    // plant falls, else the bend clamped to kMaxPush (std::min(bend, kMaxPush) is minps(kMaxPush, bend)).
     const __m128 len = _mm_sqrt_ps(xy2), away = _mm_cmpgt_ps(xy2, _mm_set1_ps(1e-12f));
-    _mm_store_ps(out.bend, bend);
-    _mm_store_ps(out.dirX, select(away, _mm_div_ps(dx, len), _mm_set1_ps(1.0f)));
-    _mm_store_ps(out.dirY, select(away, _mm_div_ps(dy, len), _mm_setzero_ps()));
-    return out;
+    const __m128 dirX = select(away, _mm_div_ps(dx, len), _mm_set1_ps(1.0f));
+    const __m128 dirY = select(away, _mm_div_ps(dy, len), _mm_setzero_ps());
+    const __m128 scale = select(fell, c.fellBend, _mm_min_ps(c.maxPush, bend));
+    _mm_store_ps(out.pushX, _mm_mul_ps(dirX, scale));
+    _mm_store_ps(out.pushY, _mm_mul_ps(dirY, scale));
+    return true;
 }
 #endif
 
@@ -355,6 +407,11 @@ uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint3
     if (s.touched.size() * 64 < plantCount) s.touched.resize(plantCount / 64 + 1, 0);
     const TileCollisionIndex::Stem* stems = index.stems;
     uint64_t tested = 0;
+#if defined(__SSE2__)
+    std::optional<SphereRun> sphereRun;
+    uint32_t sphereRank = ~0u;
+    SphereLanes lanes;
+#endif
     for (size_t r = 0; r < runs.size(); ++r) {
         if (r + kPrefetchRuns < runs.size())
             prefetchStems(stems, runs[r + kPrefetchRuns].begin, runs[r + kPrefetchRuns].end);
@@ -363,8 +420,6 @@ uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint3
         const Aabb& b = grid_.bounds(run.rank);
         const Collider& c = colliders[grid_.inputIndex(run.rank)];
         const bool sphere = c.shape == ColliderShape::Sphere;
-        const Footprint footprint{b.min.x, b.min.y, b.max.x, b.max.y, sphere ? c.centre.x : 0.0f,
-                                  sphere ? c.centre.y : 0.0f, sphere ? c.radius * c.radius : INFINITY};
         // Groups of four may read up to three stems past the run (the index pads its end): their bits are dropped.
         auto add = [&](uint32_t plant, const PlantTouch& t) {
             uint64_t& word = s.touched[plant >> 6];
@@ -373,23 +428,39 @@ uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint3
             word |= bit;
             s.sums[plant].add(t);
         };
-        for (uint32_t i = run.begin; i < run.end; i += 4) {
-            uint32_t mask = footprintMask4(stems + i, footprint);
-            if (run.end - i < 4) mask &= (1u << (run.end - i)) - 1u;
-            if (mask == 0) continue;
 #if defined(__SSE2__)
-            if (sphere && c.kind != ColliderKind::Downwash) {
-                const SphereLanes lanes = sphereLanes4(stems + i, mask, c, b, index_.heights(), pushGains_.data());
+        if (sphere && c.kind != ColliderKind::Downwash) {
+            // A collider's runs come one after another (findCellRuns): its lanes are set up at its first.
+            if (run.rank != sphereRank) sphereRun.emplace(c, b, params_), sphereRank = run.rank;
+            const bool mower = c.kind == ColliderKind::Mower;
+            auto test = [&](uint32_t i, uint32_t valid) {
+                if (!sphereLanes4(stems + i, valid, *sphereRun, index_.heights(), lanes)) return;
                 for (uint32_t hits = lanes.hits; hits != 0; hits &= hits - 1) {
                     const uint32_t j = uint32_t(std::countr_zero(hits));
                     if ((lanes.inside >> j & 1u) == 0) continue;
-                    const TileCollisionIndex::Stem& p = stems[i + j];
-                    add(p.plant(), touchResponse(c, lanes.bend[j], {lanes.dirX[j], lanes.dirY[j]}, lanes.height[j],
-                                                 params_.categories[p.category()], params_.recovery));
+                    PlantTouch t;
+                    t.push = {lanes.pushX[j], lanes.pushY[j]};
+                    t.kind = lanes.kind[j];
+                    if (mower && t.kind == gpu::kContactPush) mowerCut(c, lanes.height[j], t);
+                    add(stems[i + j].plant(), t);
                 }
-                continue;
-            }
+            };
+            uint32_t i = run.begin;
+            for (; i + 4 <= run.end; i += 4) test(i, 15u);
+            if (i < run.end) test(i, (1u << (run.end - i)) - 1u);
+            continue;
+        }
 #endif
+        const Footprint footprint{b.min.x,
+                                  b.min.y,
+                                  b.max.x,
+                                  b.max.y,
+                                  sphere ? c.centre.x : 0.0f,
+                                  sphere ? c.centre.y : 0.0f,
+                                  sphere ? c.radius * c.radius : INFINITY};
+        for (uint32_t i = run.begin; i < run.end; i += 4) {
+            uint32_t mask = footprintMask4(stems + i, footprint);
+            if (run.end - i < 4) mask &= (1u << (run.end - i)) - 1u;
             for (; mask != 0; mask &= mask - 1) {
                 const TileCollisionIndex::Stem& p = stems[i + uint32_t(std::countr_zero(mask))];
                 const PlantTouch t = touchStem(c, b, p);
@@ -404,8 +475,11 @@ uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint3
 // and sums are reset for the next field.
 void CollisionPass::emitContacts(uint32_t f, const FieldVegetation& field, Scratch& s, FieldOutput& out) const {
     const uint32_t plantCount = field.plantCount();
-    // Appended into reserved room: resizing would first zero-fill what is then overwritten (a fifth of this step).
-    out.contacts.reserve(s.touchedPlants);
+    if (out.contactRoom < s.touchedPlants) {
+        out.contacts = std::make_unique_for_overwrite<gpu::PlantContact[]>(s.touchedPlants);
+        out.contactRoom = s.touchedPlants;
+    }
+    gpu::PlantContact* contact = out.contacts.get();
     uint32_t k = 0, clusterEnd = field.clusters[0].range.x + field.clusters[0].range.y, listed = ~0u;
     for (uint32_t word = 0; word * 64 < plantCount; ++word) {
         uint64_t bits = s.touched[word];
@@ -414,9 +488,10 @@ void CollisionPass::emitContacts(uint32_t f, const FieldVegetation& field, Scrat
         for (; bits != 0; bits &= bits - 1) {
             const uint32_t plant = word * 64 + uint32_t(std::countr_zero(bits));
             TouchSum& sum = s.sums[plant];
-            gpu::PlantContact& contact = out.contacts.emplace_back(sum.contact(params_.recovery));
-            contact.plant = field.firstPlant + plant;
-            contact.field = f;
+            *contact = sum.contact(params_.recovery);
+            contact->plant = field.firstPlant + plant;
+            contact->field = f;
+            ++contact;
             sum = TouchSum{};
             while (plant >= clusterEnd) {
                 ++k;
@@ -426,13 +501,14 @@ void CollisionPass::emitContacts(uint32_t f, const FieldVegetation& field, Scrat
             listed = k;
         }
     }
+    out.contactCount = s.touchedPlants;
     s.touchedPlants = 0;
 }
 
-// Every field into its own output slot, on `threads` threads.
-void CollisionPass::collideFields(std::span<const Collider> colliders, uint32_t threads) {
+// Every field into its own output slot, on the pool's threads.
+void CollisionPass::collideFields(std::span<const Collider> colliders) {
     for (FieldOutput& o : outputs_) {
-        o.contacts.clear();
+        o.contactCount = 0;
         o.clusters.clear();
         o.clustersTested = 0;
         o.plantsTested = 0;
@@ -440,12 +516,7 @@ void CollisionPass::collideFields(std::span<const Collider> colliders, uint32_t 
     }
     if (grid_.size() == 0) return;
     const uint32_t fieldCount = uint32_t(outputs_.size());
-    const uint32_t used = std::min(threads, std::max((fieldCount + kFieldsPerTask - 1) / kFieldsPerTask, 1u));
-    if (scratch_.size() < used) scratch_.resize(used);
-    if (!pool_ || pool_->threads() != used) {
-        pool_.reset();
-        pool_ = std::make_unique<ParallelFor>(used);
-    }
+    if (scratch_.size() < pool_->threads()) scratch_.resize(pool_->threads());
     // Each task is a few consecutive fields, and one field's runs are found, and their stems fetched, while the
     // previous field's are tested: the plant index is far larger than the caches, and the fetches overlap with the
     // work instead of stalling it at every field's start.
@@ -462,36 +533,56 @@ void CollisionPass::collideFields(std::span<const Collider> colliders, uint32_t 
     });
 }
 
-// The field slots in field order: the result is the same for any thread count and schedule.
-CollisionResult CollisionPass::mergeFields(std::span<const Collider> colliders) const {
+// The field slots in field order: the result is the same for any thread count and schedule. The lists and counts
+// are gathered here; the contacts, most of the bytes, are copied on the pool (copyContacts).
+CollisionResult CollisionPass::mergeFields(std::span<const Collider> colliders) {
     CollisionResult result;
     result.stats.colliders = uint32_t(colliders.size());
     result.stats.collidersKept = grid_.size();
+    contactStart_.resize(outputs_.size());
     size_t contactCount = 0;
-    for (const FieldOutput& o : outputs_) contactCount += o.contacts.size();
-    result.contacts.reserve(contactCount);
     for (uint32_t f = 0; f < uint32_t(outputs_.size()); ++f) {
         const FieldOutput& o = outputs_[f];
+        contactStart_[f] = contactCount;
+        contactCount += o.contactCount;
         result.stats.fieldsTested += o.tested ? 1u : 0u;
         result.stats.clustersTested += o.clustersTested;
         result.stats.plantsTested += o.plantsTested;
-        if (o.contacts.empty()) continue;
+        if (o.contactCount == 0) continue;
         result.touchedFields.push_back(f);
-        result.contacts.insert(result.contacts.end(), o.contacts.begin(), o.contacts.end());
         result.touchedClusters.insert(result.touchedClusters.end(), o.clusters.begin(), o.clusters.end());
     }
-    result.stats.contactBytes = uint64_t(result.contacts.size()) * sizeof(gpu::PlantContact);
+    result.contacts.resize(contactCount);
+    result.stats.contactBytes = uint64_t(contactCount) * sizeof(gpu::PlantContact);
     return result;
+}
+
+// Each field's contacts to their place in the merged list, on the pool in tasks of kFieldsPerTask fields: a tick's
+// contacts are megabytes, and copying them on one thread was a tenth of the tick.
+void CollisionPass::copyContacts(std::span<gpu::PlantContact> contacts) {
+    if (contacts.empty()) return;
+    const uint32_t fieldCount = uint32_t(outputs_.size());
+    pool_->run((fieldCount + kFieldsPerTask - 1) / kFieldsPerTask, [&](uint32_t task, uint32_t) {
+        for (uint32_t f = task * kFieldsPerTask; f < std::min((task + 1) * kFieldsPerTask, fieldCount); ++f)
+            std::copy_n(outputs_[f].contacts.get(), outputs_[f].contactCount, contacts.begin() + contactStart_[f]);
+    });
 }
 
 CollisionResult CollisionPass::run(std::span<const Collider> colliders, uint32_t threads) {
     assert(threads >= 1);
+    const uint32_t fieldCount = uint32_t(outputs_.size());
+    const uint32_t used = std::min(threads, std::max((fieldCount + kFieldsPerTask - 1) / kFieldsPerTask, 1u));
+    if (!pool_ || pool_->threads() != used) {
+        pool_.reset();
+        pool_ = std::make_unique<ParallelFor>(used);
+    }
     const auto start = std::chrono::steady_clock::now();
     grid_.build(colliders, index_.bounds());
     const auto built = std::chrono::steady_clock::now();
-    collideFields(colliders, threads);
+    collideFields(colliders);
     const auto collided = std::chrono::steady_clock::now();
     CollisionResult result = mergeFields(colliders);
+    copyContacts(result.contacts);
     const auto end = std::chrono::steady_clock::now();
     auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
     result.stats.buildMs = ms(start, built);

@@ -26,6 +26,8 @@
 #include "interaction/collision_index.h"
 #include "interaction/interaction_params.h"
 
+#include "common/default_init_allocator.h"
+
 #include "shared/gpu_layout.h"
 
 #include <array>
@@ -50,8 +52,11 @@ struct CollisionStats {
     double mergeMs = 0.0;        // and merging the fields' contacts in field order (likewise)
 };
 
+// A tick's contacts: sized, then filled on the pass's threads (no zeroing first).
+using ContactList = std::vector<gpu::PlantContact, DefaultInitAllocator<gpu::PlantContact>>;
+
 struct CollisionResult {
-    std::vector<gpu::PlantContact> contacts; // sorted by plant, at most one per plant
+    ContactList contacts;                    // sorted by plant, at most one per plant
     std::vector<uint32_t> touchedFields;     // fields with contacts, ascending
     std::vector<uint32_t> touchedClusters;   // tile cluster indices (field.firstCluster + k) with contacts, ascending
     CollisionStats stats;
@@ -69,7 +74,7 @@ PlantTouch touchPlant(const Collider& c, glm::vec3 base, float height, const Cat
 // Combines the touches of one plant given in collider id order into its contact (rules above; plant/field unset).
 gpu::PlantContact combineTouches(std::span<const PlantTouch> touches, const RecoveryParams& recovery);
 
-// The collision pass. Owns the plant index, the BVH, per-field output slots and a persistent worker pool, so a
+// The collision pass. Owns the plant index, the collider grid, per-field output slots and a persistent worker pool, so a
 // tick neither allocates much nor starts threads; not thread-safe itself, but runs on `threads` threads inside and
 // its result does not depend on the thread count (each field is collided into its own slot, common/parallel_for.h,
 // and the slots are merged in field order).
@@ -85,7 +90,10 @@ public:
 
 private:
     struct FieldOutput {
-        std::vector<gpu::PlantContact> contacts;
+        // contactCount contacts in room for contactRoom, never zero-filled: writing them through a vector's
+        // emplace_back (capacity check, size update reloaded after every store) was a sixth of emitting them.
+        std::unique_ptr<gpu::PlantContact[]> contacts;
+        uint32_t contactCount = 0, contactRoom = 0;
         std::vector<uint32_t> clusters;
         uint32_t clustersTested = 0;
         uint64_t plantsTested = 0;
@@ -106,15 +114,16 @@ private:
     uint64_t touchStems(const TileCollisionIndex::Field& index, uint32_t plantCount,
                         std::span<const Collider> colliders, std::span<const Run> runs, Scratch& s) const;
     void emitContacts(uint32_t f, const FieldVegetation& field, Scratch& s, FieldOutput& out) const;
-    void collideFields(std::span<const Collider> colliders, uint32_t threads);
-    CollisionResult mergeFields(std::span<const Collider> colliders) const;
+    void collideFields(std::span<const Collider> colliders);
+    CollisionResult mergeFields(std::span<const Collider> colliders);
+    void copyContacts(std::span<gpu::PlantContact> contacts);
 
     const VegetationTile* tile_;
     TileCollisionIndex index_;
     InteractionParams params_;
-    std::array<float, gpu::kMaxPlantCategories> pushGains_{}; // categories[c].pushGain by c, read per plant
     ColliderGrid grid_;
     std::vector<FieldOutput> outputs_;
+    std::vector<size_t> contactStart_;  // by field: where its contacts go in the merged list
     std::vector<Scratch> scratch_;      // one per thread, kept between ticks
     std::unique_ptr<ParallelFor> pool_; // threads - 1 helpers, started on first use
 };

@@ -30,9 +30,8 @@ Motion decode(const gpu::PlantDynamic& r) {
 
 gpu::PlantDynamic encode(const Motion& m) {
     const float toUnit = 1.0f / gpu::kMaxBendVelocity; // 0.25: exact
-    return {packSnorm(m.bx, 16) | (packSnorm(m.by, 16) << 16),
-            packSnorm(m.vx * toUnit, 10) | (packSnorm(m.vy * toUnit, 10) << 10) | (m.state << 20) |
-                (m.cut << 24)};
+    return {packSnorm2x16(m.bx, m.by),
+            packSnorm(m.vx * toUnit, 10) | (packSnorm(m.vy * toUnit, 10) << 10) | (m.state << 20) | (m.cut << 24)};
 }
 
 } // namespace

@@ -329,8 +329,8 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
 namespace {
 
 // FNV-1a 64 of a vector's bytes.
-template <class T> uint64_t bytesHash(const std::vector<T>& values) {
-    return fnv1a64(bytesOf(values));
+template <class T, class A> uint64_t bytesHash(const std::vector<T, A>& values) {
+    return fnv1a64({reinterpret_cast<const uint8_t*>(values.data()), values.size() * sizeof(T)});
 }
 
 // One measured tick of benchCollide.

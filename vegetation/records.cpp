@@ -18,7 +18,7 @@ uint32_t encodeOctahedral(glm::vec3 n) {
         glm::vec2 folded(1.0f - std::abs(p.y), 1.0f - std::abs(p.x));
         p = glm::vec2(p.x >= 0.0f ? folded.x : -folded.x, p.y >= 0.0f ? folded.y : -folded.y);
     }
-    return packSnorm(p.x, 16) | (packSnorm(p.y, 16) << 16);
+    return packSnorm2x16(p.x, p.y);
 }
 
 glm::vec3 decodeOctahedral(uint32_t packed) {
@@ -77,7 +77,7 @@ gpu::PlantDynamic encodePlantDynamic(const PlantMotion& m) {
                         (packSnorm(m.bendVelocity.y / gpu::kMaxBendVelocity, 10) << 10);
     assert(m.state < 16);
     return gpu::PlantDynamic{
-        .bend = packSnorm(m.bend.x, 16) | (packSnorm(m.bend.y, 16) << 16),
+        .bend = packSnorm2x16(m.bend.x, m.bend.y),
         .state = velocity | (m.state << 20) | (cut << 24),
     };
 }

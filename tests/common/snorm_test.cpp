@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 using namespace sward;
 
@@ -56,4 +57,32 @@ TEST(Snorm, TheTwoDivisionModesDifferInTheLastBitForSomeCodes) {
     for (uint32_t code = 0; code < 65536; ++code)
         differ += unpackSnorm(code, 16, SnormDivide::Exact) != unpackSnorm(code, 16, SnormDivide::ByReciprocal);
     EXPECT_GT(differ, 0u) << "if they never differed, one mode would be enough";
+}
+
+// The two-lane packing (SSE2 where there is SSE2) gives the scalar packing's bits for every value: both zeros, the
+// halves, the clamp's edges, out of range and infinities (not NaN: the scalar's conversion of NaN to an integer is
+// undefined, and no caller packs one).
+TEST(Snorm, TwoLanePackingEqualsTheScalarPacking) {
+    auto scalar = [](float x, float y) { return packSnorm(x, 16) | (packSnorm(y, 16) << 16); };
+    std::vector<float> values = {0.0f,
+                                 -0.0f,
+                                 1.0f,
+                                 -1.0f,
+                                 2.0f,
+                                 -2.0f,
+                                 INFINITY,
+                                 -INFINITY,
+                                 std::nextafter(1.0f, 2.0f),
+                                 std::nextafter(-1.0f, -2.0f)};
+    for (int32_t k = -32767; k <= 32767; ++k) {
+        const float half = (float(k) + 0.5f) / snormScale(16);
+        values.insert(values.end(), {half, std::nextafter(half, -2.0f), std::nextafter(half, 2.0f)});
+    }
+    for (size_t i = 0; i < values.size(); ++i) {
+        const float x = values[i], y = values[(i * 7919 + 13) % values.size()];
+        ASSERT_EQ(packSnorm2x16(x, y), scalar(x, y)) << x << ", " << y;
+    }
+    for (uint32_t bits = 0; bits <= 0x7f800000u; bits += 65521) // every magnitude up to infinity, both signs
+        for (float v : {std::bit_cast<float>(bits), -std::bit_cast<float>(bits)})
+            ASSERT_EQ(packSnorm2x16(v, -v), scalar(v, -v)) << v;
 }
