@@ -31,9 +31,9 @@ inline uint32_t packSnorm(float v, uint32_t bits) {
     return uint32_t(roundHalfAway(std::clamp(v, -1.0f, 1.0f) * snormScale(bits))) & ((1u << bits) - 1u);
 }
 
-// Two values as 16-bit snorms, x in the low half: packSnorm(x, 16) | packSnorm(y, 16) << 16, bit for bit, both
-// lanes at once where SSE2 is there: the collision pass packs a push per contact, and the scalar
-// clamps, sign copies and conversions were a third of writing one.
+// Two values as 16-bit snorms, x in the low half: packSnorm(x, 16) | packSnorm(y, 16) << 16, bit for bit, both lanes
+// at once where there is SSE2. The collision pass packs a push per contact, and the scalar clamps, sign copies and
+// conversions were a third of writing one.
 inline uint32_t packSnorm2x16(float x, float y) {
 #if defined(__SSE2__)
     // std::clamp(v, -1, 1): maxps / minps return their second operand on a tie, the same value.

@@ -74,10 +74,10 @@ PlantTouch touchPlant(const Collider& c, glm::vec3 base, float height, const Cat
 // Combines the touches of one plant given in collider id order into its contact (rules above; plant/field unset).
 gpu::PlantContact combineTouches(std::span<const PlantTouch> touches, const RecoveryParams& recovery);
 
-// The collision pass. Owns the plant index, the collider grid, per-field output slots and a persistent worker pool, so a
-// tick neither allocates much nor starts threads; not thread-safe itself, but runs on `threads` threads inside and
-// its result does not depend on the thread count (each field is collided into its own slot, common/parallel_for.h,
-// and the slots are merged in field order).
+// The collision pass. Owns the plant index, the collider grid, per-field output slots and a persistent worker pool,
+// so a tick neither allocates much nor starts threads; not thread-safe itself, but runs on `threads` threads inside
+// and its result does not depend on the thread count (each field is collided into its own slot,
+// common/parallel_for.h, and the slots are merged in field order).
 class CollisionPass {
 public:
     // tile must outlive the pass; vegetation are the params it was generated with. Builds the plant index.
