@@ -29,7 +29,11 @@ def run(command: list[str], **kwargs) -> subprocess.CompletedProcess:
 
 def build_old(rev: str) -> str:
     """REV's sward-bench, built once into build/against/<commit>/ from the revision's own files."""
-    commit = run(["git", "-C", ROOT, "rev-parse", "--verify", rev + "^{commit}"], capture_output=True).stdout.strip()
+    found = subprocess.run(["git", "-C", ROOT, "rev-parse", "--verify", "--quiet", rev + "^{commit}"],
+                           capture_output=True, text=True)
+    if found.returncode != 0:
+        sys.exit(f"bench-against: '{rev}' names no commit of this repository")
+    commit = found.stdout.strip()
     home = os.path.join(ROOT, "build", "against", commit[:12])
     bench = os.path.join(home, "build", "bin", "sward-bench")
     if os.path.exists(bench):

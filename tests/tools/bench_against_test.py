@@ -1,6 +1,6 @@
 """tools/bench-against.py with a prebuilt "old" sward-bench (here the same binary, so CI needs no second build): one
 pair at 64x48 prints both runs, the medians and new / old, the JSON's figures agree with each other, and bad
-arguments stop with one error line.
+arguments and an unknown revision stop with one error line.
 
 Usage: bench_against_test.py BENCH_AGAINST SWARD_BENCH"""
 import json
@@ -40,6 +40,10 @@ def main() -> int:
     missing = subprocess.run([sys.executable, script, "HEAD", "--old-bench", bench, "--new-bench", "/nonexistent"],
                              capture_output=True, text=True, timeout=60)
     assert missing.returncode != 0 and "'/nonexistent' does not exist" in missing.stderr, missing.stderr
+    unknown = subprocess.run([sys.executable, script, "no-such-revision", "--new-bench", bench],
+                             capture_output=True, text=True, timeout=60)
+    assert unknown.returncode != 0 and unknown.stderr.strip().splitlines() == [
+        "bench-against: 'no-such-revision' names no commit of this repository"], unknown.stderr
     print(run.stdout)
     return 0
 
