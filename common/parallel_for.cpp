@@ -11,6 +11,10 @@
 #include <utility>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 #if defined(__linux__)
 #include <pthread.h>
 #include <sched.h>
@@ -39,14 +43,63 @@ private:
     std::exception_ptr error_;
 };
 
-// Takes indices from `next` until none is left.
-void drain(std::atomic<uint32_t>& next, uint32_t count, uint32_t worker, const ParallelBody& body, FirstError& error) {
-    for (uint32_t i; (i = next.fetch_add(1, std::memory_order_relaxed)) < count;) {
-        try {
-            body(i, worker);
-        } catch (...) {
-            error.keep(i);
+// One run's phases: indices [0, firstCount) of the first, then [0, count) of the second, taken in that order from
+// one counter.
+struct Phases {
+    uint32_t firstCount = 0;
+    const ParallelBody* first = nullptr;
+    uint32_t count = 0;
+    const ParallelBody* body = nullptr;
+};
+
+// The shared state of one run: the index counter and the first phase's progress, each on a cache line of its own
+// (every index takes the one, every first-phase index and every waiting thread touch the other).
+struct RunState {
+    alignas(64) std::atomic<uint32_t> next{0};
+    alignas(64) std::atomic<uint32_t> firstDone{0};
+    std::atomic<bool> firstFailed{false};
+    FirstError error;
+
+    void reset() {
+        next.store(0, std::memory_order_relaxed);
+        firstDone.store(0, std::memory_order_relaxed);
+        firstFailed.store(false, std::memory_order_relaxed);
+    }
+};
+
+// Waits until the first phase has finished: briefly on the CPU (it is one share of a short step), then letting
+// other threads run, in case the thread finishing it was descheduled.
+void awaitFirstPhase(const RunState& state, uint32_t firstCount) {
+    for (uint32_t spins = 0; state.firstDone.load(std::memory_order_acquire) < firstCount; ++spins) {
+        if (spins < 4096) {
+#if defined(__SSE2__)
+            _mm_pause();
+#endif
+        } else {
+            std::this_thread::yield();
         }
+    }
+}
+
+// Takes indices from the run's counter until none is left.
+void drain(RunState& state, const Phases& phases, uint32_t worker) {
+    const uint32_t total = phases.firstCount + phases.count;
+    for (uint32_t i; (i = state.next.fetch_add(1, std::memory_order_relaxed)) < total;) {
+        const bool first = i < phases.firstCount;
+        if (!first) {
+            awaitFirstPhase(state, phases.firstCount);
+            if (state.firstFailed.load(std::memory_order_relaxed)) continue;
+        }
+        try {
+            if (first)
+                (*phases.first)(i, worker);
+            else
+                (*phases.body)(i - phases.firstCount, worker);
+        } catch (...) {
+            state.error.keep(i);
+            if (first) state.firstFailed.store(true, std::memory_order_relaxed);
+        }
+        if (first) state.firstDone.fetch_add(1, std::memory_order_release);
     }
 }
 
@@ -102,41 +155,38 @@ public:
     }
     uint32_t helpers() const { return uint32_t(threads_.size()); }
 
-    void run(uint32_t count, const ParallelBody& body) {
+    void run(const Phases& phases) {
         placement_.steer(threads_);
-        next_.store(0, std::memory_order_relaxed);
+        state_.reset();
         {
             std::lock_guard lock(mutex_);
-            count_ = count;
-            body_ = &body;
+            phases_ = phases;
             busy_ = uint32_t(threads_.size());
             ++generation_;
         }
         wake_.notify_all();
-        drain(next_, count, 0, body, error_);
+        drain(state_, phases, 0);
         {
             std::unique_lock lock(mutex_);
             done_.wait(lock, [&] { return busy_ == 0; });
-            body_ = nullptr;
+            phases_ = {};
         }
-        error_.rethrow();
+        state_.error.rethrow();
     }
 
 private:
     void loop(uint32_t worker) {
         uint64_t seen = 0;
         for (;;) {
-            const ParallelBody* body;
-            uint32_t count;
+            Phases phases;
             {
                 std::unique_lock lock(mutex_);
                 wake_.wait(lock, [&] { return quit_ || generation_ != seen; });
                 if (quit_) return;
                 seen = generation_;
-                body = body_;
-                count = count_;
+                phases = phases_;
             }
-            drain(next_, count, worker, *body, error_);
+            drain(state_, phases, worker);
             std::lock_guard lock(mutex_);
             if (--busy_ == 0) done_.notify_one();
         }
@@ -144,13 +194,11 @@ private:
 
     std::mutex mutex_;
     std::condition_variable wake_, done_;
-    const ParallelBody* body_ = nullptr;
-    uint32_t count_ = 0;
+    Phases phases_;
     uint64_t generation_ = 0;
     uint32_t busy_ = 0;
     bool quit_ = false;
-    alignas(64) std::atomic<uint32_t> next_{0}; // taken by every index: on a cache line of its own
-    FirstError error_;
+    RunState state_;
     HelperPlacement placement_;
     std::vector<std::thread> threads_;
 };
@@ -167,11 +215,15 @@ uint32_t ParallelFor::threads() const {
 }
 
 void ParallelFor::run(uint32_t count, const ParallelBody& body) {
-    if (pool_) return pool_->run(count, body);
-    std::atomic<uint32_t> next{0};
-    FirstError error;
-    drain(next, count, 0, body, error);
-    error.rethrow();
+    run(0, body, count, body);
+}
+
+void ParallelFor::run(uint32_t firstCount, const ParallelBody& first, uint32_t count, const ParallelBody& body) {
+    const Phases phases{firstCount, &first, count, &body};
+    if (pool_) return pool_->run(phases);
+    RunState state;
+    drain(state, phases, 0);
+    state.error.rethrow();
 }
 
 void parallelFor(uint32_t count, uint32_t threads, const ParallelBody& body) {

@@ -54,7 +54,7 @@ void retireImage(Context& ctx, Image& image);
 // Copies `data` into a device-local buffer through a temporary staging buffer, and waits. For load-time data.
 Buffer createBufferWithData(Context& ctx, std::span<const uint8_t> data, VkBufferUsageFlags usage);
 // The bytes of a vector of plain records (vertices, indices, tables), for createBufferWithData and uploadToBuffer.
-template <typename T, typename Allocator> std::span<const uint8_t> bytesOf(const std::vector<T, Allocator>& v) {
+template <typename T> std::span<const uint8_t> bytesOf(const std::vector<T>& v) {
     return {reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(T)};
 }
 // Creates a sampled image (desc.usage gains SAMPLED | TRANSFER_DST) and fills mip level i from levels[i] (an array

@@ -3,11 +3,11 @@
 #include "vegetation/vegetation_tile.h"
 
 #include <algorithm>
+#include <cassert>
 
 namespace sward {
 
-ColliderGrid::ColliderGrid(const VegetationTile& tile)
-    : tile_(&tile), fieldBoxes_(tile.fields.size()), fieldStart_(tile.fields.size() + 1, 0) {
+ColliderGrid::ColliderGrid(const VegetationTile& tile) : tile_(&tile), fieldBoxes_(tile.fields.size()) {
     for (uint32_t f = 0; f < tile.fields.size(); ++f) {
         const FieldVegetation& field = tile.fields[f];
         if (field.plantCount() == 0) {
@@ -41,7 +41,8 @@ template <class Visit> void ColliderGrid::forEachField(const Aabb& box, Visit&& 
         }
 }
 
-void ColliderGrid::build(std::span<const Collider> colliders, const Aabb& keep) {
+void ColliderGrid::begin(std::span<const Collider> colliders, const Aabb& keep, uint32_t shares) {
+    assert(shares >= 1);
     // Colliders far from any plant (high above, off the tile) are dropped first: they are the bulk of a large scene
     // and must cost one box test each. Callers usually list colliders in id order already: then the kept ones are
     // the ranks as they come, and sorting is skipped.
@@ -67,21 +68,35 @@ void ColliderGrid::build(std::span<const Collider> colliders, const Aabb& keep) 
             bounds_[r] = kept[r].box;
         }
     }
+    shares_.resize(shares);
+    for (uint32_t k = 0; k < shares; ++k) {
+        shares_[k].begin = uint32_t(uint64_t(n) * k / shares);
+        shares_[k].end = uint32_t(uint64_t(n) * (k + 1) / shares);
+    }
+}
+
+void ColliderGrid::binShare(uint32_t share) {
     // A counting sort of the (field, rank) pairs, made in ascending rank order and stable: each field's list comes
     // out ascending, whatever the input order.
-    pairs_.clear();
-    std::fill(fieldStart_.begin(), fieldStart_.end(), 0u);
-    for (uint32_t r = 0; r < n; ++r)
+    Share& s = shares_[share];
+    s.pairs.clear();
+    s.fieldStart.assign(fieldBoxes_.size() + 1, 0u);
+    for (uint32_t r = s.begin; r < s.end; ++r)
         forEachField(bounds_[r], [&](uint32_t f) {
-            pairs_.emplace_back(f, r);
-            ++fieldStart_[f + 1];
+            s.pairs.emplace_back(f, r);
+            ++s.fieldStart[f + 1];
         });
-    for (size_t f = 1; f < fieldStart_.size(); ++f) fieldStart_[f] += fieldStart_[f - 1];
-    fieldRanks_.resize(pairs_.size());
-    for (auto [f, r] : pairs_) fieldRanks_[fieldStart_[f]++] = r;
+    for (size_t f = 1; f < s.fieldStart.size(); ++f) s.fieldStart[f] += s.fieldStart[f - 1];
+    s.fieldRanks.resize(s.pairs.size());
+    for (auto [f, r] : s.pairs) s.fieldRanks[s.fieldStart[f]++] = r;
     // The fill moved each start to the next field's: shift back.
-    for (size_t f = fieldStart_.size() - 1; f > 0; --f) fieldStart_[f] = fieldStart_[f - 1];
-    fieldStart_[0] = 0;
+    for (size_t f = s.fieldStart.size() - 1; f > 0; --f) s.fieldStart[f] = s.fieldStart[f - 1];
+    s.fieldStart[0] = 0;
+}
+
+void ColliderGrid::build(std::span<const Collider> colliders, const Aabb& keep) {
+    begin(colliders, keep, 1);
+    binShare(0);
 }
 
 } // namespace sward

@@ -178,12 +178,13 @@ inline void prefetchStems(const TileCollisionIndex::Stem* stems, uint32_t begin,
 bool CollisionPass::prepareField(uint32_t f, Scratch& s, uint32_t buffer, FieldOutput& out) const {
     const FieldVegetation& field = tile_->fields[f];
     if (field.plantCount() == 0) return false;
-    const std::span<const uint32_t> candidates = grid_.ranks(f);
-    if (candidates.empty()) return false;
+    bool any = false;
+    for (uint32_t share = 0; share < grid_.shares(); ++share) any = any || !grid_.ranks(f, share).empty();
+    if (!any) return false;
     out.tested = true;
     const TileCollisionIndex::Field& index = index_.field(f);
     out.clustersTested = index.clustersWithPlants;
-    findCellRuns(field, index, candidates, s.runs[buffer]);
+    findCellRuns(f, index, s.runs[buffer]);
     return true;
 }
 
@@ -196,12 +197,13 @@ void CollisionPass::finishField(uint32_t f, std::span<const Collider> colliders,
     emitContacts(f, field, s, out);
 }
 
-// Step 1: the runs of stems under each candidate's footprint, candidates in rank (= id) order so each plant's
-// touches are summed in id order. Only clusters under the collider's box are visited.
-void CollisionPass::findCellRuns(const FieldVegetation& field, const TileCollisionIndex::Field& index,
-                                 std::span<const uint32_t> candidates, std::vector<Run>& runs) const {
-    constexpr uint32_t kSide = TileCollisionIndex::kCellsPerSide;
-    const float invCell = 1.0f / index_.cellSize();
+// Step 1: the runs of stems under each candidate's footprint, candidates (the grid's shares one after the other) in
+// rank (= id) order so each plant's touches are summed in id order. Only clusters under the collider's box are
+// visited.
+void CollisionPass::findCellRuns(uint32_t f, const TileCollisionIndex::Field& index, std::vector<Run>& runs) const {
+    const FieldVegetation& field = tile_->fields[f];
+    constexpr uint32_t kCellsX = TileCollisionIndex::kCellsX, kCellsY = TileCollisionIndex::kCellsY;
+    const glm::vec2 invCell = 1.0f / index_.cellSize();
     const uint32_t perSide = tile_->clustersPerField;
     const float clusterSize = tile_->clusterSize, invCluster = 1.0f / clusterSize;
     // Cluster boxes may reach a little beyond their grid squares (position rounding, plant extents): the margin
@@ -209,34 +211,35 @@ void CollisionPass::findCellRuns(const FieldVegetation& field, const TileCollisi
     const float margin = index.overhang + 1e-3f;
     const glm::vec2 o = field.origin;
     runs.clear();
-    for (uint32_t rank : candidates) {
-        const Aabb& b = grid_.bounds(rank);
-        const uint32_t kx0 = gridCell(b.min.x - margin, o.x, invCluster, perSide);
-        const uint32_t kx1 = gridCell(b.max.x + margin, o.x, invCluster, perSide);
-        const uint32_t ky0 = gridCell(b.min.y - margin, o.y, invCluster, perSide);
-        const uint32_t ky1 = gridCell(b.max.y + margin, o.y, invCluster, perSide);
-        for (uint32_t ky = ky0; ky <= ky1; ++ky)
-            for (uint32_t kx = kx0; kx <= kx1; ++kx) {
-                const uint32_t k = ky * perSide + kx;
-                const gpu::PlantCluster& cluster = field.clusters[k];
-                if (cluster.range.y == 0) continue;
-                if (!b.overlaps({glm::vec3(cluster.boundsMin), glm::vec3(cluster.boundsMax)})) continue;
-                const glm::vec2 origin = field.origin + clusterSize * glm::vec2(float(kx), float(ky));
-                // Stems are vertical, so only plants whose base lies in the collider's xy footprint can be
-                // touched. Clamping keeps the cell range conservative for plants that a rounding put on the
-                // cluster's edge.
-                const uint32_t x0 = gridCell(b.min.x, origin.x, invCell, kSide);
-                const uint32_t x1 = gridCell(b.max.x, origin.x, invCell, kSide);
-                const uint32_t y0 = gridCell(b.min.y, origin.y, invCell, kSide);
-                const uint32_t y1 = gridCell(b.max.y, origin.y, invCell, kSide);
-                for (uint32_t cy = y0; cy <= y1; ++cy) {
-                    const uint32_t row = k * kSide * kSide + cy * kSide;
-                    __builtin_prefetch(&index.cellStart[row + x0]);
-                    __builtin_prefetch(&index.cellStart[row + x1 + 1]);
-                    runs.push_back({rank, row + x0, row + x1 + 1}); // cell offsets; stem offsets below
+    for (uint32_t share = 0; share < grid_.shares(); ++share)
+        for (uint32_t rank : grid_.ranks(f, share)) {
+            const Aabb& b = grid_.bounds(rank);
+            const uint32_t kx0 = gridCell(b.min.x - margin, o.x, invCluster, perSide);
+            const uint32_t kx1 = gridCell(b.max.x + margin, o.x, invCluster, perSide);
+            const uint32_t ky0 = gridCell(b.min.y - margin, o.y, invCluster, perSide);
+            const uint32_t ky1 = gridCell(b.max.y + margin, o.y, invCluster, perSide);
+            for (uint32_t ky = ky0; ky <= ky1; ++ky)
+                for (uint32_t kx = kx0; kx <= kx1; ++kx) {
+                    const uint32_t k = ky * perSide + kx;
+                    const gpu::PlantCluster& cluster = field.clusters[k];
+                    if (cluster.range.y == 0) continue;
+                    if (!b.overlaps({glm::vec3(cluster.boundsMin), glm::vec3(cluster.boundsMax)})) continue;
+                    const glm::vec2 origin = field.origin + clusterSize * glm::vec2(float(kx), float(ky));
+                    // Stems are vertical, so only plants whose base lies in the collider's xy footprint can be
+                    // touched. Clamping keeps the cell range conservative for plants that a rounding put on the
+                    // cluster's edge.
+                    const uint32_t x0 = gridCell(b.min.x, origin.x, invCell.x, kCellsX);
+                    const uint32_t x1 = gridCell(b.max.x, origin.x, invCell.x, kCellsX);
+                    const uint32_t y0 = gridCell(b.min.y, origin.y, invCell.y, kCellsY);
+                    const uint32_t y1 = gridCell(b.max.y, origin.y, invCell.y, kCellsY);
+                    for (uint32_t cy = y0; cy <= y1; ++cy) {
+                        const uint32_t row = k * kCellsX * kCellsY + cy * kCellsX;
+                        __builtin_prefetch(&index.cellStart[row + x0]);
+                        __builtin_prefetch(&index.cellStart[row + x1 + 1]);
+                        runs.push_back({rank, row + x0, row + x1 + 1}); // cell offsets; stem offsets below
+                    }
                 }
-            }
-    }
+        }
     // The cell offsets were prefetched above: turn them into stem ranges, and start fetching the first stems.
     size_t kept = 0;
     for (const Run& cells : runs) {
@@ -475,11 +478,12 @@ uint64_t CollisionPass::touchStems(const TileCollisionIndex::Field& index, uint3
 // and sums are reset for the next field.
 void CollisionPass::emitContacts(uint32_t f, const FieldVegetation& field, Scratch& s, FieldOutput& out) const {
     const uint32_t plantCount = field.plantCount();
-    if (out.contactRoom < s.touchedPlants) {
-        out.contacts = std::make_unique_for_overwrite<gpu::PlantContact[]>(s.touchedPlants);
-        out.contactRoom = s.touchedPlants;
+    ContactBuffers& buffers = *writing_;
+    if (buffers.room[f] < s.touchedPlants) {
+        buffers.field[f] = std::make_unique_for_overwrite<gpu::PlantContact[]>(s.touchedPlants);
+        buffers.room[f] = s.touchedPlants;
     }
-    gpu::PlantContact* contact = out.contacts.get();
+    gpu::PlantContact* contact = buffers.field[f].get();
     uint32_t k = 0, clusterEnd = field.clusters[0].range.x + field.clusters[0].range.y, listed = ~0u;
     for (uint32_t word = 0; word * 64 < plantCount; ++word) {
         uint64_t bits = s.touched[word];
@@ -517,11 +521,12 @@ void CollisionPass::collideFields(std::span<const Collider> colliders) {
     if (grid_.size() == 0) return;
     const uint32_t fieldCount = uint32_t(outputs_.size());
     if (scratch_.size() < pool_->threads()) scratch_.resize(pool_->threads());
-    // Each task is a few consecutive fields, and one field's runs are found, and their stems fetched, while the
-    // previous field's are tested: the plant index is far larger than the caches, and the fetches overlap with the
-    // work instead of stalling it at every field's start.
+    // Tasks of a few consecutive fields: one field's runs are found, and their stems fetched, while the previous
+    // field's are tested (the plant index is far larger than the caches). The colliders are binned into the fields
+    // first, a share per thread, in the same run of the pool: a second wake-up of the helpers costs what it saves.
     const uint32_t tasks = (fieldCount + kFieldsPerTask - 1) / kFieldsPerTask;
-    pool_->run(tasks, [&](uint32_t task, uint32_t worker) {
+    const ParallelBody binShare = [&](uint32_t share, uint32_t) { grid_.binShare(share); };
+    pool_->run(grid_.shares(), binShare, tasks, [&](uint32_t task, uint32_t worker) {
         Scratch& s = scratch_[worker];
         const uint32_t first = task * kFieldsPerTask, last = std::min(first + kFieldsPerTask, fieldCount);
         bool pending = false;
@@ -533,39 +538,40 @@ void CollisionPass::collideFields(std::span<const Collider> colliders) {
     });
 }
 
-// The field slots in field order: the result is the same for any thread count and schedule. The lists and counts
-// are gathered here; the contacts, most of the bytes, are copied on the pool (copyContacts).
-CollisionResult CollisionPass::mergeFields(std::span<const Collider> colliders) {
+// The field slots in field order: the result is the same for any thread count and schedule. The contacts stay in
+// the buffers their fields wrote (TickContacts): only their runs are listed here.
+CollisionResult CollisionPass::mergeFields(std::span<const Collider> colliders) const {
     CollisionResult result;
     result.stats.colliders = uint32_t(colliders.size());
     result.stats.collidersKept = grid_.size();
-    contactStart_.resize(outputs_.size());
-    size_t contactCount = 0;
+    std::vector<TickContacts::Run> runs;
     for (uint32_t f = 0; f < uint32_t(outputs_.size()); ++f) {
         const FieldOutput& o = outputs_[f];
-        contactStart_[f] = contactCount;
-        contactCount += o.contactCount;
         result.stats.fieldsTested += o.tested ? 1u : 0u;
         result.stats.clustersTested += o.clustersTested;
         result.stats.plantsTested += o.plantsTested;
         if (o.contactCount == 0) continue;
+        runs.emplace_back(writing_->field[f].get(), o.contactCount);
         result.touchedFields.push_back(f);
         result.touchedClusters.insert(result.touchedClusters.end(), o.clusters.begin(), o.clusters.end());
     }
-    result.contacts.resize(contactCount);
-    result.stats.contactBytes = uint64_t(contactCount) * sizeof(gpu::PlantContact);
+    result.contacts = TickContacts(writing_, std::move(runs));
+    result.stats.contactBytes = uint64_t(result.contacts.size()) * sizeof(gpu::PlantContact);
     return result;
 }
 
-// Each field's contacts to their place in the merged list, on the pool in tasks of kFieldsPerTask fields: a tick's
-// contacts are megabytes, and copying them on one thread was a tenth of the tick.
-void CollisionPass::copyContacts(std::span<gpu::PlantContact> contacts) {
-    if (contacts.empty()) return;
-    const uint32_t fieldCount = uint32_t(outputs_.size());
-    pool_->run((fieldCount + kFieldsPerTask - 1) / kFieldsPerTask, [&](uint32_t task, uint32_t) {
-        for (uint32_t f = task * kFieldsPerTask; f < std::min((task + 1) * kFieldsPerTask, fieldCount); ++f)
-            std::copy_n(outputs_[f].contacts.get(), outputs_[f].contactCount, contacts.begin() + contactStart_[f]);
-    });
+// A set of buffers that no earlier result holds, to write this tick's contacts into. Two sets are kept for their
+// room; a caller that keeps more ticks' contacts than that keeps the sets they lie in alive itself.
+void CollisionPass::takeFreeBuffers() {
+    constexpr size_t kKeptSets = 2;
+    writing_.reset();
+    for (const std::shared_ptr<ContactBuffers>& set : buffers_)
+        if (set.use_count() == 1) {
+            writing_ = set;
+            return;
+        }
+    if (buffers_.size() == kKeptSets) buffers_.pop_back();
+    writing_ = buffers_.emplace_back(std::make_shared<ContactBuffers>(outputs_.size()));
 }
 
 CollisionResult CollisionPass::run(std::span<const Collider> colliders, uint32_t threads) {
@@ -576,13 +582,13 @@ CollisionResult CollisionPass::run(std::span<const Collider> colliders, uint32_t
         pool_.reset();
         pool_ = std::make_unique<ParallelFor>(used);
     }
+    takeFreeBuffers();
     const auto start = std::chrono::steady_clock::now();
-    grid_.build(colliders, index_.bounds());
+    grid_.begin(colliders, index_.bounds(), pool_->threads());
     const auto built = std::chrono::steady_clock::now();
     collideFields(colliders);
     const auto collided = std::chrono::steady_clock::now();
     CollisionResult result = mergeFields(colliders);
-    copyContacts(result.contacts);
     const auto end = std::chrono::steady_clock::now();
     auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
     result.stats.buildMs = ms(start, built);

@@ -3,7 +3,7 @@
 // Colliders overlapping the tile's vegetation are binned into the fields their boxes meet every tick (ColliderGrid:
 // ranks in collider id order, so every result is deterministic). Each field whose box meets a collider is visited, then
 // only its clusters whose boxes meet one, then only the plants of the cluster's sub-cells under the collider's
-// footprint (TileCollisionIndex: positions decoded once, bucketed in an 8x8 grid per cluster). A plant is its
+// footprint (TileCollisionIndex: positions decoded once, bucketed in a 32 x 8 grid per cluster). A plant is its
 // upright stem, the vertical segment from its base up by its full height; it is touched when the collider
 // penetrates the stem point nearest to the collider's axis.
 //
@@ -25,8 +25,7 @@
 #include "interaction/collider_grid.h"
 #include "interaction/collision_index.h"
 #include "interaction/interaction_params.h"
-
-#include "common/default_init_allocator.h"
+#include "interaction/tick_contacts.h"
 
 #include "shared/gpu_layout.h"
 
@@ -48,15 +47,13 @@ struct CollisionStats {
     uint64_t plantsTested = 0;   // stems tested against a collider hull
     uint64_t contactBytes = 0;   // contacts * sizeof(gpu::PlantContact): the upload
     double cpuMs = 0.0;          // wall time of the pass (steady_clock; reported, never fed back into results)
-    double buildMs = 0.0;        // of which binning the colliders into fields (on the calling thread)
-    double mergeMs = 0.0;        // and merging the fields' contacts in field order (likewise)
+    double buildMs = 0.0;        // of which keeping and ranking the colliders (on the calling thread; their binning
+                                 // into the fields runs on the pool, before the fields)
+    double mergeMs = 0.0;        // and gathering the fields' results in field order (likewise)
 };
 
-// A tick's contacts: sized, then filled on the pass's threads (no zeroing first).
-using ContactList = std::vector<gpu::PlantContact, DefaultInitAllocator<gpu::PlantContact>>;
-
 struct CollisionResult {
-    ContactList contacts;                    // sorted by plant, at most one per plant
+    TickContacts contacts;                   // sorted by plant, at most one per plant: the fields' runs
     std::vector<uint32_t> touchedFields;     // fields with contacts, ascending
     std::vector<uint32_t> touchedClusters;   // tile cluster indices (field.firstCluster + k) with contacts, ascending
     CollisionStats stats;
@@ -77,7 +74,7 @@ gpu::PlantContact combineTouches(std::span<const PlantTouch> touches, const Reco
 // The collision pass. Owns the plant index, the collider grid, per-field output slots and a persistent worker pool,
 // so a tick neither allocates much nor starts threads; not thread-safe itself, but runs on `threads` threads inside
 // and its result does not depend on the thread count (each field is collided into its own slot,
-// common/parallel_for.h, and the slots are merged in field order).
+// common/parallel_for.h, and the slots are gathered in field order; the contacts stay where the fields wrote them).
 class CollisionPass {
 public:
     // tile must outlive the pass; vegetation are the params it was generated with. Builds the plant index.
@@ -90,10 +87,7 @@ public:
 
 private:
     struct FieldOutput {
-        // contactCount contacts in room for contactRoom, never zero-filled: writing them through a vector's
-        // emplace_back (capacity check, size update reloaded after every store) was a sixth of emitting them.
-        std::unique_ptr<gpu::PlantContact[]> contacts;
-        uint32_t contactCount = 0, contactRoom = 0;
+        uint32_t contactCount = 0; // in the field's buffer of the set being written (ContactBuffers)
         std::vector<uint32_t> clusters;
         uint32_t clustersTested = 0;
         uint64_t plantsTested = 0;
@@ -103,27 +97,37 @@ private:
     struct Run {
         uint32_t rank, begin, end;
     };
+    // Per field, room for its contacts, never zero-filled: writing them through a vector's emplace_back (capacity
+    // check, size update reloaded after every store) was a sixth of emitting them. A tick's TickContacts shares the
+    // set its fields wrote: run() writes into a set no result holds, so the contacts a caller keeps never change.
+    struct ContactBuffers {
+        explicit ContactBuffers(size_t fields) : field(fields), room(fields, 0) {}
+        std::vector<std::unique_ptr<gpu::PlantContact[]>> field;
+        std::vector<uint32_t> room;
+    };
     struct Scratch;
     // The steps of one field's collision, in order (collision.cpp tells how each keeps the result deterministic).
     bool prepareField(uint32_t f, Scratch& scratch, uint32_t buffer, FieldOutput& out) const;
     void finishField(uint32_t f, std::span<const Collider> colliders, Scratch& scratch, uint32_t buffer,
                      FieldOutput& out) const;
-    void findCellRuns(const FieldVegetation& field, const TileCollisionIndex::Field& index,
-                      std::span<const uint32_t> candidates, std::vector<Run>& runs) const;
+    void findCellRuns(uint32_t f, const TileCollisionIndex::Field& index, std::vector<Run>& runs) const;
     PlantTouch touchStem(const Collider& c, const Aabb& box, const TileCollisionIndex::Stem& stem) const;
     uint64_t touchStems(const TileCollisionIndex::Field& index, uint32_t plantCount,
                         std::span<const Collider> colliders, std::span<const Run> runs, Scratch& s) const;
     void emitContacts(uint32_t f, const FieldVegetation& field, Scratch& s, FieldOutput& out) const;
     void collideFields(std::span<const Collider> colliders);
-    CollisionResult mergeFields(std::span<const Collider> colliders);
-    void copyContacts(std::span<gpu::PlantContact> contacts);
+    CollisionResult mergeFields(std::span<const Collider> colliders) const;
+    void takeFreeBuffers();
 
     const VegetationTile* tile_;
     TileCollisionIndex index_;
     InteractionParams params_;
     ColliderGrid grid_;
     std::vector<FieldOutput> outputs_;
-    std::vector<size_t> contactStart_;  // by field: where its contacts go in the merged list
+    // Sets of contact buffers kept for their room: the one being written (writing_), and one more while a caller
+    // keeps the previous tick's contacts (as sward's simulations do until the next tick).
+    std::vector<std::shared_ptr<ContactBuffers>> buffers_;
+    std::shared_ptr<ContactBuffers> writing_;
     std::vector<Scratch> scratch_;      // one per thread, kept between ticks
     std::unique_ptr<ParallelFor> pool_; // threads - 1 helpers, started on first use
 };

@@ -1,5 +1,6 @@
 #include "interaction/collision_index.h"
 
+#include "interaction/collider_grid.h"
 #include "vegetation/records.h"
 
 #include "common/error.h"
@@ -17,8 +18,9 @@ namespace sward {
 void TileCollisionIndex::Free::operator()(void* p) const { std::free(p); }
 
 TileCollisionIndex::TileCollisionIndex(const VegetationTile& tile, const VegetationParams& params) {
-    constexpr uint32_t kCells = kCellsPerSide * kCellsPerSide;
-    cellSize_ = tile.clusterSize / float(kCellsPerSide);
+    constexpr uint32_t kCells = kCellsX * kCellsY;
+    cellSize_ = tile.clusterSize / glm::vec2(float(kCellsX), float(kCellsY));
+    const glm::vec2 inverseCell = 1.0f / cellSize_;
     for (uint32_t category = 0; category < 4; ++category)
         for (uint32_t size = 0; size < 256; ++size)
             heights_[category | size << 2] = params.categories[category].height * float(size) / gpu::kPlantSizeDivisor;
@@ -73,11 +75,10 @@ TileCollisionIndex::TileCollisionIndex(const VegetationTile& tile, const Vegetat
             }
             for (uint32_t i = cluster.range.x; i < cluster.range.x + cluster.range.y; ++i) {
                 glm::vec3 p = decodePlantPosition(field.staticRecords[i], field.origin, field.positionStep);
-                auto cell = [&](float v, float o) {
-                    return uint32_t(
-                        std::clamp(int32_t(std::floor((v - o) / cellSize_)), 0, int32_t(kCellsPerSide) - 1));
-                };
-                cellOf[i] = k * kCells + cell(p.y, origin.y) * kCellsPerSide + cell(p.x, origin.x);
+                // The pass finds a collider's sub-cells with the same gridCell: monotonic in the coordinate, so a
+                // plant inside the collider's box is never in a sub-cell before the box's first.
+                cellOf[i] = k * kCells + gridCell(p.y, origin.y, inverseCell.y, kCellsY) * kCellsX +
+                            gridCell(p.x, origin.x, inverseCell.x, kCellsX);
                 ++cellStart[cellOf[i] + 1];
             }
         }

@@ -97,10 +97,11 @@ InteractionState InteractionWorld::restoreState(const std::string& path) {
 void simulateOnCpu(std::vector<gpu::PlantDynamic>& dynamics, const TickResult& result,
                    const std::vector<uint32_t>& activeFields, const VegetationTile& tile,
                    const RecoveryParams& params) {
-    for (const gpu::PlantContact& contact : result.contacts) {
-        assert(contact.plant < dynamics.size());
-        dynamics[contact.plant] = applyContact(dynamics[contact.plant], contact, params);
-    }
+    for (TickContacts::Run run : result.contacts.runs())
+        for (const gpu::PlantContact& contact : run) {
+            assert(contact.plant < dynamics.size());
+            dynamics[contact.plant] = applyContact(dynamics[contact.plant], contact, params);
+        }
     for (uint32_t f : activeFields) {
         const FieldVegetation& field = tile.fields[f];
         assert(field.firstPlant + field.plantCount() <= dynamics.size());

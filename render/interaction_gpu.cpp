@@ -52,16 +52,15 @@ void InteractionGpu::reserve(Slot& slot, uint64_t contactBytes, uint64_t rangeBy
     grow(slot.ranges, rangeBytes);
 }
 
-void InteractionGpu::record(VkCommandBuffer cmd, std::span<const gpu::PlantContact> contacts,
-                            std::span<const uint32_t> activeFields, const RecoveryParams& params, uint32_t slotIndex,
-                            GpuTimers* timers) {
+void InteractionGpu::record(VkCommandBuffer cmd, const TickContacts& contacts, std::span<const uint32_t> activeFields,
+                            const RecoveryParams& params, uint32_t slotIndex, GpuTimers* timers) {
     if (contacts.empty() && activeFields.empty()) return; // idle grass costs nothing
     const auto uploadStart = std::chrono::steady_clock::now();
     Slot& slot = slots_[slotIndex % gpu::kFrameDataSlots];
-    uint64_t contactBytes = contacts.size_bytes(), rangeBytes = activeFields.size() * sizeof(glm::uvec2);
+    uint64_t contactBytes = contacts.size() * sizeof(gpu::PlantContact);
+    uint64_t rangeBytes = activeFields.size() * sizeof(glm::uvec2);
     reserve(slot, contactBytes, rangeBytes);
-    // An idle slot may have fields but no contacts: memcpy from an empty span's null data() is undefined.
-    if (contactBytes > 0) std::memcpy(slot.contacts.mapped(), contacts.data(), contactBytes);
+    contacts.copyTo({reinterpret_cast<gpu::PlantContact*>(slot.contacts.mapped()), contacts.size()});
     auto* ranges = reinterpret_cast<glm::uvec2*>(slot.ranges.mapped());
     uint32_t maxPlants = 0;
     for (size_t i = 0; i < activeFields.size(); ++i) {

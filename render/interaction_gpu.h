@@ -7,6 +7,7 @@
 #include "engine/context.h"
 #include "engine/pipelines.h"
 #include "interaction/recovery.h"
+#include "interaction/tick_contacts.h"
 #include "render/vegetation_buffers.h"
 #include "shared/config.h"
 
@@ -34,7 +35,7 @@ public:
     // Records one tick: contacts (sorted by plant, at most one per plant), then one spring step for every plant
     // of the active fields (field indices into the tile). `slot` selects the upload ring slot (taken modulo
     // gpu::kFrameDataSlots).
-    void record(VkCommandBuffer cmd, std::span<const gpu::PlantContact> contacts, std::span<const uint32_t> activeFields,
+    void record(VkCommandBuffer cmd, const TickContacts& contacts, std::span<const uint32_t> activeFields,
                 const RecoveryParams& params, uint32_t slot, GpuTimers* timers = nullptr);
 
     // Copies of the whole dynamic record buffer (waits for the GPU): for save / restore and tests.

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <bit>
 #include <chrono>
 #include <thread>
@@ -80,6 +81,59 @@ TEST(ParallelFor, RethrowsTheErrorOfTheLowestIndexAfterRunningEveryIndex) {
             EXPECT_STREQ(e.what(), "index 17") << threads << " threads";
         }
         EXPECT_EQ(ran, std::vector<int>(100, 1)) << threads << " threads";
+    }
+}
+
+// Two phases in one run: no second-phase index may start before every first-phase index has finished (the first
+// phase's indices sleep, so a second-phase index taken meanwhile would see them unfinished), and each runs once.
+TEST(ParallelFor, TheSecondPhaseStartsOnlyAfterTheWholeFirstPhase) {
+    for (uint32_t threads : {1u, 2u, 3u}) {
+        ParallelFor pool(threads);
+        for (int round = 0; round < 20; ++round) {
+            std::vector<std::atomic<int>> firstRan(3), secondRan(40);
+            std::atomic<int> early{0};
+            pool.run(
+                3,
+                [&](uint32_t i, uint32_t) {
+                    std::this_thread::sleep_for(std::chrono::microseconds(200 * (i + 1)));
+                    ++firstRan[i];
+                },
+                40,
+                [&](uint32_t i, uint32_t) {
+                    for (const std::atomic<int>& f : firstRan) early += f.load() == 1 ? 0 : 1;
+                    ++secondRan[i];
+                });
+            EXPECT_EQ(early.load(), 0) << threads << " threads";
+            for (const std::atomic<int>& f : firstRan) EXPECT_EQ(f.load(), 1);
+            for (const std::atomic<int>& r : secondRan) EXPECT_EQ(r.load(), 1);
+        }
+    }
+}
+
+TEST(ParallelFor, AFailedFirstPhaseSkipsTheSecondAndItsErrorIsTheOneRethrown) {
+    for (uint32_t threads : {1u, 2u, 3u}) {
+        ParallelFor pool(threads);
+        std::atomic<int> second{0};
+        try {
+            pool.run(
+                2,
+                [](uint32_t i, uint32_t) {
+                    if (i == 1) throw std::runtime_error("first phase");
+                },
+                10,
+                [&](uint32_t, uint32_t) {
+                    ++second;
+                    throw std::runtime_error("second phase");
+                });
+            ADD_FAILURE() << "no error with " << threads << " threads";
+        } catch (const std::runtime_error& e) {
+            EXPECT_STREQ(e.what(), "first phase") << threads << " threads";
+        }
+        EXPECT_EQ(second.load(), 0) << threads << " threads";
+        // The pool runs on normally afterwards.
+        std::atomic<int> ran{0};
+        pool.run(5, [&](uint32_t, uint32_t) { ++ran; });
+        EXPECT_EQ(ran.load(), 5);
     }
 }
 

@@ -54,10 +54,11 @@ TEST(Collision, SphereBendsOnlyTheTouchedPlantsAwayFromItsCentreAndTheyRecoverEx
         Collider s = sphereAt(t);
         TickResult r = sim.step(std::span(&s, 1));
         std::vector<uint8_t> touched(plants.size(), 0);
-        for (size_t i = 0; i < r.contacts.size(); ++i) {
-            const gpu::PlantContact& c = r.contacts[i];
+        const std::vector<gpu::PlantContact> list = r.contacts.flatten();
+        for (size_t i = 0; i < list.size(); ++i) {
+            const gpu::PlantContact& c = list[i];
             if (i > 0) {
-                ASSERT_LT(r.contacts[i - 1].plant, c.plant);
+                ASSERT_LT(list[i - 1].plant, c.plant);
             }
             ASSERT_EQ(c.flags, gpu::kContactPush);
             const PlantInfo& p = plants[c.plant];
@@ -96,7 +97,7 @@ TEST(Collision, HeavyWheelLeavesFelledPlantsThatStayDownFor1000Ticks) {
         float x = 5.0f + 0.25f * float(t);
         Collider wheel = makeCapsule(1, {x, 30.0f, 0.4f}, {x, 30.3f, 0.4f}, 0.4f, 3.0f);
         TickResult r = sim.step(std::span(&wheel, 1));
-        for (const auto& c : r.contacts) ASSERT_EQ(c.flags, gpu::kContactFell);
+        for (const auto& c : r.contacts.flatten()) ASSERT_EQ(c.flags, gpu::kContactFell);
     }
     const auto afterPass = sim.dynamics;
     size_t felled = 0;
@@ -241,9 +242,10 @@ TEST(Collision, ContactsEqualThePerPlantDefinitionForEveryShapeKindAndCategory) 
     EXPECT_GT(kinds[gpu::kContactPush], 500u);
     EXPECT_GT(kinds[gpu::kContactCut], 50u);
     EXPECT_GT(kinds[gpu::kContactFell], 50u);
-    ASSERT_EQ(result.contacts.size(), expected.size());
+    const std::vector<gpu::PlantContact> contacts = result.contacts.flatten();
+    ASSERT_EQ(contacts.size(), expected.size());
     for (size_t i = 0; i < expected.size(); ++i)
-        ASSERT_TRUE(sameBytes(std::span(&result.contacts[i], 1), std::span(&expected[i], 1)))
+        ASSERT_TRUE(sameBytes(std::span(&contacts[i], 1), std::span(&expected[i], 1)))
             << "contact " << i << " of plant " << expected[i].plant;
 }
 
@@ -303,6 +305,50 @@ TEST(Collision, BitwiseIdenticalWithOneTwoAndThreeThreads) {
 
 // The issue's worst case: one colliding sphere on every 5 x 5 m cluster of a full 500 x 500 m tile at 16 plants/m^2
 // (400 fields x 25 colliders). Prints the collision time (issue 17: <= 2 ms on 2 cores; measured by sward-bench collide).
+// A tick's contacts lie in the buffers the pass's fields wrote (TickContacts): a result kept while the pass runs
+// on must not change, however many results the caller keeps, and they must equal a pass whose results are dropped.
+TEST(Collision, KeptContactsStayUnchangedWhileThePassRunsOn) {
+    const VegetationTile& tile = smallTile();
+    InteractionWorld keeping(tile, tileParams(50), {}, 2), dropping(tile, tileParams(50), {}, 2);
+    std::vector<TickResult> kept;
+    std::vector<std::vector<gpu::PlantContact>> copies;
+    for (uint32_t t = 0; t < 12; ++t) {
+        std::vector<Collider> colliders = makeGusts(7, 30, {{0, 0, 0.0f}, {50, 50, 0.5f}}, t);
+        colliders.push_back(makeSphere(40, {5.0f + 3.0f * float(t), 25.0f, 0.2f}, 0.8f, 0.4f));
+        TickResult r = keeping.step(colliders);
+        ASSERT_TRUE(sameBytes(r.contacts, dropping.step(colliders).contacts)) << "tick " << t;
+        ASSERT_GT(r.contacts.runs().size(), 1u);
+        copies.push_back(r.contacts.flatten());
+        // Keep every result for the first ticks, then only every third: the pass must never write into a set of
+        // buffers a kept result lies in, nor lose one it still uses.
+        if (t < 4 || t % 3 == 0)
+            kept.push_back(std::move(r));
+        else
+            copies.pop_back();
+    }
+    ASSERT_EQ(kept.size(), copies.size());
+    for (size_t i = 0; i < kept.size(); ++i)
+        EXPECT_TRUE(sameBytes(kept[i].contacts.flatten(), copies[i])) << "kept result " << i;
+}
+
+TEST(TickContacts, JoinsItsRunsInOrderAndDropsEmptyOnes) {
+    auto contact = [](uint32_t plant) { return gpu::PlantContact{plant, 0u, gpu::kContactPush, 0u}; };
+    auto owned = std::make_shared<const std::vector<gpu::PlantContact>>(
+        std::vector<gpu::PlantContact>{contact(1), contact(2), contact(5), contact(9), contact(12)});
+    const std::span<const gpu::PlantContact> all(*owned);
+    const TickContacts contacts(owned, {all.first(2), all.subspan(2, 0), all.subspan(2, 1), all.subspan(3)});
+    EXPECT_EQ(contacts.size(), 5u);
+    EXPECT_EQ(contacts.runs().size(), 3u);
+    std::vector<uint32_t> plants;
+    for (const gpu::PlantContact& c : contacts.flatten()) plants.push_back(c.plant);
+    EXPECT_EQ(plants, (std::vector<uint32_t>{1, 2, 5, 9, 12}));
+    EXPECT_TRUE(TickContacts().empty());
+    EXPECT_TRUE(TickContacts(std::vector<gpu::PlantContact>{}).runs().empty());
+    const TickContacts copied(std::vector<gpu::PlantContact>{contact(3), contact(4)});
+    EXPECT_EQ(copied.runs().size(), 1u);
+    EXPECT_EQ(copied.flatten()[1].plant, 4u);
+}
+
 TEST(CollisionPerf, FourHundredFieldsWithTwentyFiveCollidersEach) {
     const VegetationTile tile = makeTile(500.0f);
     ASSERT_EQ(tile.fields.size(), 400u);
@@ -322,7 +368,7 @@ TEST(CollisionPerf, FourHundredFieldsWithTwentyFiveCollidersEach) {
         std::sort(ms.begin(), ms.end());
         // FNV-1a of the contact bytes: the same figure for every thread count and every optimisation of the pass.
         uint64_t hash = 14695981039346656037ull;
-        for (const gpu::PlantContact& c : r.contacts)
+        for (const gpu::PlantContact& c : r.contacts.flatten())
             for (size_t b = 0; b < sizeof(c); ++b) hash = (hash ^ reinterpret_cast<const uint8_t*>(&c)[b]) * 1099511628211ull;
         std::printf("[ perf ] contacts hash %016llx\n", (unsigned long long)hash);
         EXPECT_EQ(r.touchedFields.size(), 400u);
@@ -365,29 +411,45 @@ TEST(ColliderGrid, ListsExactlyTheCollidersOverlappingEachFieldInRankOrder) {
     }
     colliders.push_back(makeSphere(1000, {50.0f, 50.0f, 30.0f}, 1.0f, 0.4f)); // above the grass: never kept
 
-    ColliderGrid grid(tile);
+    // Ranks in (id, input) order and each field's lists, its shares' one after the other, exactly the kept colliders
+    // whose boxes overlap the field's, for colliders out of id order (ranked by a sort) and in it (as they come), in
+    // one share or several binned in any order.
+    std::vector<Collider> inIdOrder = colliders;
+    std::stable_sort(inIdOrder.begin(), inIdOrder.end(),
+                     [](const Collider& a, const Collider& b) { return a.id < b.id; });
     const Aabb keep{glm::vec3(-1e3f, -1e3f, -1.0f), glm::vec3(1e3f, 1e3f, 2.0f)};
-    grid.build(colliders, keep);
-    ASSERT_GT(grid.size(), 500u);
-    ASSERT_LT(grid.size(), colliders.size());
-    size_t pairs = 0, multiField = 0;
-    std::vector<uint32_t> fieldsOf(grid.size(), 0);
-    for (uint32_t f = 0; f < tile.fields.size(); ++f) {
-        const Aabb box{tile.fields[f].boundsMin, tile.fields[f].boundsMax};
-        std::vector<uint32_t> expected;
-        for (uint32_t r = 0; r < grid.size(); ++r) {
-            if (r > 0) {
-                const Collider &a = colliders[grid.inputIndex(r - 1)], &b = colliders[grid.inputIndex(r)];
-                ASSERT_TRUE(a.id < b.id || (a.id == b.id && grid.inputIndex(r - 1) < grid.inputIndex(r)));
+    for (const std::vector<Collider>* input : {&colliders, &inIdOrder})
+        for (uint32_t shares : {1u, 2u, 3u}) {
+            SCOPED_TRACE(std::string(input == &colliders ? "out of id order" : "in id order") + ", shares " +
+                         std::to_string(shares));
+            ColliderGrid grid(tile);
+            grid.begin(*input, keep, shares);
+            for (uint32_t k = shares; k-- > 0;) grid.binShare(k);
+            ASSERT_GT(grid.size(), 500u);
+            ASSERT_LT(grid.size(), input->size());
+            size_t pairs = 0, multiField = 0;
+            std::vector<uint32_t> fieldsOf(grid.size(), 0);
+            for (uint32_t f = 0; f < tile.fields.size(); ++f) {
+                const Aabb box{tile.fields[f].boundsMin, tile.fields[f].boundsMax};
+                std::vector<uint32_t> expected, listed;
+                for (uint32_t r = 0; r < grid.size(); ++r) {
+                    if (r > 0) {
+                        const uint32_t i = grid.inputIndex(r - 1), j = grid.inputIndex(r);
+                        const Collider &a = (*input)[i], &b = (*input)[j];
+                        ASSERT_TRUE(a.id < b.id || (a.id == b.id && i < j));
+                    }
+                    if (grid.bounds(r).overlaps(box)) expected.push_back(r);
+                }
+                for (uint32_t k = 0; k < shares; ++k) {
+                    const std::span<const uint32_t> ranks = grid.ranks(f, k);
+                    listed.insert(listed.end(), ranks.begin(), ranks.end());
+                }
+                ASSERT_EQ(listed, expected) << "field " << f;
+                for (uint32_t r : expected) ++fieldsOf[r];
+                pairs += expected.size();
             }
-            if (grid.bounds(r).overlaps(box)) expected.push_back(r);
+            for (uint32_t n : fieldsOf) multiField += n > 1 ? 1 : 0;
+            EXPECT_GT(pairs, 450u);
+            EXPECT_GT(multiField, 50u); // many colliders straddle field edges
         }
-        const std::span<const uint32_t> ranks = grid.ranks(f);
-        EXPECT_EQ(std::vector<uint32_t>(ranks.begin(), ranks.end()), expected) << "field " << f;
-        for (uint32_t r : expected) ++fieldsOf[r];
-        pairs += expected.size();
-    }
-    for (uint32_t n : fieldsOf) multiField += n > 1 ? 1 : 0;
-    EXPECT_GT(pairs, 450u);
-    EXPECT_GT(multiField, 50u); // many colliders straddle field edges
 }

@@ -60,6 +60,9 @@ inline glm::vec2 pushOf(const gpu::PlantContact& c) {
 inline bool sameBytes(const auto& a, const auto& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
 }
+inline bool sameBytes(const TickContacts& a, const TickContacts& b) {
+    return sameBytes(a.flatten(), b.flatten());
+}
 
 // A world plus the CPU stand-in for the GPU's dynamic buffer.
 struct Sim {
