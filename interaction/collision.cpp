@@ -540,7 +540,7 @@ void CollisionPass::collideFields(std::span<const Collider> colliders) {
 
 // The field slots in field order: the result is the same for any thread count and schedule. The contacts stay in
 // the buffers their fields wrote (TickContacts): only their runs are listed here.
-CollisionResult CollisionPass::mergeFields(std::span<const Collider> colliders) const {
+CollisionResult CollisionPass::gatherFields(std::span<const Collider> colliders) const {
     CollisionResult result;
     result.stats.colliders = uint32_t(colliders.size());
     result.stats.collidersKept = grid_.size();
@@ -588,7 +588,7 @@ CollisionResult CollisionPass::run(std::span<const Collider> colliders, uint32_t
     const auto built = std::chrono::steady_clock::now();
     collideFields(colliders);
     const auto collided = std::chrono::steady_clock::now();
-    CollisionResult result = mergeFields(colliders);
+    CollisionResult result = gatherFields(colliders);
     const auto end = std::chrono::steady_clock::now();
     auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
     result.stats.buildMs = ms(start, built);

@@ -116,7 +116,7 @@ private:
                         std::span<const Collider> colliders, std::span<const Run> runs, Scratch& s) const;
     void emitContacts(uint32_t f, const FieldVegetation& field, Scratch& s, FieldOutput& out) const;
     void collideFields(std::span<const Collider> colliders);
-    CollisionResult mergeFields(std::span<const Collider> colliders) const;
+    CollisionResult gatherFields(std::span<const Collider> colliders) const;
     void takeFreeBuffers();
 
     const VegetationTile* tile_;
