@@ -94,9 +94,4 @@ void ColliderGrid::binShare(uint32_t share) {
     s.fieldStart[0] = 0;
 }
 
-void ColliderGrid::build(std::span<const Collider> colliders, const Aabb& keep) {
-    begin(colliders, keep, 1);
-    binShare(0);
-}
-
 } // namespace sward

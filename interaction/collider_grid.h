@@ -34,7 +34,7 @@ inline uint32_t gridCell(float v, float origin, float inverseSize, uint32_t coun
 // ranks are its lists of share 0, 1, ... one after the other: ascending, and the same for any number of shares.
 class ColliderGrid {
 public:
-    // tile must outlive the grid: its grid of fields is read at every build (the fields' boxes are copied here).
+    // tile must outlive the grid: its grid of fields is read at every begin (the fields' boxes are copied here).
     explicit ColliderGrid(const VegetationTile& tile);
 
     // Keeps the colliders whose bounds overlap `keep` (the vegetation's bounds), ranks them and splits the ranks into
@@ -42,8 +42,6 @@ public:
     void begin(std::span<const Collider> colliders, const Aabb& keep, uint32_t shares);
     // Bins the ranks of one share into the fields. Shares may be binned at once on different threads.
     void binShare(uint32_t share);
-    // begin(colliders, keep, 1) and binShare(0).
-    void build(std::span<const Collider> colliders, const Aabb& keep);
 
     uint32_t shares() const { return uint32_t(shares_.size()); }
     // The ranks of share `share` whose bounds overlap field f's box, ascending (empty for an empty field). Every rank
@@ -54,7 +52,7 @@ public:
     }
 
     uint32_t size() const { return uint32_t(input_.size()); }
-    uint32_t inputIndex(uint32_t rank) const { return input_[rank]; } // index into build()'s span
+    uint32_t inputIndex(uint32_t rank) const { return input_[rank]; } // index into begin()'s span
     const Aabb& bounds(uint32_t rank) const { return bounds_[rank]; }
 
 private:
