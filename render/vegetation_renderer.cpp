@@ -269,7 +269,7 @@ void VegetationRenderer::writeConstants(const Tile& tile, const Camera& camera, 
     c.options = glm::uvec4(cutoutCorners_, 0u, 0u, 0u);
     c.categoryCard = cardCover_;
     c.categoryAspect = meanAspects_;
-    c.farLod = glm::vec4(scene_.lod.sliceLayers, scene_.lod.mergeWidth, float(camera.fy), 0.0f);
+    c.farLod = glm::vec4(scene_.lod.sliceLayers, scene_.lod.mergeWidth, float(camera.fy), scene_.lod.depthMerge);
     std::memcpy(tile.constants.mapped() + (slot % gpu::kFrameDataSlots) * constantsStride_, &c, sizeof c);
     frontToBack(tile.clusterBoxes, glm::vec3(camera.position), orderScratch_);
     std::memcpy(tile.clusterOrder.mapped() + (slot % gpu::kFrameDataSlots) * tile.orderStride, orderScratch_.data(),

@@ -169,6 +169,7 @@ void readLod(JsonReader r, LodParams& l) {
     l.band = r.numberF("band", l.band, 0.01, 100.0);
     l.sliceLayers = r.numberF("slice_layers", l.sliceLayers, 0.0, 100.0);
     l.mergeWidth = r.numberF("merge_width", l.mergeWidth, 0.0, 64.0);
+    l.depthMerge = r.numberF("depth_merge", l.depthMerge, 0.0, 64.0);
     if (l.sliceLayers > 0.0f && l.sliceLayers < 2.0f)
         r.fail(r.name("slice_layers") +
                " must be 0 (off) or at least 2 (fewer would show the ground through the plants)");

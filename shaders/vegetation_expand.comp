@@ -53,7 +53,16 @@ uint sliceBits(LodChoice choice, PlantStatic plant, float height, vec3 position,
 uint widthBits(LodChoice choice, float height, uint category, float dist, uint index) {
     if (choice.lodA != kLodFar || choice.lodB != kNoLod) return uint(kWidthScaleUnit);
     float widthPixels = height * veg.categoryAspect[category] * veg.farLod.z / max(dist, 1e-3);
-    return uint(min(mergeWidthScale(veg.farLod.y, widthPixels, mergeHash(index)) * kWidthScaleUnit + 0.5, 255.0));
+    return scaleBits(mergeWidthScale(veg.farLod.y, widthPixels, mergeHash(index)));
+}
+
+// The far depth merging's scale times kWidthScaleUnit (ExpandedPlant::attributes bits 8-15 of a far billboard; 0: not
+// drawn). Like the width, only for a plant drawn as a far billboard alone.
+uint depthBits(LodChoice choice, PlantStatic plant, float height, vec3 position, float dist, uint index) {
+    if (choice.lodA != kLodFar || choice.lodB != kNoLod) return uint(kWidthScaleUnit);
+    float heightPixels = height * veg.farLod.z / max(dist, 1e-3);
+    float sinView = dot(normalize(veg.cameraPosition.xyz - position), octahedralDecode(plant.up));
+    return scaleBits(depthMergeScale(veg.farLod.w, heightPixels, sinView, depthMergeHash(index)));
 }
 
 void main() {
@@ -80,6 +89,7 @@ void main() {
             if (choice.lodA == kNoLod) continue;
             float height = plantHeight(plant, dynamics[first + i]);
             if (widthBits(choice, height, plantCategory(plant), dist, first + i) == 0u) continue;
+            if (depthBits(choice, plant, height, position, dist, first + i) == 0u) continue;
             if (sliceBits(choice, plant, height, position, first, count, field, cover) == uint(kSliceUnit)) continue;
             lodCounts[choice.lodA] += 1u;
             if (choice.lodB != kNoLod) lodCounts[choice.lodB] += 1u;
@@ -100,13 +110,15 @@ void main() {
         PlantDynamic dyn = dynamics[first + i];
         float height = plantHeight(plant, dyn);
         uint width = widthBits(choice, height, plantCategory(plant), dist, first + i);
-        if (width == 0u) continue;
+        uint depth = depthBits(choice, plant, height, position, dist, first + i);
+        if (width == 0u || depth == 0u) continue;
         uint slice = sliceBits(choice, plant, height, position, first, count, field, cover);
         if (slice == uint(kSliceUnit)) continue;
         ExpandedPlant instance;
         instance.positionHeight = vec4(position, height);
         instance.up = plant.up;
         instance.attributes = bitfieldInsert(plant.attributes, slice, 24, 8);
+        if (choice.lodA == kLodFar) instance.attributes = bitfieldInsert(instance.attributes, depth, 8, 8);
         instance.tip = plantTip(plant, dyn, position, time);
         uint fadeBits = uint(clamp(choice.t, 0.0, 1.0) * 255.0 + 0.5) | (width << 8) | plantStateFadeBits(dyn);
 
@@ -118,6 +130,7 @@ void main() {
         slot[choice.lodA] += 1u;
         if (choice.lodB != kNoLod) {
             instance.fade = fadeBits | 0x10000u; // the upper-LOD copy of a plant in a cross-fade band
+            if (choice.lodB == kLodFar) instance.attributes = bitfieldInsert(instance.attributes, depth, 8, 8);
             if (slot[choice.lodB] < veg.counts.z) {
                 instances[slot[choice.lodB]] = instance;
                 instancePlants[slot[choice.lodB]] = first + i;

@@ -119,13 +119,17 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
             LodChoice choice = chooseLod(lod, distance);
             if (choice.lodA == kNoLod) continue;
             float height = plantHeight(vegetation, plant, field.dynamicRecords[i]);
-            uint32_t width = uint32_t(gpu::kWidthScaleUnit); // widthBits()
+            uint32_t width = uint32_t(gpu::kWidthScaleUnit), depth = width; // widthBits(), depthBits()
             if (choice.lodA == gpu::kLodFar && choice.lodB == kNoLod) {
                 float widthPixels =
                     height * atlas.aspect[plant.attributes & 3u] * float(camera.fy) / std::max(distance, 1e-3f);
-                float scale = gpu::mergeWidthScale(lod.mergeWidth, widthPixels, gpu::mergeHash(fieldFirst + i));
-                width = uint32_t(std::min(scale * gpu::kWidthScaleUnit + 0.5f, 255.0f));
-                if (width == 0) continue;
+                width =
+                    gpu::scaleBits(gpu::mergeWidthScale(lod.mergeWidth, widthPixels, gpu::mergeHash(fieldFirst + i)));
+                const float heightPixels = height * float(camera.fy) / std::max(distance, 1e-3f);
+                const float sinView = glm::dot(glm::normalize(eye - position), decodeOctahedral(plant.up));
+                depth = gpu::scaleBits(
+                    gpu::depthMergeScale(lod.depthMerge, heightPixels, sinView, gpu::depthMergeHash(fieldFirst + i)));
+                if (width == 0 || depth == 0) continue;
             }
             uint32_t slice = 0; // sliceBits()
             if (choice.lodA == gpu::kLodFar && choice.lodB == kNoLod && lod.sliceLayers > 0.0f) {
@@ -140,9 +144,13 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
             expanded.fade = uint32_t(std::clamp(choice.t, 0.0f, 1.0f) * 255.0f + 0.5f) | (width << 8) |
                             (expanded.fade & 0xffff0000u);
             const uint32_t fade = expanded.fade;
+            // A far billboard's bits 8-15 hold its depth merging (vegetation_expand.comp), not an orientation.
+            auto withDepth = [depth](uint32_t attributes) { return (attributes & ~0xff00u) | (depth << 8); };
+            if (choice.lodA == gpu::kLodFar) expanded.attributes = withDepth(expanded.attributes);
             out.lods[choice.lodA].push_back(expanded);
             if (choice.lodB != kNoLod) {
                 expanded.fade = fade | 0x10000u;
+                if (choice.lodB == gpu::kLodFar) expanded.attributes = withDepth(expanded.attributes);
                 out.lods[choice.lodB].push_back(expanded);
             }
         }
@@ -190,7 +198,10 @@ ReferenceQuad referenceQuad(const gpu::ExpandedPlant& plant, uint32_t lod, uint3
     if (lod == gpu::kLodFar) {
         glm::vec3 toCamera = glm::normalize(cameraPosition - q.base);
         q.side = glm::cross(q.up, toCamera);
-        if (glm::dot(q.side, q.side) < 1e-4f) q.side = glm::vec3(std::cos(orientation), std::sin(orientation), 0.0f);
+        if (glm::dot(q.side, q.side) < 1e-4f) { // plant_vertex.glsl: the plant's random value picks a side
+            const float turn = 6.2831853f * float((plant.attributes >> 16) & 0xffu) * (1.0f / 255.0f);
+            q.side = glm::vec3(std::cos(turn), std::sin(turn), 0.0f);
+        }
         q.side = glm::normalize(q.side);
         q.rise = glm::normalize(glm::cross(toCamera, q.side));
     } else if (((plant.fade >> 17) & 0xfu) == gpu::kPlantStateFelled) {

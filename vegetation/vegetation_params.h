@@ -47,6 +47,9 @@ struct LodParams {
     // (gpu::mergeWidthScale), each showing as many copies of its plant side by side: the same expected coverage
     // from fewer triangles. 0: off.
     float mergeWidth = 12.0f;
+    // Far billboards shorter on screen than this many pixels are merged in depth (gpu::depthMergeHash, kDepthMerge-
+    // Exponent): fewer, denser cards, so a grazing ray meets the same coverage through fewer layers. 0: off.
+    float depthMerge = 16.0f;
 };
 
 // Procedural wind (a pure function of simulation time; see shaders/shared/vegetation.glsl).

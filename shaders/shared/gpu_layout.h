@@ -18,6 +18,7 @@ using mat4 = glm::mat4;
 using uint = uint32_t;
 using glm::clamp; // the functions shared with GLSL call these by their GLSL names
 using glm::max;
+using glm::min;
 using glm::sqrt;
 #define SWARD_CONST(type, name, value) inline constexpr type name = value
 #else
@@ -275,11 +276,16 @@ float unitFromHash(uint h) { return float(h >> 8u) * (1.0f / 16777216.0f); }
 #ifdef __cplusplus
 inline
 #endif
+float tanOfView(float sinView) { // tan of the angle between the ray and the ground, kept finite
+    float s = max(sinView, 1e-3f);
+    return s / max(sqrt(max(1.0f - s * s, 0.0f)), 1e-6f);
+}
+#ifdef __cplusplus
+inline
+#endif
 float sliceHeight(float layersWanted, float cover2, float cover1, float sinView) {
     if (layersWanted <= 0.0f || cover1 <= 0.0f) return 0.0f;
-    float s = max(sinView, 1e-3f);
-    float tanView = s / max(sqrt(max(1.0f - s * s, 0.0f)), 1e-6f);
-    return max((cover2 - layersWanted * tanView) / cover1, 0.0f);
+    return max((cover2 - layersWanted * tanOfView(sinView)) / cover1, 0.0f);
 }
 // ExpandedPlant::attributes bits 24-31: the cut height as a fraction of the plant's height, times this (rounded
 // down: a drawn part is never lost). 0: whole; kSliceUnit: not drawn.
@@ -299,9 +305,9 @@ SWARD_CONST(float, kMaxMergeWiden, 6.0);
 #ifdef __cplusplus
 inline
 #endif
-float mergeWidthScale(float mergeWidth, float widthPixels, float u) {
-    if (mergeWidth <= 0.0f) return 1.0f;
-    float r = max(widthPixels / mergeWidth, 1.0f / kMaxMergeWiden); // the share of plants to draw
+float mergeScale(float mergeSize, float sizePixels, float u, float maxScale) {
+    if (mergeSize <= 0.0f) return 1.0f;
+    float r = max(sizePixels / mergeSize, 1.0f / maxScale); // the share of plants to draw
     float q = r / (1.0f - 0.5f * kMergeFade); // kept: u < q, shrinking over [q * (1 - kMergeFade), q)
     float zone = q * (1.0f - kMergeFade);
     if (zone >= 1.0f) return 1.0f;
@@ -310,6 +316,12 @@ float mergeWidthScale(float mergeWidth, float widthPixels, float u) {
     float share = q <= 1.0f ? r : zone + ((q - zone) * (q - zone) - (q - 1.0f) * (q - 1.0f)) / (2.0f * q * kMergeFade);
     return clamp((q - u) / (q * kMergeFade), 0.0f, 1.0f) / share;
 }
+#ifdef __cplusplus
+inline
+#endif
+float mergeWidthScale(float mergeWidth, float widthPixels, float u) {
+    return mergeScale(mergeWidth, widthPixels, u, kMaxMergeWiden);
+}
 // ExpandedPlant::fade bits 8-15 hold the width scale times this (32: 1, exactly; 0: not drawn).
 SWARD_CONST(float, kWidthScaleUnit, 32.0);
 // A plant's merging hash in [0, 1), from its index in the tile.
@@ -317,6 +329,40 @@ SWARD_CONST(float, kWidthScaleUnit, 32.0);
 constexpr
 #endif
 float mergeHash(uint index) { return unitFromHash(pcgHash(index ^ 0x6A09E667u)); }
+
+// Merging of far billboards in depth (LodParams::depthMerge): at a grazing view a far pixel looks through tens of
+// billboards one behind the other, and each costs its own fragment lanes. A far plant `heightPixels` tall on screen
+// is kept with mergeScale's rule (threshold depthMerge pixels, by an independent hash, so which plants are widened and
+// which are thickened is not correlated), and instead of wider its card is drawn denser: where its alpha is a it shows
+// 1 - (1 - a)^(scale^kDepthMergeExponent) (plant_vertex.glsl, plantTexel), one card standing for several at the
+// plant's place. Only as far as cards overlap: the scale is at most cot(view angle) / kDepthMergeGrazing, at most
+// kMaxDepthMerge. Seen from higher up, cards overlap less, and one denser card covers less than the cards it stands
+// for (the far band at the far limit darkened 8 % seen from 30 m without that bound). The exponent is below the
+// Boolean model's 1 because a coarse mip's soft alpha, thresholded by alpha-to-coverage, gains coverage faster than
+// independent cards would (with 1 the meadow's far band was 3-10 % brighter, per channel). The constants are measured
+// in docs/benchmarks.md. The opacity fades to nothing with the scale for the kept plants nearest the threshold: none
+// pops. The scale is stored as the width scale is (scaleBits), in ExpandedPlant::attributes bits 8-15 of a far
+// billboard drawn alone: a billboard faces the camera and has no use for the plant's orientation.
+SWARD_CONST(float, kDepthMergeExponent, 0.6);
+SWARD_CONST(float, kMaxDepthMerge, 3.0);
+SWARD_CONST(float, kDepthMergeGrazing, 16.0);
+#ifdef __cplusplus
+inline
+#endif
+float depthMergeScale(float depthMerge, float heightPixels, float sinView, float u) {
+    float most = clamp(1.0f / (tanOfView(sinView) * kDepthMergeGrazing), 1.0f, kMaxDepthMerge);
+    return mergeScale(depthMerge, heightPixels, u, most);
+}
+// A plant's depth-merging hash in [0, 1), from its index in the tile (independent of mergeHash).
+#ifdef __cplusplus
+constexpr
+#endif
+float depthMergeHash(uint index) { return unitFromHash(pcgHash(index ^ 0xBB67AE85u)); }
+// The 8-bit field of a merging scale (a unit is kWidthScaleUnit; 0: not drawn).
+#ifdef __cplusplus
+inline
+#endif
+uint scaleBits(float scale) { return uint(min(scale * kWidthScaleUnit + 0.5f, 255.0f)); }
 
 // Per-frame constants of the vegetation expansion (uniform buffer).
 struct VegetationConstants {
@@ -334,7 +380,8 @@ struct VegetationConstants {
     vec4 categoryAspect;   // per category: mean width / height of its atlas cells (meanAspects(), far merging)
     vec4 farLod;           // x: card layers a ray crosses above a far billboard's cut (LodParams::sliceLayers; 0: off),
                            // y: far billboards narrower merge to this width, pixels (LodParams::mergeWidth; 0: off),
-                           // z: the camera's vertical focal length, pixels
+                           // z: the camera's vertical focal length, pixels,
+                           // w: far billboards shorter merge in depth below this height, pixels (LodParams::depthMerge)
 };
 
 // One expanded plant in one level of detail (storage buffer written by vegetation_expand.comp).
@@ -342,7 +389,9 @@ struct ExpandedPlant {
     vec4 positionHeight; // xyz world position of the base, w plant height in metres (after size and cut)
     uint up;             // octahedral unit up vector, as PlantStatic::up
     uint attributes;     // as PlantStatic::attributes (category, variant, orientation, random) but bits 24-31: the
-                         // far slicing's cut height (sliceHeight) / height * kSliceUnit (the size is in positionHeight.w)
+                         // far slicing's cut height (sliceHeight) / height * kSliceUnit (the size is in
+                         // positionHeight.w), and on a far billboard drawn alone bits 8-15 its depth merging's scale
+                         // (scaleBits, depthMergeScale)
     uint tip;            // packHalf2x16: horizontal tip offset (wind + interaction) in plant heights, world xy
     uint fade;           // bits 0-7 cross-fade t (unorm8), bits 8-15 the far merging's width scale times
                          // kWidthScaleUnit, bit 16 set on the upper-LOD copy, bits 17-20 plant state (PlantDynamic

@@ -36,6 +36,7 @@ struct PlantQuad {
     vec2 tip;
     vec3 baseAspect; // the cell's base u, base v, aspect
     vec4 uvRect;
+    float depth;  // far depth merging: the card's alpha a shows as 1 - (1 - a)^depth (plantTexel); else 1
     float repeat; // copies of the plant side by side across the quad: a merged far billboard's widening, else 1
 };
 
@@ -69,6 +70,9 @@ PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, vec3 camera, ou
     float widen = float(bitfieldExtract(instance.fade, 8, 8)) / kWidthScaleUnit; // far merging (mergeWidthScale)
     q.width = q.height * baseAspect.z * widen;
     q.repeat = max(widen, 1.0);
+    // Far depth merging (depthMerge in gpu_layout.h): the card's opacity exponent, exactly 1 where nothing is merged.
+    float depthScale = lod == kLodFar ? float(bitfieldExtract(instance.attributes, 8, 8)) / kWidthScaleUnit : 1.0;
+    q.depth = depthScale == 1.0 ? 1.0 : pow(depthScale, kDepthMergeExponent);
     q.baseAspect = baseAspect.xyz;
     q.uvRect = cells[cell].uvRect;
     q.cutFraction = float(instance.fade >> 24) * (1.0 / 255.0); // height is already cut to this fraction
@@ -77,7 +81,9 @@ PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, vec3 camera, ou
         // Faces the camera: upright when seen from the side, lying towards the camera when seen from above.
         vec3 toCamera = normalize(camera - q.base);
         q.side = cross(q.up, toCamera);
-        if (dot(q.side, q.side) < 1e-4) q.side = vec3(cos(orientation), sin(orientation), 0.0);
+        // Seen from straight above, any side will do: the plant's random value picks one (a far billboard's bits
+        // 8-15 hold its depth merging, not an orientation).
+        if (dot(q.side, q.side) < 1e-4) q.side = vec3(cos(6.2831853 * q.random), sin(6.2831853 * q.random), 0.0);
         q.side = normalize(q.side);
         q.rise = normalize(cross(toCamera, q.side));
     } else if (bitfieldExtract(instance.fade, 17, 4) == kPlantStateFelled) {

@@ -195,9 +195,10 @@ TEST_F(VegetationTest, SlicingAndMergingFarBillboardsKeepCoverageAndColour) {
         gpu::ExpansionStats stats{};
         double plants = 0.0, green = 0.0, farHeight = 0.0; // farHeight: drawn share of the far billboards' height
     };
-    auto measure = [&](float sliceLayers, float mergeWidth) {
+    auto measure = [&](float sliceLayers, float mergeWidth, float depthMerge) {
         scene.lod.sliceLayers = sliceLayers;
         scene.lod.mergeWidth = mergeWidth;
+        scene.lod.depthMerge = depthMerge;
         auto r = renderer(true);
         Measured m;
         FrameImages frame = renderFrame(*ctx, *r, camera);
@@ -218,7 +219,8 @@ TEST_F(VegetationTest, SlicingAndMergingFarBillboardsKeepCoverageAndColour) {
         return m;
     };
     // Fewer layers than the default: a test that can fail.
-    const Measured whole = measure(0.0f, 0.0f), sliced = measure(4.0f, 6.0f);
+    const Measured whole = measure(0.0f, 0.0f, 0.0f), sliced = measure(4.0f, 6.0f, 0.0f),
+                   deep = measure(4.0f, 6.0f, 16.0f);
     std::printf(
         "far plants %u -> %u, drawn share of their height %.3f, plant pixels %.0f -> %.0f (%+.2f %%), mean green "
         "%.4f -> %.4f (%+.2f %%)\n",
@@ -234,6 +236,14 @@ TEST_F(VegetationTest, SlicingAndMergingFarBillboardsKeepCoverageAndColour) {
     ASSERT_GT(whole.plants, double(kWidth * kHeight) / 5);
     EXPECT_NEAR(sliced.plants / whole.plants, 1.0, 0.02) << "coverage within 2 %";
     EXPECT_NEAR(sliced.green / whole.green, 1.0, 0.02) << "mean plant colour within 2 %";
+    // Merged in depth too (LodParams::depthMerge): fewer, denser far cards, the same coverage and colour.
+    std::printf("merged in depth: far plants %u, plant pixels %.0f (%+.2f %%), mean green %.4f (%+.2f %%)\n",
+                deep.stats.instances.z, deep.plants, 100.0 * (deep.plants / whole.plants - 1.0), deep.green,
+                100.0 * (deep.green / whole.green - 1.0));
+    EXPECT_EQ(deep.stats.instances.y, whole.stats.instances.y) << "mid plants are never merged";
+    EXPECT_LT(deep.stats.instances.z, sliced.stats.instances.z * 0.85) << "fewer far billboards";
+    EXPECT_NEAR(deep.plants / whole.plants, 1.0, 0.02) << "coverage within 2 %";
+    EXPECT_NEAR(deep.green / whole.green, 1.0, 0.02) << "mean plant colour within 2 %";
 }
 
 // A merged far billboard (LodParams::mergeWidth) is drawn wider than its plant: it shows copies of the plant side by
@@ -248,8 +258,9 @@ TEST_F(VegetationTest, MergedFarBillboardsKeepTheirDetailAcrossTheImage) {
     const glm::dvec3 eye(3.0, 3.0, terrain.height({3.0f, 3.0f}) + 1.0);
     const glm::dvec3 target(97.0, 97.0, terrain.height({97.0f, 97.0f}) + 0.3);
     const Camera grazing = Camera::lookAt(eye, target, {0, 0, 1}, 30.0, kWidth, kHeight);
-    auto measure = [&](float mergeWidth) {
+    auto measure = [&](float mergeWidth, float depthMerge) {
         scene.lod.mergeWidth = mergeWidth;
+        scene.lod.depthMerge = depthMerge;
         auto r = renderer(true);
         FrameImages frame = renderFrame(*ctx, *r, grazing);
         auto farPlant = [&](size_t i) {
@@ -272,13 +283,17 @@ TEST_F(VegetationTest, MergedFarBillboardsKeepTheirDetailAcrossTheImage) {
         d.up /= std::max<double>(double(d.pairs), 1.0);
         return d;
     };
-    const Detail whole = measure(0.0f), merged = measure(12.0f);
+    const Detail whole = measure(0.0f, 0.0f), merged = measure(12.0f, 0.0f), deep = measure(12.0f, 16.0f);
     std::printf("far plant pixels %llu / %llu, detail across %.4f -> %.4f, up %.4f -> %.4f\n",
                 (unsigned long long)whole.pairs, (unsigned long long)merged.pairs, whole.across, merged.across,
                 whole.up, merged.up);
     ASSERT_GT(whole.pairs, uint64_t(kWidth * kHeight / 20)) << "too few far plant pixels to measure";
     EXPECT_NEAR(merged.across / whole.across, 1.0, 0.05) << "detail across the image within 5 %";
     EXPECT_NEAR(merged.up / whole.up, 1.0, 0.05) << "detail up the image within 5 %";
+    std::printf("merged in depth too: far plant pixels %llu, detail across %.4f, up %.4f\n",
+                (unsigned long long)deep.pairs, deep.across, deep.up);
+    EXPECT_NEAR(deep.across / whole.across, 1.0, 0.05) << "merged in depth: detail across the image within 5 %";
+    EXPECT_NEAR(deep.up / whole.up, 1.0, 0.05) << "merged in depth: detail up the image within 5 %";
 }
 
 TEST_F(VegetationTest, ClusterCullingSkipsWhatTheCameraCannotSee) {
