@@ -298,8 +298,9 @@ SWARD_CONST(float, kSliceUnit, 255.0);
 // which a grazing ray meets the plants are unchanged (Boolean model: density times width is what blocks a ray), while
 // the rasteriser sees a few billboards a block wide instead of many smaller ones, each of which costs at least a 4 x 4
 // block of fragment lanes on a CPU driver (a 2 x 2 quad on a GPU) and a vertex stage. The kept plants nearest the
-// threshold (the top kMergeFade of the kept range) shrink to nothing as the camera moves away, so none pops. Returns
-// the plant's width scale (0: not drawn); exactly 1 where nothing is merged.
+// threshold (the top kMergeFade of the kept range) shrink to nothing as the camera moves away, so none pops.
+// mergeScale is that rule for a size on screen (the width here; the height for merging in depth, below): it returns
+// the plant's scale (0: not drawn), exactly 1 where nothing is merged.
 SWARD_CONST(float, kMergeFade, 0.25);
 SWARD_CONST(float, kMaxMergeWiden, 6.0);
 #ifdef __cplusplus
@@ -344,7 +345,7 @@ float mergeHash(uint index) { return unitFromHash(pcgHash(index ^ 0x6A09E667u));
 // pops. The scale is stored as the width scale is (scaleBits), in ExpandedPlant::attributes bits 8-15 of a far
 // billboard drawn alone: a billboard faces the camera and has no use for the plant's orientation.
 SWARD_CONST(float, kDepthMergeExponent, 0.6);
-SWARD_CONST(float, kMaxDepthMerge, 3.0);
+SWARD_CONST(float, kMaxDepthMerge, 6.0);
 SWARD_CONST(float, kDepthMergeGrazing, 16.0);
 #ifdef __cplusplus
 inline
