@@ -336,9 +336,10 @@ float mergeHash(uint index) { return unitFromHash(pcgHash(index ^ 0x6A09E667u));
 // is kept with mergeScale's rule (threshold depthMerge pixels, by an independent hash, so which plants are widened and
 // which are thickened is not correlated), and instead of wider its card is drawn denser: where its alpha is a it shows
 // 1 - (1 - a)^(scale^kDepthMergeExponent) (plant_vertex.glsl, plantTexel), one card standing for several at the
-// plant's place. Only as far as cards overlap: the scale is at most cot(view angle) / kDepthMergeGrazing, at most
-// kMaxDepthMerge. Seen from higher up, cards overlap less, and one denser card covers less than the cards it stands
-// for (the far band at the far limit darkened 8 % seen from 30 m without that bound). The exponent is below the
+// plant's place. Only as far as cards overlap: the scale is at most cot(view angle) / kDepthMergeGrazing (at most
+// kMaxDepthMerge), and where that is below 2 the threshold shrinks with it, to no merging at all below 1. Seen from
+// higher up, cards overlap less, and one denser card covers less than the cards it stands for (the far band at the
+// far limit darkened 8 % seen from 30 m without that bound). The exponent is below the
 // Boolean model's 1 because a coarse mip's soft alpha, thresholded by alpha-to-coverage, gains coverage faster than
 // independent cards would (with 1 the meadow's far band was 3-10 % brighter, per channel). The constants are measured
 // in docs/benchmarks.md. The opacity fades to nothing with the scale for the kept plants nearest the threshold: none
@@ -351,8 +352,11 @@ SWARD_CONST(float, kDepthMergeGrazing, 16.0);
 inline
 #endif
 float depthMergeScale(float depthMerge, float heightPixels, float sinView, float u) {
-    float most = clamp(1.0f / (tanOfView(sinView) * kDepthMergeGrazing), 1.0f, kMaxDepthMerge);
-    return mergeScale(depthMerge, heightPixels, u, most);
+    float overlap = 1.0f / (tanOfView(sinView) * kDepthMergeGrazing); // cot(view angle) / kDepthMergeGrazing
+    // The threshold fades in over overlap 1..2, so that a steeper view merges nothing (a threshold of 0: a scale of
+    // exactly 1) and the scale stays continuous in the angle, too.
+    float threshold = depthMerge * clamp(overlap - 1.0f, 0.0f, 1.0f);
+    return mergeScale(threshold, heightPixels, u, clamp(overlap, 1.0f, kMaxDepthMerge));
 }
 // A plant's depth-merging hash in [0, 1), from its index in the tile (independent of mergeHash).
 #ifdef __cplusplus

@@ -73,3 +73,42 @@ TEST(Merging, PlantHashesAreUniformAndFixed) {
     EXPECT_EQ(gpu::mergeHash(12345u), gpu::mergeHash(12345u));
     EXPECT_FLOAT_EQ(gpu::mergeHash(0u), 0.44527441f); // fixed: every merged dataset depends on these values
 }
+
+// Merging in depth (gpu::depthMergeScale): the same rule on the billboard's height, bounded by how much cards overlap.
+TEST(DepthMerging, OnlyAsFarAsCardsOverlapAtTheViewAngle) {
+    auto sinOf = [](double degrees) { return float(std::sin(degrees * 3.14159265358979 / 180.0)); };
+    auto deepest = [](float sinView) {
+        float most = 0.0f;
+        for (int i = 0; i < kSteps; ++i)
+            most = std::max(most, gpu::depthMergeScale(16.0f, 0.5f, sinView, float(i) / kSteps));
+        return most;
+    };
+    // Seen more steeply than atan(1 / kDepthMergeGrazing), 3.6 degrees: nothing merges, exactly (mergeScale's fade
+    // zone would still thin plants at the threshold: the threshold itself fades out).
+    for (float u : {0.0f, 0.5f, 0.99999f}) {
+        EXPECT_EQ(gpu::depthMergeScale(16.0f, 0.5f, sinOf(10.0), u), 1.0f) << "10 degrees";
+        EXPECT_EQ(gpu::depthMergeScale(16.0f, 0.5f, sinOf(90.0), u), 1.0f) << "from above";
+        EXPECT_EQ(gpu::depthMergeScale(0.0f, 0.5f, sinOf(0.5), u), 1.0f) << "off";
+        EXPECT_EQ(gpu::depthMergeScale(16.0f, 20.0f, sinOf(0.5), u), 1.0f) << "taller than the threshold";
+    }
+    // 1.8 degrees: cot 31.8, so one card stands for at most 31.8 / 16 plants; 0.5 degrees: the limit of 6.
+    EXPECT_NEAR(deepest(sinOf(1.8)), 1.0 / (std::tan(1.8 * 3.14159265358979 / 180.0) * gpu::kDepthMergeGrazing), 2e-3);
+    EXPECT_NEAR(deepest(sinOf(0.5)), gpu::kMaxDepthMerge, 1e-3);
+    // The expected scale per plant is 1 (mergeScale's rule), and it changes continuously with the height on screen.
+    for (float pixels : {16.0f, 8.0f, 3.0f, 1.0f}) {
+        double sum = 0.0;
+        for (int i = 0; i < kSteps; ++i)
+            sum += gpu::depthMergeScale(16.0f, pixels, sinOf(0.5), (float(i) + 0.5f) / kSteps);
+        EXPECT_NEAR(sum / kSteps, 1.0, 1e-3) << pixels << " px";
+    }
+    for (float u : {0.1f, 0.4f, 0.8f}) {
+        float previous = gpu::depthMergeScale(16.0f, 20.0f, sinOf(0.5), u);
+        for (float pixels = 20.0f; pixels > 0.5f; pixels -= 0.001f) {
+            const float scale = gpu::depthMergeScale(16.0f, pixels, sinOf(0.5), u);
+            ASSERT_LE(std::abs(scale - previous), 0.05f) << "u " << u << " at " << pixels << " px";
+            previous = scale;
+        }
+    }
+    EXPECT_NE(gpu::depthMergeHash(7u), gpu::mergeHash(7u)) << "independent of the width's hash";
+    EXPECT_FLOAT_EQ(gpu::depthMergeHash(0u), gpu::depthMergeHash(0u));
+}
