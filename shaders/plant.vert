@@ -37,7 +37,7 @@ layout(location = 13) flat out vec3 outAlbedoOffset;
 layout(location = 14) flat out vec3 outSunLight;
 layout(location = 15) flat out vec3 outAmbient;
 layout(location = 18) flat out vec4 outUvRect; // the cell's atlas rectangle (outUv is in cell coordinates)
-layout(location = 19) flat out vec2 outRepeat; // PlantQuad::repeat (copies across the quad), PlantQuad::depth
+layout(location = 19) flat out vec2 outMerge; // far merging: PlantQuad::repeat (copies across), PlantQuad::opacity
 
 void main() {
     ExpandedPlant instance = instances[gl_InstanceIndex];
@@ -57,7 +57,7 @@ void main() {
     PlantVertex v = quadCorner(instance, quad, cell, push.lod, uint(gl_VertexIndex) % perQuad);
     outUv = v.uv;
     outUvRect = quad.uvRect;
-    outRepeat = vec2(quad.repeat, quad.depth);
+    outMerge = vec2(quad.repeat, quad.opacity);
     outWorld = v.position;
     outViewDepth = (frame.view * vec4(v.position, 1.0)).z;
     outFade = instance.fade | (push.lod << 21); // bits 21-22: the LOD, for the viewer's LOD colours

@@ -23,13 +23,13 @@ layout(location = 13) flat out vec3 outAlbedoOffset;
 layout(location = 14) flat out vec3 outSunLight;
 layout(location = 15) flat out vec3 outAmbient;
 layout(location = 18) flat out vec4 outUvRect; // baked coordinates are the atlas's own
-layout(location = 19) flat out vec2 outRepeat;
+layout(location = 19) flat out vec2 outMerge;
 
 void main() {
     BakedVertex v = baked[gl_VertexIndex];
     outUv = v.uvRandom.xy;
     outUvRect = vec4(0.0, 0.0, 1.0, 1.0);
-    outRepeat = vec2(1.0);
+    outMerge = vec2(1.0);
     outWorld = v.positionFraction.xyz;
     outViewDepth = (frame.view * vec4(v.positionFraction.xyz, 1.0)).z;
     // Baked vertices carry no LOD: the LOD overlay shows every plant as far.

@@ -339,12 +339,12 @@ float mergeHash(uint index) { return unitFromHash(pcgHash(index ^ 0x6A09E667u));
 // plant's place. Only as far as cards overlap: the scale is at most cot(view angle) / kDepthMergeGrazing (at most
 // kMaxDepthMerge), and where that is below 2 the threshold shrinks with it, to no merging at all below 1. Seen from
 // higher up, cards overlap less, and one denser card covers less than the cards it stands for (the far band at the
-// far limit darkened 8 % seen from 30 m without that bound). The exponent is below the
-// Boolean model's 1 because a coarse mip's soft alpha, thresholded by alpha-to-coverage, gains coverage faster than
-// independent cards would (with 1 the meadow's far band was 3-10 % brighter, per channel). The constants are measured
-// in docs/benchmarks.md. The opacity fades to nothing with the scale for the kept plants nearest the threshold: none
-// pops. The scale is stored as the width scale is (scaleBits), in ExpandedPlant::attributes bits 8-15 of a far
-// billboard drawn alone: a billboard faces the camera and has no use for the plant's orientation.
+// far limit darkened 8 % seen from 30 m without that bound). The exponent is below the Boolean model's 1 because a
+// coarse mip's soft alpha, thresholded by alpha-to-coverage, gains coverage faster than independent cards would (with
+// 1 the meadow's far band was 3-10 % brighter, per channel). The constants are measured in docs/benchmarks.md. The
+// opacity fades to nothing with the scale for the kept plants nearest the threshold: none pops. The scale is stored
+// as the width scale is (scaleBits), in ExpandedPlant::attributes bits 8-15 of a far billboard drawn alone: a
+// billboard faces the camera and has no use for the plant's orientation.
 SWARD_CONST(float, kDepthMergeExponent, 0.6);
 SWARD_CONST(float, kMaxDepthMerge, 6.0);
 SWARD_CONST(float, kDepthMergeGrazing, 16.0);

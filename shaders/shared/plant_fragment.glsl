@@ -14,10 +14,10 @@ layout(location = 5) in float inHeightFraction;
 layout(location = 6) flat in float inRandom;
 layout(location = 7) flat in uint inLabel; // ground truth only
 layout(location = 18) flat in vec4 inUvRect; // the cell's atlas rectangle: u0, v0, u1, v1
-layout(location = 19) flat in vec2 inRepeat; // x: copies across the quad, y: opacity exponent (PlantQuad)
+layout(location = 19) flat in vec2 inMerge; // far merging: x PlantQuad::repeat, y PlantQuad::opacity
 
-// The plant's atlas texel here. inUv is in cell coordinates; on a merged far billboard (inRepeat.x > 1) u runs over
-// 0..inRepeat and shows that many copies of the plant side by side, every other one mirrored so each seam is
+// The plant's atlas texel here. inUv is in cell coordinates; on a far billboard merged in width (inMerge.x > 1) u
+// runs over 0..inMerge.x and shows that many copies of the plant side by side, every other one mirrored so each seam is
 // continuous: plants at their own width, not one plant stretched. The mip level comes from the unwrapped
 // coordinate, the same on both sides of a seam. Colour, truth and shadow passes all sample through here, so they
 // keep the same texels.
@@ -25,15 +25,15 @@ vec4 plantTexel() {
     vec2 size = inUvRect.zw - inUvRect.xy;
     vec2 dx = dFdx(inUv) * size, dy = dFdy(inUv) * size;
     float u = inUv.x;
-    if (inRepeat.x > 1.0) {
+    if (inMerge.x > 1.0) {
         float copy = floor(u);
         u -= copy;
         if (mod(copy, 2.0) == 1.0) u = 1.0 - u;
     }
     vec4 texel = textureGrad(atlas, inUvRect.xy + size * vec2(u, inUv.y), dx, dy);
-    // A far billboard merged in depth stands for several cards at its place (depthMerge in gpu_layout.h). Alpha is
-    // kept below 1 so that an opaque texel, too, fades out with the exponent: none pops.
-    if (inRepeat.y != 1.0) texel.a = 1.0 - pow(1.0 - min(texel.a, 0.996), inRepeat.y);
+    // A far billboard merged in depth stands for several cards at its place (depthMergeScale in gpu_layout.h). Alpha
+    // is kept below 1 so that an opaque texel, too, fades out with the exponent: none pops.
+    if (inMerge.y != 1.0) texel.a = 1.0 - pow(1.0 - min(texel.a, 0.996), inMerge.y);
     return texel;
 }
 

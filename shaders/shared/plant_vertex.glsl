@@ -36,7 +36,7 @@ struct PlantQuad {
     vec2 tip;
     vec3 baseAspect; // the cell's base u, base v, aspect
     vec4 uvRect;
-    float depth;  // far depth merging: the card's alpha a shows as 1 - (1 - a)^depth (plantTexel); else 1
+    float opacity; // merged in depth: the card's alpha a shows as 1 - (1 - a)^opacity (plantTexel); else 1
     float repeat; // copies of the plant side by side across the quad: a merged far billboard's widening, else 1
 };
 
@@ -70,9 +70,9 @@ PlantQuad plantQuad(ExpandedPlant instance, uint lod, uint quad, vec3 camera, ou
     float widen = float(bitfieldExtract(instance.fade, 8, 8)) / kWidthScaleUnit; // far merging (mergeWidthScale)
     q.width = q.height * baseAspect.z * widen;
     q.repeat = max(widen, 1.0);
-    // Far depth merging (depthMerge in gpu_layout.h): the card's opacity exponent, exactly 1 where nothing is merged.
+    // Far merging in depth (depthMergeScale in gpu_layout.h): the card's opacity exponent, exactly 1 where not merged.
     float depthScale = lod == kLodFar ? float(bitfieldExtract(instance.attributes, 8, 8)) / kWidthScaleUnit : 1.0;
-    q.depth = depthScale == 1.0 ? 1.0 : pow(depthScale, kDepthMergeExponent);
+    q.opacity = depthScale == 1.0 ? 1.0 : pow(depthScale, kDepthMergeExponent);
     q.baseAspect = baseAspect.xyz;
     q.uvRect = cells[cell].uvRect;
     q.cutFraction = float(instance.fade >> 24) * (1.0 / 255.0); // height is already cut to this fraction
