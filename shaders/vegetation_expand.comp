@@ -36,6 +36,12 @@ vec2 clusterCardCover(uint first, uint count, PlantField field) {
     return sums / (fieldSize * fieldSize / float(veg.counts.y));
 }
 
+// Sine of the angle between the ray from the plant to the camera and the plant's up: how grazing the view is (far
+// slicing and depth merging).
+float viewSine(PlantStatic plant, vec3 position) {
+    return dot(normalize(veg.cameraPosition.xyz - position), octahedralDecode(plant.up));
+}
+
 // The far slicing's cut (ExpandedPlant::attributes bits 24-31; kSliceUnit: hidden whole). Only a plant drawn as a
 // far billboard alone is sliced: in a cross-fade band both copies must show the same. `cover.x` < 0 until the
 // cluster's sums are first needed.
@@ -43,8 +49,7 @@ uint sliceBits(LodChoice choice, PlantStatic plant, float height, vec3 position,
                PlantField field, inout vec2 cover) {
     if (choice.lodA != kLodFar || choice.lodB != kNoLod || veg.farLod.x <= 0.0) return 0u;
     if (cover.x < 0.0) cover = clusterCardCover(first, count, field);
-    float sinView = dot(normalize(veg.cameraPosition.xyz - position), octahedralDecode(plant.up));
-    float cut = sliceHeight(veg.farLod.x, cover.x, cover.y, sinView);
+    float cut = sliceHeight(veg.farLod.x, cover.x, cover.y, viewSine(plant, position));
     return uint(min(cut / max(height, 1e-6), 1.0) * kSliceUnit);
 }
 
@@ -61,8 +66,7 @@ uint widthBits(LodChoice choice, float height, uint category, float dist, uint i
 uint depthBits(LodChoice choice, PlantStatic plant, float height, vec3 position, float dist, uint index) {
     if (choice.lodA != kLodFar || choice.lodB != kNoLod) return uint(kWidthScaleUnit);
     float heightPixels = height * veg.farLod.z / max(dist, 1e-3);
-    float sinView = dot(normalize(veg.cameraPosition.xyz - position), octahedralDecode(plant.up));
-    return scaleBits(depthMergeScale(veg.farLod.w, heightPixels, sinView, depthMergeHash(index)));
+    return scaleBits(depthMergeScale(veg.farLod.w, heightPixels, viewSine(plant, position), depthMergeHash(index)));
 }
 
 void main() {

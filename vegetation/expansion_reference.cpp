@@ -120,21 +120,23 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
             if (choice.lodA == kNoLod) continue;
             float height = plantHeight(vegetation, plant, field.dynamicRecords[i]);
             uint32_t width = uint32_t(gpu::kWidthScaleUnit), depth = width; // widthBits(), depthBits()
-            if (choice.lodA == gpu::kLodFar && choice.lodB == kNoLod) {
+            const bool farAlone = choice.lodA == gpu::kLodFar && choice.lodB == kNoLod;
+            // viewSine(): how grazing the view is, for depth merging and slicing
+            const float sinView =
+                farAlone ? glm::dot(glm::normalize(eye - position), decodeOctahedral(plant.up)) : 0.0f;
+            if (farAlone) {
                 float widthPixels =
                     height * atlas.aspect[plant.attributes & 3u] * float(camera.fy) / std::max(distance, 1e-3f);
                 width =
                     gpu::scaleBits(gpu::mergeWidthScale(lod.mergeWidth, widthPixels, gpu::mergeHash(fieldFirst + i)));
                 const float heightPixels = height * float(camera.fy) / std::max(distance, 1e-3f);
-                const float sinView = glm::dot(glm::normalize(eye - position), decodeOctahedral(plant.up));
                 depth = gpu::scaleBits(
                     gpu::depthMergeScale(lod.depthMerge, heightPixels, sinView, gpu::depthMergeHash(fieldFirst + i)));
                 if (width == 0 || depth == 0) continue;
             }
             uint32_t slice = 0; // sliceBits()
-            if (choice.lodA == gpu::kLodFar && choice.lodB == kNoLod && lod.sliceLayers > 0.0f) {
+            if (farAlone && lod.sliceLayers > 0.0f) {
                 if (cover.x < 0.0f) cover = clusterCardCover(vegetation, field, box, atlas.card);
-                float sinView = glm::dot(glm::normalize(eye - position), decodeOctahedral(plant.up));
                 float cut = gpu::sliceHeight(lod.sliceLayers, cover.x, cover.y, sinView);
                 slice = uint32_t(std::min(cut / std::max(height, 1e-6f), 1.0f) * gpu::kSliceUnit);
                 if (slice == uint32_t(gpu::kSliceUnit)) continue;
