@@ -261,6 +261,16 @@ constexpr
 #endif
 float unitFromHash(uint h) { return float(h >> 8u) * (1.0f / 16777216.0f); }
 
+// A plant's own hashes in [0, 1), from its index in the tile, one per decision that must not follow another: each
+// XORs the index with its own word of SHA-256's initial state before hashing. Two decisions keyed alike would pick
+// the same plants (the far billboards kept by the width merge would be the ones kept by the depth merge, or those
+// that take the next shadow cascade). Salts: width merge 0x6A09E667 (mergeHash), depth merge 0xBB67AE85
+// (depthMergeHash), shadow cascade 0x3C6EF372 (plantShadowHash); test `PlantHashes.AreUncorrelated`.
+#ifdef __cplusplus
+constexpr
+#endif
+float plantHash(uint index, uint salt) { return unitFromHash(pcgHash(index ^ salt)); }
+
 // Slicing of far billboards. A grazing ray crosses many far billboards before it reaches the ground, and it meets
 // them near their tops: the parts of the plants below some height are hidden behind the plants in front. A far
 // billboard is drawn only above that height, so the hidden parts cost nothing, while every ray that reaches a drawn
@@ -325,11 +335,11 @@ float mergeWidthScale(float mergeWidth, float widthPixels, float u) {
 }
 // ExpandedPlant::fade bits 8-15 hold the width scale times this (32: 1, exactly; 0: not drawn).
 SWARD_CONST(float, kWidthScaleUnit, 32.0);
-// A plant's merging hash in [0, 1), from its index in the tile.
+// A plant's width-merging hash (plantHash).
 #ifdef __cplusplus
 constexpr
 #endif
-float mergeHash(uint index) { return unitFromHash(pcgHash(index ^ 0x6A09E667u)); }
+float mergeHash(uint index) { return plantHash(index, 0x6A09E667u); }
 
 // Merging of far billboards in depth (LodParams::depthMerge): at a grazing view a far pixel looks through tens of
 // billboards one behind the other, and each costs its own fragment lanes. A far plant `heightPixels` tall on screen
@@ -358,11 +368,16 @@ float depthMergeScale(float depthMerge, float heightPixels, float sinView, float
     float threshold = depthMerge * clamp(overlap - 1.0f, 0.0f, 1.0f);
     return mergeScale(threshold, heightPixels, u, clamp(overlap, 1.0f, kMaxDepthMerge));
 }
-// A plant's depth-merging hash in [0, 1), from its index in the tile (independent of mergeHash).
+// A plant's depth-merging hash (plantHash).
 #ifdef __cplusplus
 constexpr
 #endif
-float depthMergeHash(uint index) { return unitFromHash(pcgHash(index ^ 0xBB67AE85u)); }
+float depthMergeHash(uint index) { return plantHash(index, 0xBB67AE85u); }
+// A plant's choice in a shadow cascade's blend band (plantShadowCoordinate in shadow.glsl; plantHash).
+#ifdef __cplusplus
+constexpr
+#endif
+float plantShadowHash(uint plant) { return plantHash(plant, 0x3C6EF372u); }
 // The 8-bit field of a merging scale (a unit is kWidthScaleUnit; 0: not drawn).
 #ifdef __cplusplus
 inline

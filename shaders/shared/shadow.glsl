@@ -76,9 +76,6 @@ vec4 plantShadowCoordinate(vec3 world, vec3 root, float u) {
     return vec4(cascadeCoordinate(choice.k, world), choice.fade);
 }
 
-// The plant's blend-band decision: a hash of the plant's index, the same in every view and frame.
-float plantShadowHash(uint plant) { return unitFromHash(pcgHash(plant ^ 0xBB67AE85u)); }
-
 // `coordinate` from plantShadowCoordinate, interpolated; w is the plant's fade into no shadow (flat over a plant).
 float plantShadow(vec4 coordinate) { return mix(texture(shadowMap, coordinate.xyz), 1.0, coordinate.w); }
 

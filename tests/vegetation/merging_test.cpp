@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
 
 using namespace sward;
 
@@ -109,6 +111,31 @@ TEST(DepthMerging, OnlyAsFarAsCardsOverlapAtTheViewAngle) {
             previous = scale;
         }
     }
-    EXPECT_NE(gpu::depthMergeHash(7u), gpu::mergeHash(7u)) << "independent of the width's hash";
+}
+
+// Each per-plant decision has its own hash (gpu::plantHash): one keyed like another would pick the same plants (the
+// depth merge once shared its key with the shadow cascade's blend band). Every pair is checked on the decision's own
+// terms: the plants below a quarter under both hashes are a sixteenth of all, and the values are uncorrelated.
+TEST(PlantHashes, AreUncorrelated) {
+    using Hash = float (*)(uint32_t);
+    const std::pair<const char*, Hash> hashes[] = {{"width merge", [](uint32_t i) { return gpu::mergeHash(i); }},
+                                                   {"depth merge", [](uint32_t i) { return gpu::depthMergeHash(i); }},
+                                                   {"shadow", [](uint32_t i) { return gpu::plantShadowHash(i); }}};
+    constexpr uint32_t kPlants = 1u << 18;
+    for (size_t a = 0; a < std::size(hashes); ++a)
+        for (size_t b = a + 1; b < std::size(hashes); ++b) {
+            double sa = 0.0, sb = 0.0, sab = 0.0, saa = 0.0, sbb = 0.0;
+            uint32_t both = 0;
+            for (uint32_t i = 0; i < kPlants; ++i) {
+                const double u = hashes[a].second(i), v = hashes[b].second(i);
+                sa += u, sb += v, sab += u * v, saa += u * u, sbb += v * v;
+                both += u < 0.25 && v < 0.25;
+            }
+            const double n = kPlants, cov = sab / n - sa / n * (sb / n);
+            const double r = cov / std::sqrt((saa / n - sa / n * (sa / n)) * (sbb / n - sb / n * (sb / n)));
+            const std::string pair = std::string(hashes[a].first) + " / " + hashes[b].first;
+            EXPECT_LT(std::abs(r), 0.01) << pair;
+            EXPECT_NEAR(both / n, 1.0 / 16.0, 0.002) << pair; // binomial sd 0.0005
+        }
     EXPECT_FLOAT_EQ(gpu::depthMergeHash(0u), gpu::depthMergeHash(0u));
 }
