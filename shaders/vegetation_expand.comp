@@ -105,7 +105,10 @@ void main() {
 
     uvec3 slot = clusterCounts[cluster].xyz; // first instance of this cluster in each LOD range
     float time = veg.windGusts.z;
-    for (uint i = 0u; i < count; ++i) {
+    bool backwards = walkPlantsBackwards(camera.x, camera.y, box.boundsMin.x, box.boundsMin.y, box.boundsMax.x,
+                                         box.boundsMax.y); // nearer plants first
+    for (uint k = 0u; k < count; ++k) {
+        uint i = backwards ? count - 1u - k : k;
         PlantStatic plant = statics[first + i];
         vec3 position = plantPosition(plant, field.originStep);
         float dist = distance(position, camera);

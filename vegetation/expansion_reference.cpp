@@ -112,7 +112,10 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
         ++out.visibleClusters;
         out.plantsConsidered += box.range.y;
         glm::vec2 cover(-1.0f);
-        for (uint32_t i = box.range.x; i < box.range.x + box.range.y; ++i) {
+        const bool backwards =
+            gpu::walkPlantsBackwards(eye.x, eye.y, box.boundsMin.x, box.boundsMin.y, box.boundsMax.x, box.boundsMax.y);
+        for (uint32_t k = 0; k < box.range.y; ++k) {
+            const uint32_t i = box.range.x + (backwards ? box.range.y - 1 - k : k);
             const gpu::PlantStatic& plant = field.staticRecords[i];
             glm::vec3 position = decodePlantPosition(plant, field.origin, field.positionStep);
             const float distance = glm::distance(position, eye);

@@ -122,7 +122,9 @@ void placeCategory(const Ground& ground, const VegetationParams& p, const FieldF
     double total = 0.0;
     for (double col : columns) total += col;
     const VegetationCategory& category = p.categories[c];
-    // Strata: R rows, row r split into n_r equal cells, so every one of the n strata is ~1/n of the area.
+    // Strata: R rows, row r split into n_r equal cells, so every one of the n strata is ~1/n of the area. The rows run
+    // from low y to high y and each row from low x to high x, which the expansion's draw order inside a cluster relies
+    // on (gpu::walkPlantsBackwards).
     const uint32_t rows = std::max(1u, uint32_t(std::floor(std::sqrt(double(n)) + 0.5)));
     for (uint32_t r = 0, sample = 0; r < rows; ++r) {
         const uint32_t inRow = uint32_t(uint64_t(r + 1) * n / rows - uint64_t(r) * n / rows);
