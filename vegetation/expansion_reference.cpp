@@ -188,6 +188,11 @@ struct ReferenceQuad {
     }
 };
 
+// The plant's random value in [0, 1] (plant_vertex.glsl: PlantQuad::random, attributes bits 16-23).
+float plantRandom(const gpu::ExpandedPlant& plant) {
+    return float((plant.attributes >> 16) & 0xffu) * (1.0f / 255.0f);
+}
+
 ReferenceQuad referenceQuad(const gpu::ExpandedPlant& plant, uint32_t lod, uint32_t quad, glm::vec3 cameraPosition,
                             glm::vec3 cellBaseAspect) {
     static const glm::vec2 nearQuads[4] = {{0.0f, 0.0f}, {1.5707963f, 0.0f}, {0.7853982f, 0.95f}, {3.9269908f, 0.95f}};
@@ -204,7 +209,7 @@ ReferenceQuad referenceQuad(const gpu::ExpandedPlant& plant, uint32_t lod, uint3
         glm::vec3 toCamera = glm::normalize(cameraPosition - q.base);
         q.side = glm::cross(q.up, toCamera);
         if (glm::dot(q.side, q.side) < 1e-4f) { // plant_vertex.glsl: the plant's random value picks a side
-            const float turn = 6.2831853f * float((plant.attributes >> 16) & 0xffu) * (1.0f / 255.0f);
+            const float turn = 6.2831853f * plantRandom(plant);
             q.side = glm::vec3(std::cos(turn), std::sin(turn), 0.0f);
         }
         q.side = glm::normalize(q.side);
@@ -236,8 +241,7 @@ glm::vec2 cutoutFanCorner(const gpu::ExpandedPlant& plant, const CutoutPolygon& 
     const uint32_t corner = gpu::fanCorner(k);
     if ((plant.fade >> 24) != 255u) return fullQuad[std::min(corner, 3u)];
     const glm::vec2 uv = cutout.corners[corner];
-    const float random = float((plant.attributes >> 16) & 0xffu) * (1.0f / 255.0f);
-    return {random > 0.5f ? 1.0f - uv.x : uv.x, 1.0f - uv.y};
+    return {plantRandom(plant) > 0.5f ? 1.0f - uv.x : uv.x, 1.0f - uv.y};
 }
 
 } // namespace
