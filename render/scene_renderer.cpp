@@ -277,6 +277,7 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Sh
         c.shadowViewProj = c.shadowCascades[shadowDraw];
         c.shadowParams.y = float(std::max(drawn.firstReceiver - reach, 0.0));
         c.shadowParams.z = float(drawn.end + reach);
+        if (vegetation_) c.shadowParams.w = float(vegetation_->shadowAtlasLevel(2.0 * drawn.radius / drawn.mapSize));
     }
     c.debug = glm::uvec4(debugFlags_, 0u, 0u, 0u);
     c.coverBand = glm::vec4(scene_.lod.farLimit, scene_.lod.band, 0.0f, 0.0f);

@@ -33,6 +33,13 @@ uint32_t VegetationRenderer::instanceCapacityFor(uint64_t plants) {
     return uint32_t(std::clamp<uint64_t>(plants * 2, 1024, 4u << 20));
 }
 
+uint32_t VegetationRenderer::shadowAtlasLevel(double texelMetres) const {
+    double shortest = INFINITY;
+    for (uint32_t i = 0; i < scene_.vegetation.categoryCount; ++i)
+        shortest = std::min(shortest, double(scene_.vegetation.categories[i].height));
+    return atlasLevelForTexel(atlasCellHeight_, atlasLevels_, shortest, texelMetres);
+}
+
 namespace {
 
 constexpr VkBufferUsageFlags kStorage =
@@ -151,6 +158,8 @@ void VegetationRenderer::uploadAtlas(const Atlas& atlas) {
     cardCover_ = glm::vec4(cover[0], cover[1], cover[2], cover[3]);
     const std::array<float, 4> aspects = meanAspects(desc);
     meanAspects_ = glm::vec4(aspects[0], aspects[1], aspects[2], aspects[3]);
+    atlasCellHeight_ = desc.cellHeight;
+    atlasLevels_ = uint32_t(atlas.mips.size());
     std::vector<gpu::AtlasCellGpu> cells(desc.rows.size() * maxColumns);
     for (uint32_t r = 0; r < desc.rows.size(); ++r)
         for (uint32_t c = 0; c < desc.rows[r].cells.size(); ++c) {

@@ -123,6 +123,10 @@ public:
     // The records of resident tile `coord` (a world's simulation updates those of the tiles colliders touch).
     VegetationBuffers& buffers(TileCoord coord);
     uint32_t instanceCapacity() const { return capacity_; }
+    // The atlas level a shadow cascade with texels of `texelMetres` reads its plants' alpha from, one for the whole
+    // draw (FrameConstants::shadowParams.w): atlasLevelForTexel for the shortest category's base height, so no
+    // plant's shadow is coarser than the map.
+    uint32_t shadowAtlasLevel(double texelMetres) const;
     // The instance pool, for tests that read a one-tile expansion back.
     const Buffer& instances() const { return instances_; }
 
@@ -168,6 +172,8 @@ private:
     glm::uvec4 atlasColumns_{1u};
     glm::vec4 cardCover_{0.0f};   // cardCover(atlas): far slicing's card area per category
     glm::vec4 meanAspects_{0.0f}; // meanAspects(atlas): far merging's width per height per category
+    uint32_t atlasCellHeight_ = 1; // texels of a cell's height at level 0
+    uint32_t atlasLevels_ = 1;     // mip levels
     Buffer instances_, instancePlants_, cursor_, atlasCells_;
     // Each LOD's indices for one plant (plantFirstIndex), uint32: its quads' corners (plantIndex), for every pass.
     Buffer cornerIndices_;

@@ -1,10 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Plant shadow casters: alpha-tested depth only.
+// Plant shadow casters: alpha-tested depth only, at the atlas level the cascade's texel size picks (plantShadowAlpha).
 #include "shared/frame.glsl"
 #include "shared/plant_fragment.glsl"
 
 void main() {
-    float alpha = plantTexel().a; // before any discard: its mip level needs the whole 2x2 quad
-    if (!keepFragment() || alpha < 0.5) discard;
+    if (!keepFragment() || plantShadowAlpha(int(frame.shadowParams.w)) < 0.5) discard;
 }

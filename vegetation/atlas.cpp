@@ -134,6 +134,13 @@ float alphaCoverage(const AtlasMip& mip, const AtlasRect& rect, float reference)
     return float(passing) / float(size_t(rect.width) * rect.height);
 }
 
+uint32_t atlasLevelForTexel(uint32_t cellHeight, uint32_t levels, double plantHeight, double texelMetres) {
+    // A level-l texel covers plantHeight * 2^l / cellHeight.
+    const double ratio = texelMetres * double(cellHeight) / plantHeight;
+    if (!(ratio >= 2.0) || levels == 0) return 0;
+    return std::min(uint32_t(std::floor(std::log2(ratio))), levels - 1);
+}
+
 std::array<float, 4> cardCover(const Atlas& atlas) {
     std::array<float, 4> cover{};
     const AtlasDesc& desc = atlas.desc;

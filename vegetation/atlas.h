@@ -142,6 +142,11 @@ std::array<float, 4> cardCover(const Atlas& atlas);
 // merging's estimate of a plant's width on screen; 0 for absent rows).
 std::array<float, 4> meanAspects(const AtlasDesc& desc);
 
+// The coarsest mip level whose texels are no larger than `texelMetres` on a plant `plantHeight` metres tall (a cell's
+// `cellHeight` texels span the plant's height): 0 where even level 0 is coarser, at most `levels` - 1. The shadow
+// pass reads its plants' alpha at this level for the cascade's texel (VegetationRenderer::shadowAtlasLevel).
+uint32_t atlasLevelForTexel(uint32_t cellHeight, uint32_t levels, double plantHeight, double texelMetres);
+
 // Reads an atlas PNG (8-bit RGBA) and its JSON description into mips[0]. Throws sward::Error naming the file for
 // a missing or unreadable file, bad JSON or schema, a PNG that is not RGBA8, or an image size that does not match
 // the JSON grid.

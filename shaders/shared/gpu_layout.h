@@ -68,7 +68,8 @@ struct FrameConstants {
     vec4 timeParams;     // x simulation time in seconds, yzw reserved
     mat4 shadowViewProj; // shadow pass: world -> clip space of the cascade this draw renders (its own frame slot)
     vec4 shadowParams;   // x cascades (0: no sun shadows); shadow pass: yz the distances of the plants that can shade
-                         // the drawn cascade (plant.vert culls the others), w unused
+                         // the drawn cascade (plant.vert culls the others), w the atlas level every plant of the
+                         // draw reads its alpha from (VegetationRenderer::shadowAtlasLevel; plantShadowAlpha)
     uvec4 debug;         // x kDebug* flags (sward-view overlays; 0 for renders), yzw unused
     vec4 coverBand;      // x lod.far, y lod.band (the plants' dissolve band around it), zw unused
     // Cascaded sun shadows (world/sun_shadow.h, shadow.glsl): cascade k is tile k of a row of square maps.

@@ -16,25 +16,42 @@ layout(location = 7) flat in uint inLabel; // ground truth only
 layout(location = 18) flat in vec4 inUvRect; // the cell's atlas rectangle: u0, v0, u1, v1
 layout(location = 19) flat in vec2 inMerge; // far merging: x PlantQuad::repeat, y PlantQuad::opacity
 
-// The plant's atlas texel here. inUv is in cell coordinates; on a far billboard merged in width (inMerge.x > 1) u
-// runs over 0..inMerge.x and shows that many copies of the plant side by side, every other one mirrored so each seam is
-// continuous: plants at their own width, not one plant stretched. The mip level comes from the unwrapped
-// coordinate, the same on both sides of a seam. Colour, truth and shadow passes all sample through here, so they
-// keep the same texels.
-vec4 plantTexel() {
-    vec2 size = inUvRect.zw - inUvRect.xy;
-    vec2 dx = dFdx(inUv) * size, dy = dFdy(inUv) * size;
+// The atlas coordinate of this fragment. inUv is in cell coordinates; on a far billboard merged in width
+// (inMerge.x > 1) u runs over 0..inMerge.x and shows that many copies of the plant side by side, every other one
+// mirrored so each seam is continuous: plants at their own width, not one plant stretched.
+vec2 plantAtlasUv() {
     float u = inUv.x;
     if (inMerge.x > 1.0) {
         float copy = floor(u);
         u -= copy;
         if (mod(copy, 2.0) == 1.0) u = 1.0 - u;
     }
-    vec4 texel = textureGrad(atlas, inUvRect.xy + size * vec2(u, inUv.y), dx, dy);
-    // A far billboard merged in depth stands for several cards at its place (depthMergeScale in gpu_layout.h). Alpha
-    // is kept below 1 so that an opaque texel, too, fades out with the exponent: none pops.
-    if (inMerge.y != 1.0) texel.a = 1.0 - pow(1.0 - min(texel.a, 0.996), inMerge.y);
+    return inUvRect.xy + (inUvRect.zw - inUvRect.xy) * vec2(u, inUv.y);
+}
+
+// A far billboard merged in depth stands for several cards at its place (depthMergeScale in gpu_layout.h). Alpha is
+// kept below 1 so that an opaque texel, too, fades out with the exponent: none pops.
+float mergedAlpha(float alpha) {
+    return inMerge.y != 1.0 ? 1.0 - pow(1.0 - min(alpha, 0.996), inMerge.y) : alpha;
+}
+
+// The plant's atlas texel here, filtered trilinearly. The mip level comes from the unwrapped coordinate, the same on
+// both sides of a merged billboard's seam. The colour and truth passes both sample through here, so they keep the
+// same texels.
+vec4 plantTexel() {
+    vec2 size = inUvRect.zw - inUvRect.xy;
+    vec4 texel = textureGrad(atlas, plantAtlasUv(), dFdx(inUv) * size, dFdy(inUv) * size);
+    texel.a = mergedAlpha(texel.a);
     return texel;
+}
+
+// The shadow pass's alpha: the nearest texel of atlas level `level`, one level for the whole draw. lavapipe's sampler
+// is fast only when every lane of a SIMD vector reads one level; a level per fragment (plantTexel) costs the shadow
+// pass about a third of its time (docs/benchmarks.md, "fourteenth part"). The fetch stays inside the plant's cell.
+float plantShadowAlpha(int level) {
+    vec2 size = vec2(textureSize(atlas, level));
+    ivec2 texel = min(ivec2(plantAtlasUv() * size), ivec2(inUvRect.zw * size) - 1);
+    return mergedAlpha(texelFetch(atlas, texel, level).a);
 }
 
 // Cross-fade between two LOD copies of one plant: both copies compute the same threshold per pixel, the lower

@@ -72,6 +72,25 @@ TEST(Atlas, PlainBoxFilteredMipsLoseCoverage) {
     EXPECT_LT(level, 0.9f * base);
 }
 
+TEST(Atlas, ShadowLevelIsTheCoarsestWithTexelsNoLargerThanTheMaps) {
+    // 256-texel cells on a 0.5 m plant: a level-l texel is 0.5 * 2^l / 256 m.
+    auto texel = [](uint32_t l) { return 0.5 * double(1u << l) / 256.0; };
+    for (double t = 1e-4; t < 1.0; t *= 1.07) {
+        const uint32_t l = atlasLevelForTexel(256, 9, 0.5, t);
+        if (l > 0) {
+            EXPECT_LE(texel(l), t) << t;
+        }
+        if (l < 8) {
+            EXPECT_GT(texel(l + 1), t) << t;
+        }
+    }
+    EXPECT_EQ(atlasLevelForTexel(256, 9, 0.5, texel(3)), 3u);       // a texel exactly the map's is fine enough
+    EXPECT_EQ(atlasLevelForTexel(256, 9, 0.5, 54.36 / 2048.0), 3u); // the meadow's first cascade: 2.65 cm
+    EXPECT_EQ(atlasLevelForTexel(256, 9, 0.5, 1e-5), 0u);
+    EXPECT_EQ(atlasLevelForTexel(256, 9, 0.5, 100.0), 8u); // clamped to the last level
+    EXPECT_EQ(atlasLevelForTexel(256, 9, 0.0, 0.01), 0u);  // no plant height: the finest, not a NaN's cast
+}
+
 TEST(Atlas, MipsNeverBleedBetweenCells) {
     Atlas atlas;
     atlas.desc = {.cellWidth = 16, .cellHeight = 8, .rows = {{"a", {{}, {}, {}}}, {"b", {{}, {}}}}};
