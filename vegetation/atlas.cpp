@@ -135,10 +135,11 @@ float alphaCoverage(const AtlasMip& mip, const AtlasRect& rect, float reference)
 }
 
 uint32_t atlasLevelForTexel(uint32_t cellHeight, uint32_t levels, double plantHeight, double texelMetres) {
-    // A level-l texel covers plantHeight * 2^l / cellHeight.
+    if (!(plantHeight > 0.0) || levels == 0) return 0;
+    // A level-l texel covers plantHeight * 2^l / cellHeight. Clamped as a double: an infinite ratio has no integer.
     const double ratio = texelMetres * double(cellHeight) / plantHeight;
-    if (!(ratio >= 2.0) || levels == 0) return 0;
-    return std::min(uint32_t(std::floor(std::log2(ratio))), levels - 1);
+    if (!(ratio >= 2.0)) return 0;
+    return uint32_t(std::min(std::floor(std::log2(ratio)), double(levels - 1)));
 }
 
 std::array<float, 4> cardCover(const Atlas& atlas) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 using namespace sward;
 using namespace sward::test;
@@ -88,7 +89,9 @@ TEST(Atlas, ShadowLevelIsTheCoarsestWithTexelsNoLargerThanTheMaps) {
     EXPECT_EQ(atlasLevelForTexel(256, 9, 0.5, 54.36 / 2048.0), 3u); // the meadow's first cascade: 2.65 cm
     EXPECT_EQ(atlasLevelForTexel(256, 9, 0.5, 1e-5), 0u);
     EXPECT_EQ(atlasLevelForTexel(256, 9, 0.5, 100.0), 8u); // clamped to the last level
-    EXPECT_EQ(atlasLevelForTexel(256, 9, 0.0, 0.01), 0u);  // no plant height: the finest, not a NaN's cast
+    EXPECT_EQ(atlasLevelForTexel(256, 9, 0.0, 0.01), 0u);  // no plant height: the finest, not a cast of infinity
+    EXPECT_EQ(atlasLevelForTexel(256, 9, 0.5, INFINITY), 8u);
+    EXPECT_EQ(atlasLevelForTexel(256, 9, 0.5, NAN), 0u);
 }
 
 TEST(Atlas, MipsNeverBleedBetweenCells) {
