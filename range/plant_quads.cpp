@@ -110,7 +110,7 @@ PlantQuads plantQuads(const AtlasAlpha& atlas, const VegetationParams& vegetatio
     const gpu::ExpandedPlant plant = expandWholePlant(vegetation, wind, field, i, dynamic, time);
     p.cell = atlas.cellOf(plant.attributes);
     p.cutFraction = float(plant.fade >> 24) * (1.0f / 255.0f);
-    p.mirrored = float((plant.attributes >> 16) & 0xffu) * (1.0f / 255.0f) > 0.5f;
+    p.mirrored = plantRandom(plant) > 0.5f;
     p.label = plantLabel(plant, plantInTile);
     p.present = plant.positionHeight.w > 0.0f;
     glm::vec3 corners[4 * gpu::kQuadsNear];

@@ -163,6 +163,10 @@ ReferenceExpansion referenceExpand(const VegetationTile& tile, const VegetationP
     return out;
 }
 
+float plantRandom(const gpu::ExpandedPlant& plant) {
+    return float((plant.attributes >> 16) & 0xffu) * (1.0f / 255.0f);
+}
+
 namespace {
 
 // One quad of a plant (plant_vertex.glsl's PlantQuad): frame, size and bend.
@@ -187,11 +191,6 @@ struct ReferenceQuad {
         return bentPoint(position, bend, tip, height, up);
     }
 };
-
-// The plant's random value in [0, 1] (plant_vertex.glsl: PlantQuad::random, attributes bits 16-23).
-float plantRandom(const gpu::ExpandedPlant& plant) {
-    return float((plant.attributes >> 16) & 0xffu) * (1.0f / 255.0f);
-}
 
 ReferenceQuad referenceQuad(const gpu::ExpandedPlant& plant, uint32_t lod, uint32_t quad, glm::vec3 cameraPosition,
                             glm::vec3 cellBaseAspect) {

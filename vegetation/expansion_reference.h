@@ -40,6 +40,10 @@ gpu::ExpandedPlant expandWholePlant(const VegetationParams& vegetation, const Wi
                                     const FieldVegetation& field, uint32_t i, const gpu::PlantDynamic& dynamic,
                                     double time);
 
+// The plant's random value in [0, 1] (plant_vertex.glsl: PlantQuad::random, attributes bits 16-23): above a half, its
+// cards are mirrored.
+float plantRandom(const gpu::ExpandedPlant& plant);
+
 // The corners of each quad of `plant` drawn at `lod` (whole quads, no slicing), four per quad in the order (x across,
 // y up) (0, 0), (1, 0), (1, 1), (0, 1): the quad's triangles are corners 0, 1, 2 and 0, 2, 3, as kFullQuadFan and
 // fanCorner draw them. `corners` holds 4 * quads entries (16 for the near LOD).
