@@ -173,6 +173,46 @@ nlohmann::json cutoutFigures(const PassCounts& counts, const std::map<std::strin
     };
 }
 
+// The floor (FrameBenchOptions::floor) from one run's main-pass medians: with full plant shading, with the plants'
+// constant-colour shader, and without plant draws; each plant figure is its pass minus the pass without plants.
+nlohmann::json floorFigures(const std::map<std::string, std::vector<double>>& fullPasses,
+                            const std::map<std::string, std::vector<double>>& floorPasses,
+                            const std::map<std::string, std::vector<double>>& withoutPasses) {
+    const double full = median(fullPasses.at("main")), floorMs = median(floorPasses.at("main")),
+                 without = median(withoutPasses.at("main"));
+    return {{"main_ms", full},
+            {"floor_main_ms", floorMs},
+            {"without_plants_main_ms", without},
+            {"plant_ms", full - without},
+            {"floor_plant_ms", floorMs - without},
+            {"plant_to_floor", floorMs > without ? (full - without) / (floorMs - without) : 0.0}};
+}
+
+// Expansion overhead: expansion + main pass against the same main pass drawing the same quads from the baked static
+// buffer, interleaved so both see the same machine state, one submission each. Returns the medians (ms) of the two
+// over `frames` frames after a warm-up.
+std::pair<double, double> expansionOverhead(Context& ctx, SceneRenderer& renderer, RenderTarget& main,
+                                            const Camera& camera, const BakedPlants& baked, uint32_t frames,
+                                            GpuTimers& timers) {
+    auto timedMs = [&](uint32_t frame, const BakedPlants* plants) {
+        VkCommandBuffer cmd = ctx.submitter.begin();
+        timers.reset(cmd);
+        renderer.recordMainOnly(cmd, main, camera, 0.0, frame, &timers, plants);
+        ctx.submitter.wait(ctx.submitter.submit(cmd));
+        double total = 0.0;
+        for (const auto& [name, ms] : timers.read()) total += ms;
+        return total;
+    };
+    std::vector<double> dynamicMs, staticMs;
+    for (uint32_t i = 0; i <= frames; ++i) {
+        const double d = timedMs(i, nullptr), f = timedMs(i, &baked);
+        if (i == 0) continue;
+        dynamicMs.push_back(d);
+        staticMs.push_back(f);
+    }
+    return {median(dynamicMs), median(staticMs)};
+}
+
 } // namespace
 
 nlohmann::json benchGenerate(const GenerateBenchOptions& options) {
@@ -233,13 +273,6 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
     RenderTarget main(ctx, mainPassTargetDesc(options.width, options.height, options.samples));
     RenderTarget truth(ctx, truthPassTargetDesc(options.width, options.height));
     GpuTimers timers(ctx.device, 8);
-    auto timed = [&](const std::function<void(VkCommandBuffer)>& record) { // one submission
-        VkCommandBuffer cmd = ctx.submitter.begin();
-        timers.reset(cmd);
-        record(cmd);
-        ctx.submitter.wait(ctx.submitter.submit(cmd));
-        return timers.read();
-    };
 
     // Full frames: every pass, timed, with whole quads (variant 0), with each cut-out corner count, and with the
     // floor's two main-pass variants (plants drawn by a constant-colour shader; no plants), interleaved so all see the
@@ -271,37 +304,14 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
     for (size_t v = 1; v <= options.cutoutCorners.size(); ++v)
         cutouts[std::to_string(variants[v].first)] =
             cutoutFigures(counts[v], passes[v], images[v], counts[0], passes[0], images[0]);
-    nlohmann::json floor = nlohmann::json::object();
-    if (options.floor) {
-        const double full = median(passes[0].at("main")), floorMs = median(passes[variants.size() - 2].at("main")),
-                     without = median(passes.back().at("main"));
-        floor = {{"main_ms", full},
-                 {"floor_main_ms", floorMs},
-                 {"without_plants_main_ms", without},
-                 {"plant_ms", full - without},
-                 {"floor_plant_ms", floorMs - without},
-                 {"plant_to_floor", floorMs > without ? (full - without) / (floorMs - without) : 0.0}};
-    }
+    const nlohmann::json floor =
+        options.floor ? floorFigures(passes[0], passes[variants.size() - 2], passes.back()) : nlohmann::json::object();
     BakedPlants baked = vegetation.bake(0);
-
-    // Expansion overhead: expansion + main pass against the same main pass drawing the same quads from the
-    // baked static buffer; interleaved so both see the same machine state.
-    std::vector<double> dynamicMs, staticMs;
-    for (uint32_t i = 0; i <= options.frames; ++i) {
-        auto dyn = timed([&](VkCommandBuffer cmd) { renderer.recordMainOnly(cmd, main, camera, 0.0, i, &timers, nullptr); });
-        auto fix = timed([&](VkCommandBuffer cmd) { renderer.recordMainOnly(cmd, main, camera, 0.0, i, &timers, &baked); });
-        if (i == 0) continue;
-        double d = 0.0, f = 0.0;
-        for (auto& [name, ms] : dyn) d += ms;
-        for (auto& [name, ms] : fix) f += ms;
-        dynamicMs.push_back(d);
-        staticMs.push_back(f);
-    }
+    const auto [frameMs, staticFrameMs] = expansionOverhead(ctx, renderer, main, camera, baked, options.frames, timers);
     gpu::ExpansionStats stats = baked.stats;
     vegetation.destroyBaked(baked);
 
     double expansionMs = median(passes[0].at("expansion"));
-    double frameMs = median(dynamicMs), staticFrameMs = median(staticMs);
     return {
         {"pass_ms", medians(passes[0])},
         {"plants_drawn_per_lod", {stats.instances.x, stats.instances.y, stats.instances.z}},
