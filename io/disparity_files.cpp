@@ -1,10 +1,8 @@
 #include "io/disparity_files.h"
+#include "io/image_files.h"
 #include "io/image_io.h"
 
 #include "common/error.h"
-
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include <bit>
 #include <charconv>
@@ -162,19 +160,14 @@ DisparityMap readPfm(const std::string& path) {
 
 void writeKittiPng(const std::string& path, uint32_t width, uint32_t height, std::span<const float> disparity) {
     requireSize(path, width, height, disparity.size());
-    cv::Mat image(int(height), int(width), CV_16UC1);
-    for (uint32_t y = 0; y < height; ++y) {
-        uint16_t* row = image.ptr<uint16_t>(int(y));
-        for (uint32_t x = 0; x < width; ++x) {
-            float d = disparity[size_t(y) * width + x];
-            double scaled = isValidDisparity(d) ? std::round(double(d) * 256.0) : 0.0;
-            // A tiny positive disparity rounds to 0, which KITTI reads as "invalid": the honest outcome.
-            row[x] = scaled > 65535.0 ? 0 : uint16_t(scaled);
-        }
+    std::vector<uint16_t> samples(disparity.size());
+    for (size_t i = 0; i < samples.size(); ++i) {
+        const float d = disparity[i];
+        const double scaled = isValidDisparity(d) ? std::round(double(d) * 256.0) : 0.0;
+        // A tiny positive disparity rounds to 0, which KITTI reads as "invalid": the honest outcome.
+        samples[i] = scaled > 65535.0 ? 0 : uint16_t(scaled);
     }
-    std::vector<uint8_t> bytes;
-    require(cv::imencode(".png", image, bytes), "cannot write '" + path + "': PNG encoding failed");
-    writeBytesAtomically(path, bytes.data(), bytes.size());
+    writePng16(path, width, height, 1, samples);
 }
 
 DisparityMap readKittiPng(const std::string& path) {

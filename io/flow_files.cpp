@@ -2,10 +2,8 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "io/image_files.h"
 #include "io/image_io.h"
-
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include <bit>
 #include <cstring>
@@ -105,20 +103,16 @@ FlowField readFlo(const std::string& path) {
 
 void writeKittiFlowPng(const std::string& path, const FlowField& flow) {
     requireFlowSize(path, flow);
-    cv::Mat image(int(flow.height), int(flow.width), CV_16UC3); // OpenCV's channel order: B, G, R
-    for (uint32_t y = 0; y < flow.height; ++y) {
-        cv::Vec3w* row = image.ptr<cv::Vec3w>(int(y));
-        for (uint32_t x = 0; x < flow.width; ++x) {
-            const size_t i = size_t(y) * flow.width + x;
-            const double u = std::round(double(flow.u(i)) * kKittiFlowScale) + kKittiFlowOffset;
-            const double v = std::round(double(flow.v(i)) * kKittiFlowScale) + kKittiFlowOffset;
-            const bool valid = isValidFlow(flow.u(i), flow.v(i)) && u >= 0 && u <= 65535 && v >= 0 && v <= 65535;
-            row[x] = valid ? cv::Vec3w(1, uint16_t(v), uint16_t(u)) : cv::Vec3w(0, 0, 0);
-        }
+    std::vector<uint16_t> rgb(size_t(flow.width) * flow.height * 3, 0); // R = u, G = v, B = valid
+    for (size_t i = 0; i < size_t(flow.width) * flow.height; ++i) {
+        const double u = std::round(double(flow.u(i)) * kKittiFlowScale) + kKittiFlowOffset;
+        const double v = std::round(double(flow.v(i)) * kKittiFlowScale) + kKittiFlowOffset;
+        if (!isValidFlow(flow.u(i), flow.v(i)) || u < 0 || u > 65535 || v < 0 || v > 65535) continue;
+        rgb[3 * i] = uint16_t(u);
+        rgb[3 * i + 1] = uint16_t(v);
+        rgb[3 * i + 2] = 1;
     }
-    std::vector<uint8_t> bytes;
-    require(cv::imencode(".png", image, bytes), "cannot write '" + path + "': PNG encoding failed");
-    writeBytesAtomically(path, bytes.data(), bytes.size());
+    writePng16(path, flow.width, flow.height, 3, rgb);
 }
 
 FlowField readKittiFlowPng(const std::string& path) {

@@ -8,8 +8,8 @@
 #include <ImfIO.h>
 #include <ImfOutputFile.h>
 
-// Debian's libstb ships the stb implementations compiled (-lstb): include the header only.
-#include <stb_image_write.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "common/atomic_file.h"
 #include "common/half_float.h"
@@ -113,20 +113,43 @@ void writeExr(const std::string& path, uint32_t width, uint32_t height, uint32_t
     writeExrChannels(path, width, height, list);
 }
 
+namespace {
+
+// writePng8 / writePng16: the samples as an OpenCV image in its channel order (BGR, BGRA), encoded with OpenCV's
+// defaults. `Sample` is uint8_t or uint16_t.
+template <typename Sample>
+void writePngSamples(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
+                     std::span<const Sample> samples) {
+    require(channels == 1 || channels == 3 || channels == 4, "cannot write '" + path + "': a PNG of " +
+                                                                 std::to_string(channels) +
+                                                                 " channels (sward writes grey, RGB or RGBA)");
+    require(samples.size() == size_t(width) * height * channels, "PNG buffer size does not match the image");
+    require(width > 0 && height > 0 && width <= uint32_t(INT32_MAX) / channels && height <= uint32_t(INT32_MAX),
+            "cannot write '" + path + "': the image is empty or too large for a PNG");
+    const int depth = sizeof(Sample) == 1 ? CV_8U : CV_16U;
+    cv::Mat image(int(height), int(width), CV_MAKETYPE(depth, int(channels)));
+    for (uint32_t y = 0; y < height; ++y) {
+        Sample* row = image.ptr<Sample>(int(y));
+        const Sample* in = samples.data() + size_t(y) * width * channels;
+        std::copy_n(in, size_t(width) * channels, row);
+        if (channels >= 3)
+            for (uint32_t x = 0; x < width; ++x) std::swap(row[x * channels], row[x * channels + 2]); // RGB -> BGR
+    }
+    std::vector<uint8_t> bytes;
+    require(cv::imencode(".png", image, bytes), "cannot write '" + path + "': PNG encoding failed");
+    writeBytesAtomically(path, bytes.data(), bytes.size());
+}
+
+} // namespace
+
 void writePng8(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
                std::span<const uint8_t> pixels) {
-    require(channels >= 1 && channels <= 4 && pixels.size() == size_t(width) * height * channels,
-            "PNG buffer size does not match the image");
-    // stb's encoder into memory: the same bytes stbi_write_png puts in a file, but every write is checked.
-    std::vector<uint8_t> bytes;
-    auto append = [](void* context, void* data, int size) {
-        auto* out = static_cast<std::vector<uint8_t>*>(context);
-        out->insert(out->end(), static_cast<const uint8_t*>(data), static_cast<const uint8_t*>(data) + size);
-    };
-    if (!stbi_write_png_to_func(append, &bytes, int(width), int(height), int(channels), pixels.data(),
-                                int(width * channels)))
-        throw Error("cannot write '" + path + "': the PNG encoder failed");
-    writeBytesAtomically(path, bytes.data(), bytes.size());
+    writePngSamples(path, width, height, channels, pixels);
+}
+
+void writePng16(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
+                std::span<const uint16_t> samples) {
+    writePngSamples(path, width, height, channels, samples);
 }
 
 std::vector<uint8_t> tonemapPreview(std::span<const uint16_t> rgbaHalf, uint32_t width, uint32_t height,

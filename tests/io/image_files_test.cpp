@@ -96,6 +96,49 @@ TEST(ExrFiles, AnAttributeLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
     sward::test::expectError([&] { loadImage(path); }, {path, "an attribute claims 2147418112 bytes"});
 }
 
+// writePng8 / writePng16 take channels in the file's order (RGB, RGBA) and hand OpenCV its own (BGR, BGRA): each
+// sample must come back in its channel, through sward's reader and through OpenCV's as a user reads it.
+TEST(PngFiles, EightAndSixteenBitSamplesReadBackExactlyInTheirChannels) {
+    const std::string dir = sward::test::tempDir().string();
+    const uint32_t w = 5, h = 3;
+    for (uint32_t bits : {8u, 16u})
+        for (uint32_t channels : {1u, 3u, 4u}) {
+            const std::string path = dir + "/p" + std::to_string(bits) + "-" + std::to_string(channels) + ".png";
+            const uint32_t maxValue = bits == 8 ? 255u : 65535u;
+            std::vector<uint32_t> values(size_t(w) * h * channels);
+            for (size_t i = 0; i < values.size(); ++i)
+                values[i] = uint32_t(i * 7919u + 13u * (i % channels)) % (maxValue + 1);
+            if (bits == 8)
+                writePng8(path, w, h, channels, std::vector<uint8_t>(values.begin(), values.end()));
+            else
+                writePng16(path, w, h, channels, std::vector<uint16_t>(values.begin(), values.end()));
+            EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+
+            const ImageData image = loadImage(path);
+            ASSERT_EQ(image.bitDepth, bits);
+            ASSERT_EQ(image.channels, channels);
+            const cv::Mat cvImage = cv::imread(path, cv::IMREAD_UNCHANGED);
+            ASSERT_EQ(cvImage.depth(), bits == 8 ? CV_8U : CV_16U);
+            ASSERT_EQ(uint32_t(cvImage.channels()), channels);
+            for (uint32_t y = 0; y < h; ++y)
+                for (uint32_t x = 0; x < w; ++x)
+                    for (uint32_t c = 0; c < channels; ++c) {
+                        const uint32_t expected = values[(size_t(y) * w + x) * channels + c];
+                        EXPECT_EQ(std::lround(image.at(x, y, c) * float(maxValue)), long(expected));
+                        // OpenCV orders colour channels B, G, R (then alpha).
+                        const uint32_t cvChannel = channels >= 3 && c < 3 ? 2 - c : c;
+                        const uint32_t read = bits == 8 ? cvImage.ptr<uint8_t>(int(y))[x * channels + cvChannel]
+                                                        : cvImage.ptr<uint16_t>(int(y))[x * channels + cvChannel];
+                        EXPECT_EQ(read, expected) << path << " (" << x << ", " << y << ") channel " << c;
+                    }
+        }
+    sward::test::expectError([&] { writePng8(dir + "/short.png", w, h, 3, std::vector<uint8_t>(w * h * 3 - 1)); },
+                             {"PNG buffer size does not match the image"});
+    EXPECT_FALSE(std::filesystem::exists(dir + "/short.png"));
+    sward::test::expectError([&] { writePng16(dir + "/ga.png", w, h, 2, std::vector<uint16_t>(w * h * 2)); },
+                             {dir + "/ga.png", "a PNG of 2 channels"});
+}
+
 TEST(PngFiles, AHeaderClaimingMorePixelsThanTheFileCanHoldIsRefused) {
     const std::string path = sward::test::tempDir().string() + "/huge.png";
     sward::test::writePng(path, 1, 1, 1, 8, {0.5f});
