@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "common/staged_folder.h"
+#include "common/stopwatch.h"
 #include "dataset/naming.h"
 #include "eval/dataset_reader.h"
 #include "eval/flow_report.h"
@@ -11,7 +12,6 @@
 #include "eval/splits.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 
@@ -90,9 +90,9 @@ FlowField estimateFlow(const FlowSetup& setup, FlowFrameWork& work) {
                 options.datasetDir + "/" + frameFile(kPreviewFolder, frame, ".png") + " is " +
                     std::to_string(image->cols) + "x" + std::to_string(image->rows) + ", the flow ground truth " +
                     std::to_string(setup.width) + "x" + std::to_string(setup.height));
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch computing;
     FlowField flow = computeFlow(options.method, first, second);
-    work.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    work.seconds = computing.seconds();
     return flow;
 }
 

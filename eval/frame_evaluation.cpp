@@ -1,12 +1,12 @@
 #include "eval/frame_evaluation.h"
 
 #include "common/error.h"
+#include "common/stopwatch.h"
 #include "dataset/naming.h"
 #include "eval/dataset_reader.h"
 #include "eval/pictures.h"
 
 #include <algorithm>
-#include <chrono>
 
 namespace sward {
 
@@ -28,10 +28,10 @@ std::vector<float> estimateDisparity(const DatasetSetup& setup, const DisparityM
     for (const cv::Mat* view : {&left, &right})
         requireSize(setup.dir + ": preview images of frame " + frameName(frame) + " are", uint32_t(view->cols),
                     uint32_t(view->rows), truth);
-    auto start = std::chrono::steady_clock::now();
+    const Stopwatch matching;
     std::vector<float> estimate = runSgbm(*setup.sgbm, w, h, {left.data, left.total() * left.elemSize()},
                                           {right.data, right.total() * right.elemSize()});
-    work.matchSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    work.matchSeconds = matching.seconds();
     if (setup.options->saveDisparities)
         writePfm(setup.pictureDir + "/disparity/" + frameName(frame) + ".pfm", w, h, estimate);
     return estimate;

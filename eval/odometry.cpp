@@ -3,6 +3,7 @@
 #include "common/error.h"
 #include "common/parallel_for.h"
 #include "common/staged_folder.h"
+#include "common/stopwatch.h"
 #include "dataset/naming.h"
 #include "eval/dataset_reader.h"
 #include "eval/number_format.h"
@@ -11,7 +12,6 @@
 
 #include <opencv2/calib3d.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 
@@ -243,7 +243,7 @@ OdometryResult evaluateOdometry(const OdometryOptions& options) {
     result.truth = setup.truth;
     result.width = setup.rig.width;
     result.height = setup.rig.height;
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch estimation;
     if (!options.posesFile.empty()) {
         result.method = "poses read from " + options.posesFile;
         result.estimate = readKittiPoses(options.posesFile);
@@ -256,7 +256,7 @@ OdometryResult evaluateOdometry(const OdometryOptions& options) {
                                              : detectorDescription(options.detector);
         runVisualOdometry(setup, result);
     }
-    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.seconds = estimation.seconds();
     result.metrics = evaluateTrajectory(result.truth, result.estimate, options.lengthsMetres);
     result.segments = options.segments;
     return result;

@@ -4,13 +4,12 @@
 #include "common/json_reader.h"
 #include "common/parallel_for.h"
 #include "common/statistics.h"
+#include "common/stopwatch.h"
 #include "range/range_recorder.h"
 #include "scene/scene.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <ctime>
 
 namespace sward {
 
@@ -47,20 +46,15 @@ nlohmann::json benchLidar(const LidarBenchOptions& options) {
     const SceneResources r = buildSceneResources(lidarScene(options), true, options.threads);
     const RangeSensorParams& sensor = r.scene.rangeSensors[0];
     RangeRecorder recorder(r, options.threads);
-    using Clock = std::chrono::steady_clock;
-    auto ms = [](Clock::time_point a, Clock::time_point b) {
-        return std::chrono::duration<double, std::milli>(b - a).count();
-    };
-    const Clock::time_point setupStart = Clock::now();
+    const Stopwatch setup;
     recorder.sweep(0, {}); // builds the BVH of every field in reach
-    const double setupMs = ms(setupStart, Clock::now());
+    const double setupMs = setup.ms();
     std::vector<double> wall, cpu, points, prepare, cast;
     for (uint32_t frame = 1; frame <= options.sweeps; ++frame) {
-        const Clock::time_point start = Clock::now();
-        const std::clock_t cpuStart = std::clock();
+        const Stopwatch sweep;
         const std::vector<RangeScan> scans = recorder.sweep(frame, {});
-        wall.push_back(ms(start, Clock::now()));
-        cpu.push_back(double(std::clock() - cpuStart) * 1000.0 / CLOCKS_PER_SEC);
+        wall.push_back(sweep.ms());
+        cpu.push_back(sweep.cpuMs());
         points.push_back(double(scans[0].points.size()));
         prepare.push_back(recorder.timings().prepareMs), cast.push_back(recorder.timings().castMs);
     }

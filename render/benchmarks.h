@@ -37,6 +37,8 @@ struct FrameBenchOptions {
 };
 
 // Renders the scene and reports GPU pass times and expansion figures. Keys: pass_ms (pass -> median ms),
+// whole_frame_ms and whole_frame_cpu_ms (the frame of every pass on the host, both submissions and their waits: wall
+// time and the process's CPU time, every thread's, a CPU driver's included),
 // plants_drawn_per_lod [near, mid, far], plants_considered, plants_total, clusters_visible, clusters_total,
 // expansion_plants_per_second, frame_ms (expansion + main + resolve), static_frame_ms (main + resolve drawing
 // the same quads from a pre-expanded static buffer), expansion_overhead_ratio (frame_ms / static_frame_ms),

@@ -1,11 +1,12 @@
 #include "render/interaction_gpu.h"
 
+#include "common/stopwatch.h"
+
 #include "engine/barriers.h"
 #include "engine/timestamps.h"
 #include "shared/config.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstring>
 
 namespace sward {
@@ -55,7 +56,7 @@ void InteractionGpu::reserve(Slot& slot, uint64_t contactBytes, uint64_t rangeBy
 void InteractionGpu::record(VkCommandBuffer cmd, const TickContacts& contacts, std::span<const uint32_t> activeFields,
                             const RecoveryParams& params, uint32_t slotIndex, GpuTimers* timers) {
     if (contacts.empty() && activeFields.empty()) return; // idle grass costs nothing
-    const auto uploadStart = std::chrono::steady_clock::now();
+    const Stopwatch upload;
     Slot& slot = slots_[slotIndex % gpu::kFrameDataSlots];
     uint64_t contactBytes = contacts.size() * sizeof(gpu::PlantContact);
     uint64_t rangeBytes = activeFields.size() * sizeof(glm::uvec2);
@@ -70,7 +71,7 @@ void InteractionGpu::record(VkCommandBuffer cmd, const TickContacts& contacts, s
         maxPlants = std::max(maxPlants, fieldPlantCount_[f]);
     }
     stats_.uploadBytes += contactBytes + rangeBytes;
-    stats_.uploadMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - uploadStart).count();
+    stats_.uploadMs += upload.ms();
 
     gpu::RecoveryConstants constants{
         .spring = glm::vec4(params.timeStep, params.stiffness, params.damping, params.restBend),

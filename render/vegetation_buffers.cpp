@@ -1,14 +1,15 @@
 #include "render/vegetation_buffers.h"
 
+#include "common/stopwatch.h"
+
 #include "engine/barriers.h"
 
-#include <chrono>
 #include <cstring>
 
 namespace sward {
 
 VegetationBuffers::VegetationBuffers(Context& ctx, const VegetationTile& tile) : ctx_(ctx) {
-    auto start = std::chrono::steady_clock::now();
+    const Stopwatch upload;
     require(!tile.fields.empty(), "cannot upload a tile without fields");
     VegetationStats stats = countVegetation(tile);
     std::vector<gpu::PlantField> table = makeFieldTable(tile);
@@ -61,7 +62,7 @@ VegetationBuffers::VegetationBuffers(Context& ctx, const VegetationTile& tile) :
         copyToComputeReadBarrier(cmd);
     });
     destroyBuffer(ctx, staging);
-    uploadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    uploadSeconds = upload.seconds();
 }
 
 VegetationBuffers::~VegetationBuffers() {

@@ -6,6 +6,7 @@
 #include "common/error.h"
 #include "common/parallel_for.h"
 #include "common/statistics.h"
+#include "common/stopwatch.h"
 #include "engine/timestamps.h"
 #include "io/sha256.h"
 #include "render/scene_gpu.h"
@@ -13,22 +14,12 @@
 #include "scene/world_tiles.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 
 namespace sward {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-double cpuMsSince(std::clock_t start) {
-    return double(std::clock() - start) * 1000.0 / CLOCKS_PER_SEC;
-}
 
 // The scene with `tiles` x `tiles` tiles and a budget that never limits the figures (they measure, not refuse).
 Scene sizedWorld(Scene scene, uint32_t tiles) {
@@ -42,11 +33,10 @@ nlohmann::json generationFigures(const Scene& scene, uint32_t count, uint32_t th
     std::vector<double> wall, cpu, plants;
     for (uint32_t i = 0; i < count; ++i) {
         const TileCoord coord{int32_t(i % scene.world.tilesX), int32_t(i / scene.world.tilesX)};
-        const auto start = std::chrono::steady_clock::now();
-        const std::clock_t cpuStart = std::clock();
+        const Stopwatch generation;
         const WorldTile tile = generateWorldTile(scene, coord, threads);
-        wall.push_back(msSince(start));
-        cpu.push_back(cpuMsSince(cpuStart));
+        wall.push_back(generation.ms());
+        cpu.push_back(generation.cpuMs());
         plants.push_back(double(countVegetation(tile.vegetation).plants));
     }
     const double ms = median(wall), plantsPerTile = median(plants);
@@ -75,9 +65,9 @@ nlohmann::json residentFigures(const Scene& base, uint32_t worldTiles, const std
         for (uint32_t y = 0; y < k; ++y)
             for (uint32_t x = 0; x < k; ++x)
                 points.push_back(glm::dvec2(scene.vegetation.worldOrigin) + s * glm::dvec2(x + 0.5, y + 0.5));
-        const auto start = std::chrono::steady_clock::now();
+        const Stopwatch wait;
         world.waitFor(points);
-        const double ms = msSince(start);
+        const double ms = wait.ms();
         rows.push_back({{"resident_tiles", world.residentCount()},
                         {"resident_bytes", world.residentBytes()},
                         {"bytes_per_tile", double(world.residentBytes()) / n},
@@ -128,18 +118,17 @@ nlohmann::json gpuFigures(const Scene& base, const WorldBenchOptions& options, u
             for (uint32_t x = 0; x < k; ++x)
                 points.push_back(glm::dvec2(scene.vegetation.worldOrigin) + s * glm::dvec2(x + 0.5, y + 0.5));
         r.world->waitFor(points);
-        const auto uploadStart = std::chrono::steady_clock::now();
+        const Stopwatch upload;
         const uint32_t uploaded = syncWorldTiles(*gpu.renderer, *r.world);
-        const double uploadMs = msSince(uploadStart);
+        const double uploadMs = upload.ms();
         std::vector<double> wall, cpu;
         std::string hash;
         for (uint32_t i = 0; i <= options.frames; ++i) { // frame 0 warms up and is not counted
-            const auto start = std::chrono::steady_clock::now();
-            const std::clock_t cpuStart = std::clock();
+            const Stopwatch frame;
             const FrameImages images = target.render(*gpu.renderer, camera, 0.0, i);
             if (i == 0) continue;
-            wall.push_back(msSince(start));
-            cpu.push_back(cpuMsSince(cpuStart));
+            wall.push_back(frame.ms());
+            cpu.push_back(frame.cpuMs());
             hash = sha256Hex(std::string_view(reinterpret_cast<const char*>(images.rgbaHalf.data()),
                                               images.rgbaHalf.size() * sizeof(uint16_t)));
         }

@@ -2,11 +2,11 @@
 
 #include "common/error.h"
 #include "common/json_reader.h"
+#include "common/stopwatch.h"
 #include "interaction/state_file.h"
 #include "vegetation/placement.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 namespace sward {
@@ -34,10 +34,6 @@ double distanceToTile(const Scene& scene, int32_t x, int32_t y, glm::dvec2 point
 uint64_t tileBytes(const WorldTile& tile) {
     return tile.ground.heightfield()->heights().size() * sizeof(float) + countVegetation(tile.vegetation).totalBytes() +
            tile.vegetation.fields.size() * sizeof(FieldVegetation) + tile.cover.texels.size() * sizeof(glm::vec4);
-}
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::string mib(uint64_t bytes) {
@@ -273,9 +269,9 @@ void WorldTiles::waitFor(std::span<const glm::dvec2> points) {
     // (y, x) order: the offline renderer's log and timings are the same on every run (the tiles are anyway).
     std::sort(p.load.begin(), p.load.end());
     for (const Key& key : p.load) {
-        const auto start = std::chrono::steady_clock::now();
+        const Stopwatch generation;
         WorldTile tile = generateWorldTile(scene_, TileCoord{key.second, key.first}, threads_, looks_);
-        stats_.generationSeconds += secondsSince(start);
+        stats_.generationSeconds += generation.seconds();
         makeResident(std::move(tile));
     }
     lastPoints_.assign(points.begin(), points.end());
@@ -324,7 +320,7 @@ void WorldTiles::workerLoop() {
         queue_.pop_back();
         inFlight_ = key;
         lock.unlock();
-        const auto start = std::chrono::steady_clock::now();
+        const Stopwatch generation;
         std::optional<WorldTile> tile;
         std::exception_ptr error;
         try {
@@ -333,7 +329,7 @@ void WorldTiles::workerLoop() {
             error = std::current_exception();
         }
         lock.lock();
-        workerSeconds_ += secondsSince(start);
+        workerSeconds_ += generation.seconds();
         inFlight_.reset();
         if (tile) finished_.push_back(std::move(*tile));
         if (error && !error_) error_ = error;
