@@ -1,5 +1,5 @@
-// Wall-clock and process-CPU time since a start: the one way sward times work for its benchmarks, statistics and
-// progress lines. Timings are reported, never fed back into results or written into data files.
+// Wall-clock and process-CPU time since a start: the timer of sward's benchmarks, statistics and evaluations. Timings
+// are reported, never fed back into results or written into data files.
 #pragma once
 
 #include <chrono>
