@@ -2,11 +2,11 @@
 
 #include "common/parallel_for.h"
 #include "common/snorm.h"
+#include "common/stopwatch.h"
 
 #include <algorithm>
 #include <bit>
 #include <cassert>
-#include <chrono>
 #include <cmath>
 #include <optional>
 
@@ -583,17 +583,15 @@ CollisionResult CollisionPass::run(std::span<const Collider> colliders, uint32_t
         pool_ = std::make_unique<ParallelFor>(used);
     }
     takeFreeBuffers();
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch total;
     grid_.begin(colliders, index_.bounds(), pool_->threads());
-    const auto built = std::chrono::steady_clock::now();
+    const double buildMs = total.ms();
     collideFields(colliders);
-    const auto collided = std::chrono::steady_clock::now();
+    const Stopwatch merge;
     CollisionResult result = gatherFields(colliders);
-    const auto end = std::chrono::steady_clock::now();
-    auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
-    result.stats.buildMs = ms(start, built);
-    result.stats.mergeMs = ms(collided, end);
-    result.stats.cpuMs = ms(start, end);
+    result.stats.buildMs = buildMs;
+    result.stats.mergeMs = merge.ms();
+    result.stats.cpuMs = total.ms();
     return result;
 }
 

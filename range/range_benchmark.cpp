@@ -51,7 +51,7 @@ nlohmann::json benchLidar(const LidarBenchOptions& options) {
     const double setupMs = setup.ms();
     std::vector<double> wall, cpu, points, prepare, cast;
     for (uint32_t frame = 1; frame <= options.sweeps; ++frame) {
-        const Stopwatch sweep;
+        const Stopwatch sweep = Stopwatch::withCpuTime();
         const std::vector<RangeScan> scans = recorder.sweep(frame, {});
         wall.push_back(sweep.ms());
         cpu.push_back(sweep.cpuMs());

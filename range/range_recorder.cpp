@@ -1,10 +1,10 @@
 #include "range/range_recorder.h"
 
 #include "common/error.h"
+#include "common/stopwatch.h"
 #include "range/range_files.h"
 
 #include <algorithm>
-#include <chrono>
 
 namespace sward {
 
@@ -37,20 +37,19 @@ std::vector<RangeScan> RangeRecorder::sweep(uint32_t frame, const FrameState& st
             rangeSensorPose(scene, sensor, r_.terrain, r_.models, time + columnTime(sensor, sensor.columns() - 1))[3]);
         reach = std::max(reach, glm::distance(centre, starts[k]) + glm::distance(starts[k], end) + sensor.maxRange);
     }
-    using Clock = std::chrono::steady_clock;
-    const Clock::time_point start = Clock::now();
+    const Stopwatch preparing;
     rays_->setPlants(scene.wind, time + state.windTimeOffset, state.dynamics, centre, reach, threads_);
     rays_->setObjects(posedObjects({scene, r_.terrain, r_.models}, time));
     if (state.patches != patches_) {
         rays_->setGroundPatches(state.patches ? *state.patches : std::vector<GroundPatch>{});
         patches_ = state.patches;
     }
-    const Clock::time_point prepared = Clock::now();
+    const double prepareMs = preparing.ms();
+    const Stopwatch casting;
     std::vector<RangeScan> scans;
     for (uint32_t k = 0; k < scene.rangeSensors.size(); ++k)
         scans.push_back(sweepSensor(*rays_, {scene, r_.terrain, r_.models}, k, frame, time, threads_));
-    timings_ = {std::chrono::duration<double, std::milli>(prepared - start).count(),
-                std::chrono::duration<double, std::milli>(Clock::now() - prepared).count()};
+    timings_ = {prepareMs, casting.ms()};
     return scans;
 }
 

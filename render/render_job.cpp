@@ -2,6 +2,7 @@
 
 #include "common/background_task.h"
 #include "common/parse_number.h"
+#include "common/stopwatch.h"
 #include "dataset/dataset_writer.h"
 #include "dataset/fingerprint.h"
 #include "dataset/frame_record.h"
@@ -14,10 +15,8 @@
 #include "scene/scene_input.h"
 #include "scene/scene_resources.h"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -36,14 +35,13 @@ namespace sward {
 namespace {
 
 struct Progress {
-    using Clock = std::chrono::steady_clock;
     bool enabled;
     uint32_t total;
-    Clock::time_point start = Clock::now();
+    Stopwatch elapsed;
     void frameDone(uint32_t done, uint32_t frame) const {
         if (!enabled) return;
-        double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-        double fps = done / std::max(elapsed, 1e-9);
+        const double seconds = elapsed.seconds();
+        double fps = done / std::max(seconds, 1e-9);
         std::fprintf(stderr, "\rsward-render: frame %u (%u/%u)  %.2f frames/s  ETA %.0f s   ", frame, done, total, fps,
                      double(total - done) / fps);
         if (done == total) std::fprintf(stderr, "\n");
@@ -53,18 +51,17 @@ struct Progress {
 // The run's clock and the report it fills (RenderJobReport): frame f's entry is sized before the writer's thread
 // fills its part, and read only after the writer has finished.
 struct JobClock {
-    using Clock = std::chrono::steady_clock;
-    Clock::time_point start = Clock::now();
+    Stopwatch run = Stopwatch::withCpuTime();
     RenderJobReport report;
 
-    double now() const { return std::chrono::duration<double>(Clock::now() - start).count(); }
+    double now() const { return run.seconds(); }
     // Runs `write` (a frame's files) and records how long it took, when it ended and the process's CPU time then.
     void timeWrite(RenderJobReport::Frame& frame, const std::function<void()>& write) const {
         const double begin = now();
         write();
         frame.doneSeconds = now();
         frame.writeSeconds = frame.doneSeconds - begin;
-        frame.cpuSeconds = double(std::clock()) / CLOCKS_PER_SEC;
+        frame.cpuSeconds = run.cpuMs() / 1000.0;
     }
 };
 

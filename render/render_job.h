@@ -45,7 +45,7 @@ struct RenderJobReport {
         double waitSeconds = 0.0;   // then waiting for the previous frame's files (the writer is one frame behind)
         double writeSeconds = 0.0;  // encoding and writing its files (the writer's thread, beside the next render)
         double doneSeconds = 0.0;   // since the run started, when its files were on disk
-        double cpuSeconds = 0.0;    // the process's CPU time (every thread, the driver's too) at that moment
+        double cpuSeconds = 0.0; // the process's CPU time since the run started (every thread, the driver's too) then
     };
     double setupSeconds = 0.0;    // the run's start until the first frame starts to render
     double manifestSeconds = 0.0; // after the last frame: hashing every file and writing the manifest
