@@ -13,7 +13,8 @@ Checks, each reported on one line (exit status 1 if any fails):
     be the one in DIR/dataset.json when that file is there;
   - the shards' frame ranges [A, B) tile one range without gap or overlap;
   - no frame file (e.g. left/000012.exr) is listed by two shards or lies outside its shard's range, every
-    frame of the range has every kind of frame file the dataset has (so a lost depth/000012.exr is found),
+    frame of the range has every kind of frame file the dataset has (so a lost depth/000012.exr is found; frame 0
+    has no backward flow by design),
     and per-dataset files (calib.txt) listed by several shards have the same hash;
   - every listed file exists; with --verify its SHA-256 is recomputed and compared.
 Per-shard line files NAME.shard-I-of-N.jsonl (e.g. frames.shard-0-of-4.jsonl) are concatenated in frame order
@@ -39,6 +40,9 @@ FORMAT = "sward-dataset-1"
 SHARD_NAME = re.compile(r"^manifest\.shard-(\d+)-of-(\d+)\.json$")
 FRAME_FILE = re.compile(r"^(.+)/(\d{6})\.([A-Za-z0-9]+)$")
 SHARD_JSONL = re.compile(r"^(.+)\.shard-(\d+)-of-(\d+)\.jsonl$")
+# Folders of motion truth towards the previous frame (dataset/naming.h): frame 0 has none by design.
+BACKWARD_FOLDERS = {"flow_backward", "flow_backward_mask", "flow_backward_right", "flow_backward_mask_right",
+                    "disparity_change_backward"}
 # Keys every shard must agree on; device and driver may differ between machines (reported, kept as lists).
 SHARED_KEYS = ("format", "scene", "scene_sha256", "seed", "options", "sward_revision")
 # Written by newer sward-renders only (asset paths and hashes, units, conventions); shards must still agree.
@@ -239,6 +243,8 @@ def merge(dataset, manifest_paths, problems):
     kinds = {(m.group(1), m.group(3)) for m in map(FRAME_FILE.match, files) if m}
     for frame in range(start, end):
         for folder, extension in sorted(kinds):
+            if frame == 0 and folder in BACKWARD_FOLDERS:
+                continue
             name = f"{folder}/{frame:06d}.{extension}"
             if name not in files:
                 problems.add(f"{name} is missing (no shard lists it)")

@@ -162,6 +162,25 @@ class MergeManifestsTest(unittest.TestCase):
         self.data.save()
         self.assertFails("calib.txt differs between")
 
+    def add_backward_flow(self, frames):
+        for shard, manifest in self.data.manifests.items():
+            a, b = manifest["frames"]
+            for f in range(a, b):
+                if f in frames:
+                    name = f"flow_backward/{f:06d}.flo"
+                    manifest["files"][name] = self.data.write(name, f"{name} content".encode())
+        self.data.save()
+
+    def test_sharded_flow_dataset_without_backward_flow_at_frame_0_merges(self):
+        self.add_backward_flow({1, 2, 3})  # frame 0 has no previous frame: no backward flow by design
+        code, output = self.data.merge("--verify")
+        self.assertEqual(code, 0, output)
+        self.assertIn("flow_backward/000003.flo", self.data.merged()["files"])
+
+    def test_lost_backward_flow_of_a_later_frame_is_still_missing(self):
+        self.add_backward_flow({1, 3})
+        self.assertFails("flow_backward/000002.flo is missing")
+
     def test_malformed_manifest(self):
         with open(os.path.join(self.tmp.name, "manifest.shard-1-of-2.json"), "w") as f:
             f.write("{ not json")
