@@ -8,7 +8,10 @@ For each case (cases.py) the tool runs on a freshly made input in a case folder 
   - print exactly ONE line on stderr (informational "sward: device: ..." lines aside) that starts with
     "<tool>: error: " and matches the case's regex (it names the problem);
   - leave its output folder (--out, or the case's watched path) exactly as found: absent if it was absent,
-    otherwise the same listing and bytes.
+    otherwise the same listing and bytes;
+  - end within the case's limit_s seconds with a peak resident size under its limit_mb (a bad input is refused
+    before it costs time or memory).
+The cases are cases.py's CASES followed by those of every cases_*.py module beside it (one per part of the code).
 The table (input | command | exit | error | nothing written) goes to TABLE.md. Exit status 1 if any case fails.
 Python 3 standard library only.
 """
@@ -22,6 +25,10 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import threading
+import time
+import glob
+import importlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cases as case_table  # noqa: E402
@@ -56,6 +63,50 @@ def describe_change(before, after):
     return "changed: " + ", ".join(changed[:6])
 
 
+def run_measured(command, environment, cwd, timeout):
+    """Runs `command`; returns (exit code or "timeout", stderr, wall seconds, peak resident MiB of the process).
+    os.wait4 gives the process's own rusage, which subprocess.run would discard."""
+    start = time.monotonic()
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=environment, cwd=cwd)
+    captured = {}
+
+    def drain(name, stream):
+        captured[name] = stream.read()
+
+    readers = [threading.Thread(target=drain, args=(n, s)) for n, s in (("out", process.stdout),
+                                                                        ("err", process.stderr))]
+    for r in readers:
+        r.start()
+    status = usage = None
+    while True:
+        pid, status, usage = os.wait4(process.pid, os.WNOHANG)
+        if pid:
+            break
+        if time.monotonic() - start > timeout:
+            process.kill()
+            _, status, usage = os.wait4(process.pid, 0)
+            status = None
+            break
+        time.sleep(0.01)
+    seconds = time.monotonic() - start
+    process.returncode = 0  # reaped above; keeps Popen from waiting again
+    for r in readers:
+        r.join()
+    code = "timeout" if status is None else os.waitstatus_to_exitcode(status)
+    stderr = captured.get("err", b"").decode("utf-8", "replace")
+    return code, stderr, seconds, usage.ru_maxrss / 1024.0
+
+
+def all_cases():
+    """cases.py's table, then every cases_*.py module's CASES in name order."""
+    cases = list(case_table.CASES)
+    here = os.path.dirname(os.path.abspath(__file__))
+    for path in sorted(glob.glob(os.path.join(here, "cases_*.py"))):
+        module = importlib.import_module(os.path.splitext(os.path.basename(path))[0])
+        cases += module.CASES
+    return cases
+
+
 def run_case(case, ctx, work):
     folder = os.path.join(work, f"{ctx.index:03d}-{case.slug}")
     ctx.index += 1
@@ -69,12 +120,7 @@ def run_case(case, ctx, work):
         [os.path.join(ctx.bin, tool)]
     environment = dict(os.environ)
     environment.pop("DISPLAY", None)
-    try:
-        result = subprocess.run(command + args, capture_output=True, text=True, timeout=120, env=environment,
-                                cwd=folder)
-        code, stderr = result.returncode, result.stderr
-    except subprocess.TimeoutExpired:
-        code, stderr = "timeout", ""
+    code, stderr, seconds, peak_mb = run_measured(command + args, environment, folder, timeout=max(120, case.limit_s))
     after = snapshot(watched)
     lines = [line for line in stderr.splitlines() if not INFO_LINE.match(line)]
     problems = []
@@ -86,6 +132,10 @@ def run_case(case, ctx, work):
         problems.append(f"error line does not match /{case.error}/")
     if before != after:
         problems.append("output folder " + describe_change(before, after))
+    if seconds > case.limit_s:
+        problems.append(f"took {seconds:.1f} s, limit {case.limit_s:g} s")
+    if peak_mb > case.limit_mb:
+        problems.append(f"peak resident size {peak_mb:.0f} MiB, limit {case.limit_mb} MiB")
     shown = " ".join(shlex.quote(os.path.relpath(a, folder) if a.startswith(folder) else a) for a in args)
     return {
         "case": case,
@@ -133,7 +183,7 @@ def main():
     parser.add_argument("--only", default="", help="run only cases whose name matches this regex")
     args = parser.parse_args()
     ctx = Context(args.bin_dir, args.source_dir)
-    selected = [c for c in case_table.CASES if re.search(args.only, c.name)]
+    selected = [c for c in all_cases() if re.search(args.only, c.name)]
     work = tempfile.mkdtemp(prefix="sward-bad-inputs-")
     failed = 0
     rows = []

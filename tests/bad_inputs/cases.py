@@ -37,6 +37,8 @@ class Case:
     exit: int
     error: str                     # regex the one error line must match
     needs_dataset: bool = False
+    limit_s: float = 10.0          # the run must end within this many seconds (wall clock)...
+    limit_mb: int = 1024           # ...and its process must peak below this resident size (MiB)
 
     @property
     def slug(self):
