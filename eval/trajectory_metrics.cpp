@@ -60,6 +60,32 @@ RelativeError relativeError(const std::vector<Pose>& truth, const std::vector<Po
     return e;
 }
 
+// Why a pose read from a file is not a camera pose ("" when it is): its 3x3 part must be a rotation (the metrics
+// invert it as its transpose, so a scaled or sheared matrix would give errors that mean nothing) and its position
+// a place (1e308 passes isfinite, then overflows to inf in the first alignment).
+std::string poseProblem(const Pose& p) {
+    const cv::Matx33d r = rotation(p);
+    const double offIdentity = cv::norm(r.t() * r - cv::Matx33d::eye(), cv::NORM_INF);
+    char text[160];
+    if (!(offIdentity <= kPoseRotationTolerance)) {
+        std::snprintf(text, sizeof text, "the 3x3 part is not a rotation (max |R^T R - I| = %.3g, over %g)",
+                      offIdentity, kPoseRotationTolerance);
+        return text;
+    }
+    const double det = cv::determinant(r);
+    if (!(std::abs(det - 1.0) <= kPoseRotationTolerance)) {
+        std::snprintf(text, sizeof text, "the 3x3 part is a reflection, not a rotation (determinant %.6g, not 1)", det);
+        return text;
+    }
+    const cv::Vec3d t = position(p);
+    if (!(std::max({std::abs(t[0]), std::abs(t[1]), std::abs(t[2])}) <= kMaxPoseTranslationMetres)) {
+        std::snprintf(text, sizeof text, "the position (%.3g, %.3g, %.3g) lies beyond %g m of the origin on an axis",
+                      t[0], t[1], t[2], kMaxPoseTranslationMetres);
+        return text;
+    }
+    return {};
+}
+
 } // namespace
 
 double rotationAngleDegrees(const Pose& pose) {
@@ -94,6 +120,8 @@ std::vector<Pose> readKittiPoses(const std::string& path) {
                     ": expected 12 finite numbers (KITTI pose: 3x4 camera-to-world, row-major)");
         Pose p = Pose::eye();
         for (int k = 0; k < 12; ++k) p(k / 4, k % 4) = v[k];
+        const std::string problem = poseProblem(p);
+        require(problem.empty(), path + " line " + std::to_string(lineNumber) + ": " + problem);
         poses.push_back(p);
     }
     require(!poses.empty(), "pose file '" + path + "' holds no poses");

@@ -20,8 +20,16 @@ double rotationAngleDegrees(const Pose& pose);
 Pose relativePose(const Pose& a, const Pose& b);
 Pose inverseRigid(const Pose& pose);
 
+// What readKittiPoses takes as a camera pose: max |R^T R - I| and |det R - 1| at most kPoseRotationTolerance
+// (files written with 6 significant digits are off by about 1e-6), each coordinate of the position within
+// kMaxPoseTranslationMetres (a thousand kilometres: far beyond any scene, far short of overflowing the metrics'
+// squares, as 1e308 does).
+inline constexpr double kPoseRotationTolerance = 1e-3;
+inline constexpr double kMaxPoseTranslationMetres = 1e6;
+
 // KITTI odometry pose file: one line per frame, the first 3 rows of the 4x4 pose row-major (12 numbers).
-// Throws sward::Error naming the file and line on anything else (a line of the wrong count, a non-finite number).
+// Throws sward::Error naming the file and line on anything else (a line of the wrong count, a non-finite number,
+// a 3x3 part that is not a rotation, a position beyond kMaxPoseTranslationMetres).
 std::vector<Pose> readKittiPoses(const std::string& path);
 std::string kittiPosesText(const std::vector<Pose>& poses); // "%.17g": read back bitwise
 

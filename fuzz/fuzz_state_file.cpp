@@ -16,5 +16,5 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     const std::string path = sward::fuzz::inputFile(bytes.data(), bytes.size(), "state.bin");
     sward::fuzz::expectOnlyErrors([&] { sward::loadInteractionState(path); });
-    return sward::fuzz::expectOnlyErrors([&] { sward::loadWorldState(path); });
+    return sward::fuzz::expectOnlyErrors([&] { sward::loadWorldState(path, 1); }); // the seeds' seed (make-seeds.py)
 }

@@ -81,9 +81,9 @@ def state_file(fields, plants, tick=7, tracks=()):
     return out + struct.pack("<Q", fnv1a64(out))
 
 
-def world_state(tiles, tick=7, size=(4, 4)):
+def world_state(tiles, tick=7, size=(4, 4), seed=1):
     """tiles: [((x, y), [(field, active, last, [(bend, state), ...]), ...]), ...]"""
-    out = b"SWARDWS1" + struct.pack("<IIQII", 1, len(tiles), tick, *size)
+    out = b"SWARDWS1" + struct.pack("<IIQIIQ", 2, len(tiles), tick, *size, seed)
     for (x, y), fields in tiles:
         out += struct.pack("<iiI", x, y, len(fields))
         for field, active, last, plants in fields:

@@ -187,7 +187,7 @@ InteractionState loadInteractionState(const std::string& path) {
 namespace {
 
 constexpr char kWorldMagic[8] = {'S', 'W', 'A', 'R', 'D', 'W', 'S', '1'};
-constexpr size_t kWorldHeaderBytes = 8 + 4 + 4 + 8 + 4 + 4;
+constexpr size_t kWorldHeaderBytes = 8 + 4 + 4 + 8 + 4 + 4 + 8;
 constexpr size_t kWorldTileBytes = 4 + 4 + 4;
 constexpr size_t kWorldFieldBytes = 4 + 4 + 8 + 4;
 // Far beyond any touched world a machine can hold; a longer file is refused from its length alone.
@@ -265,6 +265,7 @@ void saveWorldState(const std::string& path, const WorldInteractionState& state)
     put(bytes, state.tick);
     put(bytes, state.tilesX);
     put(bytes, state.tilesY);
+    put(bytes, state.seed);
     for (const TileInteractionState& tile : state.tiles) {
         assert(uint32_t(tile.coord.x) < state.tilesX && uint32_t(tile.coord.y) < state.tilesY);
         put(bytes, tile.coord.x);
@@ -282,7 +283,7 @@ void saveWorldState(const std::string& path, const WorldInteractionState& state)
     writeBytesAtomically(path, bytes.data(), bytes.size());
 }
 
-WorldInteractionState loadWorldState(const std::string& path) {
+WorldInteractionState loadWorldState(const std::string& path, uint64_t seed) {
     const std::vector<uint8_t> bytes = readStateBytes(path, kMaxWorldStateBytes, "world state file");
     const std::string what = path + ": not a valid world state file: ";
     requireHeader(bytes, kWorldMagic, kWorldHeaderBytes, kWorldStateFileVersion, what);
@@ -293,6 +294,11 @@ WorldInteractionState loadWorldState(const std::string& path) {
     state.tick = get<uint64_t>(bytes, 16);
     state.tilesX = get<uint32_t>(bytes, 24);
     state.tilesY = get<uint32_t>(bytes, 28);
+    state.seed = get<uint64_t>(bytes, 32);
+    // Refused at load: restoring compares the plants of resident tiles only, so a state of another seed would
+    // otherwise pass and fail at a later render, when one of its tiles first becomes resident.
+    require(state.seed == seed, path + ": the world state was saved from a world of seed " +
+                                    std::to_string(state.seed) + "; this scene's seed is " + std::to_string(seed));
     WorldStateReader r(bytes, what);
     r.need(uint64_t(tiles) * kWorldTileBytes, " for " + std::to_string(tiles) + " tiles");
     state.tiles.reserve(tiles);

@@ -14,7 +14,8 @@
 // The world state (a world of many tiles, scene/world_tiles.h) keeps only the touched fields of each tile
 // (interaction/tile_state.h), resident or evicted:
 //   "SWARDWS1"                      8-byte magic
-//   uint32 version (kWorldStateFileVersion), uint32 tile count, uint64 tick, uint32 tiles x, uint32 tiles y
+//   uint32 version (kWorldStateFileVersion), uint32 tile count, uint64 tick, uint32 tiles x, uint32 tiles y,
+//   uint64 seed (the scene's: every tile's plants grow from it)
 //   per tile, ascending (y, x): int32 x, int32 y, uint32 field count
 //     per field, ascending index: uint32 field, uint32 active (0 or 1), uint64 last contact tick,
 //                                 uint32 plant count, that many gpu::PlantDynamic
@@ -57,11 +58,12 @@ void saveInteractionState(const std::string& path, const InteractionState& state
 // version, truncated or oversized, bad active flag, checksum mismatch).
 InteractionState loadInteractionState(const std::string& path);
 
-inline constexpr uint32_t kWorldStateFileVersion = 1;
+inline constexpr uint32_t kWorldStateFileVersion = 2; // 2: the seed
 
 struct WorldInteractionState {
     uint64_t tick = 0;                       // the next tick to simulate
     uint32_t tilesX = 0, tilesY = 0;         // the world's size in tiles
+    uint64_t seed = 0;                       // the scene's seed: a state of another seed fits no tile's plants
     std::vector<TileInteractionState> tiles; // tiles with touched fields, ascending (y, x)
 };
 
@@ -69,9 +71,10 @@ struct WorldInteractionState {
 // Throws sward::Error naming the file when it cannot be written.
 void saveWorldState(const std::string& path, const WorldInteractionState& state);
 
-// Reads a world state file; throws sward::Error naming the file and the problem (missing, wrong magic, version,
-// truncated or oversized, a tile outside the world or out of order, a bad active flag, checksum mismatch). Sizes
-// are checked against the file's length before anything is allocated.
-WorldInteractionState loadWorldState(const std::string& path);
+// Reads the world state file of a scene of `seed`; throws sward::Error naming the file and the problem (missing,
+// wrong magic, version, truncated or oversized, another seed (naming both), a tile outside the world or out of
+// order, a bad active flag, checksum mismatch). Sizes are checked against the file's length before anything is
+// allocated.
+WorldInteractionState loadWorldState(const std::string& path, uint64_t seed);
 
 } // namespace sward

@@ -392,13 +392,14 @@ void WorldTiles::saveState(const std::string& path, uint64_t tick) const {
     for (const auto& [key, tile] : resident_)
         if (TileInteractionState state = captureTouchedFields(tile.vegetation); !state.fields.empty())
             tiles.emplace(key, std::move(state));
-    WorldInteractionState world{.tick = tick, .tilesX = scene_.world.tilesX, .tilesY = scene_.world.tilesY};
+    WorldInteractionState world{
+        .tick = tick, .tilesX = scene_.world.tilesX, .tilesY = scene_.world.tilesY, .seed = scene_.seed};
     for (auto& [key, state] : tiles) world.tiles.push_back(std::move(state));
     saveWorldState(path, world);
 }
 
 uint64_t WorldTiles::restoreState(const std::string& path) {
-    WorldInteractionState world = loadWorldState(path);
+    WorldInteractionState world = loadWorldState(path, scene_.seed);
     const WorldParams& w = scene_.world;
     require(world.tilesX == w.tilesX && world.tilesY == w.tilesY,
             path + ": the world state belongs to a world of " + std::to_string(world.tilesX) + " x " +

@@ -3,6 +3,7 @@
 #include "eval/odometry.h"
 #include "stereo_test_files.h"
 
+#include "common/error.h"
 #include "common/hash.h"
 #include "io/image_files.h"
 
@@ -295,4 +296,32 @@ TEST(Odometry, BadInputGivesOneClearError) {
     EXPECT_EQ(runEval("odometry " + dir, &err), 1);
     EXPECT_NE(err.find("mono dataset"), std::string::npos) << err;
     EXPECT_FALSE(std::filesystem::exists(dir + "/eval-odometry"));
+}
+
+// A pose file of numbers that are finite but no pose: refused with the file, the line and what is wrong, not
+// scored into metrics that mean nothing (a scaled 3x3 part, a mirror, 1e308 which the first square makes inf).
+TEST(Odometry, APoseFileOfNonRotationsOrFarPositionsIsRefusedNamingTheLine) {
+    const std::string dir = tempDir();
+    const std::string identity = "1 0 0 0 0 1 0 0 0 0 1 0\n";
+    auto errorFor = [&](const std::string& line) {
+        std::ofstream(dir + "/p.txt") << identity << line;
+        try {
+            readKittiPoses(dir + "/p.txt");
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    EXPECT_NE(
+        errorFor("2 0 0 0 0 2 0 0 0 0 2 0\n").find("p.txt line 2: the 3x3 part is not a rotation (max |R^T R - I| = 3"),
+        std::string::npos);
+    EXPECT_NE(errorFor("1 0.01 0 0 0 1 0 0 0 0 1 0\n").find("not a rotation"), std::string::npos); // sheared
+    EXPECT_NE(errorFor("-1 0 0 0 0 1 0 0 0 0 1 0\n").find("p.txt line 2: the 3x3 part is a reflection"),
+              std::string::npos);
+    EXPECT_NE(errorFor("1 0 0 1e308 0 1 0 0 0 0 1 0\n")
+                  .find("p.txt line 2: the position (1e+308, 0, 0) lies beyond 1e+06 m of the origin on an axis"),
+              std::string::npos);
+    EXPECT_EQ(errorFor("1 0 0 1e5 0 1 0 -3 0 0 1 2.5\n"), "accepted");
+    // Six significant digits of a rotation by 30 degrees (what many tools write) still read as a rotation.
+    EXPECT_EQ(errorFor("0.866025 0 0.5 0 0 1 0 0 -0.5 0 0.866025 0\n"), "accepted");
 }

@@ -72,7 +72,7 @@ TEST(WorldStateFile, SavesAndLoadsBitwise) {
     state.tiles = {a, b};
     const std::string path = (tempDir() / "world.state").string();
     saveWorldState(path, state);
-    const WorldInteractionState back = loadWorldState(path);
+    const WorldInteractionState back = loadWorldState(path, 0);
     EXPECT_EQ(back.tick, 99u);
     EXPECT_EQ(back.tilesX, 16u);
     ASSERT_EQ(back.tiles.size(), 2u);
@@ -82,6 +82,16 @@ TEST(WorldStateFile, SavesAndLoadsBitwise) {
         EXPECT_EQ(back.tiles[0].fields[f].field, a.fields[f].field);
         EXPECT_TRUE(sameBytes(back.tiles[0].fields[f].dynamics, a.fields[f].dynamics));
     }
+}
+
+TEST(WorldStateFile, AStateOfAnotherSeedIsRefusedAtLoadNamingBothSeeds) {
+    WorldInteractionState state{.tick = 1, .tilesX = 2, .tilesY = 2, .seed = 5};
+    state.tiles = {captureTouchedFields(touchedTile())};
+    const std::string path = (tempDir() / "world.state").string();
+    saveWorldState(path, state);
+    EXPECT_EQ(loadWorldState(path, 5).seed, 5u);
+    EXPECT_EQ(errorOf([&] { loadWorldState(path, 6); }),
+              path + ": the world state was saved from a world of seed 5; this scene's seed is 6");
 }
 
 TEST(WorldStateFile, CorruptFilesAreRefusedNamingTheFile) {
@@ -98,12 +108,12 @@ TEST(WorldStateFile, CorruptFilesAreRefusedNamingTheFile) {
     std::string flipped = bytes;
     flipped[40] ^= 1;
     write(flipped);
-    EXPECT_NE(errorOf([&] { loadWorldState(path); }).find("checksum mismatch"), std::string::npos);
+    EXPECT_NE(errorOf([&] { loadWorldState(path, 0); }).find("checksum mismatch"), std::string::npos);
     write(bytes.substr(0, 20));
-    EXPECT_NE(errorOf([&] { loadWorldState(path); }).find("truncated"), std::string::npos);
+    EXPECT_NE(errorOf([&] { loadWorldState(path, 0); }).find("truncated"), std::string::npos);
     write("SWARDST1" + bytes.substr(8));
-    EXPECT_NE(errorOf([&] { loadWorldState(path); }).find("wrong magic (expected SWARDWS1)"), std::string::npos);
+    EXPECT_NE(errorOf([&] { loadWorldState(path, 0); }).find("wrong magic (expected SWARDWS1)"), std::string::npos);
     std::filesystem::remove(path);
-    EXPECT_NE(errorOf([&] { loadWorldState(path); }).find(path + ": cannot open the world state file"),
+    EXPECT_NE(errorOf([&] { loadWorldState(path, 0); }).find(path + ": cannot open the world state file"),
               std::string::npos);
 }
