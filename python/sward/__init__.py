@@ -8,6 +8,8 @@ and frame; errors raise sward.Error with the message the command-line tools prin
     data = sward.Dataset("out")   # any dataset sward wrote; len(data), data[i] -> dict of numpy arrays
 """
 import json
+import math
+import numbers
 import os
 import pathlib
 
@@ -17,6 +19,47 @@ from . import _sward
 from ._sward import Error, SEMANTIC_CLASSES
 
 __all__ = ["Error", "Simulator", "Dataset", "write_dataset", "SEMANTIC_CLASSES"]
+
+
+# Arguments are checked here, before _sward: a wrong type reaching pybind11 raises a TypeError that lists the C++
+# signatures of the binding instead of naming the argument.
+
+def _type_error(name, wanted, value):
+    return TypeError(f"{name} must be {wanted}, not {type(value).__name__}")
+
+
+def _integer(name, value, low, high):
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise _type_error(name, "an integer", value)
+    if not low <= value <= high:
+        raise Error(f"{name} must be an integer in [{low}, {high}] (got {value})")
+    return int(value)
+
+
+def _number(name, value):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise _type_error(name, "a number", value)
+    if not math.isfinite(value):
+        raise Error(f"{name} must be a finite number (got {value})")
+    return float(value)
+
+
+def _flag(name, value):
+    if not isinstance(value, (bool, np.bool_)):
+        raise _type_error(name, "True or False", value)
+    return bool(value)
+
+
+def _text(name, value, wanted, optional=False):
+    if (value is None and optional) or isinstance(value, str):
+        return value
+    raise _type_error(name, wanted, value)
+
+
+def _path(name, value):
+    if not isinstance(value, (str, os.PathLike)):
+        raise _type_error(name, "a file or folder path (str or os.PathLike)", value)
+    return os.fspath(value)
 
 
 def _scene_input(scene, overrides, seed, allow_assets):
@@ -31,14 +74,27 @@ def _scene_input(scene, overrides, seed, allow_assets):
         raise TypeError("scene must be a file path, a dict or None (the built-in scene)")
     if overrides is not None and not isinstance(overrides, dict):
         raise TypeError('overrides must be a dict of dotted keys, e.g. {"render.samples": 1}')
-    return path, text, json.dumps(overrides or {}, allow_nan=False), seed, [os.fspath(a) for a in allow_assets]
+    if seed is not None:
+        seed = _integer("seed", seed, 0, 2**64 - 1)
+    if isinstance(allow_assets, (str, bytes, os.PathLike)):  # one folder would be iterated letter by letter
+        raise _type_error("allow_assets", "a list of folders", allow_assets)
+    folders = [_path("allow_assets[]", a) for a in allow_assets]
+    return path, text, json.dumps(overrides or {}, allow_nan=False), seed, folders
+
+
+def _run_options(device, validation, vegetation, time):
+    """The checked (device, validation, vegetation, time) of a Simulator or write_dataset."""
+    return (_text("device", device, "a device name or index as a str"), _flag("validation", validation),
+            _flag("vegetation", vegetation), _number("time", time))
 
 
 def write_dataset(scene, out, *, overrides=None, frames=None, shard=None, seed=None, overwrite=False, device="",
                   validation=False, vegetation=True, time=0.0, allow_assets=()):
     """Writes the dataset sward-render writes (docs/dataset-format.md): frames "A:B", shard "I/N", resume, etc."""
-    _sward.write_dataset(*_scene_input(scene, overrides, seed, allow_assets), os.fspath(out), frames, shard,
-                         overwrite, device, validation, vegetation, float(time))
+    _sward.write_dataset(*_scene_input(scene, overrides, seed, allow_assets), _path("out", out),
+                         _text("frames", frames, 'a str "A:B"', optional=True),
+                         _text("shard", shard, 'a str "I/N"', optional=True), _flag("overwrite", overwrite),
+                         *_run_options(device, validation, vegetation, time))
 
 
 class Simulator:
@@ -47,8 +103,8 @@ class Simulator:
     def __init__(self, scene=None, *, overrides=None, seed=None, device="", validation=False, vegetation=True,
                  time=0.0, allow_assets=()):
         self._input = _scene_input(scene, overrides, seed, allow_assets)
-        self._options = dict(device=device, validation=validation, vegetation=vegetation, time=float(time))
-        self._session = _sward.Session(*self._input, device, validation, vegetation, float(time))
+        self._options = _run_options(device, validation, vegetation, time)
+        self._session = _sward.Session(*self._input, *self._options)
 
     frame = property(lambda self: self._session.frame, doc="the frame render() shows next (= the next tick)")
     width = property(lambda self: self._session.width)
@@ -60,7 +116,7 @@ class Simulator:
 
     def step(self, ticks=1):
         """Runs `ticks` interaction ticks without rendering."""
-        self._session.step(int(ticks))
+        self._session.step(_integer("ticks", ticks, 0, 2**32 - 1))
 
     def render(self):
         """Renders the next frame (with its own tick) to a dict of numpy arrays and advances by one frame."""
@@ -68,12 +124,15 @@ class Simulator:
 
     def set_camera(self, position=None, look_at=None, fov=None):
         """A fixed camera from now on: world position and target [x, y, z] in metres, vertical fov in degrees."""
-        self._session.set_camera(_point(position), _point(look_at), None if fov is None else float(fov))
+        self._session.set_camera(_point("position", position), _point("look_at", look_at),
+                                 None if fov is None else _number("fov", fov))
 
     def set_object_pose(self, index, position, heading_deg):
         """Object `index` of the scene stands at world [x, y] facing `heading_deg` (from +x towards +y)."""
-        x, y = (float(v) for v in position)
-        self._session.set_object_pose(int(index), x, y, float(heading_deg))
+        if position is None:
+            raise _type_error("position", "a list of 2 numbers", position)
+        x, y = _point("position", position, 2)
+        self._session.set_object_pose(_integer("index", index, 0, 2**63 - 1), x, y, _number("heading_deg", heading_deg))
 
     def set_colliders(self, colliders):
         """Colliders of your own from the next tick on (replacing earlier ones): a list of dicts with "centre":
@@ -81,20 +140,86 @@ class Simulator:
         self._session.set_colliders(json.dumps(list(colliders), allow_nan=False))
 
     def save_state(self, path):
-        self._session.save_state(os.fspath(path))
+        self._session.save_state(_path("path", path))
 
     def restore_state(self, path):
-        self._session.restore_state(os.fspath(path))
+        self._session.restore_state(_path("path", path))
 
     def write_dataset(self, out, *, frames=None, shard=None, overwrite=False):
         """The dataset of this simulator's scene and options, as sward-render writes it (a separate run)."""
         path, text, overrides, seed, allow = self._input
-        _sward.write_dataset(path, text, overrides, seed, allow, os.fspath(out), frames, shard, overwrite,
-                             self._options["device"], self._options["validation"], self._options["vegetation"],
-                             self._options["time"])
+        _sward.write_dataset(path, text, overrides, seed, allow, _path("out", out),
+                             _text("frames", frames, 'a str "A:B"', optional=True),
+                             _text("shard", shard, 'a str "I/N"', optional=True), _flag("overwrite", overwrite),
+                             *self._options)
 
 
 _PLY_TYPES = {"float": "<f4", "double": "<f8", "uchar": "u1", "ushort": "<u2", "uint": "<u4"}
+
+
+# A broken file of a dataset raises sward.Error naming the file and what is wrong with it, never the JSON
+# decoder's, numpy's or a dict's own exception (docs/python.md, "Errors and threads").
+
+def _read_json(path, kind=dict):
+    """The JSON document of `path`, which must be a `kind`."""
+    try:
+        document = json.loads(path.read_bytes())
+    except OSError as e:
+        raise Error(f"{path}: cannot read the file ({e.strerror})") from None
+    except UnicodeDecodeError:
+        raise Error(f"{path}: not UTF-8 text") from None
+    except json.JSONDecodeError as e:
+        raise Error(f"{path}: not valid JSON ({e.msg}, line {e.lineno}, column {e.colno})") from None
+    if not isinstance(document, kind):
+        raise Error(f"{path}: must hold a JSON {'object' if kind is dict else 'array'}")
+    return document
+
+
+def _read_records(path):
+    """frames.jsonl: frame number -> its record (one JSON object a line, each with a non-negative "frame")."""
+    records = {}
+    try:
+        lines = path.read_bytes().decode().splitlines()
+    except OSError as e:
+        raise Error(f"{path}: cannot read the file ({e.strerror})") from None
+    except UnicodeDecodeError:
+        raise Error(f"{path}: not UTF-8 text") from None
+    for number, line in enumerate(lines, 1):
+        try:
+            record = json.loads(line)
+        except json.JSONDecodeError as e:
+            raise Error(f"{path} line {number}: not valid JSON ({e.msg}, column {e.colno})") from None
+        frame = record.get("frame") if isinstance(record, dict) else None
+        if isinstance(frame, bool) or not isinstance(frame, int) or frame < 0:
+            raise Error(f"{path} line {number}: not a frame record (a JSON object with a non-negative integer "
+                        f"'frame')")
+        records[frame] = record
+    return records
+
+
+def _read_ply(path):
+    """The point columns of a range sensor's binary PLY as sward writes it (range/range_files.h)."""
+    data = path.read_bytes()
+    end = data.find(b"end_header\n")
+    if not data.startswith(b"ply\n") or end < 0:
+        raise Error(f"{path}: not a PLY file (no 'ply' ... 'end_header' header)")
+    end += len(b"end_header\n")
+    try:
+        lines = data[:end].decode("ascii").splitlines()
+        fields = [(words[2], _PLY_TYPES[words[1]]) for words in (line.split() for line in lines)
+                  if words and words[0] == "property"]
+        dtype = np.dtype(fields)
+    except (UnicodeDecodeError, IndexError, KeyError, ValueError, TypeError):
+        raise Error(f"{path}: its header is not one sward writes (properties of {', '.join(_PLY_TYPES)})") from None
+    missing = [n for n in ("x", "y", "z", "wx", "wy", "wz", *_PLY_COLUMNS) if n not in dtype.names]
+    if missing:
+        raise Error(f"{path}: has no property {missing[0]}")
+    if (len(data) - end) % dtype.itemsize:
+        raise Error(f"{path}: {len(data) - end} bytes of points are not whole points of {dtype.itemsize} bytes")
+    return np.frombuffer(data[end:], dtype=dtype)
+
+
+_PLY_COLUMNS = ("intensity", "time", "ring", "column", "class", "instance")
 
 
 def _read_range(root, name, frame):
@@ -104,18 +229,16 @@ def _read_range(root, name, frame):
     out = {}
     ply = file(".ply")
     if ply.is_file():
-        data = ply.read_bytes()
-        end = data.index(b"end_header\n") + len(b"end_header\n")
-        fields = [(words[2], _PLY_TYPES[words[1]]) for words in (line.split() for line in data[:end].decode().splitlines())
-                  if words and words[0] == "property"]
-        points = np.frombuffer(data[end:], dtype=np.dtype(fields))
+        points = _read_ply(ply)
         out["xyz"] = np.stack([points["x"], points["y"], points["z"]], axis=1)
         out["world"] = np.stack([points["wx"], points["wy"], points["wz"]], axis=1)
-        for key in ("intensity", "time", "ring", "column", "class", "instance"):
+        for key in _PLY_COLUMNS:
             out[key] = points[key].copy()
     scan = file(".json")
     if scan.is_file():
-        ranges = json.loads(scan.read_text())["ranges"]
+        ranges = _read_json(scan).get("ranges")
+        if not isinstance(ranges, list) or not all(r is None or isinstance(r, (int, float)) for r in ranges):
+            raise Error(f"{scan}: 'ranges' must be a list of numbers and nulls")
         out["ranges"] = np.array([np.nan if r is None else r for r in ranges], dtype=np.float32)
     depth = file(".exr")
     if depth.is_file():
@@ -123,8 +246,17 @@ def _read_range(root, name, frame):
     return out
 
 
-def _point(value):
-    return None if value is None else [float(v) for v in value]
+def _point(name, value, size=3):
+    """[x, y, z] (or [x, y]) of numbers as floats; None stays None."""
+    if value is None:
+        return None
+    try:
+        values = list(value)
+    except TypeError:
+        raise _type_error(name, f"a list of {size} numbers", value) from None
+    if len(values) != size:
+        raise Error(f"{name} must be {size} numbers (got {len(values)})")
+    return [_number(f"{name}[{k}]", v) for k, v in enumerate(values)]
 
 
 class Dataset:
@@ -135,7 +267,7 @@ class Dataset:
     without sward depending on torch."""
 
     def __init__(self, path):
-        self.root = pathlib.Path(path)
+        self.root = pathlib.Path(_path("path", path))
         names = _sward.NAMES
         left = self.root / names["left"]
         if not left.is_dir():
@@ -146,13 +278,11 @@ class Dataset:
         self.records = {}
         log = self.root / names["frame_log"]
         if log.is_file():
-            for line in log.read_text().splitlines():
-                record = json.loads(line)
-                self.records[record["frame"]] = record
+            self.records = _read_records(log)
         info = self.root / names["dataset"]
-        self.info = json.loads(info.read_text()) if info.is_file() else {}
+        self.info = _read_json(info) if info.is_file() else {}
         manifest = self.root / names["manifest"]
-        self.manifest = json.loads(manifest.read_text()) if manifest.is_file() else {}
+        self.manifest = _read_json(manifest) if manifest.is_file() else {}
         calib = self.root / names["calib"]
         self.calib = _sward.read_calib(str(calib)) if calib.is_file() else None
 
@@ -160,8 +290,9 @@ class Dataset:
         return len(self.frames)
 
     def __getitem__(self, index):
-        if not isinstance(index, int):
-            raise TypeError("Dataset indices are integers")
+        if isinstance(index, bool) or not isinstance(index, numbers.Integral):
+            raise TypeError(f"Dataset indices are integers, not {type(index).__name__}")
+        index = int(index)
         if not -len(self.frames) <= index < len(self.frames):
             raise IndexError(f"frame index {index} out of range for a dataset of {len(self.frames)} frame(s)")
         frame = self.frames[index]

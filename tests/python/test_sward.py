@@ -132,6 +132,18 @@ def test_a_world_dataset_names_the_tile_of_each_plant_pixel(cli_dataset, tmp_pat
     assert "tile" not in cli_dataset[1][0]  # one tile: no tile channel
 
 
+def test_a_world_state_of_another_seed_is_refused_at_restore(tmp_path):
+    """At restore_state, naming both seeds: not at the render where a tile of the file first becomes resident."""
+    scene = scene_with(tmp_path, {**SMALL, "sequence.frames": 1, "world": {"tiles": [2, 2]}})
+    sim = sward.Simulator(scene, seed=5)
+    sim.step(1)
+    sim.save_state(tmp_path / "world.state")
+    with pytest.raises(sward.Error, match=r"world.state: the world state was saved from a world of seed 5; "
+                                          r"this scene's seed is 6$"):
+        sward.Simulator(scene, seed=6).restore_state(tmp_path / "world.state")
+    sward.Simulator(scene, seed=5).restore_state(tmp_path / "world.state")
+
+
 def test_set_camera_and_a_scene_dict(tmp_path):
     document = json.loads(scene_with(tmp_path, SMALL).read_text())
     sim = sward.Simulator(document, overrides={"vehicles": []})
@@ -190,6 +202,81 @@ def test_bad_input_raises_the_cli_message(tmp_path):
         sward.Simulator(scene_with(tmp_path, SMALL)).set_colliders([{"radius": 1}])
     with pytest.raises(sward.Error, match="not a sward dataset"):
         sward.Dataset(tmp_path)
+
+
+@pytest.mark.parametrize("name, text, message", [
+    ("frames.jsonl", '{"frame": 0}\n{"frame": 1', r"frames.jsonl line 2: not valid JSON"),
+    ("frames.jsonl", '{"frame": 0}\n{"time": 1}\n', r"frames.jsonl line 2: not a frame record"),
+    ("frames.jsonl", '[0]\n', r"frames.jsonl line 1: not a frame record"),
+    ("frames.jsonl", b"\xff\xfe", r"frames.jsonl: not UTF-8 text"),
+    ("dataset.json", "{", r"dataset.json: not valid JSON \(Expecting property name"),
+    ("dataset.json", "[]", r"dataset.json: must hold a JSON object"),
+    ("manifest.json", '{"files": ', r"manifest.json: not valid JSON"),
+])
+def test_a_broken_dataset_file_raises_sward_error_naming_it(tmp_path, name, text, message):
+    """Not the JSON decoder's JSONDecodeError, a KeyError or a UnicodeDecodeError (ValueError) of the file's text."""
+    (tmp_path / "left").mkdir()
+    (tmp_path / name).write_bytes(text if isinstance(text, bytes) else text.encode())
+    with pytest.raises(sward.Error, match=message) as error:
+        sward.Dataset(tmp_path)
+    assert str(tmp_path / name) in str(error.value)
+
+
+def test_a_broken_range_file_raises_sward_error_naming_it(tmp_path):
+    (tmp_path / "left").mkdir()
+    (tmp_path / "left" / "000000.exr").write_bytes(b"")
+    sensor = tmp_path / "range" / "lidar"
+    sensor.mkdir(parents=True)
+    data = sward.Dataset(tmp_path)
+    for name, text, message in [("000000.ply", b"ply\nformat binary_little_endian 1.0\n", r"not a PLY file"),
+                                ("000000.ply", b"ply\nproperty quad x\nend_header\n", r"header is not one sward"),
+                                ("000000.json", b"{ranges", r"000000.json: not valid JSON"),
+                                ("000000.json", b'{"ranges": 3}', r"'ranges' must be a list")]:
+        for old in sensor.iterdir():
+            old.unlink()
+        (sensor / name).write_bytes(text)
+        with pytest.raises(sward.Error, match=message):
+            sward._read_range(tmp_path, "lidar", 0)
+    with pytest.raises(TypeError, match="not str"):
+        data["0"]
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda scene: sward.Simulator(scene, seed="5"), r"^seed must be an integer, not str$"),
+    (lambda scene: sward.Simulator(scene, validation="yes"), r"^validation must be True or False, not str$"),
+    (lambda scene: sward.Simulator(scene, device=0), r"^device must be a device name or index as a str, not int$"),
+    (lambda scene: sward.Simulator(scene, time="later"), r"^time must be a number, not str$"),
+    (lambda scene: sward.Simulator(scene, allow_assets="assets"), r"^allow_assets must be a list of folders"),
+    (lambda scene: sward.write_dataset(scene, "out", frames=5), r'^frames must be a str "A:B", not int$'),
+    (lambda scene: sward.write_dataset(scene, 7), r"^out must be a file or folder path"),
+    (lambda scene: sward.Dataset(None), r"^path must be a file or folder path"),
+])
+def test_a_wrong_argument_type_raises_a_type_error_naming_the_argument(tmp_path, call, message):
+    """Not pybind11's "incompatible function arguments" with the C++ signatures of the binding."""
+    with pytest.raises(TypeError, match=message) as error:
+        call(scene_with(tmp_path, SMALL))
+    assert "arg0" not in str(error.value) and "->" not in str(error.value)
+
+
+def test_an_argument_out_of_range_raises_sward_error_naming_it(tmp_path):
+    with pytest.raises(sward.Error, match=r"^seed must be an integer in \[0, 18446744073709551615\] \(got -1\)$"):
+        sward.Simulator(scene_with(tmp_path, SMALL), seed=-1)
+    with pytest.raises(sward.Error, match=r"^time must be a finite number \(got nan\)$"):
+        sward.write_dataset(scene_with(tmp_path, SMALL), tmp_path / "out", time=float("nan"))
+
+
+def test_a_wrong_argument_of_a_simulator_method_names_the_argument(tmp_path):
+    sim = sward.Simulator(scene_with(tmp_path, SMALL))
+    with pytest.raises(sward.Error, match=r"^ticks must be an integer in \[0, 4294967295\] \(got -1\)$"):
+        sim.step(-1)
+    with pytest.raises(sward.Error, match=r"^index must be an integer in"):
+        sim.set_object_pose(-1, [0, 0], 0)
+    with pytest.raises(TypeError, match=r"^position\[1\] must be a number, not str$"):
+        sim.set_camera(position=[1, "2", 3])
+    with pytest.raises(sward.Error, match=r"^look_at must be 3 numbers \(got 2\)$"):
+        sim.set_camera(look_at=[1, 2])
+    with pytest.raises(TypeError, match=r"^path must be a file or folder path"):
+        sim.save_state(None)
 
 
 def test_range_sensors_equal_the_cli_files_bitwise(tmp_path):
