@@ -195,7 +195,7 @@ void Device::createInstance(const DeviceOptions& options) {
     VkResult result = vkCreateInstance(&info, nullptr, &instance_);
     require(result != VK_ERROR_INCOMPATIBLE_DRIVER,
             "no Vulkan driver found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)");
-    VK_CHECK(result);
+    VK_CHECK_RESULT(result, "vkCreateInstance");
     if (validation_) {
         auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));

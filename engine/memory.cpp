@@ -108,7 +108,7 @@ Allocation Allocator::allocate(const VkMemoryRequirements& requirements, MemoryI
     VkResult result = vkAllocateMemory(device_.handle(), &info, nullptr, &block.memory);
     if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
         throw Error("out of GPU memory allocating a " + std::to_string(size >> 20) + " MiB block");
-    VK_CHECK(result);
+    VK_CHECK_RESULT(result, "vkAllocateMemory");
     if (device_.memoryProperties().memoryTypes[type].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) {
         void* mapped = nullptr;
         VK_CHECK(vkMapMemory(device_.handle(), block.memory, 0, VK_WHOLE_SIZE, 0, &mapped));

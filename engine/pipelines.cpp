@@ -69,7 +69,7 @@ Pipeline createComputePipeline(Device& device, const std::string& shader, const 
     };
     VkResult result = vkCreateComputePipelines(device.handle(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline.handle);
     vkDestroyShaderModule(device.handle(), module, nullptr);
-    VK_CHECK(result);
+    VK_CHECK_RESULT(result, "vkCreateComputePipelines");
     return pipeline;
 }
 
@@ -162,7 +162,7 @@ Pipeline createGraphicsPipeline(Device& device, const GraphicsPipelineDesc& desc
     VkResult result = vkCreateGraphicsPipelines(device.handle(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline.handle);
     vkDestroyShaderModule(device.handle(), vs, nullptr);
     if (fs) vkDestroyShaderModule(device.handle(), fs, nullptr);
-    VK_CHECK(result);
+    VK_CHECK_RESULT(result, "vkCreateGraphicsPipelines");
     return pipeline;
 }
 

@@ -153,7 +153,7 @@ bool Swapchain::acquire(uint64_t frame, VkExtent2D windowExtent, SwapchainImage&
         return false;
     }
     if (result == VK_SUBOPTIMAL_KHR) stale_ = true; // the image is usable: present it, recreate afterwards
-    else VK_CHECK(result);
+    else VK_CHECK_RESULT(result, "vkAcquireNextImageKHR");
     out = {index, images_[index], views_[index], acquired_[slot], finished_[index]};
     return true;
 }
@@ -170,7 +170,7 @@ void Swapchain::present(uint64_t frame, uint64_t serial, const SwapchainImage& i
     };
     VkResult result = vkQueuePresentKHR(ctx_.device.queue(), &info);
     if (staleResult(result)) stale_ = true;
-    else VK_CHECK(result);
+    else VK_CHECK_RESULT(result, "vkQueuePresentKHR");
 }
 
 } // namespace sward
