@@ -25,10 +25,20 @@ namespace sward {
 
 namespace {
 
-void requireEdges(const std::string& path, uint64_t width, uint64_t height) {
-    require(width > 0 && height > 0 && width <= kMaxImageEdge && height <= kMaxImageEdge,
+void requireEdges(const std::string& path, uint64_t width, uint64_t height, uint32_t maxEdge = kMaxImageEdge) {
+    require(width > 0 && height > 0 && width <= maxEdge && height <= maxEdge,
             "image '" + path + "' has size " + std::to_string(width) + "x" + std::to_string(height) +
-                "; each edge must be 1.." + std::to_string(kMaxImageEdge) + " pixels");
+                "; each edge must be 1.." + std::to_string(maxEdge) + " pixels");
+}
+
+// The decoded image's cost from its header (edges already checked, so the product cannot wrap).
+void requireDecodeBudget(const std::string& path, uint64_t width, uint64_t height, uint64_t channels,
+                         uint64_t bytesPerSample) {
+    const uint64_t bytes = width * height * channels * bytesPerSample;
+    require(bytes <= kMaxDecodedImageBytes,
+            "image '" + path + "' (" + std::to_string(width) + "x" + std::to_string(height) + ", " +
+                std::to_string(channels) + " channels) would take " + std::to_string(bytes >> 20) +
+                " MiB decoded, over the limit of " + std::to_string(kMaxDecodedImageBytes >> 20) + " MiB");
 }
 
 // stb_image silently widens 1/2/4-bit grey images to 8 bits, so the true bit depth is read from the IHDR chunk,
@@ -87,14 +97,18 @@ std::string decodeFailure(const std::string& path) {
 
 } // namespace
 
-ImageData decodePng(const std::string& path, const std::vector<char>& bytes) {
+ImageData decodePng(const std::string& path, const std::vector<char>& bytes, uint32_t maxEdge) {
     PngHeader header = readPngHeader(path, bytes);
-    requireEdges(path, header.width, header.height);
+    requireEdges(path, header.width, header.height, std::min(maxEdge, kMaxImageEdge));
     const bool palette = header.colorType == 3;
     require(palette || header.bitDepth == 8 || header.bitDepth == 16,
             "image '" + path + "' has unsupported bit depth " + std::to_string(header.bitDepth) +
                 " (PNG images must have 8 or 16 bits per sample)");
     requirePlausiblePngSize(path, header, compressedPngBytes(path, bytes));
+    // Palette images decode to RGBA at most; stb_image's copy (1 or 2 bytes a sample) lives beside the floats.
+    static constexpr uint32_t kDecodedChannels[7] = {1, 0, 3, 4, 2, 0, 4};
+    requireDecodeBudget(path, header.width, header.height, kDecodedChannels[header.colorType],
+                        4 + (!palette && header.bitDepth == 16 ? 2 : 1));
     const auto* encoded = reinterpret_cast<const stbi_uc*>(bytes.data());
     const int size = int(std::min<size_t>(bytes.size(), INT32_MAX));
     const bool wide = !palette && header.bitDepth == 16;
@@ -201,6 +215,7 @@ ImageData loadExr(const std::string& path, const std::string& channel) {
                 "image '" + path + "' has no EXR channel '" + channel + "'");
         const std::vector<std::string> names = channel.empty() ? exrChannelsToRead(path, list)
                                                                : std::vector<std::string>{channel};
+        requireDecodeBudget(path, uint64_t(width), uint64_t(height), names.size(), sizeof(float));
         ImageData image{.width = uint32_t(width),
                         .height = uint32_t(height),
                         .channels = uint32_t(names.size()),

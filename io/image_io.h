@@ -21,6 +21,11 @@ struct ImageData {
 
 // Largest accepted edge, in pixels: guards against corrupt headers asking for gigabytes.
 inline constexpr uint32_t kMaxImageEdge = 32768;
+// Largest decoded image, priced from the file's header before a pixel is allocated: width x height x channels x
+// (4 bytes of the float sample + the decoder's own 1 or 2 bytes a sample for PNG). 2 GiB holds an 8192x8192 RGBA
+// 8-bit PNG (1.25 GiB) or a 16384x16384 one-channel float EXR (1 GiB); a 1 MB PNG of 16384x16384 RGB (4 GiB, and
+// the grass map's consumers copy it again) is refused in microseconds instead of taking 10 GB and minutes.
+inline constexpr uint64_t kMaxDecodedImageBytes = uint64_t(2) << 30;
 
 // Loads a .png (8 or 16 bits per sample; palette images count as 8-bit RGB(A)) or .exr (any pixel type, read as
 // float; channels R,G,B[,A], or a single channel such as Y or Z). Throws sward::Error naming the file and the
@@ -38,6 +43,7 @@ std::vector<char> readImageFileBytes(const std::string& path);
 // A path's extension after its last dot, lower-cased ("" when there is none): "a/B.PNG" -> "png".
 std::string lowerExtension(const std::string& path);
 // Decodes a PNG held in memory with the same checks; `path` names it in errors (e.g. "'ground.glb' image 2").
-ImageData decodePng(const std::string& path, const std::vector<char>& bytes);
+// `maxEdge` (at most kMaxImageEdge) is checked against the header before anything is decoded.
+ImageData decodePng(const std::string& path, const std::vector<char>& bytes, uint32_t maxEdge = kMaxImageEdge);
 
 } // namespace sward

@@ -156,8 +156,8 @@ void checkSize(const std::string& path, int width, int height) {
             "raster '" + path + "' has size " + size + "; each edge must be 1.." + std::to_string(kMaxRasterEdge) +
                 " pixels");
     require(uint64_t(width) * uint64_t(height) <= kMaxRasterPixels,
-            "raster '" + path + "' has size " + size + ", more than " + std::to_string(kMaxRasterPixels) +
-                " pixels in all");
+            "raster '" + path + "' has size " + size + ": " + std::to_string(uint64_t(width) * uint64_t(height)) +
+                " pixels, over the limit of " + std::to_string(kMaxRasterPixels) + " (8192x8192)");
 }
 
 void checkFinite(const RasterBand& raster, uint32_t band) {

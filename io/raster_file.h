@@ -22,10 +22,14 @@ inline constexpr const char* kRasterDrivers[] = {"GTiff",          "PNG",  "JPEG
                                                  "GRASSASCIIGrid", "XYZ",  "EHdr",  "ENVI", "HFA", "USGSDEM", "SRTMHGT",
                                                  "GSAG",           "GSBG", "GS7BG", "ISG",  "RST", "BT"};
 
-// Largest raster read: each edge at most kMaxRasterEdge pixels and at most kMaxRasterPixels pixels in all (2 GiB
-// of doubles), checked before any pixel is read, so a corrupt header cannot ask for more.
+// Largest raster read: each edge at most kMaxRasterEdge pixels and at most kMaxRasterPixels pixels in all, checked
+// from the header before any pixel is allocated, so a corrupt header cannot ask for more. The pixel budget prices
+// the whole chain, not only this read (8 bytes a pixel): a heightmap adds its float heights and the ground mesh
+// (about 13 bytes a pixel in all), a land cover its class index, box-filter planes and float grass map (about 32
+// bytes a pixel). 2^26 pixels (8192x8192, or 16384x4096) keeps a land cover within about 2 GiB; 16384x16384, a
+// 1.2 MB deflate GeoTIFF, took 3.4 GB (heightmap) and 8.3 GB then std::bad_alloc (land cover).
 inline constexpr uint32_t kMaxRasterEdge = kMaxImageEdge;
-inline constexpr uint64_t kMaxRasterPixels = uint64_t(1) << 28;
+inline constexpr uint64_t kMaxRasterPixels = uint64_t(1) << 26;
 
 // A north-up georeferencing: world x = originX + (column + 0.5) * pixelWidth at a pixel centre, world y = originY -
 // (row + 0.5) * pixelHeight (rows go south). Units are those of the file's coordinate system (metres in a projected

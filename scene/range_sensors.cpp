@@ -224,6 +224,15 @@ std::vector<RangeSensorParams> parseRangeSensors(JsonReader& scene) {
                             "' may hold only letters, digits, '-' and '_' (it names a folder)");
         sensors.push_back(std::move(p));
     }
+    // Priced before anything is cast: 2^24 beams of 19 sub-rays each, in several sensors, cost minutes a frame.
+    uint64_t rays = 0;
+    for (const RangeSensorParams& p : sensors) rays += uint64_t(p.columns()) * p.channels() * p.subRays;
+    if (rays > kMaxRangeRaysPerFrame)
+        throw Error(scene.source() + ": 'range_sensors' cast " + std::to_string(rays) +
+                    " rays a frame (beams x 'sub_rays', all sensors), over the limit of " +
+                    std::to_string(kMaxRangeRaysPerFrame) +
+                    "; lower 'resolution', the channels, 'sub_rays' or "
+                    "raise 'angle_step_deg'");
     return sensors;
 }
 

@@ -79,8 +79,12 @@ glm::dvec3 beamDirection(const RangeSensorParams& sensor, uint32_t ring, uint32_
 // fires at c * step / 360 / rate; a ToF camera's pixels all at 0 (global shutter).
 double columnTime(const RangeSensorParams& sensor, uint32_t column);
 
+// Rays all range sensors cast for one frame (beams x sub-rays), at most 2^25 (33.5 million: ten VGA ToF cameras with
+// 7 sub-rays each, or 512 OS1-64 LiDARs); one sensor's 2^24 beams of 19 sub-rays each cost minutes a frame.
+inline constexpr uint64_t kMaxRangeRaysPerFrame = uint64_t(1) << 25;
 // Parses the scene's `range_sensors` array (each element an object, keys in docs/scene-format.md); a preset sets the
-// defaults its other keys then override. Errors name the sensor's JSON path.
+// defaults its other keys then override. Errors name the sensor's JSON path; more than kMaxRangeRaysPerFrame rays
+// in all is refused naming the estimate.
 std::vector<RangeSensorParams> parseRangeSensors(JsonReader& scene);
 
 } // namespace sward

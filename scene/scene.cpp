@@ -160,6 +160,7 @@ void readRender(JsonReader r, RenderParams& render) {
     render.shadowCascades = uint32_t(r.integer("shadow_cascades", render.shadowCascades, 1, gpu::kMaxShadowCascades));
     render.flow = r.boolean("flow", render.flow);
     r.finish();
+    checkRenderResolution(render, r.source());
 }
 
 void readLod(JsonReader r, LodParams& l) {

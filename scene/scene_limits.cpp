@@ -13,6 +13,22 @@ void checkArrayLength(JsonReader& reader, const char* key, uint64_t limit, const
                     std::to_string(limit) + " (" + why + ")");
 }
 
+uint64_t estimatedRenderImageBytes(const RenderParams& render) {
+    const uint64_t colour = 12 * uint64_t(render.samples); // RGBA16F + D32 per sample
+    const uint64_t truth = 32 + (render.flow ? 32 : 0);    // depth bits, label and tile, normal (+ two flows)
+    const uint64_t readback = 8 + truth;                   // resolved colour and the truth, on the host
+    return uint64_t(render.width) * render.height * (colour + truth + readback);
+}
+
+void checkRenderResolution(const RenderParams& render, const std::string& source) {
+    const uint64_t pixels = uint64_t(render.width) * render.height;
+    require(pixels <= kMaxImagePixels, source + ": 'render.resolution' " + std::to_string(render.width) + "x" +
+                                           std::to_string(render.height) + " is " + std::to_string(pixels) +
+                                           " pixels (about " + std::to_string(estimatedRenderImageBytes(render) >> 20) +
+                                           " MiB of render images), over the limit of " +
+                                           std::to_string(kMaxImagePixels) + " (8192x8192)");
+}
+
 void checkSceneLimits(const Scene& scene) {
     uint64_t objectColliders = 0;
     for (const ObjectParams& object : scene.objects) objectColliders += object.colliders.size();

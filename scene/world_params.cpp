@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <unistd.h>
+
 namespace sward {
 
 namespace {
@@ -31,6 +33,11 @@ uint32_t tilesInRow(double cx, double halfWidth, double s) {
 
 } // namespace
 
+uint64_t physicalMemoryBytes() {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && pageSize > 0 ? uint64_t(pages) * uint64_t(pageSize) : 0;
+}
+
 WorldParams parseWorldParams(JsonReader r) {
     WorldParams w;
     w.enabled = true;
@@ -48,6 +55,12 @@ WorldParams parseWorldParams(JsonReader r) {
                r.name("load_radius") + " (" + formatNumber(w.loadRadius) + " m): only resident tiles can be drawn");
     if (r.has("memory_budget_mib"))
         w.memoryBudgetBytes = uint64_t(r.number("memory_budget_mib", 0.0, 1.0, 1048576.0) * 1048576.0);
+    // A budget the machine cannot hold bounds nothing: a 1 TiB world kept generating tiles (50 MB/s, no frame)
+    // until the system ran out. Refused only, never lowered, so the machine never changes what a scene renders.
+    const uint64_t physical = physicalMemoryBytes();
+    if (physical > 0 && w.memoryBudgetBytes > physical)
+        r.fail(r.name("memory_budget_mib") + " (" + std::to_string(w.memoryBudgetBytes >> 20) +
+               " MiB) is more than this machine's memory (" + std::to_string(physical >> 20) + " MiB)");
     r.finish();
     return w;
 }

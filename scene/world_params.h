@@ -29,8 +29,11 @@ struct WorldParams {
                                                        // plants are drawn out to it from the camera
 };
 
+// The machine's physical memory in bytes (0 when the system cannot tell).
+uint64_t physicalMemoryBytes();
+
 // Reads "tiles", "load_radius", "evict_radius", "view_distance" and "memory_budget_mib"; errors name the file and
-// the JSON path.
+// the JSON path. A budget above physicalMemoryBytes() is refused (never lowered: output never depends on the machine).
 WorldParams parseWorldParams(JsonReader r);
 
 // The world's requirements on the rest of the scene, checked once terrain and vegetation are parsed: the procedural

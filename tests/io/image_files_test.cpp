@@ -152,6 +152,45 @@ TEST(PngFiles, AHeaderClaimingMorePixelsThanTheFileCanHoldIsRefused) {
     sward::test::expectError([&] { loadImage(path); }, {path, "claims 30000x30000 pixels", "truncated or corrupt PNG"});
 }
 
+// A PNG of the stated size with `idatBytes` bytes of image data (not a valid deflate stream: the header's checks
+// come first).
+std::vector<char> pngHeaderWithData(uint32_t width, uint32_t height, uint8_t colourType, size_t idatBytes) {
+    std::vector<char> bytes = {char(0x89), 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    auto be32 = [&](uint32_t v) {
+        for (int shift : {24, 16, 8, 0}) bytes.push_back(char((v >> shift) & 0xff));
+    };
+    auto chunk = [&](const char* type, size_t length, const std::vector<char>& body) {
+        be32(uint32_t(length));
+        bytes.insert(bytes.end(), type, type + 4);
+        bytes.insert(bytes.end(), body.begin(), body.end());
+        bytes.resize(bytes.size() + (length - body.size()), 0);
+        be32(0); // the CRC: never checked before the decode
+    };
+    std::vector<char> ihdr;
+    for (uint32_t v : {width, height})
+        for (int shift : {24, 16, 8, 0}) ihdr.push_back(char((v >> shift) & 0xff));
+    ihdr.insert(ihdr.end(), {8, char(colourType), 0, 0, 0});
+    chunk("IHDR", ihdr.size(), ihdr);
+    chunk("IDAT", idatBytes, {});
+    chunk("IEND", 0, {});
+    return bytes;
+}
+
+// A 1 MB PNG of 16384x16384 RGB (a grass map) took 10.4 GB and 105 s: 4 GiB decoded is refused from the header.
+TEST(PngFiles, ADecodeOverTheByteBudgetIsRefusedFromTheHeader) {
+    const std::vector<char> bytes = pngHeaderWithData(16384, 16384, 2, 800000);
+    sward::test::expectError([&] { decodePng("map.png", bytes); },
+                             {"image 'map.png' (16384x16384, 3 channels) would take 3840 MiB decoded, over the limit "
+                              "of 2048 MiB"});
+}
+
+// A ground texture's edge limit is checked before the decode (a 16384^2 texture was decoded, 3.9 GB, first).
+TEST(PngFiles, ACallersEdgeLimitIsCheckedBeforeTheDecode) {
+    const std::vector<char> bytes = pngHeaderWithData(16384, 16, 6, 4000);
+    sward::test::expectError([&] { decodePng("tex.png", bytes, 8192); },
+                             {"image 'tex.png' has size 16384x16", "each edge must be 1..8192 pixels"});
+}
+
 TEST(ExrFiles, ADataWindowBeyondTheEdgeLimitIsRefusedBeforeOpenExrAllocatesItsTables) {
     // OpenEXR sizes its line-offset table from the data window in its constructor: 2^30 lines are 8 GiB.
     const std::string path = sward::test::tempDir().string() + "/tall.exr";

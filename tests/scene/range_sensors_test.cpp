@@ -1,5 +1,6 @@
 #include "scene/range_sensors.h"
 
+#include "common/error.h"
 #include "common/json_reader.h"
 #include "scene/scene.h"
 #include "scene/terrain.h"
@@ -62,6 +63,19 @@ TEST(RangeSensors, BeamsAndPosesFollowTheSensorFrame) {
     EXPECT_NEAR(pose[1].x, -1.0, 1e-12);
     EXPECT_NEAR(pose[3].x, 10.0, 1e-12);
     EXPECT_NEAR(pose[3].z, ground.height({10.0f, 20.0f}) + 1.5, 1e-6);
+}
+
+TEST(RangeSensors, RaysAFrameArePricedOverAllSensorsBeforeAnyIsCast) {
+    const nlohmann::json tof = {{"type", "tof"}, {"resolution", {4096, 4096}}, {"mount", {{"position", {1, 2, 0}}}}};
+    EXPECT_EQ(parse({tof, tof}).size(), 2u) << "2 x 2^24 rays: exactly the limit";
+    try {
+        parse({tof, tof, tof});
+        FAIL() << "three 4096x4096 ToF cameras were accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), "test.json: 'range_sensors' cast 50331648 rays a frame (beams x 'sub_rays', "
+                                         "all sensors), over the limit of 33554432; lower 'resolution', the channels, "
+                                         "'sub_rays' or raise 'angle_step_deg'");
+    }
 }
 
 } // namespace

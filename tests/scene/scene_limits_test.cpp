@@ -68,3 +68,11 @@ TEST(SceneLimits, ResolutionsThatWouldWrapAreRefused) {
     EXPECT_EQ(w, 16384u);
     EXPECT_EQ(h, 1u);
 }
+
+TEST(SceneLimits, ASceneResolutionOverThePixelLimitIsRefusedWithItsImagesBytes) {
+    // 16384x16384 reached VK_ERROR_OUT_OF_DEVICE_MEMORY; the command line already refused it.
+    EXPECT_EQ(parseError({{"render", {{"resolution", {16384, 16384}}, {"samples", 4}}}}),
+              "s.json: 'render.resolution' 16384x16384 is 268435456 pixels (about 30720 MiB of render images), over "
+              "the limit of 67108864 (8192x8192)");
+    EXPECT_NO_THROW(parseScene({{"render", {{"resolution", {16384, 4096}}}}}, "s.json")) << "exactly at the limit";
+}

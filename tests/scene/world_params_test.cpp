@@ -85,3 +85,19 @@ TEST(WorldParams, ABudgetTooSmallForTheTilesAroundOneCameraIsRefusedUpFront) {
     json["vegetation"]["density_multiplier"] = 0.25;
     EXPECT_NO_THROW(parseScene(json, "w.json"));
 }
+
+TEST(WorldParams, ABudgetAboveThePhysicalMemoryIsRefusedNeverLowered) {
+    ASSERT_GT(physicalMemoryBytes(), uint64_t(1) << 26);
+    // 1 TiB, the budget that grew 50 MB/s with no frame (a machine of more than 1 TiB would accept it).
+    if (physicalMemoryBytes() < (uint64_t(1) << 40)) {
+        nlohmann::json json = worldJson();
+        json["world"]["memory_budget_mib"] = 1048576;
+        const std::string error = parseError(json);
+        EXPECT_NE(error.find("w.json: 'world.memory_budget_mib' (1048576 MiB) is more than this machine's memory ("),
+                  std::string::npos)
+            << error;
+    }
+    nlohmann::json small = worldJson();
+    small["world"]["memory_budget_mib"] = 3000;
+    EXPECT_EQ(parseScene(small, "w.json").world.memoryBudgetBytes, uint64_t(3000) << 20) << "kept as written";
+}
