@@ -10,6 +10,7 @@
 #include "common/error.h"
 #include "world/gltf_textures.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -313,12 +314,26 @@ void checkRequiredExtensions(const tinygltf::Model& model, const std::string& wh
     }
 }
 
+// A data: URI quoted whole (tinygltf's "Failed to decode 'uri' : data:...", a uri the asset policy refuses) would
+// put up to megabytes of base64 on the error line: keep its scheme and media type and a few bytes of its data.
+std::string shortenedDataUris(std::string text) {
+    constexpr size_t kDataKept = 8;
+    for (size_t at = text.find("data:"); at != std::string::npos; at = text.find("data:", at + 5)) {
+        const size_t end = std::min(text.find_first_of(" \t\n'\"", at), text.size());
+        const size_t comma = text.find(',', at);
+        const size_t keep = comma < end ? comma + 1 + kDataKept : at + 40;
+        if (keep + 3 >= end) continue;
+        text.replace(keep, end - keep, "... (" + std::to_string(end - at) + " characters)");
+    }
+    return text;
+}
+
 // tinygltf's error text, on one line.
 std::string oneLine(std::string text) {
     while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
     for (char& c : text)
         if (c == '\n') c = ';';
-    return text.empty() ? "unknown error" : text;
+    return text.empty() ? "unknown error" : shortenedDataUris(text);
 }
 
 // `decodeImages`: ground meshes draw their base-colour textures; object models use factors only.
@@ -345,7 +360,7 @@ tinygltf::Model readFile(const std::string& path, const char* kind, const AssetP
                                              path.compare(path.size() - 4, 4, ".GLB") == 0);
     const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
                            : loader.LoadASCIIFromFile(&model, &err, &warn, path);
-    if (!files.refused.empty()) throw Error(files.refused);
+    if (!files.refused.empty()) throw Error(shortenedDataUris(files.refused));
     // Before tinygltf's own complaint: a Draco file fails there with "accessor[0] invalid bufferView".
     checkRequiredExtensions(model, what);
     // tinygltf's size-mismatch text states the file's size: never quote a buffer file, it may be any file.
