@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <regex>
 #include <sys/stat.h>
@@ -101,6 +102,7 @@ std::vector<std::string> swardFilesIn(const std::string& root, bool withTemporar
     std::error_code ec;
     auto scan = [&](const std::string& folder, bool (*isOurs)(const fs::path&)) {
         const std::string dir = folder.empty() ? root : root + "/" + folder;
+        if (fs::is_symlink(dir, ec)) return; // never listed through (check() refuses it)
         for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
             const std::string name = entry.path().filename().string();
             const bool ours = isOurs(entry.path().filename());
@@ -115,6 +117,24 @@ std::vector<std::string> swardFilesIn(const std::string& root, bool withTemporar
 }
 
 constexpr const char* kUseOverwrite = "; use --overwrite to start over or choose another --out";
+
+bool isDatasetFolder(const std::string& name) {
+    return name == kRangeFolder ||
+           std::any_of(std::begin(kAllFolders), std::end(kAllFolders), [&](const char* f) { return name == f; });
+}
+
+[[noreturn]] void refuseLink(const std::string& path) {
+    throw Error("'" + path +
+                "' is a symbolic link: sward never writes through links in an output folder; remove it "
+                "or choose another --out");
+}
+
+// Refuses a link among the entries of `dir` that `isOurs` names (a link to a folder is listed, never entered).
+void refuseLinksIn(const std::string& dir, const std::function<bool(const std::string&)>& isOurs) {
+    std::error_code ec;
+    for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec))
+        if (entry.is_symlink(ec) && isOurs(entry.path().filename().string())) refuseLink(entry.path().string());
+}
 
 } // namespace
 
@@ -148,6 +168,7 @@ void DatasetWriter::check(const nlohmann::json& fingerprint, bool overwrite, uin
         throw Error("cannot create output folder '" + root_ + "': '" + existing.string() + "' is not a folder");
     if (::access(existing.c_str(), W_OK | X_OK) != 0)
         throw Error("cannot write to output folder '" + root_ + "': " + ioErrorReason(errno));
+    requireNoLinks();
     const std::string description = root_ + "/" + kDatasetFile;
     if (!overwrite && fs::exists(description, ec)) {
         const std::string difference = fingerprintDifference(readDatasetFingerprint(description), fingerprint);
@@ -158,9 +179,9 @@ void DatasetWriter::check(const nlohmann::json& fingerprint, bool overwrite, uin
     }
     struct statvfs space;
     if (::statvfs(existing.c_str(), &space) == 0 && uint64_t(space.f_bavail) * space.f_frsize < bytesNeeded)
-        throw Error("not enough space in '" + root_ + "' for one frame: it needs up to " +
-                    std::to_string(bytesNeeded) + " bytes, the file system has " +
-                    std::to_string(uint64_t(space.f_bavail) * space.f_frsize) + " free");
+        throw Error("not enough space in '" + root_ + "' for one frame: it needs up to " + std::to_string(bytesNeeded) +
+                    " bytes, the file system has " + std::to_string(uint64_t(space.f_bavail) * space.f_frsize) +
+                    " free");
 }
 
 uint64_t DatasetWriter::frameBytesUpperBound(uint32_t width, uint32_t height) const {
@@ -198,14 +219,47 @@ void DatasetWriter::createFolder(const std::string& path) {
         return;
     }
     const int error = errno;
-    std::error_code ec;
-    if (error == EEXIST && fs::is_directory(path, ec)) return; // made earlier, or by a concurrent shard
+    struct stat info; // a link of that name is no folder of ours (requireNoLinks names it first)
+    if (error == EEXIST && ::lstat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode))
+        return; // made earlier, or by a concurrent shard
     throw Error("cannot create output folder '" + path + "': " + ioErrorReason(error));
+}
+
+void DatasetWriter::requireNoLinks() const {
+    // The dataset's own names only: a foreign link beside them is left alone, like every foreign file.
+    refuseLinksIn(root_, [](const std::string& name) {
+        return isRootDatasetFile(name) || isDatasetFolder(name) || isSwardTemporaryName(name) || isOutputLockFile(name);
+    });
+    auto frameOrTemporary = [](const std::string& name) {
+        return isFrameFileName(name) || isRangeFileName(name) || isSwardTemporaryName(name);
+    };
+    std::error_code ec;
+    for (const char* folder : kAllFolders)
+        if (fs::is_directory(root_ + "/" + folder, ec)) refuseLinksIn(root_ + "/" + folder, frameOrTemporary);
+    const std::string range = root_ + "/" + kRangeFolder;
+    if (!fs::is_directory(range, ec)) return;
+    refuseLinksIn(range, [](const std::string&) { return true; }); // every sensor folder is the dataset's
+    for (const std::string& folder : rangeFoldersIn(root_)) refuseLinksIn(root_ + "/" + folder, frameOrTemporary);
+}
+
+void DatasetWriter::lock(bool shared) {
+    std::vector<fs::path> missing; // the root and its missing parents, innermost first
+    std::error_code ec;
+    for (fs::path p = fs::path(root_).lexically_normal(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+        missing.push_back(p);
+        if (p.parent_path() == p) break;
+    }
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it) createFolder(it->string());
+    lock_ = std::make_unique<OutputLock>(root_, shared ? OutputLock::Mode::Shared : OutputLock::Mode::Exclusive);
 }
 
 void DatasetWriter::removeOldDataset() const {
     std::error_code ec;
-    for (const std::string& file : swardFilesIn(root_, true)) fs::remove(root_ + "/" + file, ec);
+    for (const std::string& file : swardFilesIn(root_, true)) {
+        struct stat info; // regular files only: a link (refused before) or a folder of that name is not removed
+        const std::string path = root_ + "/" + file;
+        if (::lstat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode)) ::unlink(path.c_str());
+    }
     for (const std::string& folder : rangeFoldersIn(root_)) fs::remove(root_ + "/" + folder, ec);
     fs::remove(root_ + "/" + kRangeFolder, ec);
     for (const char* folder : kAllFolders) fs::remove(root_ + "/" + folder, ec); // only when left empty
@@ -213,6 +267,7 @@ void DatasetWriter::removeOldDataset() const {
 
 void DatasetWriter::begin(const nlohmann::json& fingerprint, bool overwrite) {
     std::error_code ec;
+    requireNoLinks(); // again, now that this run holds the folder
     if (overwrite && fs::is_directory(root_, ec)) removeOldDataset();
     std::vector<fs::path> missing; // the root and its missing parents, innermost first
     for (fs::path p = fs::path(root_).lexically_normal(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
@@ -221,6 +276,7 @@ void DatasetWriter::begin(const nlohmann::json& fingerprint, bool overwrite) {
     }
     for (auto it = missing.rbegin(); it != missing.rend(); ++it) createFolder(it->string());
     for (const std::string& dir : directories()) createFolder(root_ + "/" + dir);
+    requireNoLinks(); // a link made meanwhile in place of a folder
     removeStaleTemporaries(root_);
     for (const std::string& dir : directories()) removeStaleTemporaries(root_ + "/" + dir);
 
@@ -236,6 +292,10 @@ void DatasetWriter::begin(const nlohmann::json& fingerprint, bool overwrite) {
 
 void DatasetWriter::discardCreated() noexcept {
     for (auto it = createdFiles_.rbegin(); it != createdFiles_.rend(); ++it) ::unlink(it->c_str());
+    for (auto it = createdFolders_.rbegin(); it != createdFolders_.rend(); ++it) ::rmdir(it->c_str());
+    // The root holds the lock file until the lock goes (the last holder removes it): then the root and the parents
+    // this run made are empty too.
+    lock_.reset();
     for (auto it = createdFolders_.rbegin(); it != createdFolders_.rend(); ++it) ::rmdir(it->c_str());
     createdFiles_.clear();
     createdFolders_.clear();
@@ -312,8 +372,10 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
     writeExrRgbaHalf(path(kLeftFolder, ".exr"), w, h, colourWithCoverage(images.rgbaHalf));
     writeExrDepth(path(kDepthFolder, ".exr"), w, h, images.depth);
     writePng8(path(kSemanticFolder, ".png"), w, h, 1, truth.semantic);
-    if (truth.tile.empty()) writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y"}, {truth.instance});
-    else writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y", "tile"}, {truth.instance, truth.tile});
+    if (truth.tile.empty())
+        writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y"}, {truth.instance});
+    else
+        writeExrFloatChannels(path(kInstanceFolder, ".exr"), w, h, {"Y", "tile"}, {truth.instance, truth.tile});
     writeExr(path(kNormalFolder, ".exr"), w, h, 3, images.normals); // channels R, G, B = camera x, y, z
     writePng8(path(kPreviewFolder, ".png"), w, h, 3, tonemapPreview(images.rgbaHalf, w, h));
     if (stereo_) writeStereoFiles(frame, images, truth);
@@ -396,8 +458,7 @@ void DatasetWriter::writeFrameLog(const std::vector<nlohmann::json>& records) {
     writeTextAtomically(target(kFrameLogFile), text);
 }
 
-void DatasetWriter::writeManifest(const std::string& name, nlohmann::json info,
-                                  const std::vector<std::string>& files) {
+void DatasetWriter::writeManifest(const std::string& name, nlohmann::json info, const std::vector<std::string>& files) {
     nlohmann::json hashes = nlohmann::json::object();
     for (const std::string& file : files) hashes[file] = sha256File(root_ + "/" + file);
     info["files"] = std::move(hashes);

@@ -8,12 +8,14 @@
 // Per dataset: dataset.json (the fingerprint, dataset/fingerprint.h), calib.txt, frames.jsonl, scene.json (a copy
 // of the scene file), classes.json, manifest.json (or manifest.shard-I-of-N.json). Names: dataset/naming.h.
 //
-// Life of a run: check() (writes nothing) -> begin() -> writes -> on failure discardCreated(). Every file is
-// written atomically (common/atomic_file.h), so a file that exists is complete; since a folder only ever holds
-// files of one fingerprint, a frame whose files all exist is skipped by a re-run (resume). A run that fails
-// removes what it created and keeps what earlier runs finished; a killed run leaves complete files only.
+// Life of a run: check() (writes nothing) -> lock() -> begin() -> writes -> on failure discardCreated(). Every
+// file is written atomically (common/atomic_file.h), so a file that exists is complete; since a folder only ever
+// holds files of one fingerprint, a frame whose files all exist is skipped by a re-run (resume). A run that fails
+// removes what it created and keeps what earlier runs finished; a killed run leaves complete files only. The lock
+// file (.sward.lock) is no dataset file: never listed, hashed or compared, and gone after the last writer.
 #pragma once
 
+#include "common/output_lock.h"
 #include "dataset/frame_images.h"
 #include "dataset/frame_truth.h"
 #include "scene/range_sensors.h"
@@ -22,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -47,12 +50,19 @@ public:
                   bool flow = false);
 
     // Checks, writing nothing, that the run can start: the output folder (or, when missing, its nearest existing
-    // parent) is a writable folder; a dataset already there has `fingerprint` (keys absent from it are not
-    // compared), unless `overwrite`; and its file system has `bytesNeeded` bytes free. Throws one clear error.
+    // parent) is a writable folder; no name the dataset uses in it is a symbolic link (sward never writes, hashes or
+    // removes through one; --out itself may be a link: the user chose it); a dataset already there has
+    // `fingerprint` (keys absent from it are not compared), unless `overwrite`; and its file system has
+    // `bytesNeeded` bytes free. Throws one clear error.
     void check(const nlohmann::json& fingerprint, bool overwrite, uint64_t bytesNeeded) const;
     // An upper bound of the bytes one frame's files take on disk at `width` x `height`, for the free-space check.
     uint64_t frameBytesUpperBound(uint32_t width, uint32_t height) const;
-    // Starts writing: with `overwrite` first removes the old dataset's files (sward's files only, never foreign
+    // Takes the output folder for this run (common/output_lock.h), creating it and its missing parents (removed
+    // again by discardCreated): shared for one of several shards of a run (`--shard` without --overwrite, which
+    // write one folder together), exclusive otherwise. Throws naming the holder's pid when another writer has it.
+    // Held until the writer is destroyed.
+    void lock(bool shared);
+    // Starts writing (after lock()): with `overwrite` first removes the old dataset's files (sward's files only, never foreign
     // ones); creates the folders, removes sward temporaries that dead processes left, and creates dataset.json
     // (a concurrent shard's must have the same fingerprint).
     void begin(const nlohmann::json& fingerprint, bool overwrite);
@@ -100,6 +110,7 @@ private:
     std::string target(const std::string& relative);
     void createFolder(const std::string& path);
     void removeOldDataset() const;
+    void requireNoLinks() const;
     std::string root_;
     bool stereo_, flow_;
     struct RangeFiles {
@@ -109,6 +120,7 @@ private:
     };
     std::vector<RangeFiles> rangeSensors_;
     std::vector<std::string> createdFiles_, createdFolders_;
+    std::unique_ptr<OutputLock> lock_;
 };
 
 } // namespace sward

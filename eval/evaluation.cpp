@@ -140,7 +140,8 @@ EvaluationReport runEvaluation(const EvaluationOptions& options) {
     requireRunOptions(options);
     EvaluationReport report;
     const std::string outDir = options.outDir.empty() ? options.datasetDir + "/eval" : options.outDir;
-    StagedFolder staged(outDir, "report folder"); // the report appears whole or not at all
+    // The report appears whole or not at all, in a folder locked for one writer; DATASET/eval as a link is refused.
+    StagedFolder staged(outDir, "report folder", !options.outDir.empty());
     report.outDir = staged.path();
     auto log = [&](const std::string& line) {
         if (options.log) options.log(line);

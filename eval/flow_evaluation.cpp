@@ -201,7 +201,8 @@ FlowEvaluation runFlowEvaluation(const FlowEvaluationOptions& options) {
     FlowEvaluation result;
     FlowSetup setup = prepare(options, frames.front(), result);
     const std::string outDir = options.outDir.empty() ? options.datasetDir + "/eval-flow" : options.outDir;
-    StagedFolder staged(outDir, "report folder"); // the report appears whole or not at all
+    // The report appears whole or not at all, in a folder locked for one writer; DATASET/eval as a link is refused.
+    StagedFolder staged(outDir, "report folder", !options.outDir.empty());
     setup.pictureDir = staged.path();
     if (options.pictures) makeDirectory(setup.pictureDir + "/frames", "report folder");
     evaluateInFrameOrder<FlowFrameWork>(

@@ -265,7 +265,9 @@ OdometryResult evaluateOdometry(const OdometryOptions& options) {
 OdometryResult runOdometry(const OdometryOptions& options) {
     const std::string outDir = options.outDir.empty() ? options.datasetDir + "/eval-odometry" : options.outDir;
     OdometryResult result = evaluateOdometry(options);
-    StagedFolder staged(outDir, "report folder"); // the report appears whole or not at all
+    // The report appears whole or not at all, in a folder locked for one writer; DATASET/eval-odometry as a link
+    // is refused.
+    StagedFolder staged(outDir, "report folder", !options.outDir.empty());
     writeOdometryReport(result, staged.path(), options.pictures);
     staged.commit();
     if (options.log) {

@@ -37,13 +37,24 @@ std::vector<ExportFrame> readFrameLog(const std::string& dir, ExportCamera& came
         ++lineNumber;
         try {
             const nlohmann::json record = nlohmann::json::parse(line);
-            ExportFrame frame{.frame = record.at("frame").get<uint32_t>(), .leftPose = poseOf(record.at("left_pose"))};
+            // sward-render lists every frame of the sequence once, in order from 0: anything else (a duplicate gives
+            // one image two poses, a negative or skipped number drops a frame) is a damaged file, never exported.
+            const nlohmann::json& number = record.at("frame");
+            require(number.is_number_unsigned() && number.get<uint64_t>() == frames.size(),
+                    path + " line " + std::to_string(lineNumber) + ": frame " + number.dump() + ", expected " +
+                        std::to_string(frames.size()) +
+                        " (frames.jsonl lists frames 0, 1, 2, ... in order, each once)");
+            ExportFrame frame{.frame = number.get<uint32_t>(), .leftPose = poseOf(record.at("left_pose"))};
             stereo = record.contains("right_pose");
             if (stereo) frame.rightPose = poseOf(record.at("right_pose"));
             if (frames.empty()) {
                 const nlohmann::json& k = record.at("intrinsics");
-                camera = {.fx = k.at("fx"), .fy = k.at("fy"), .cx = k.at("cx"), .cy = k.at("cy"),
-                          .width = k.at("width"), .height = k.at("height"),
+                camera = {.fx = k.at("fx"),
+                          .fy = k.at("fy"),
+                          .cx = k.at("cx"),
+                          .cy = k.at("cy"),
+                          .width = k.at("width"),
+                          .height = k.at("height"),
                           .baseline = stereo ? record.at("baseline").get<double>() : 0.0};
                 if (record.contains("sensor") && record["sensor"].value("enabled", true)) {
                     const nlohmann::json& s = record["sensor"];
@@ -71,8 +82,8 @@ ImageData readFrameImage(const ExportDataset& dataset, const char* folder, uint3
     const std::string path = dataset.dir + "/" + frameFile(folder, frame, extension);
     ImageData image = loadImage(path);
     requireFrameSize(dataset, path, image.width, image.height);
-    require(image.channels == channels, path + ": " + std::to_string(image.channels) + " channel(s), expected " +
-                                            std::to_string(channels));
+    require(image.channels == channels,
+            path + ": " + std::to_string(image.channels) + " channel(s), expected " + std::to_string(channels));
     return image;
 }
 
@@ -90,10 +101,9 @@ ExportDataset openExportDataset(const std::string& dir, std::optional<std::pair<
         if (fs::is_regular_file(dir + "/" + frameFile(kDepthFolder, frame.frame, ".exr"), ec))
             dataset.frames.push_back(frame);
     }
-    require(!dataset.frames.empty(), "'" + dir + "' has no rendered frame" +
-                                         (range ? " in " + std::to_string(range->first) + ":" +
-                                                      std::to_string(range->second)
-                                                : std::string()));
+    require(!dataset.frames.empty(),
+            "'" + dir + "' has no rendered frame" +
+                (range ? " in " + std::to_string(range->first) + ":" + std::to_string(range->second) : std::string()));
     return dataset;
 }
 
@@ -113,8 +123,8 @@ FrameTruth readFrameTruth(const ExportDataset& dataset, uint32_t frame) {
         // Ids are integers below 2^24, exact in float32; anything else is a damaged file (and no cast of it).
         const float id = instance.samples[i];
         require(id >= 0.0f && id < 16777216.0f && id == std::floor(id),
-                instance.source + ": pixel " + std::to_string(i % truth.width) + ", " + std::to_string(i / truth.width) +
-                    " holds " + std::to_string(id) + ", not an instance id");
+                instance.source + ": pixel " + std::to_string(i % truth.width) + ", " +
+                    std::to_string(i / truth.width) + " holds " + std::to_string(id) + ", not an instance id");
         truth.instance[i] = uint32_t(id);
     }
     for (size_t i = 0; i < pixels * 3; ++i) truth.rgb[i] = uint8_t(std::lround(preview.samples[i] * 255.0f));
@@ -126,8 +136,11 @@ FrameTruth readFrameTruth(const ExportDataset& dataset, uint32_t frame) {
 
 void requireUndistorted(const ExportDataset& dataset, const char* layout) {
     require(!dataset.camera.distorted(),
-            "'" + dataset.dir + "' was rendered with lens distortion (camera.sensor k1, k2, k3, p1, p2): its images no "
-                "longer line up with the undistorted ground truth the " + layout + " layout pairs them with; render "
+            "'" + dataset.dir +
+                "' was rendered with lens distortion (camera.sensor k1, k2, k3, p1, p2): its images no "
+                "longer line up with the undistorted ground truth the " +
+                layout +
+                " layout pairs them with; render "
                 "without distortion, or export colmap / nerfstudio, which carry the coefficients");
 }
 

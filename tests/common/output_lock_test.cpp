@@ -1,0 +1,103 @@
+// One writer per output folder: a second writer fails at once naming the holder's pid, the shards of one run share
+// the folder, a dead process's lock file is taken over, the last holder leaves no lock file and a link in its
+// place is refused.
+#include "common/output_lock.h"
+
+#include "common/error.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+using namespace sward;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string freshDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    fs::path dir = fs::temp_directory_path() / ("sward_output_lock_tests_" + std::string(info->name()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir.string();
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::stringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+// The error a second OutputLock on `dir` throws ("" when it took the lock).
+std::string secondLockError(const std::string& dir, OutputLock::Mode mode) {
+    try {
+        OutputLock second(dir, mode);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+long deadPid() {
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    ::waitpid(child, nullptr, 0);
+    return long(child);
+}
+
+} // namespace
+
+TEST(OutputLock, ASecondWriterFailsAtOnceNamingTheHoldersPid) {
+    const std::string dir = freshDir();
+    OutputLock first(dir, OutputLock::Mode::Exclusive);
+    const std::string pid = "pid " + std::to_string(::getpid());
+    for (OutputLock::Mode mode : {OutputLock::Mode::Exclusive, OutputLock::Mode::Shared}) {
+        const std::string error = secondLockError(dir, mode);
+        EXPECT_NE(error.find("is being written by another sward process (" + pid + ")"), std::string::npos) << error;
+    }
+}
+
+TEST(OutputLock, ShardsShareTheFolderAndExcludeEveryOtherWriter) {
+    const std::string dir = freshDir();
+    std::optional<OutputLock> shard0(std::in_place, dir, OutputLock::Mode::Shared);
+    EXPECT_EQ(secondLockError(dir, OutputLock::Mode::Shared), "");
+    EXPECT_NE(secondLockError(dir, OutputLock::Mode::Exclusive), "");
+    OutputLock shard1(dir, OutputLock::Mode::Shared);
+    shard0.reset(); // one shard done: the other still holds the folder, and its lock file stays
+    EXPECT_TRUE(fs::exists(dir + "/" + kOutputLockFile));
+    EXPECT_NE(secondLockError(dir, OutputLock::Mode::Exclusive), "");
+}
+
+TEST(OutputLock, TheLastHolderLeavesNoLockFile) {
+    const std::string dir = freshDir();
+    {
+        OutputLock lock(dir, OutputLock::Mode::Exclusive);
+        EXPECT_EQ(std::stol(readFile(dir + "/" + kOutputLockFile)), long(::getpid()));
+    }
+    EXPECT_TRUE(fs::is_empty(dir));
+    EXPECT_EQ(secondLockError(dir, OutputLock::Mode::Exclusive), "");
+}
+
+TEST(OutputLock, ADeadProcesssLockFileIsTakenOver) {
+    const std::string dir = freshDir();
+    const long dead = deadPid();
+    std::ofstream(dir + "/" + kOutputLockFile) << dead << "\n";
+    OutputLock lock(dir, OutputLock::Mode::Exclusive);
+    EXPECT_EQ(std::stol(readFile(dir + "/" + kOutputLockFile)), long(::getpid()));
+}
+
+TEST(OutputLock, ALinkInPlaceOfTheLockFileIsRefusedNotFollowed) {
+    const std::string dir = freshDir();
+    fs::create_directories(dir + "/out");
+    std::ofstream(dir + "/elsewhere") << "keep\n";
+    fs::create_symlink(dir + "/elsewhere", dir + "/out/" + kOutputLockFile);
+    const std::string error = secondLockError(dir + "/out", OutputLock::Mode::Exclusive);
+    EXPECT_NE(error.find("is a symbolic link"), std::string::npos) << error;
+    EXPECT_EQ(readFile(dir + "/elsewhere"), "keep\n");
+}
