@@ -318,13 +318,17 @@ RenderJobReport runRenderJob(const RenderJobOptions& options) {
     const uint64_t needed = todo.empty() ? 0 : bytesNeeded(dataset, plan, records, sceneText.size());
     dataset.check(fingerprint, options.overwrite, needed); // before the device: a bad folder fails fast
 
-    Context ctx(DeviceOptions{.deviceFilter = options.device, .validation = options.validation || DeviceOptions{}.validation});
-    fingerprint["device"] = ctx.device.name();
-    clock.report.device = ctx.device.name();
-    fingerprint["driver"] = ctx.device.driver();
-    dataset.check(fingerprint, options.overwrite, needed);
     // From here on files are written; a failure removes what this run created (a kill leaves complete files only).
     try {
+        // One writer per folder, taken before the device so a second writer fails at once: the shards of one run
+        // share the folder; --overwrite, or a run of the whole range, must be alone in it.
+        dataset.lock(options.shard && !options.overwrite);
+        Context ctx(DeviceOptions{.deviceFilter = options.device,
+                                  .validation = options.validation || DeviceOptions{}.validation});
+        fingerprint["device"] = ctx.device.name();
+        clock.report.device = ctx.device.name();
+        fingerprint["driver"] = ctx.device.driver();
+        dataset.check(fingerprint, options.overwrite, needed);
         dataset.begin(fingerprint, options.overwrite);
         const RigParams& rig = resources.scene.camera.rig;
         if (rig.stereo()) dataset.writeCalib(firstRig.left, rig.baseline, rig.minDepth);
