@@ -15,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -378,6 +379,8 @@ struct MeshBuilder {
     TriangleMesh mesh;
     std::vector<int> materialOf;     // glTF material index + 1 (0: the default material) -> mesh.materials index
     std::vector<int> textureOf;      // glTF texture index -> mesh.textures index
+    std::map<int, int> imageTexture; // glTF image index -> mesh.textures index: one decode per image
+    uint64_t textureBytes = 0;       // of mesh.textures, priced against kMaxGroundTextureBytes
     bool normalsEverywhere = true;   // every primitive so far had NORMAL
     bool uvsEverywhere = true;       // every primitive so far had TEXCOORD_0
 
@@ -386,12 +389,22 @@ struct MeshBuilder {
         if (gltfTexture < 0 || size_t(gltfTexture) >= textureOf.size())
             reader.fail("a material's baseColorTexture refers to a missing texture");
         int& index = textureOf[size_t(gltfTexture)];
-        if (index < 0) {
-            index = int(mesh.textures.size());
-            mesh.textures.push_back(groundTexture(reader.model, gltfTexture,
-                                                  std::string(reader.kind) + " '" + reader.path + "'", assets,
-                                                  std::filesystem::path(reader.path).parent_path().string()));
-        }
+        if (index >= 0) return index;
+        // Textures that share an image share its pixels: 20 materials over one 8192^2 image took 5.9 GB.
+        const int image = reader.model.textures[size_t(gltfTexture)].source;
+        if (auto known = imageTexture.find(image); known != imageTexture.end()) return index = known->second;
+        GroundTexture decoded = groundTexture(reader.model, gltfTexture,
+                                              std::string(reader.kind) + " '" + reader.path + "'", assets,
+                                              std::filesystem::path(reader.path).parent_path().string());
+        textureBytes += uint64_t(decoded.width) * decoded.height * 4;
+        if (textureBytes > kMaxGroundTextureBytes)
+            reader.fail("its ground textures take " + std::to_string(textureBytes >> 20) + " MiB as RGBA (image " +
+                        std::to_string(image) + " of " + std::to_string(decoded.width) + "x" +
+                        std::to_string(decoded.height) + " among them), over the limit of " +
+                        std::to_string(kMaxGroundTextureBytes >> 20) + " MiB");
+        index = int(mesh.textures.size());
+        imageTexture[image] = index;
+        mesh.textures.push_back(std::move(decoded));
         return index;
     }
 
@@ -513,11 +526,77 @@ struct ModelBuilder {
     }
 };
 
+// The flattened ground's size, priced from the accessors' counts before a vertex is read: every node that uses a
+// mesh copies all of its primitives, so one mesh of 100,000 triangles under 100,000 nodes asks for 10^10 (no frame
+// after 600 s). Counts are those of accessors that fit their buffers (reader.view refuses the rest, as reading them
+// would); what readPrimitive refuses for other reasons (a type, a mode) is left to it, as are nodes past the depth
+// limit or reached twice.
+void requireGroundBudget(const GltfReader& reader) {
+    const tinygltf::Model& model = reader.model;
+    auto valid = [&](int accessor) { return accessor >= 0 && size_t(accessor) < model.accessors.size(); };
+    // Triangles and vertices of one copy of each mesh, each priced once however many nodes use it.
+    std::vector<std::pair<uint64_t, uint64_t>> meshSizes(model.meshes.size());
+    std::vector<bool> priced(model.meshes.size(), false);
+    auto meshSize = [&](int index) {
+        if (priced[size_t(index)]) return meshSizes[size_t(index)];
+        uint64_t triangles = 0, vertices = 0;
+        for (const tinygltf::Primitive& prim : model.meshes[size_t(index)].primitives) {
+            if (prim.mode >= 0 && prim.mode != TINYGLTF_MODE_TRIANGLES) continue;
+            const auto position = prim.attributes.find("POSITION");
+            if (position == prim.attributes.end() || !valid(position->second) ||
+                model.accessors[size_t(position->second)].componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+                continue;
+            const uint64_t positions = reader.view(position->second, TINYGLTF_TYPE_VEC3, 12).count;
+            vertices += positions;
+            if (prim.indices < 0) {
+                triangles += positions / 3;
+                continue;
+            }
+            if (!valid(prim.indices)) continue;
+            const int type = model.accessors[size_t(prim.indices)].componentType;
+            const size_t size = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
+                                : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                                : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
+                                                                                 : 0;
+            if (size > 0) triangles += reader.view(prim.indices, TINYGLTF_TYPE_SCALAR, size).count / 3;
+        }
+        priced[size_t(index)] = true;
+        return meshSizes[size_t(index)] = {triangles, vertices};
+    };
+    // Each sum grows by at most a buffer's bytes a node, so it stays far from wrapping until the limit stops it.
+    uint64_t triangles = 0, vertices = 0, instances = 0;
+    auto add = [&](int mesh) {
+        const auto [t, v] = meshSize(mesh);
+        triangles += t, vertices += v, ++instances;
+    };
+    if (model.scenes.empty()) {
+        for (size_t m = 0; m < model.meshes.size(); ++m) add(int(m));
+    } else {
+        std::vector<bool> seen(model.nodes.size(), false);
+        std::vector<std::pair<int, int>> stack; // (node, depth)
+        for (int root : reader.rootNodes()) stack.emplace_back(root, 0);
+        while (!stack.empty() && triangles <= kMaxGroundTriangles && vertices <= kMaxGroundTriangles) {
+            const auto [index, depth] = stack.back();
+            stack.pop_back();
+            if (index < 0 || size_t(index) >= model.nodes.size() || depth > 64 || seen[size_t(index)]) continue;
+            seen[size_t(index)] = true;
+            const tinygltf::Node& node = model.nodes[size_t(index)];
+            if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size()) add(node.mesh);
+            for (int child : node.children) stack.emplace_back(child, depth + 1);
+        }
+    }
+    if (triangles > kMaxGroundTriangles || vertices > kMaxGroundTriangles)
+        reader.fail(std::to_string(instances) + " mesh instances (nodes) would flatten into at least " +
+                    std::to_string(std::max(triangles, vertices)) + " triangles or vertices, over the limit of " +
+                    std::to_string(kMaxGroundTriangles) + " (instances x triangles of their meshes)");
+}
+
 } // namespace
 
 TriangleMesh loadGltfMesh(const std::string& path, const AssetPolicy& assets) {
     const tinygltf::Model model = readFile(path, "glTF ground", assets, true);
     GltfReader reader{path, model, "glTF ground"};
+    requireGroundBudget(reader);
     MeshBuilder builder{reader, assets, {}};
     if (!model.scenes.empty()) {
         for (int node : reader.rootNodes()) builder.addNode(node, glm::dmat4(1.0), 0);

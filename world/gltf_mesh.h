@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ namespace sward {
 // transform or vertex, a composed node transform with an entry beyond 1e8 or a vertex beyond 1e8 m, or a file
 // without triangles. Points and lines are ignored. The buffer files it names are read only where `assets` allows
 // (asset_policy.h); errors never quote a buffer file's bytes or size.
+// A ground flattens to at most kMaxGroundTriangles triangles and as many vertices (every node's copy of its mesh
+// counted), priced from the accessors before anything is read: about 1.5 GiB of mesh at the limit.
+inline constexpr uint64_t kMaxGroundTriangles = uint64_t(1) << 24;
 TriangleMesh loadGltfMesh(const std::string& path, const AssetPolicy& assets = {});
 
 // One triangle primitive of a model node, in the node's own frame (converted to Z-up).

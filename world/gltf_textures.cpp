@@ -48,11 +48,10 @@ std::vector<unsigned char> toRgba8(const ImageData& png) {
     return rgba;
 }
 
-// PNG bytes as a ground texture, at most kMaxGroundTextureEdge per edge; `name` names them in errors.
+// PNG bytes as a ground texture, at most kMaxGroundTextureEdge per edge (checked from the header, before a pixel
+// is decoded); `name` names them in errors.
 GroundTexture decodeTexture(const std::string& name, const std::vector<char>& bytes) {
-    const ImageData png = decodePng(name, bytes);
-    require(png.width <= kMaxGroundTextureEdge && png.height <= kMaxGroundTextureEdge,
-            "image '" + name + "' is larger than " + std::to_string(kMaxGroundTextureEdge) + " pixels per edge");
+    const ImageData png = decodePng(name, bytes, kMaxGroundTextureEdge);
     return GroundTexture{png.width, png.height, toRgba8(png)};
 }
 

@@ -16,6 +16,9 @@ namespace sward {
 
 // Largest ground texture edge, in pixels.
 inline constexpr uint32_t kMaxGroundTextureEdge = 8192;
+// Largest set of ground textures, as 8-bit RGBA: four textures of 8192x8192. Each image is decoded once however
+// many textures and materials use it, and the set is priced as it grows.
+inline constexpr uint64_t kMaxGroundTextureBytes = uint64_t(1) << 30;
 
 // tinygltf's image callback for grounds (embedded images: data uris and buffer views; tinygltf is built without
 // external image loading): `user` is the glTF's file name (const std::string*). PNG bytes become 8-bit RGBA in

@@ -202,3 +202,51 @@ TEST(GltfMeshErrors, BufferFileErrorsQuoteNeitherItsSizeNorItsBytes) {
         EXPECT_EQ(message.find(std::to_string(0x41414141u)), std::string::npos) << message;
     }
 }
+
+// One mesh of 1,000 triangles under 20,000 nodes flattens to 2 x 10^7: priced from the accessors' counts before a
+// vertex is copied (100,000 nodes over a 1.5 MB mesh had no frame after 600 s).
+TEST(GltfMeshErrors, InstancesTimesTrianglesArePricedBeforeTheMeshIsFlattened) {
+    const fs::path dir = tempDir();
+    std::vector<uint8_t> bytes = triangleBytes();
+    bytes.resize(36 + 3000 * 4, 0); // 3,000 indices, all vertex 0
+    nlohmann::json j = triangleJson("data:application/octet-stream;base64," + base64(bytes), bytes.size());
+    j["accessors"][1]["count"] = 3000;
+    j["bufferViews"][1]["byteLength"] = 3000 * 4;
+    j["nodes"] = nlohmann::json::array();
+    j["scenes"][0]["nodes"] = nlohmann::json::array();
+    for (int i = 0; i < 20000; ++i) {
+        j["nodes"].push_back({{"mesh", 0}});
+        j["scenes"][0]["nodes"].push_back(i);
+    }
+    const std::string path = writeJson(dir / "many.gltf", j);
+    expectError([&] { loadGltfMesh(path); },
+                {path, "mesh instances (nodes) would flatten into at least", "over the limit of 16777216"});
+}
+
+// 20 materials over one 8192^2 image took 5.9 GB: textures that share an image share one decoded copy.
+TEST(GltfMesh, TexturesThatShareAnImageAreDecodedOnce) {
+    const fs::path dir = fs::canonical(tempDir());
+    writePng(dir / "tex.png", 2, 2, 3, 8, std::vector<float>(12, 0.5f));
+    std::vector<uint8_t> bytes = triangleBytes();
+    const float uvs[6] = {0, 0, 1, 0, 0, 1};
+    bytes.insert(bytes.end(), reinterpret_cast<const uint8_t*>(uvs), reinterpret_cast<const uint8_t*>(uvs) + 24);
+    nlohmann::json j = triangleJson("data:application/octet-stream;base64," + base64(bytes), bytes.size());
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 24}});
+    j["accessors"].push_back({{"bufferView", 2}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+    j["images"] = {{{"uri", "tex.png"}}};
+    j["textures"] = nlohmann::json::array();
+    j["materials"] = nlohmann::json::array();
+    j["meshes"][0]["primitives"] = nlohmann::json::array();
+    for (int i = 0; i < 3; ++i) {
+        j["textures"].push_back({{"source", 0}});
+        j["materials"].push_back({{"name", "m" + std::to_string(i)},
+                                  {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", i}}}}}});
+        j["meshes"][0]["primitives"].push_back(
+            {{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 2}}}, {"indices", 1}, {"material", i}});
+    }
+    const std::string path = writeJson(dir / "textured.gltf", j);
+    const TriangleMesh mesh = loadGltfMesh(path, AssetPolicy::confinedTo(dir.string(), {}));
+    ASSERT_EQ(mesh.materials.size(), 3u);
+    EXPECT_EQ(mesh.textures.size(), 1u);
+    for (const GroundMaterial& m : mesh.materials) EXPECT_EQ(m.texture, 0);
+}
