@@ -1,6 +1,7 @@
 #include "common/json_reader.h"
 
 #include "common/error.h"
+#include "common/input_file.h"
 
 #include <algorithm>
 #include <cmath>
@@ -148,18 +149,8 @@ nlohmann::json parseJsonText(std::string_view text, const std::string& source, c
 }
 
 nlohmann::json readJsonFile(const std::string& path, const std::string& what) {
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(path, ec);
-    std::ifstream file(path, std::ios::binary);
-    if (ec || !file) throw Error(path + ": cannot open the " + what + " (missing or unreadable)");
-    // Checked before reading, so a huge file is refused without being loaded.
-    if (size > kMaxJsonFileBytes)
-        throw Error(path + ": the " + what + " has " + std::to_string(size) + " bytes, over the limit of " +
-                    std::to_string(kMaxJsonFileBytes >> 20) + " MiB");
-    std::ostringstream text;
-    text << file.rdbuf();
-    if (file.bad()) throw Error(path + ": cannot read the " + what);
-    return parseJsonText(text.str(), path, what);
+    // The input door: a FIFO scene file is refused instead of blocking; the size is checked before reading.
+    return parseJsonText(readInputFile(path, what, kMaxJsonFileBytes), path, what);
 }
 
 JsonReader::JsonReader(const nlohmann::json& json, std::string source, std::string path)

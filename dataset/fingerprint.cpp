@@ -4,9 +4,9 @@
 #include "io/sha256.h"
 #include "scene/scene.h"
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
-#include <cctype>
 #include <map>
 #include <sstream>
 
@@ -60,51 +60,23 @@ std::map<std::string, nlohmann::json> flatten(const nlohmann::json& json) {
     return flat;
 }
 
-// "a%20b.bin" -> "a b.bin": glTF URIs are percent-encoded.
-std::string percentDecoded(const std::string& uri) {
-    std::string text;
-    for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) &&
-            std::isxdigit(uint8_t(uri[i + 2]))) {
-            text += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-            i += 2;
-        } else {
-            text += uri[i];
-        }
-    }
-    return text;
-}
-
-// The files a .gltf names (buffers and images that are not data: URIs), relative to its folder. A .glb holds its
-// own buffers; a file the parser cannot read adds nothing (the loader has already accepted it).
-std::vector<std::string> gltfExternalFiles(const std::string& path) {
-    std::vector<std::string> files;
-    if (!path.ends_with(".gltf")) return files;
-    std::ifstream file(path, std::ios::binary);
-    const nlohmann::json json = nlohmann::json::parse(file, nullptr, false);
-    if (!json.is_object()) return files;
-    for (const char* list : {"buffers", "images"}) {
-        if (!json.contains(list) || !json[list].is_array()) continue;
-        for (const nlohmann::json& item : json[list])
-            if (item.is_object() && item.contains("uri") && item["uri"].is_string() &&
-                !item["uri"].get<std::string>().starts_with("data:"))
-                files.push_back(percentDecoded(item["uri"].get<std::string>()));
-    }
-    return files;
-}
-
 } // namespace
 
 std::vector<SceneAsset> sceneAssets(const Scene& scene) {
+    namespace fs = std::filesystem;
+    // What the loaders opened through the input door for each asset (its buffers, images and companion files),
+    // owner by owner; nothing is parsed again here, so nothing the loaders did not read is read.
+    const std::vector<OpenedInput> opened = scene.assets.folders().opened();
     std::vector<SceneAsset> assets;
     auto add = [&](const std::string& key, const std::string& path) {
         std::error_code ec;
-        if (path.empty() || !std::filesystem::is_regular_file(path, ec)) return;
+        if (path.empty() || !fs::is_regular_file(path, ec)) return;
         assets.push_back({key, path, sha256File(path)});
-        const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-        for (const std::string& uri : gltfExternalFiles(path)) {
-            const std::string file = (folder / uri).string();
-            if (std::filesystem::is_regular_file(file, ec)) assets.push_back({key + "/" + uri, file, sha256File(file)});
+        const fs::path real = fs::weakly_canonical(path, ec);
+        for (const OpenedInput& file : opened) {
+            if (file.owner != path || file.path == real) continue;
+            const std::string name = fs::path(file.path).lexically_relative(real.parent_path()).generic_string();
+            assets.push_back({key + "/" + name, file.path, sha256File(file.path)});
         }
     };
     add("grass_map", scene.grassMapPath);

@@ -20,7 +20,10 @@ struct SceneAsset {
     std::string key, path, sha256;
 };
 // Every asset file of `scene` that exists, hashed (SHA-256), in a fixed order: grass map, land-cover raster, atlas
-// PNG and JSON, terrain heightmap, terrain mesh (+ its .gltf buffers and images), object models (+ theirs).
+// PNG and JSON, terrain heightmap, terrain mesh, object models; after each, the other files its loader opened
+// through the input door (scene.assets.folders()'s log: a glTF's buffers and images, a raster's companion files
+// such as "terrain.heightmap.file/dem.tif.aux.xml"), named relative to its folder. Call after the scene's assets
+// were loaded (buildSceneResources); nothing outside what the loaders read is read.
 std::vector<SceneAsset> sceneAssets(const Scene& scene);
 // The fingerprint's "assets": {key: sha256}.
 nlohmann::json assetHashes(const std::vector<SceneAsset>& assets);

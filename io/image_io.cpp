@@ -1,6 +1,7 @@
 #include "io/image_io.h"
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "io/exr_header_check.h"
 
 #include <ImfChannelList.h>
@@ -240,19 +241,10 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
-// Sized first and read in one go: a path naming a device (/dev/zero) or a pipe would never end.
+// Through the input door (common/input_file.h): a device (/dev/zero) or a pipe is refused without blocking.
 std::vector<char> readImageFileBytes(const std::string& path) {
-    std::error_code error;
-    require(std::filesystem::exists(path, error), "cannot open image '" + path + "': file missing or unreadable");
-    require(std::filesystem::is_regular_file(path, error), "cannot open image '" + path + "': not a regular file");
-    const uintmax_t size = std::filesystem::file_size(path, error);
-    require(!error && size <= kMaxImageFileBytes,
-            "image '" + path + "' is larger than " + std::to_string(kMaxImageFileBytes >> 30) + " GiB");
-    std::ifstream file(path, std::ios::binary);
-    std::vector<char> bytes(size);
-    file.read(bytes.data(), std::streamsize(size));
-    require(file.good(), "cannot read image '" + path + "'");
-    return bytes;
+    const std::string bytes = readInputFile(path, "image", kMaxImageFileBytes);
+    return std::vector<char>(bytes.begin(), bytes.end());
 }
 
 ImageData loadImage(const std::string& path) {

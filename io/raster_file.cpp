@@ -1,6 +1,8 @@
 #include "io/raster_file.h"
 
 #include "common/error.h"
+#include "common/input_file.h"
+#include "io/raster_door.h"
 
 #include <cpl_error.h>
 #include <gdal.h>
@@ -10,7 +12,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <memory>
 #include <mutex>
@@ -72,16 +73,15 @@ void checkLocalFile(const std::string& path) {
             "raster '" + path + "': GDAL virtual file systems (/vsi...) are not read; name a local file");
     std::error_code ec;
     require(std::filesystem::exists(path, ec), "cannot open raster '" + path + "': file missing or unreadable");
-    require(std::filesystem::is_regular_file(path, ec), "cannot open raster '" + path + "': not a regular file");
-    require(std::ifstream(path, std::ios::binary).good(),
-            "cannot open raster '" + path + "': file missing or unreadable");
+    openInputFile(path, "raster"); // a FIFO or a device is refused here, without blocking
 }
 
-Dataset openDataset(const std::string& path, const GdalMessages& messages) {
+Dataset openDataset(const std::string& path, const RasterDoor& door, const GdalMessages& messages) {
     std::vector<const char*> drivers(std::begin(kRasterDrivers), std::end(kRasterDrivers));
     drivers.push_back(nullptr);
-    Dataset dataset(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR, drivers.data(),
-                               nullptr, nullptr));
+    Dataset dataset(GDALOpenEx(door.gdalPath().c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR,
+                               drivers.data(), nullptr, nullptr));
+    require(door.refusal().empty(), door.refusal());
     if (!dataset) {
         std::string formats;
         for (const char* d : kRasterDrivers) formats += (formats.empty() ? "" : ", ") + std::string(d);
@@ -180,8 +180,9 @@ bool RasterBand::isNodata(double value) const {
 RasterBand readRasterBand(const std::string& path, const RasterReadOptions& options) {
     checkLocalFile(path);
     registerDrivers();
-    GdalMessages messages; // everything GDAL says until the dataset is closed
-    Dataset dataset = openDataset(path, messages);
+    const RasterDoor door(path, options.folders); // outlives the dataset: GDAL reads through it until closed
+    GdalMessages messages;                        // everything GDAL says until the dataset is closed
+    Dataset dataset = openDataset(path, door, messages);
     GDALDatasetH ds = dataset.get();
     const int width = GDALGetRasterXSize(ds), height = GDALGetRasterYSize(ds);
     checkSize(path, width, height);
@@ -196,6 +197,7 @@ RasterBand readRasterBand(const std::string& path, const RasterReadOptions& opti
     raster.values.resize(size_t(width) * size_t(height));
     const CPLErr read =
         GDALRasterIO(band, GF_Read, 0, 0, width, height, raster.values.data(), width, height, GDT_Float64, 0, 0);
+    require(door.refusal().empty(), door.refusal()); // a companion opened only for the pixels (an HFA .ige)
     require(read == CE_None, "cannot read raster '" + path + "' band " + std::to_string(options.band) +
                                  " (corrupt or truncated file)" + messages.suffix());
     if (options.requireFinite) checkFinite(raster, options.band);

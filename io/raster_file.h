@@ -4,10 +4,13 @@
 //
 // Only local files are read: a path starting with /vsi (GDAL's virtual file systems, /vsicurl/ among them) or one
 // that is not a regular file is refused before GDAL sees it, and GDAL may only pick a driver of kRasterDrivers, none
-// of which reaches the network or names other datasets (no VRT, WMS, ...). GDAL's own messages never reach stderr:
-// they become part of the one sward::Error, which names the file.
+// of which reaches the network or names other datasets (no VRT, WMS, ...). GDAL reads the raster and its companion
+// files (.aux.xml, world files, .prj, .hdr, .ige, ...) through sward's door (io/raster_door.h), which confines,
+// checks and logs each one. GDAL's own messages never reach stderr: they become part of the one sward::Error,
+// which names the file.
 #pragma once
 
+#include "common/input_file.h"
 #include "io/image_io.h"
 
 #include <cstdint>
@@ -55,13 +58,17 @@ struct RasterBand {
 struct RasterReadOptions {
     uint32_t band = 1;          // from 1, as GDAL counts
     bool requireFinite = false; // a NaN or infinite value that is not the nodata value is an error
+    // Where the raster's companion files may be read from; every file GDAL opens is logged there, with the raster's
+    // path as its owner (io/raster_door.h). Default: unconfined.
+    InputFolders folders;
 };
 
 // Reads one band as doubles. Throws one sward::Error naming the file for: a /vsi path, a missing file or one that is
-// not a regular file, a file no driver of kRasterDrivers reads, a raster without bands, a band out of range, a
-// complex band, an edge over kMaxRasterEdge or more than kMaxRasterPixels pixels, a rotated, sheared or south-up
-// geotransform, a read error, and (requireFinite) a non-finite value, naming its pixel. Safe to call from one
-// thread at a time.
+// not a regular file, a companion file GDAL asks for outside options.folders or not a regular file, a file no
+// driver of kRasterDrivers reads, a raster without bands, a band out of range, a complex band, an edge over
+// kMaxRasterEdge or more than kMaxRasterPixels pixels, a rotated, sheared or south-up geotransform, a read error,
+// and (requireFinite) a non-finite value, naming its pixel. Safe to call from any thread: reads through GDAL's door
+// take turns (io/raster_door.h).
 RasterBand readRasterBand(const std::string& path, const RasterReadOptions& options = {});
 
 } // namespace sward

@@ -1,13 +1,14 @@
 #include "io/sha256.h"
 
 #include "common/error.h"
+#include "common/input_file.h"
 
 #include <algorithm>
 #include <bit>
 #include <cassert>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
+#include <unistd.h>
 #include <vector>
 
 // The x86 SHA extensions, chosen at run time (GCC and Clang on x86-64).
@@ -191,15 +192,16 @@ std::string sha256Hex(std::string_view text) {
 }
 
 std::string sha256File(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw Error("cannot open '" + path + "' to hash it: " + std::strerror(errno));
+    const InputFile file = openInputFile(path, "file to hash"); // a FIFO or a device is refused, never read
     Sha256 hasher;
-    std::vector<char> block(1 << 20);
-    while (file) {
-        file.read(block.data(), std::streamsize(block.size()));
-        hasher.update({reinterpret_cast<const uint8_t*>(block.data()), size_t(file.gcount())});
+    std::vector<uint8_t> block(1 << 20);
+    for (;;) {
+        const ssize_t n = ::read(file.fd(), block.data(), block.size());
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw Error("cannot read '" + path + "' to hash it: " + std::strerror(errno));
+        if (n == 0) break;
+        hasher.update({block.data(), size_t(n)});
     }
-    if (file.bad()) throw Error("cannot read '" + path + "' to hash it: I/O error");
     return toHex(hasher.finish());
 }
 

@@ -1,6 +1,8 @@
 #include "render/render_job.h"
 
 #include "common/background_task.h"
+#include "common/input_file.h"
+#include "common/json_reader.h"
 #include "common/parse_number.h"
 #include "common/stopwatch.h"
 #include "dataset/dataset_writer.h"
@@ -156,11 +158,7 @@ std::string sceneCopyText(const RenderJobOptions& options) {
     }
     const std::string& scenePath = options.scenePath;
     if (scenePath.empty()) return "{}\n";
-    std::ifstream file(scenePath, std::ios::binary);
-    std::stringstream text;
-    text << file.rdbuf();
-    require(bool(file), "cannot read scene file '" + scenePath + "'");
-    return text.str();
+    return readInputFile(scenePath, "scene file", kMaxJsonFileBytes);
 }
 
 std::string classesText(const Scene& scene) {

@@ -297,7 +297,8 @@ Atlas buildAtlas(const Scene& scene) {
 GrassMap buildGrassMap(const Scene& scene, float tileSize, glm::dvec2 origin) {
     if (!scene.grassMapPath.empty()) return loadGrassMap(scene.grassMapPath);
     if (!scene.landCover.file.empty())
-        return loadLandCoverGrassMap(scene.landCover, tileSize, scene.source + ": 'land_cover'");
+        return loadLandCoverGrassMap(scene.landCover, tileSize, scene.source + ": 'land_cover'", 0,
+                                     scene.assets.folders());
     return makeMeadowGrassMap({.tileSize = tileSize, .seed = scene.seed, .origin = origin});
 }
 

@@ -15,7 +15,7 @@ Heightfield loadHeightmap(const Scene& scene) {
     const HeightmapParams& h = scene.terrain.heightmap;
     try {
         return loadHeightfield(h.path, float(h.heightScale), float(h.metresPerPixel), glm::vec2(h.origin),
-                               float(h.heightOffset));
+                               float(h.heightOffset), scene.assets.folders());
     } catch (const Error& e) {
         throw Error(scene.source + ": 'terrain.heightmap': " + e.what());
     }

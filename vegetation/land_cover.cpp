@@ -194,10 +194,10 @@ GrassMap makeLandCoverGrassMap(const RasterBand& raster, const LandCoverParams& 
 }
 
 GrassMap loadLandCoverGrassMap(const LandCoverParams& params, double tileSize, const std::string& what,
-                               uint32_t threads) {
+                               uint32_t threads, const InputFolders& folders) {
     RasterBand raster;
     try {
-        raster = readRasterBand(params.file, {.band = params.band});
+        raster = readRasterBand(params.file, {.band = params.band, .requireFinite = false, .folders = folders});
     } catch (const Error& e) {
         throw Error(what + ": " + e.what()); // which key named the file
     }

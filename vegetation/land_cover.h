@@ -61,8 +61,8 @@ GrassMap makeLandCoverGrassMap(const RasterBand& raster, const LandCoverParams& 
                                const std::string& what, uint32_t threads = 0);
 
 // Reads params.file (band params.band) and makes its grass map for a square tile of `tileSize` metres. The raster's
-// errors (io/raster_file.h) are prefixed with `what`.
+// errors (io/raster_file.h) are prefixed with `what`. Its companion files are read only inside `folders`.
 GrassMap loadLandCoverGrassMap(const LandCoverParams& params, double tileSize, const std::string& what,
-                               uint32_t threads = 0);
+                               uint32_t threads = 0, const InputFolders& folders = {});
 
 } // namespace sward

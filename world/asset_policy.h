@@ -4,6 +4,8 @@
 // untrusted source cannot read other files on the machine. Built-in scenes (no folder) are unconfined.
 #pragma once
 
+#include "common/input_file.h"
+
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -18,7 +20,11 @@ public:
     // Throws sward::Error "--allow-assets 'DIR': ..." when an allowed folder does not exist.
     static AssetPolicy confinedTo(const std::string& folder, const std::vector<std::string>& allowed);
 
-    bool confined() const { return confined_; }
+    bool confined() const { return folders_.confined(); }
+    // The folders as the input door (common/input_file.h) takes them, with the log of every file read on this
+    // policy's behalf (copies of a policy share it): rasters pass them to GDAL's door, glTF loaders record
+    // their buffers and images, and the dataset fingerprint lists what was logged.
+    const InputFolders& folders() const { return folders_; }
 
     // The path to open for `path` as named by `where` (e.g. "scene.json: 'objects[0].model'"). A relative path
     // is taken relative to `base` (a folder; "" = the current directory). Confined: returns the resolved path
@@ -27,9 +33,8 @@ public:
     std::string resolve(const std::string& path, const std::string& base, const std::string& where) const;
 
 private:
-    bool confined_ = false;
-    std::filesystem::path folder_;               // canonical
-    std::vector<std::filesystem::path> allowed_; // canonical
+    std::filesystem::path folder_; // canonical, for messages
+    InputFolders folders_;         // the scene's folder and the allowed ones
 };
 
 } // namespace sward

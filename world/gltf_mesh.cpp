@@ -8,6 +8,7 @@
 #include "world/gltf_mesh.h"
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "world/gltf_textures.h"
 
 #include <algorithm>
@@ -261,6 +262,7 @@ struct GltfReader {
 // asset policy (symlinks resolved) before a byte of it is read.
 struct BufferFiles {
     const AssetPolicy& assets;
+    std::string gltfPath; // the glTF file, owner of every file read for it in the policy's log
     std::string where;    // "glTF model 'm.gltf': buffer uri", for the policy's error
     std::string joinedTo; // what tinygltf puts before "/<uri>": the glTF path up to its last separator
     std::string folder;   // the glTF's folder, which a relative uri is relative to
@@ -288,7 +290,7 @@ std::string keepPath(const std::string& path, void*) {
     return path;
 }
 
-bool readBufferFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+bool readBufferFile(std::vector<unsigned char>* out, std::string*, const std::string& path, void* user) {
     BufferFiles& files = *static_cast<BufferFiles*>(user);
     std::string opened;
     try {
@@ -298,7 +300,15 @@ bool readBufferFile(std::vector<unsigned char>* out, std::string* err, const std
         return false;
     }
     files.lastUri = files.uriOf(path);
-    return tinygltf::ReadWholeFile(out, err, opened, nullptr);
+    try {
+        // The door: a FIFO never blocks, a device is refused; what is read is logged for the fingerprint.
+        *out = readInputBytes(opened, "glTF file");
+        files.assets.folders().record(files.gltfPath, std::filesystem::weakly_canonical(opened).string());
+        return true;
+    } catch (const Error& e) {
+        files.refused = e.what();
+        return false;
+    }
 }
 
 bool writeNothing(std::string*, const std::string&, const std::vector<unsigned char>&, void*) {
@@ -342,6 +352,7 @@ tinygltf::Model readFile(const std::string& path, const char* kind, const AssetP
     const std::string what = std::string(kind) + " '" + path + "'";
     const size_t slash = path.find_last_of("/\\"); // tinygltf's own split (GetBaseDir)
     BufferFiles files{.assets = assets,
+                      .gltfPath = path,
                       .where = what + ": buffer uri",
                       .joinedTo = slash == std::string::npos ? std::string() : path.substr(0, slash),
                       .folder = std::filesystem::path(path).parent_path().string(),
@@ -394,8 +405,7 @@ struct MeshBuilder {
         const int image = reader.model.textures[size_t(gltfTexture)].source;
         if (auto known = imageTexture.find(image); known != imageTexture.end()) return index = known->second;
         GroundTexture decoded = groundTexture(reader.model, gltfTexture,
-                                              std::string(reader.kind) + " '" + reader.path + "'", assets,
-                                              std::filesystem::path(reader.path).parent_path().string());
+                                              std::string(reader.kind) + " '" + reader.path + "'", assets, reader.path);
         textureBytes += uint64_t(decoded.width) * decoded.height * 4;
         if (textureBytes > kMaxGroundTextureBytes)
             reader.fail("its ground textures take " + std::to_string(textureBytes >> 20) + " MiB as RGBA (image " +

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cctype>
 #include <cstring>
+#include <filesystem>
 
 namespace sward {
 
@@ -76,7 +77,7 @@ bool decodeGltfImage(tinygltf::Image* image, int index, std::string* err, std::s
 }
 
 GroundTexture groundTexture(const tinygltf::Model& model, int textureIndex, const std::string& what,
-                            const AssetPolicy& assets, const std::string& folder) {
+                            const AssetPolicy& assets, const std::string& gltfPath) {
     require(textureIndex >= 0 && size_t(textureIndex) < model.textures.size(),
             what + ": a material's baseColorTexture refers to a missing texture");
     const int source = model.textures[size_t(textureIndex)].source;
@@ -87,9 +88,11 @@ GroundTexture groundTexture(const tinygltf::Model& model, int textureIndex, cons
                                " is not a PNG (ground textures are read from PNG only; export PNG images)";
     if (!image.image.empty()) return GroundTexture{uint32_t(image.width), uint32_t(image.height), image.image};
     require(!image.uri.empty() && image.uri.rfind("data:", 0) != 0, notPng);
+    const std::string folder = std::filesystem::path(gltfPath).parent_path().string();
     const std::string path =
         assets.resolve(percentDecoded(image.uri), folder, what + ": image " + std::to_string(source) + " uri");
     const std::vector<char> bytes = readImageFileBytes(path);
+    assets.folders().record(gltfPath, std::filesystem::weakly_canonical(path).string());
     require(isPng(reinterpret_cast<const unsigned char*>(bytes.data()), int(std::min<size_t>(bytes.size(), 8))), notPng);
     return decodeTexture(path, bytes);
 }

@@ -27,9 +27,10 @@ bool decodeGltfImage(tinygltf::Image* image, int index, std::string* err, std::s
                      int requestedHeight, const unsigned char* bytes, int size, void* user);
 
 // The image of texture `textureIndex` as a GroundTexture: embedded images were decoded by decodeGltfImage; an
-// external one (uri) is read here, relative to `folder` and only where `assets` allows. Throws sward::Error naming
-// `what` for an index out of range, an image that is missing, refused or not a PNG.
+// external one (uri) is read here, relative to the folder of `gltfPath` and only where `assets` allows, and logged
+// in assets.folders() with `gltfPath` as its owner (it joins the dataset's fingerprint). Throws sward::Error naming
+// `what` for an index out of range, an image that is missing, refused, not a regular file or not a PNG.
 GroundTexture groundTexture(const tinygltf::Model& model, int textureIndex, const std::string& what,
-                            const AssetPolicy& assets, const std::string& folder);
+                            const AssetPolicy& assets, const std::string& gltfPath);
 
 } // namespace sward

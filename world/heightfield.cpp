@@ -171,13 +171,14 @@ float rasterSpacing(const RasterBand& raster, float spacing) {
 } // namespace
 
 Heightfield loadHeightfield(const std::string& path, float verticalScale, float spacing, glm::vec2 origin,
-                            float heightOffset) {
+                            float heightOffset, const InputFolders& folders) {
     require(spacing >= 0.0f && std::isfinite(spacing), "heightfield '" + path + "': spacing must not be negative");
     require(std::isfinite(verticalScale) && std::isfinite(heightOffset),
             "heightfield '" + path + "': vertical scale and offset must be finite");
     const std::string extension = lowerExtension(path);
     if (extension != "png" && extension != "exr") {
         RasterReadOptions options;
+        options.folders = folders;
         const RasterBand raster = readRasterBand(path, options);
         const float step = rasterSpacing(raster, spacing);
         std::vector<float> heights = gridHeights(

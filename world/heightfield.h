@@ -6,6 +6,8 @@
 // height() sit exactly on the rendered surface and raycast() gives the analytic depth of a rendered pixel.
 #pragma once
 
+#include "common/input_file.h"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -74,8 +76,10 @@ Heightfield makeProceduralTerrain(const ProceduralTerrainParams& params);
 // and pixel (i, row) is the vertex at origin + spacing * (i, height - 1 - row). spacing 0 takes a GDAL raster's
 // georeferencing (square pixels of a projected coordinate system, in metres). Throws sward::Error naming the file
 // for a missing file, an unsupported format, an 8-bit PNG (too coarse: visible terraces), more than one channel,
-// a non-finite or nodata height, a height beyond 1e6 m, and spacing 0 without usable georeferencing.
+// a non-finite or nodata height, a height beyond 1e6 m, and spacing 0 without usable georeferencing. A GDAL
+// raster's companion files are read only inside `folders` (RasterReadOptions::folders) and logged there.
 Heightfield loadHeightfield(const std::string& path, float verticalScale, float spacing,
-                            glm::vec2 origin = glm::vec2(0.0f), float heightOffset = 0.0f);
+                            glm::vec2 origin = glm::vec2(0.0f), float heightOffset = 0.0f,
+                            const InputFolders& folders = {});
 
 } // namespace sward
