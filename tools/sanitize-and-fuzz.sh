@@ -18,7 +18,7 @@ fuzz_seconds=${FUZZ_SECONDS:-10}
 fuzz_budget=(-max_total_time="$fuzz_seconds")
 [ -n "${FUZZ_RUNS:-}" ] && fuzz_budget=(-runs="$FUZZ_RUNS")
 jobs=${JOBS:-$(nproc)}
-all_targets="scene grass_map atlas gltf glb state_file pfm kitti_png flow exr calib"
+all_targets="scene grass_map atlas gltf glb state_file pfm kitti_png flow exr calib raster"
 targets=${FUZZ_TARGETS:-$all_targets}
 cpu_suites="common io world vegetation interaction scene dataset eval export range"
 # A GPU smoke subset: engine basics, the validation self-test, one renderer of each kind (ruts: in sward-render and

@@ -1,0 +1,115 @@
+"""Bad inputs of the input door (common/input_file.h, io/raster_door.h): companion files GDAL opens by itself
+(.aux.xml, an EHdr .hdr, an HFA .ige named by content) outside the scene's folder, FIFOs and devices where a file
+is expected, and a sidecar added between two runs of one dataset."""
+
+import os
+import subprocess
+
+from cases import Case, base_scene, write_scene, grey_png, png_bytes, triangle_gltf, with_object, atlas, scene_with
+
+OUTSIDE_AUX_XML = "<PAMDataset><Metadata><MDI key=\"k\">v</MDI></Metadata></PAMDataset>\n"
+
+
+def land_cover_with(companion):
+    """The tiny scene on a land-cover PNG whose cover.png.aux.xml companion(env, path) makes."""
+    def edit(scene, env):
+        env.write("cover.png", grey_png([30, 30, 30]))
+        companion(env, env.path("cover.png.aux.xml"))
+        scene["land_cover"] = {"file": "cover.png", "preset": "esa_worldcover"}
+    return edit
+
+
+def symlink_outside(env, path):
+    outside = env.write("../outside-" + os.path.basename(env.folder) + ".aux.xml", OUTSIDE_AUX_XML)
+    os.symlink(outside, path)
+
+
+def fifo(env, path):
+    os.mkfifo(path)
+
+
+def dev_zero(env, path):
+    os.symlink("/dev/zero", path)
+
+
+def ehdr_header_outside(scene, env):
+    env.write("dem.bil", bytes([10, 30]))
+    outside = env.write("../dem-" + os.path.basename(env.folder) + ".hdr",
+                        "ncols 2\nnrows 1\nnbands 1\nnbits 8\nbyteorder I\nlayout bil\n")
+    os.symlink(outside, env.path("dem.hdr"))
+    scene["terrain"] = {"heightmap": {"file": "dem.bil", "metres_per_pixel": 1}}
+
+
+def hfa_spill_outside(env):
+    """An HFA heightmap in FOLDER/scene whose content names its spill file "../o.ige" (FOLDER/o.ige: outside)."""
+    scene_dir = env.path("scene")
+    os.makedirs(scene_dir)
+    grid = env.write("a.asc", "ncols 4\nnrows 4\nxllcorner 0\nyllcorner 0\ncellsize 1\n" + "1 2 3 4\n" * 4)
+    made = env.path("abcd.img")
+    subprocess.run(["gdal_translate", "-q", "-of", "HFA", "-co", "USE_SPILL=YES", grid, made], check=True)
+    with open(made, "rb") as f:
+        data = f.read().replace(b"abcd.ige", b"../o.ige")  # same length: the name field keeps its size
+    with open(os.path.join(scene_dir, "abcd.img"), "wb") as f:
+        f.write(data)
+    os.rename(env.path("abcd.ige"), env.path("o.ige"))
+    scene = base_scene(env.source)
+    scene["terrain"] = {"heightmap": {"file": "abcd.img", "metres_per_pixel": 1}}
+    return [write_scene(scene_dir, scene), "--out", env.out]
+
+
+def gltf_buffer_fifo(scene, env):
+    gltf = triangle_gltf()
+    gltf["buffers"][0]["uri"] = "buffer.bin"
+    with_object("model.gltf", gltf)(scene, env)
+    os.mkfifo(env.path("buffer.bin"))
+
+
+def model_fifo(scene, env):
+    with_object("model.gltf", None)(scene, env)
+    os.mkfifo(env.path("model.gltf"))
+
+
+def atlas_json_fifo(scene, env):
+    atlas(png_bytes(), None)(scene, env)
+    os.mkfifo(env.path("atlas.json"))
+    scene["atlas"]["json"] = "atlas.json"
+
+
+def scene_fifo(env):
+    path = env.path("scene.json")
+    os.mkfifo(path)
+    return [path, "--out", env.out]
+
+
+def sidecar_added_between_runs(env):
+    """A first run renders the land-cover scene; a .aux.xml then appears beside the raster; the resume refuses."""
+    scene = base_scene(env.source)
+    land_cover_with(lambda env, path: None)(scene, env)
+    path = write_scene(env.folder, scene)
+    first = subprocess.run([os.path.join(env.bin, "sward-render"), path, "--out", env.out, "--quiet"],
+                           capture_output=True, text=True, timeout=300)
+    if first.returncode != 0:
+        raise RuntimeError("the first render failed: " + first.stderr.strip())
+    env.write("cover.png.aux.xml", OUTSIDE_AUX_XML)
+    return [path, "--out", env.out]
+
+
+CASES = [
+    Case("land_cover .aux.xml symlinked outside the scene folder", "sward-render",
+         scene_with(land_cover_with(symlink_outside)), 1, r"cover\.png\.aux\.xml.*outside the scene's folder"),
+    Case("land_cover .aux.xml a FIFO", "sward-render", scene_with(land_cover_with(fifo)), 1,
+         r"cover\.png\.aux\.xml.*not a regular file"),
+    Case("land_cover .aux.xml symlinked to /dev/zero", "sward-render", scene_with(land_cover_with(dev_zero)), 1,
+         r"cover\.png\.aux\.xml.*/dev/zero, outside the scene's folder"),
+    Case("heightmap EHdr .hdr symlinked outside the scene folder", "sward-render", scene_with(ehdr_header_outside),
+         1, r"dem\.hdr.*outside the scene's folder"),
+    Case("heightmap HFA .img naming its .ige ../o.ige outside", "sward-render", hfa_spill_outside, 1,
+         r"o\.ige.*outside the scene's folder"),
+    Case("object model a FIFO", "sward-render", scene_with(model_fifo), 1, r"model\.gltf.*not a regular file"),
+    Case("glTF buffer file a FIFO", "sward-render", scene_with(gltf_buffer_fifo), 1,
+         r"buffer\.bin.*not a regular file"),
+    Case("atlas.json a FIFO", "sward-render", scene_with(atlas_json_fifo), 1, r"atlas\.json.*not a regular file"),
+    Case("scene file a FIFO", "sward-render", scene_fifo, 1, r"scene\.json.*not a regular file"),
+    Case("land_cover .aux.xml added between two runs (resume)", "sward-render", sidecar_added_between_runs, 1,
+         r"land_cover\.file/cover\.png\.aux\.xml"),
+]
