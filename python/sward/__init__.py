@@ -62,12 +62,30 @@ def _path(name, value):
     return os.fspath(value)
 
 
+def _plain(value):
+    """numpy scalars and arrays as the Python numbers and lists JSON holds (json.dumps's `default`)."""
+    if isinstance(value, (np.generic, np.ndarray)):
+        return value.tolist()
+    raise TypeError(f"a {type(value).__name__} is not a JSON value")
+
+
+def _json(name, value):
+    """`value` as JSON text: NaN and infinities (which JSON cannot hold) and non-JSON values named."""
+    try:
+        return json.dumps(value, allow_nan=False, default=_plain)
+    except ValueError as e:  # json's "Out of range float values" or "Circular reference detected"
+        what = "a number that is not finite (NaN or infinity)" if "float" in str(e) else "a reference to itself"
+        raise Error(f"{name} holds {what}, which JSON cannot hold") from None
+    except TypeError as e:
+        raise TypeError(f"{name}: {e}") from None
+
+
 def _scene_input(scene, overrides, seed, allow_assets):
     """The (path, text, overrides, seed, allow_assets) a scene given as a file, a dict or None (built-in) becomes."""
     if scene is None:
         path, text = "", None
     elif isinstance(scene, dict):
-        path, text = "", json.dumps(scene, allow_nan=False)
+        path, text = "", _json("scene", scene)
     elif isinstance(scene, (str, os.PathLike)):
         path, text = os.fspath(scene), None
     else:
@@ -79,7 +97,7 @@ def _scene_input(scene, overrides, seed, allow_assets):
     if isinstance(allow_assets, (str, bytes, os.PathLike)):  # one folder would be iterated letter by letter
         raise _type_error("allow_assets", "a list of folders", allow_assets)
     folders = [_path("allow_assets[]", a) for a in allow_assets]
-    return path, text, json.dumps(overrides or {}, allow_nan=False), seed, folders
+    return path, text, _json("overrides", overrides or {}), seed, folders
 
 
 def _run_options(device, validation, vegetation, time):
@@ -137,7 +155,9 @@ class Simulator:
     def set_colliders(self, colliders):
         """Colliders of your own from the next tick on (replacing earlier ones): a list of dicts with "centre":
         [x, y, z] and the scene's collider keys (shape, kind, radius, force, length, half_extents, cut_height)."""
-        self._session.set_colliders(json.dumps(list(colliders), allow_nan=False))
+        if isinstance(colliders, (dict, str)) or not hasattr(colliders, "__iter__"):
+            raise _type_error("colliders", "a list of dicts", colliders)
+        self._session.set_colliders(_json("colliders", list(colliders)))
 
     def save_state(self, path):
         self._session.save_state(_path("path", path))

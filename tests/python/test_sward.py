@@ -265,6 +265,20 @@ def test_an_argument_out_of_range_raises_sward_error_naming_it(tmp_path):
         sward.write_dataset(scene_with(tmp_path, SMALL), tmp_path / "out", time=float("nan"))
 
 
+def test_numpy_values_pass_and_nan_is_named(tmp_path):
+    """numpy numbers in a scene dict or overrides are numbers (json.dumps alone refuses them); NaN names its argument."""
+    document = json.loads(scene_with(tmp_path, SMALL).read_text())
+    document["render"]["resolution"] = np.array([40, 30])
+    sim = sward.Simulator(document, overrides={"render.samples": np.int64(1)})
+    assert (sim.width, sim.height) == (40, 30)
+    with pytest.raises(sward.Error, match=r"^overrides holds a number that is not finite \(NaN or infinity\)"):
+        sward.Simulator(document, overrides={"camera.fov_y_deg": float("nan")})
+    with pytest.raises(TypeError, match=r"^scene: a set is not a JSON value$"):
+        sward.Simulator({"render": {1, 2}})
+    with pytest.raises(TypeError, match=r"^colliders must be a list of dicts, not dict$"):
+        sim.set_colliders({"centre": [0, 0, 0]})
+
+
 def test_a_wrong_argument_of_a_simulator_method_names_the_argument(tmp_path):
     sim = sward.Simulator(scene_with(tmp_path, SMALL))
     with pytest.raises(sward.Error, match=r"^ticks must be an integer in \[0, 4294967295\] \(got -1\)$"):
