@@ -27,8 +27,9 @@ packages=(
   nlohmann-json3-dev libcli11-dev libimgui-dev
   # the Python module (python/): pybind11 and numpy; its tests run under pytest
   pybind11-dev python3-dev python3-numpy python3-pytest
-  # tests and benchmarks; a virtual X server for the viewer test
-  libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
+  # tests and benchmarks; a virtual X server for the viewer test; strace for the open-tracing test
+  # (tests/tools/sward-render/open_trace_test.py: no file outside the scene's folder is opened)
+  libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth strace
   # sward-export's point clouds read back by Open3D (tests/tools/sward-export/open3d_test.py; brings numpy)
   python3-open3d
   # scale-out tests (tests/scale-out): a private single-node Slurm, and the Kubernetes manifest check (YAML in
