@@ -573,7 +573,7 @@ void requireGroundBudget(const GltfReader& reader) {
         priced[size_t(index)] = true;
         return meshSizes[size_t(index)] = {triangles, vertices};
     };
-    // Each sum grows by at most a buffer's bytes a node, so it stays far from wrapping until the limit stops it.
+    // Each sum grows by at most a buffer's bytes a node (and a node is at least a few bytes of the file): no wrap.
     uint64_t triangles = 0, vertices = 0, instances = 0;
     auto add = [&](int mesh) {
         const auto [t, v] = meshSize(mesh);
@@ -585,7 +585,7 @@ void requireGroundBudget(const GltfReader& reader) {
         std::vector<bool> seen(model.nodes.size(), false);
         std::vector<std::pair<int, int>> stack; // (node, depth)
         for (int root : reader.rootNodes()) stack.emplace_back(root, 0);
-        while (!stack.empty() && triangles <= kMaxGroundTriangles && vertices <= kMaxGroundTriangles) {
+        while (!stack.empty()) {
             const auto [index, depth] = stack.back();
             stack.pop_back();
             if (index < 0 || size_t(index) >= model.nodes.size() || depth > 64 || seen[size_t(index)]) continue;
@@ -596,9 +596,10 @@ void requireGroundBudget(const GltfReader& reader) {
         }
     }
     if (triangles > kMaxGroundTriangles || vertices > kMaxGroundTriangles)
-        reader.fail(std::to_string(instances) + " mesh instances (nodes) would flatten into at least " +
-                    std::to_string(std::max(triangles, vertices)) + " triangles or vertices, over the limit of " +
-                    std::to_string(kMaxGroundTriangles) + " (instances x triangles of their meshes)");
+        reader.fail(std::to_string(instances) + " mesh instances (nodes) would flatten into " +
+                    std::to_string(triangles) + " triangles and " + std::to_string(vertices) +
+                    " vertices, over the limit of " + std::to_string(kMaxGroundTriangles) +
+                    " of each (instances x the triangles of their meshes)");
 }
 
 } // namespace
