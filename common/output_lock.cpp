@@ -49,7 +49,29 @@ bool stillNamed(int dirFd, int fd) {
            held.st_dev == named.st_dev && held.st_ino == named.st_ino;
 }
 
+std::string heldBy(const std::string& dir, long pid) {
+    return "'" + dir + "' is being written by another sward process (" +
+           (pid > 0 ? "pid " + std::to_string(pid) : std::string("pid unknown")) +
+           "): one writer per folder; wait for it to finish or choose another output folder";
+}
+
+int flockMode(OutputLock::Mode mode) {
+    return (mode == OutputLock::Mode::Exclusive ? LOCK_EX : LOCK_SH) | LOCK_NB;
+}
+
 } // namespace
+
+void OutputLock::requireFree(const std::string& dir, Mode mode) {
+    const std::string path = dir + "/" + kOutputLockFile;
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return; // no lock file (or none usable: the constructor reports that)
+    struct stat info;
+    const bool held =
+        ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode) && ::flock(fd, flockMode(mode)) != 0 && errno == EWOULDBLOCK;
+    const long pid = held ? holderPid(fd) : 0;
+    ::close(fd); // releases the probe's lock
+    if (held) throw Error(heldBy(dir, pid));
+}
 
 OutputLock::OutputLock(const std::string& dir, Mode mode) {
     const std::string path = dir + "/" + kOutputLockFile;
@@ -72,13 +94,10 @@ OutputLock::OutputLock(const std::string& dir, Mode mode) {
         struct stat info;
         if (::fstat(fd_, &info) != 0 || !S_ISREG(info.st_mode))
             fail("cannot use lock file '" + path + "': not a regular file");
-        if (::flock(fd_, (mode == Mode::Exclusive ? LOCK_EX : LOCK_SH) | LOCK_NB) != 0) {
+        if (::flock(fd_, flockMode(mode)) != 0) {
             const int error = errno;
             if (error != EWOULDBLOCK) fail("cannot lock '" + path + "': " + ioErrorReason(error));
-            const long pid = holderPid(fd_);
-            fail("'" + dir + "' is being written by another sward process (" +
-                 (pid > 0 ? "pid " + std::to_string(pid) : std::string("pid unknown")) +
-                 "): one writer per folder; wait for it to finish or choose another output folder");
+            fail(heldBy(dir, holderPid(fd_)));
         }
         if (stillNamed(dirFd_, fd_)) break;
         ::close(fd_);

@@ -28,6 +28,10 @@ public:
     // Releases the lock; removes the lock file when no other process holds it.
     ~OutputLock();
 
+    // Throws the error the constructor would when another writer holds `dir` against `mode`, writing nothing (no
+    // lock file is made): a writer's checks of the folder's content say first that someone else is writing it.
+    static void requireFree(const std::string& dir, Mode mode);
+
 private:
     int dirFd_ = -1, fd_ = -1;
 };

@@ -160,8 +160,15 @@ std::vector<std::string> DatasetWriter::directories() const {
     return dirs;
 }
 
-void DatasetWriter::check(const nlohmann::json& fingerprint, bool overwrite, uint64_t bytesNeeded) const {
+void DatasetWriter::requireNoOtherWriter(const std::string& root, bool shared) {
     std::error_code ec;
+    if (fs::is_directory(root, ec))
+        OutputLock::requireFree(root, shared ? OutputLock::Mode::Shared : OutputLock::Mode::Exclusive);
+}
+
+void DatasetWriter::check(const nlohmann::json& fingerprint, bool overwrite, uint64_t bytesNeeded, bool shared) const {
+    std::error_code ec;
+    if (!lock_) requireNoOtherWriter(root_, shared); // once this writer holds the folder, the holder is itself
     fs::path existing = fs::absolute(root_, ec);
     while (!fs::exists(existing, ec) && existing.has_relative_path()) existing = existing.parent_path();
     if (!fs::is_directory(existing, ec))

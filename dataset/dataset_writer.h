@@ -53,10 +53,15 @@ public:
     // parent) is a writable folder; no name the dataset uses in it is a symbolic link (sward never writes, hashes or
     // removes through one; --out itself may be a link: the user chose it); a dataset already there has
     // `fingerprint` (keys absent from it are not compared), unless `overwrite`; and its file system has
-    // `bytesNeeded` bytes free. Throws one clear error.
-    void check(const nlohmann::json& fingerprint, bool overwrite, uint64_t bytesNeeded) const;
+    // `bytesNeeded` bytes free. Before all that, that no other writer holds the folder against a `shared` (or an
+    // exclusive) writer (lock()): a second writer's error names the first one, not the half-written state it sees.
+    // Throws one clear error.
+    void check(const nlohmann::json& fingerprint, bool overwrite, uint64_t bytesNeeded, bool shared = false) const;
     // An upper bound of the bytes one frame's files take on disk at `width` x `height`, for the free-space check.
     uint64_t frameBytesUpperBound(uint32_t width, uint32_t height) const;
+    // Throws, writing nothing, when another writer holds the folder `root` against this one (lock()): a run asks
+    // before any work, so a second writer fails at once.
+    static void requireNoOtherWriter(const std::string& root, bool shared);
     // Takes the output folder for this run (common/output_lock.h), creating it and its missing parents (removed
     // again by discardCreated): shared for one of several shards of a run (`--shard` without --overwrite, which
     // write one folder together), exclusive otherwise. Throws naming the holder's pid when another writer has it.

@@ -295,6 +295,11 @@ void writeJobManifest(DatasetWriter& dataset, const Scene& scene, const JobPlan&
 RenderJobReport runRenderJob(const RenderJobOptions& options) {
     JobClock clock;
 
+    // One writer per folder: the shards of one run share the folder; --overwrite, or a run of the whole range,
+    // must be alone in it. A folder another writer holds is refused before any work.
+    const bool sharedWriter = options.shard && !options.overwrite;
+    DatasetWriter::requireNoOtherWriter(options.outDir, sharedWriter);
+
     // Everything that can be checked without a GPU is checked first, so bad input fails fast and writes nothing.
     Scene scene = loadSceneInput(sceneInput(options));
     const JobPlan plan = planJob(scene, options);
@@ -314,19 +319,17 @@ RenderJobReport runRenderJob(const RenderJobOptions& options) {
     nlohmann::json fingerprint = jobFingerprint(resources.scene, plan, options, assets);
     const std::string sceneText = sceneCopyText(options);
     const uint64_t needed = todo.empty() ? 0 : bytesNeeded(dataset, plan, records, sceneText.size());
-    dataset.check(fingerprint, options.overwrite, needed); // before the device: a bad folder fails fast
+    dataset.check(fingerprint, options.overwrite, needed, sharedWriter); // before the device: a bad folder fails fast
 
     // From here on files are written; a failure removes what this run created (a kill leaves complete files only).
     try {
-        // One writer per folder, taken before the device so a second writer fails at once: the shards of one run
-        // share the folder; --overwrite, or a run of the whole range, must be alone in it.
-        dataset.lock(options.shard && !options.overwrite);
+        dataset.lock(sharedWriter); // before the device, so a second writer fails at once
         Context ctx(DeviceOptions{.deviceFilter = options.device,
                                   .validation = options.validation || DeviceOptions{}.validation});
         fingerprint["device"] = ctx.device.name();
         clock.report.device = ctx.device.name();
         fingerprint["driver"] = ctx.device.driver();
-        dataset.check(fingerprint, options.overwrite, needed);
+        dataset.check(fingerprint, options.overwrite, needed, sharedWriter);
         dataset.begin(fingerprint, options.overwrite);
         const RigParams& rig = resources.scene.camera.rig;
         if (rig.stereo()) dataset.writeCalib(firstRig.left, rig.baseline, rig.minDepth);

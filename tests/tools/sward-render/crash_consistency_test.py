@@ -10,7 +10,7 @@ duration (fixed seed), until at least N (default 20) runs were killed while runn
 file under a final name must equal the reference's file of that name, and no temporary may be visible (where
 the file system has O_TMPFILE; elsewhere only temporaries of the killed process may remain, removed by the next
 run). Whenever a run completes, and at the end after a resume, the whole folder must equal the reference,
-manifest included. Python 3 standard library only.
+manifest included, with no lock file (a killed run's .sward.lock may stay until the next run takes it over). Python 3 standard library only.
 """
 
 import argparse
@@ -26,6 +26,7 @@ import tempfile
 import time
 
 TEMPORARY = re.compile(r"^\..+\.sward-\d+\.tmp$")
+LOCK_FILE = ".sward.lock"  # common/output_lock.h
 
 
 def files_under(root):
@@ -80,14 +81,20 @@ def main():
 
         def check(out, when, complete):
             for name, path in files_under(out).items():
-                if TEMPORARY.match(os.path.basename(name)) or name.endswith(".tmp"):
+                if name == LOCK_FILE:
+                    # A killed run's lock file (its flock died with it) is taken over by the next run, whose
+                    # clean exit removes it.
+                    if complete:
+                        problems.append(f"{when}: the lock file {name} was left behind")
+                elif TEMPORARY.match(os.path.basename(name)) or name.endswith(".tmp"):
                     if tmpfile or not TEMPORARY.match(os.path.basename(name)):
                         problems.append(f"{when}: temporary {name} visible")
                 elif name not in expected:
                     problems.append(f"{when}: unexpected file {name}")
                 elif read(path) != expected[name]:
                     problems.append(f"{when}: {name} differs from the uninterrupted run")
-            if complete and set(n for n in files_under(out) if not TEMPORARY.match(os.path.basename(n))) != set(expected):
+            if complete and set(n for n in files_under(out)
+                                if not TEMPORARY.match(os.path.basename(n)) and n != LOCK_FILE) != set(expected):
                 problems.append(f"{when}: the finished folder lacks {sorted(set(expected) - set(files_under(out)))}")
 
         kills, runs, rounds = 0, 0, 0
