@@ -44,24 +44,43 @@ CoverMap makeCoverMap(const GrassMap& map, const Atlas& atlas, const VegetationP
 
 CoverMap makeCoverMap(const GrassMap& map, std::span<const CategoryLook> looks, const VegetationParams& params) {
     require(looks.size() >= params.categoryCount, "makeCoverMap: one look per vegetation category");
-    CoverMap cover{.width = map.width(), .height = map.height(), .origin = params.worldOrigin, .size = params.tileSize};
-    cover.texels.resize(size_t(map.width()) * map.height());
+    // A map finer than kMaxCoverMapEdge is read in blocks of f x f texels (clipped at the far edges): a cover texel
+    // of a 16384^2 map cost 16 bytes here and 8 more on the GPU (6 GB for a 64x48 render), for a colour seen from
+    // beyond the far LOD limit. The cover is linear in the densities, so the block's mean densities give exactly
+    // the block's mean hidden area and its area-weighted colour; f = 1 reads every texel as it is.
+    const uint32_t f = std::max({1u, (map.width() + kMaxCoverMapEdge - 1) / kMaxCoverMapEdge,
+                                 (map.height() + kMaxCoverMapEdge - 1) / kMaxCoverMapEdge});
+    CoverMap cover{.width = (map.width() + f - 1) / f,
+                   .height = (map.height() + f - 1) / f,
+                   .origin = params.worldOrigin,
+                   .size = params.tileSize};
+    cover.texels.resize(size_t(cover.width) * cover.height);
     const std::vector<float>& values = map.values();
-    for (size_t texel = 0; texel < cover.texels.size(); ++texel) {
-        glm::dvec3 colour(0.0);
-        double area = 0.0;
-        for (uint32_t channel = 0; channel < map.channels(); ++channel) {
-            const int32_t c = params.channelCategory[channel];
-            if (c == kUnusedChannel) continue;
-            const double density =
-                double(values[texel * map.channels() + channel]) * params.categories[size_t(c)].density *
-                params.densityMultiplier;
-            const double hidden = density * looks[size_t(c)].area;
-            colour += hidden * glm::dvec3(looks[size_t(c)].colour);
-            area += hidden;
+    const uint32_t channels = map.channels();
+    std::vector<double> density(channels);
+    for (uint32_t row = 0; row < cover.height; ++row)
+        for (uint32_t column = 0; column < cover.width; ++column) {
+            std::fill(density.begin(), density.end(), 0.0);
+            const uint32_t y1 = std::min(map.height(), (row + 1) * f), x1 = std::min(map.width(), (column + 1) * f);
+            for (uint32_t y = row * f; y < y1; ++y)
+                for (uint32_t x = column * f; x < x1; ++x)
+                    for (uint32_t channel = 0; channel < channels; ++channel)
+                        density[channel] += double(values[(size_t(y) * map.width() + x) * channels + channel]);
+            const double texels = double(y1 - row * f) * double(x1 - column * f);
+            glm::dvec3 colour(0.0);
+            double area = 0.0;
+            for (uint32_t channel = 0; channel < channels; ++channel) {
+                const int32_t c = params.channelCategory[channel];
+                if (c == kUnusedChannel) continue;
+                const double mean = f == 1 ? density[channel] : density[channel] / texels;
+                const double hidden =
+                    mean * params.categories[size_t(c)].density * params.densityMultiplier * looks[size_t(c)].area;
+                colour += hidden * glm::dvec3(looks[size_t(c)].colour);
+                area += hidden;
+            }
+            cover.texels[size_t(row) * cover.width + column] =
+                area > 0.0 ? glm::vec4(glm::vec3(colour / area), float(area)) : glm::vec4(0.0f);
         }
-        cover.texels[texel] = area > 0.0 ? glm::vec4(glm::vec3(colour / area), float(area)) : glm::vec4(0.0f);
-    }
     return cover;
 }
 

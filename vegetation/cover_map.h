@@ -35,7 +35,12 @@ struct CoverMap {
     float size = 0.0f;             // tile edge, metres
 };
 
-// The cover of the map's tile (origin and size from params), texel for texel of the grass map.
+// Largest cover map edge: a finer grass map is averaged in square blocks (about 0.25 m a texel on a 500 m tile).
+inline constexpr uint32_t kMaxCoverMapEdge = 2048;
+
+// The cover of the map's tile (origin and size from params), texel for texel of the grass map up to
+// kMaxCoverMapEdge per edge; beyond, each texel covers f x f grass-map texels (f the least that fits; the blocks of
+// the last row and column are clipped to the map).
 CoverMap makeCoverMap(const GrassMap& map, const Atlas& atlas, const VegetationParams& params);
 // The same from the categories' looks (a world computes them once for all its tiles).
 CoverMap makeCoverMap(const GrassMap& map, std::span<const CategoryLook> looks, const VegetationParams& params);
