@@ -1,12 +1,12 @@
 #include "dataset/fingerprint.h"
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "io/sha256.h"
 #include "scene/scene.h"
 
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -112,11 +112,7 @@ std::string datasetFileText(const nlohmann::json& fingerprint) {
 }
 
 nlohmann::json readDatasetFingerprint(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    require(bool(file), "cannot read '" + path + "'");
-    std::stringstream text;
-    text << file.rdbuf();
-    const nlohmann::json json = nlohmann::json::parse(text.str(), nullptr, false);
+    const nlohmann::json json = nlohmann::json::parse(readInputFile(path, "dataset description"), nullptr, false);
     require(json.is_object() && json.value("format", "") == kFormat && json.contains("fingerprint") &&
                 json["fingerprint"].is_object(),
             "'" + path + "' is not a sward dataset description (expected {\"format\": \"" + kFormat +

@@ -1,6 +1,7 @@
 #include "eval/dataset_reader.h"
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "dataset/naming.h"
 #include "io/image_io.h"
 
@@ -9,7 +10,7 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 
 namespace fs = std::filesystem;
 
@@ -48,8 +49,7 @@ std::vector<uint32_t> listDatasetFrames(const std::string& dir, const char* fold
 
 std::map<uint32_t, cv::Matx44d> readLeftPoses(const std::string& dir) {
     const std::string path = dir + "/" + kFrameLogFile;
-    std::ifstream file(path, std::ios::binary);
-    require(bool(file), "cannot read '" + path + "': not a complete sward dataset");
+    std::istringstream file(readInputFile(path, "frame log (not a complete sward dataset?)"));
     std::map<uint32_t, cv::Matx44d> poses;
     uint32_t lineNumber = 0;
     for (std::string line; std::getline(file, line);) {

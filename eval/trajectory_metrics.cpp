@@ -1,11 +1,11 @@
 #include "eval/trajectory_metrics.h"
 
 #include "common/error.h"
+#include "common/input_file.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 namespace sward {
@@ -103,8 +103,7 @@ Pose relativePose(const Pose& a, const Pose& b) {
 }
 
 std::vector<Pose> readKittiPoses(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    require(bool(file), "cannot read pose file '" + path + "'");
+    std::istringstream file(readInputFile(path, "pose file"));
     std::vector<Pose> poses;
     uint32_t lineNumber = 0;
     for (std::string line; std::getline(file, line);) {

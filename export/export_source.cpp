@@ -1,6 +1,7 @@
 #include "export/export_source.h"
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "dataset/fingerprint.h"
 #include "dataset/naming.h"
 #include "io/disparity_files.h"
@@ -10,7 +11,7 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <string_view>
 
 namespace sward {
@@ -29,8 +30,7 @@ glm::dmat4 poseOf(const nlohmann::json& rows) {
 // Every record of frames.jsonl, by frame number; also sets the camera from the first record.
 std::vector<ExportFrame> readFrameLog(const std::string& dir, ExportCamera& camera, bool& stereo) {
     const std::string path = dir + "/" + kFrameLogFile;
-    std::ifstream file(path, std::ios::binary);
-    require(bool(file), "cannot read '" + path + "': not a complete sward dataset");
+    std::istringstream file(readInputFile(path, "frame log (not a complete sward dataset?)"));
     std::vector<ExportFrame> frames;
     uint32_t lineNumber = 0;
     for (std::string line; std::getline(file, line);) {

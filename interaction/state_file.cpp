@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/input_file.h"
 #include "vegetation/vegetation_params.h"
 
 #include "shared/gpu_layout.h"
@@ -11,7 +12,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 
 namespace sward {
@@ -85,14 +85,11 @@ TrackBlocks readTracks(const std::vector<uint8_t>& bytes, size_t at, const std::
 
 // The whole file, refused from its length when longer than `maxBytes` (before it is read into memory).
 std::vector<uint8_t> readStateBytes(const std::string& path, uint64_t maxBytes, const std::string& noun) {
-    std::ifstream in(path, std::ios::binary);
-    require(bool(in), path + ": cannot open the " + noun);
-    std::error_code ec;
-    const uint64_t size = std::filesystem::file_size(path, ec);
-    require(!ec, path + ": cannot read the " + noun);
+    // The input door: a FIFO or a device is refused without blocking.
+    const uint64_t size = openInputFile(path, noun).size();
     require(size <= maxBytes, path + ": not a valid " + noun + ": " + std::to_string(size) +
                                   " bytes, more than the largest valid state (" + std::to_string(maxBytes) + " bytes)");
-    return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return readInputBytes(path, noun, maxBytes);
 }
 
 // Magic, a header and checksum's length, and the version (the uint32 after the magic) of a state file.

@@ -3,13 +3,13 @@
 #include "io/image_io.h"
 
 #include "common/error.h"
+#include "common/input_file.h"
 
 #include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <map>
@@ -27,13 +27,9 @@ void requireSize(const std::string& path, uint32_t width, uint32_t height, size_
 }
 
 std::string readWholeFile(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    require(bool(file),
-            "cannot open '" + path + "': " + (std::filesystem::exists(path) ? "permission denied" : "no such file"));
-    std::stringstream text;
-    text << file.rdbuf();
-    require(!file.bad(), "cannot read '" + path + "'");
-    return text.str();
+    std::error_code ec;
+    require(std::filesystem::exists(path, ec), "cannot open '" + path + "': no such file");
+    return readInputFile(path, "file"); // the input door: a FIFO or a device is refused without blocking
 }
 
 // Reads the next whitespace-delimited token of a PFM header; PFM allows any whitespace between fields.

@@ -3,9 +3,11 @@
 is expected, and a sidecar added between two runs of one dataset."""
 
 import os
+import shutil
 import subprocess
 
-from cases import Case, base_scene, write_scene, grey_png, png_bytes, triangle_gltf, with_object, atlas, scene_with
+from cases import (Case, base_scene, write_scene, grey_png, png_bytes, triangle_gltf, with_object, atlas, scene_with,
+                   eval_case, export_case)
 
 OUTSIDE_AUX_XML = "<PAMDataset><Metadata><MDI key=\"k\">v</MDI></Metadata></PAMDataset>\n"
 
@@ -94,6 +96,23 @@ def sidecar_added_between_runs(env):
     return [path, "--out", env.out]
 
 
+def fifo_instead_of(relative):
+    """A dataset whose file `relative` is a FIFO (reading it would wait for a writer forever)."""
+    def break_it(dataset, env):
+        os.remove(os.path.join(dataset, relative))
+        os.mkfifo(os.path.join(dataset, relative))
+    return break_it
+
+
+def pose_file_fifo(env):
+    dataset = env.path("dataset")
+    shutil.copytree(env.base_dataset, dataset)
+    fifo_path = env.path("poses.txt")
+    os.mkfifo(fifo_path)
+    env.out = env.path("report")
+    return ["odometry", dataset, "--poses", fifo_path, "--out", env.out]
+
+
 CASES = [
     Case("land_cover .aux.xml symlinked outside the scene folder", "sward-render",
          scene_with(land_cover_with(symlink_outside)), 1, r"cover\.png\.aux\.xml.*outside the scene's folder"),
@@ -112,4 +131,9 @@ CASES = [
     Case("scene file a FIFO", "sward-render", scene_fifo, 1, r"scene\.json.*not a regular file"),
     Case("land_cover .aux.xml added between two runs (resume)", "sward-render", sidecar_added_between_runs, 1,
          r"land_cover\.file/cover\.png\.aux\.xml"),
+    eval_case("dataset calib.txt a FIFO", fifo_instead_of("calib.txt"), r"calib\.txt.*not a regular file"),
+    Case("pose file a FIFO (sward-eval odometry --poses)", "sward-eval", pose_file_fifo, 1,
+         r"poses\.txt.*not a regular file", needs_dataset=True),
+    export_case("sward-export frames.jsonl a FIFO", fifo_instead_of("frames.jsonl"),
+                r"frames\.jsonl.*not a regular file", "--layout", "colmap"),
 ]
