@@ -172,6 +172,15 @@ int closeFile(void* file) {
     return 0;
 }
 
+// GDAL's settings stay as they are, on purpose:
+// - PAM stays on (GDAL_PAM_ENABLED): its .aux.xml can carry a raster's nodata, georeferencing and metadata, and it
+//   is opened through this door like any companion, so it is confined, regular and hashed into the fingerprint.
+//   Its writes are refused (openFile takes reads only).
+// - GDAL_DISABLE_READDIR_ON_OPEN is not set: the door answers GDAL's question for the raster's siblings itself
+//   (siblingFiles) and lists no folder (readFolder), so GDAL never reads a folder through it (EMPTY_DIR changes
+//   nothing here; RasterDoor's tests pass with it).
+// Both are process-wide settings, which would also change every other GDAL user of the process (a Python
+// program that imports sward and rasterio).
 void installHandler() {
     static std::once_flag once;
     std::call_once(once, [] {
