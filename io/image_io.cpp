@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -98,7 +99,10 @@ std::string decodeFailure(const std::string& path) {
 
 } // namespace
 
-ImageData decodePng(const std::string& path, const std::vector<char>& bytes, uint32_t maxEdge) {
+namespace {
+
+// The header's checks, before anything is decoded: edges, bit depth, and a size its image data can hold.
+PngHeader checkedPngHeader(const std::string& path, const std::vector<char>& bytes, uint32_t maxEdge) {
     PngHeader header = readPngHeader(path, bytes);
     requireEdges(path, header.width, header.height, std::min(maxEdge, kMaxImageEdge));
     const bool palette = header.colorType == 3;
@@ -106,6 +110,14 @@ ImageData decodePng(const std::string& path, const std::vector<char>& bytes, uin
             "image '" + path + "' has unsupported bit depth " + std::to_string(header.bitDepth) +
                 " (PNG images must have 8 or 16 bits per sample)");
     requirePlausiblePngSize(path, header, compressedPngBytes(path, bytes));
+    return header;
+}
+
+} // namespace
+
+ImageData decodePng(const std::string& path, const std::vector<char>& bytes, uint32_t maxEdge) {
+    const PngHeader header = checkedPngHeader(path, bytes, maxEdge);
+    const bool palette = header.colorType == 3;
     // Palette images decode to RGBA at most; stb_image's copy (1 or 2 bytes a sample) lives beside the floats.
     static constexpr uint32_t kDecodedChannels[7] = {1, 0, 3, 4, 2, 0, 4};
     requireDecodeBudget(path, header.width, header.height, kDecodedChannels[header.colorType],
@@ -133,6 +145,38 @@ ImageData decodePng(const std::string& path, const std::vector<char>& bytes, uin
     image.height = uint32_t(height);
     image.channels = uint32_t(channels);
     return image;
+}
+
+std::vector<unsigned char> decodePngRgba8(const std::string& path, const std::vector<char>& bytes, uint32_t maxEdge,
+                                          uint32_t& width, uint32_t& height) {
+    const PngHeader header = checkedPngHeader(path, bytes, maxEdge);
+    std::vector<unsigned char> rgba;
+    if (header.colorType != 3 && header.bitDepth == 16) {
+        // Rounded from the float samples, as before: 16-bit textures keep their exact 8-bit values.
+        const ImageData image = decodePng(path, bytes, maxEdge);
+        rgba.resize(size_t(image.width) * image.height * 4);
+        for (size_t p = 0; p < size_t(image.width) * image.height; ++p) {
+            const float* s = &image.samples[p * image.channels];
+            const bool colour = image.channels >= 3;
+            const float rgbaf[4] = {s[0], colour ? s[1] : s[0], colour ? s[2] : s[0],
+                                    image.channels == 4 ? s[3] : image.channels == 2 ? s[1] : 1.0f};
+            for (int c = 0; c < 4; ++c) rgba[4 * p + size_t(c)] = (unsigned char)std::lround(rgbaf[c] * 255.0f);
+        }
+        width = image.width, height = image.height;
+        return rgba;
+    }
+    // 8 bits a sample straight to RGBA (stb_image widens grey, grey + alpha and RGB as above): the output and the
+    // decoder's inflated rows, never a float per sample (an 8192^2 texture took 1 GiB more through floats).
+    requireDecodeBudget(path, header.width, header.height, 4, 2);
+    int w = 0, h = 0, channels = 0;
+    std::unique_ptr<stbi_uc, void (*)(void*)> data(
+        stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()),
+                              int(std::min<size_t>(bytes.size(), INT32_MAX)), &w, &h, &channels, 4),
+        stbi_image_free);
+    if (!data) throw Error(decodeFailure(path));
+    rgba.assign(data.get(), data.get() + size_t(w) * h * 4);
+    width = uint32_t(w), height = uint32_t(h);
+    return rgba;
 }
 
 namespace {

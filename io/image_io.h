@@ -45,5 +45,9 @@ std::string lowerExtension(const std::string& path);
 // Decodes a PNG held in memory with the same checks; `path` names it in errors (e.g. "'ground.glb' image 2").
 // `maxEdge` (at most kMaxImageEdge) is checked against the header before anything is decoded.
 ImageData decodePng(const std::string& path, const std::vector<char>& bytes, uint32_t maxEdge = kMaxImageEdge);
+// The same PNG as 8-bit RGBA (grey g -> g, g, g, 255; grey + alpha -> g, g, g, a; RGB -> r, g, b, 255; 16-bit samples
+// rounded to 8 bits), with the same checks, sets width and height: 8-bit images never pass through floats.
+std::vector<unsigned char> decodePngRgba8(const std::string& path, const std::vector<char>& bytes, uint32_t maxEdge,
+                                          uint32_t& width, uint32_t& height);
 
 } // namespace sward

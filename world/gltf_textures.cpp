@@ -35,25 +35,12 @@ std::string percentDecoded(const std::string& uri) {
     return out;
 }
 
-// Any PNG layout (grey, grey + alpha, RGB, RGBA; 8 or 16 bits) as 8-bit RGBA.
-std::vector<unsigned char> toRgba8(const ImageData& png) {
-    std::vector<unsigned char> rgba(size_t(png.width) * png.height * 4);
-    for (size_t p = 0; p < size_t(png.width) * png.height; ++p) {
-        const float* s = &png.samples[p * png.channels];
-        const float grey = s[0];
-        const float rgbaf[4] = {png.channels >= 3 ? s[0] : grey, png.channels >= 3 ? s[1] : grey,
-                                png.channels >= 3 ? s[2] : grey,
-                                png.channels == 4 ? s[3] : png.channels == 2 ? s[1] : 1.0f};
-        for (int c = 0; c < 4; ++c) rgba[4 * p + size_t(c)] = (unsigned char)std::lround(rgbaf[c] * 255.0f);
-    }
-    return rgba;
-}
-
 // PNG bytes as a ground texture, at most kMaxGroundTextureEdge per edge (checked from the header, before a pixel
 // is decoded); `name` names them in errors.
 GroundTexture decodeTexture(const std::string& name, const std::vector<char>& bytes) {
-    const ImageData png = decodePng(name, bytes, kMaxGroundTextureEdge);
-    return GroundTexture{png.width, png.height, toRgba8(png)};
+    GroundTexture texture;
+    texture.rgba = decodePngRgba8(name, bytes, kMaxGroundTextureEdge, texture.width, texture.height);
+    return texture;
 }
 
 } // namespace

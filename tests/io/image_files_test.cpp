@@ -184,6 +184,31 @@ TEST(PngFiles, ADecodeOverTheByteBudgetIsRefusedFromTheHeader) {
                               "of 2048 MiB"});
 }
 
+// Textures decode straight to 8-bit RGBA, with the values the float path gave (grey widened, alpha 255 when absent).
+TEST(PngFiles, Rgba8DecodingMatchesTheFloatSamplesRounded) {
+    const std::string dir = sward::test::tempDir().string();
+    for (uint8_t bits : {uint8_t(8), uint8_t(16)})
+        for (uint32_t channels : {1u, 2u, 3u, 4u}) {
+            const std::string path = dir + "/t" + std::to_string(bits) + "-" + std::to_string(channels) + ".png";
+            std::vector<float> samples(3 * 2 * channels);
+            for (size_t i = 0; i < samples.size(); ++i) samples[i] = float((i * 37) % 101) / 100.0f;
+            sward::test::writePng(path, 3, 2, channels, bits, samples);
+            const ImageData image = loadImage(path);
+            uint32_t width = 0, height = 0;
+            const std::vector<unsigned char> rgba = decodePngRgba8(path, readAll(path), kMaxImageEdge, width, height);
+            ASSERT_EQ(width, 3u);
+            ASSERT_EQ(height, 2u);
+            ASSERT_EQ(rgba.size(), 3u * 2 * 4);
+            for (uint32_t p = 0; p < 6; ++p) {
+                auto at = [&](uint32_t c) { return std::lround(image.samples[p * channels + c] * 255.0f); };
+                const bool colour = channels >= 3;
+                const long expected[4] = {at(0), colour ? at(1) : at(0), colour ? at(2) : at(0),
+                                          channels == 4 ? at(3) : channels == 2 ? at(1) : 255};
+                for (int c = 0; c < 4; ++c)
+                    EXPECT_EQ(long(rgba[4 * p + size_t(c)]), expected[c]) << path << " pixel " << p << " channel " << c;
+            }
+        }
+}
 // A ground texture's edge limit is checked before the decode (a 16384^2 texture was decoded, 3.9 GB, first).
 TEST(PngFiles, ACallersEdgeLimitIsCheckedBeforeTheDecode) {
     const std::vector<char> bytes = pngHeaderWithData(16384, 16, 6, 4000);
