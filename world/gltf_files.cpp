@@ -65,7 +65,7 @@ bool readBufferFile(std::vector<unsigned char>* out, std::string*, const std::st
     files.lastUri = files.uriOf(path);
     try {
         // The door: a FIFO never blocks, a device is refused; what is read is logged for the fingerprint.
-        *out = readInputBytes(opened, "glTF file");
+        *out = readInputBytes(opened, path == files.gltfPath ? "glTF file" : "buffer file of '" + files.gltfPath + "'");
         files.assets.folders().record(files.gltfPath, std::filesystem::weakly_canonical(opened).string());
         return true;
     } catch (const Error& e) {
