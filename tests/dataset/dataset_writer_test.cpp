@@ -1,4 +1,5 @@
-// The dataset writer: which files a frame has, and that writeFrame writes exactly those, named by dataset/naming.h.
+// The dataset writer: which files a frame has, and that writeFrame writes exactly those, named by dataset/naming.h;
+// one writer per folder (shards together) and no write or removal through a link.
 #include "dataset/dataset_writer.h"
 #include "test_files.h"
 
@@ -14,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <unistd.h>
 
 using namespace sward;
 using sward::test::errorOf;
@@ -53,8 +55,9 @@ TEST(DatasetWriter, FrameFilesAreNamedByTheNamingTable) {
     EXPECT_EQ(monoFiles[0], frameFile(kLeftFolder, 7, ".exr"));
     const std::vector<std::string> stereoFiles = stereo.frameFiles(7);
     EXPECT_EQ(stereoFiles.size(), 17u);
-    for (const char* file : {"normal/000007.exr", "normal_right/000007.exr", "disparity/000007.pfm", "disparity_right/000007.pfm",
-                             "depth_right/000007.exr", "occlusion/000007.png", "occlusion_right/000007.png"})
+    for (const char* file :
+         {"normal/000007.exr", "normal_right/000007.exr", "disparity/000007.pfm", "disparity_right/000007.pfm",
+          "depth_right/000007.exr", "occlusion/000007.png", "occlusion_right/000007.png"})
         EXPECT_NE(std::find(stereoFiles.begin(), stereoFiles.end(), file), stereoFiles.end()) << file;
     EXPECT_EQ(mono.datasetFiles(), (std::vector<std::string>{kFrameLogFile, kSceneCopyFile, kClassesFile}));
     EXPECT_EQ(stereo.datasetFiles(),
@@ -118,8 +121,9 @@ TEST(DatasetWriter, AnotherFingerprintIsRefusedBeforeAnythingIsWritten) {
     other["resolution"] = "4x2";
     DatasetWriter second(dir, false);
     EXPECT_EQ(errorOf([&] { second.check(other, false, 0); }),
-              "'" + dir + "' was rendered with --resolution 2x1, this run asks for --resolution 4x2; use --overwrite "
-              "to start over or choose another --out");
+              "'" + dir +
+                  "' was rendered with --resolution 2x1, this run asks for --resolution 4x2; use --overwrite "
+                  "to start over or choose another --out");
     EXPECT_EQ(listing(dir), before);
     EXPECT_EQ(errorOf([&] { second.check(kPrint, false, 0); }), "") << "the same fingerprint resumes";
     EXPECT_EQ(errorOf([&] { second.check(other, true, 0); }), "") << "--overwrite";
@@ -185,7 +189,8 @@ TEST(DatasetWriter, DiscardCreatedLeavesTheFolderAsFound) {
 TEST(DatasetWriter, CheckRefusesAFolderWithoutRoomOrUnderAFile) {
     const std::string dir = freshDir();
     std::filesystem::create_directories(dir);
-    const std::string space = errorOf([&] { DatasetWriter(dir + "/out", true).check(kPrint, false, ~uint64_t(0) / 2); });
+    const std::string space =
+        errorOf([&] { DatasetWriter(dir + "/out", true).check(kPrint, false, ~uint64_t(0) / 2); });
     EXPECT_NE(space.find("not enough space in '" + dir + "/out' for one frame"), std::string::npos) << space;
     touch(dir + "/file");
     const std::string underFile = errorOf([&] { DatasetWriter(dir + "/file/out", true).check(kPrint, false, 0); });
@@ -209,6 +214,54 @@ TEST(DatasetWriter, ConcurrentShardsWithAnotherFingerprintAreRefusedAtBegin) {
     DatasetWriter first(dir, false);
     first.begin(kPrint, false);
     DatasetWriter second(dir, false);
-    EXPECT_NE(errorOf([&] { second.begin({{"resolution", "9x9"}}, false); }).find("--resolution 9x9"),
+    EXPECT_NE(errorOf([&] {
+                  second.begin({{"resolution", "9x9"}}, false);
+              }).find("--resolution 9x9"),
               std::string::npos);
+}
+
+TEST(DatasetWriter, ALinkAmongTheDatasetsNamesIsRefusedAndOverwriteNeverRemovesThroughIt) {
+    const std::string dir = freshDir(), elsewhere = dir + "-elsewhere";
+    std::filesystem::remove_all(elsewhere);
+    {
+        DatasetWriter first(dir, false);
+        first.begin(kPrint, false);
+        first.writeFrame(0, tinyFrame(false), Camera{}, 0.1);
+    }
+    std::filesystem::rename(dir + "/left", elsewhere); // left/ is now a link to a folder outside the dataset
+    std::filesystem::create_directory_symlink(elsewhere, dir + "/left");
+    const std::vector<std::string> outside = listing(elsewhere);
+    DatasetWriter second(dir, false);
+    for (bool overwrite : {false, true})
+        EXPECT_EQ(errorOf([&] { second.check(kPrint, overwrite, 0); }),
+                  "'" + dir +
+                      "/left' is a symbolic link: sward never writes through links in an output folder; "
+                      "remove it or choose another --out");
+    EXPECT_NE(errorOf([&] { second.begin(kPrint, true); }).find("is a symbolic link"), std::string::npos)
+        << "begin() checks again";
+    EXPECT_EQ(listing(elsewhere), outside);
+}
+
+TEST(DatasetWriter, ASecondWriterIsRefusedNamingTheFirstAndAFailedRunLeavesNoLockFile) {
+    const std::string dir = freshDir();
+    DatasetWriter first(dir, false);
+    first.lock(false);
+    first.begin(kPrint, false);
+    const std::string held =
+        "'" + dir + "' is being written by another sward process (pid " + std::to_string(::getpid()) + ")";
+    EXPECT_EQ(errorOf([&] { DatasetWriter(dir, false).check(kPrint, false, 0); }).rfind(held, 0), 0u);
+    EXPECT_EQ(errorOf([&] { DatasetWriter(dir, false).lock(true); }).rfind(held, 0), 0u) << "a shard beside it";
+    first.discardCreated();
+    EXPECT_FALSE(std::filesystem::exists(dir)) << "the run's folder, lock file included, is gone";
+}
+
+TEST(DatasetWriter, ShardsShareTheFolderAndTheLastLeavesNoLockFile) {
+    const std::string dir = freshDir();
+    {
+        DatasetWriter shard0(dir, false), shard1(dir, false);
+        shard0.lock(true);
+        shard1.lock(true);
+        EXPECT_NE(errorOf([&] { DatasetWriter(dir, false).lock(false); }), "") << "a whole-range run beside shards";
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir + "/" + kOutputLockFile));
 }
