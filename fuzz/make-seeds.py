@@ -179,6 +179,20 @@ def main():
     put("calib", "minimal.txt", "width=4\nheight=3\nndisp=16\nbaseline=1e2\n"
                                 "cam0=[1 0 2; 0 1 1.5; 0 0 1]\ncam1=[1 0 2; 0 1 1.5; 0 0 1]\n")
 
+    # fuzz_raster: the first byte picks the file name (0: input.tif, 1: input.asc, 2: input.png, ...).
+    grid = "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 10\nNODATA_value -9999\n1 2 3\n4 -9999 6\n"
+    put("raster", "grid.asc.bin", b"\x01" + grid.encode())
+    put("raster", "codes.png.bin", b"\x02" + png(3, 1, 8, 0, [bytes([10, 30, 80])]))
+    # The same grid as a GeoTIFF in UTM 33N: gdal_translate -of GTiff -a_srs EPSG:32633 grid.asc utm.tif
+    put("raster", "utm.tif.bin", b"\x00" + base64.b64decode(
+        "SUkqAAgAAAAQAAABAwABAAAAAwAAAAEBAwABAAAAAgAAAAIBAwABAAAAIAAAAAMBAwABAAAAAQAAAAYBAwABAAAAAQAAABEBBAAB"
+        "AAAAegEAABUBAwABAAAAAQAAABYBAwABAAAAAgAAABcBBAABAAAAGAAAABwBAwABAAAAAQAAAFMBAwABAAAAAgAAAA6DDAADAAAA"
+        "1AAAAIKEDAAGAAAA7AAAAK+HAwAgAAAAHAEAALGHAgAeAAAAXAEAAIGkAgAGAAAAzgAAAAAAAAAtOTk5OQAAAAAAAAAkQAAAAAAA"
+        "ACRAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAADRAAAAAAAAAAAABAAEAAAAHAAAEAAABAAEA"
+        "AQQAAAEAAQACBLGHFgAAAAEIsYcHABYABggAAAEAjiMADAAAAQB5fwQMAAABACkjV0dTIDg0IC8gVVRNIHpvbmUgMzNOfFdHUyA4"
+        "NHwAAQAAAAIAAAADAAAABAAAAPHY//8GAAAA"
+    ))
+
 
 if __name__ == "__main__":
     main()
