@@ -159,7 +159,9 @@ std::vector<unsigned char> decodePngRgba8(const std::string& path, const std::ve
             const float* s = &image.samples[p * image.channels];
             const bool colour = image.channels >= 3;
             const float rgbaf[4] = {s[0], colour ? s[1] : s[0], colour ? s[2] : s[0],
-                                    image.channels == 4 ? s[3] : image.channels == 2 ? s[1] : 1.0f};
+                                    image.channels == 4   ? s[3]
+                                    : image.channels == 2 ? s[1]
+                                                          : 1.0f};
             for (int c = 0; c < 4; ++c) rgba[4 * p + size_t(c)] = (unsigned char)std::lround(rgbaf[c] * 255.0f);
         }
         width = image.width, height = image.height;
@@ -169,10 +171,10 @@ std::vector<unsigned char> decodePngRgba8(const std::string& path, const std::ve
     // decoder's inflated rows, never a float per sample (an 8192^2 texture took 1 GiB more through floats).
     requireDecodeBudget(path, header.width, header.height, 4, 2);
     int w = 0, h = 0, channels = 0;
-    std::unique_ptr<stbi_uc, void (*)(void*)> data(
-        stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()),
-                              int(std::min<size_t>(bytes.size(), INT32_MAX)), &w, &h, &channels, 4),
-        stbi_image_free);
+    const auto* encoded = reinterpret_cast<const stbi_uc*>(bytes.data());
+    const int size = int(std::min<size_t>(bytes.size(), INT32_MAX));
+    std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load_from_memory(encoded, size, &w, &h, &channels, 4),
+                                                   stbi_image_free);
     if (!data) throw Error(decodeFailure(path));
     rgba.assign(data.get(), data.get() + size_t(w) * h * 4);
     width = uint32_t(w), height = uint32_t(h);

@@ -203,7 +203,9 @@ TEST(PngFiles, Rgba8DecodingMatchesTheFloatSamplesRounded) {
                 auto at = [&](uint32_t c) { return std::lround(image.samples[p * channels + c] * 255.0f); };
                 const bool colour = channels >= 3;
                 const long expected[4] = {at(0), colour ? at(1) : at(0), colour ? at(2) : at(0),
-                                          channels == 4 ? at(3) : channels == 2 ? at(1) : 255};
+                                          channels == 4   ? at(3)
+                                          : channels == 2 ? at(1)
+                                                          : 255};
                 for (int c = 0; c < 4; ++c)
                     EXPECT_EQ(long(rgba[4 * p + size_t(c)]), expected[c]) << path << " pixel " << p << " channel " << c;
             }

@@ -240,8 +240,8 @@ TEST(GltfMesh, TexturesThatShareAnImageAreDecodedOnce) {
     j["meshes"][0]["primitives"] = nlohmann::json::array();
     for (int i = 0; i < 3; ++i) {
         j["textures"].push_back({{"source", 0}});
-        j["materials"].push_back({{"name", "m" + std::to_string(i)},
-                                  {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", i}}}}}});
+        j["materials"].push_back(
+            {{"name", "m" + std::to_string(i)}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", i}}}}}});
         j["meshes"][0]["primitives"].push_back(
             {{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 2}}}, {"indices", 1}, {"material", i}});
     }
