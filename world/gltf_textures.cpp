@@ -45,22 +45,14 @@ GroundTexture decodeTexture(const std::string& name, const std::vector<char>& by
 
 } // namespace
 
-bool decodeGltfImage(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
-                     const unsigned char* bytes, int size, void* user) {
+bool decodeGltfImage(tinygltf::Image* image, int, std::string*, std::string*, int, int, const unsigned char* bytes,
+                     int size, void*) {
+    // Kept as PNG bytes: groundTexture decodes only the images a material uses, each once (decoding every embedded
+    // image here cost 256 MiB an 8192^2 image, used or not).
     if (!isPng(bytes, size)) return true; // refused later, and only if a ground material uses it
-    const std::string name = *static_cast<const std::string*>(user) + " image " + std::to_string(index);
-    try {
-        GroundTexture texture = decodeTexture(name, std::vector<char>(bytes, bytes + size));
-        image->image = std::move(texture.rgba);
-        image->width = int(texture.width);
-        image->height = int(texture.height);
-        image->component = 4;
-        image->bits = 8;
-        return true;
-    } catch (const Error& e) {
-        if (err) *err += e.what();
-        return false;
-    }
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+    return true;
 }
 
 GroundTexture groundTexture(const tinygltf::Model& model, int textureIndex, const std::string& what,
@@ -73,7 +65,9 @@ GroundTexture groundTexture(const tinygltf::Model& model, int textureIndex, cons
     const tinygltf::Image& image = model.images[size_t(source)];
     const std::string notPng = what + ": image " + std::to_string(source) +
                                " is not a PNG (ground textures are read from PNG only; export PNG images)";
-    if (!image.image.empty()) return GroundTexture{uint32_t(image.width), uint32_t(image.height), image.image};
+    if (image.as_is && !image.image.empty())
+        return decodeTexture(gltfPath + " image " + std::to_string(source),
+                             std::vector<char>(image.image.begin(), image.image.end()));
     require(!image.uri.empty() && image.uri.rfind("data:", 0) != 0, notPng);
     const std::string folder = std::filesystem::path(gltfPath).parent_path().string();
     const std::string path =

@@ -21,13 +21,13 @@ inline constexpr uint32_t kMaxGroundTextureEdge = 8192;
 inline constexpr uint64_t kMaxGroundTextureBytes = uint64_t(1) << 30;
 
 // tinygltf's image callback for grounds (embedded images: data uris and buffer views; tinygltf is built without
-// external image loading): `user` is the glTF's file name (const std::string*). PNG bytes become 8-bit RGBA in
-// image->image; any other format is left undecoded (an error only if a ground material uses it).
+// external image loading): a PNG's bytes are kept as they are in image->image (as_is), decoded by groundTexture
+// only if a material uses them; any other format is left out (an error only if a ground material uses it).
 bool decodeGltfImage(tinygltf::Image* image, int index, std::string* err, std::string* warn, int requestedWidth,
                      int requestedHeight, const unsigned char* bytes, int size, void* user);
 
-// The image of texture `textureIndex` as a GroundTexture: embedded images were decoded by decodeGltfImage; an
-// external one (uri) is read here, relative to the folder of `gltfPath` and only where `assets` allows, and logged
+// The image of texture `textureIndex` as a GroundTexture, decoded here: an embedded one as decodeGltfImage kept it,
+// an external one (uri) read relative to the folder of `gltfPath` and only where `assets` allows, and logged
 // in assets.folders() with `gltfPath` as its owner (it joins the dataset's fingerprint). Throws sward::Error naming
 // `what` for an index out of range, an image that is missing, refused, not a regular file or not a PNG.
 GroundTexture groundTexture(const tinygltf::Model& model, int textureIndex, const std::string& what,

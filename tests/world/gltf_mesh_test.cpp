@@ -10,6 +10,8 @@
 
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 using namespace sward;
 using namespace sward::test;
@@ -250,4 +252,38 @@ TEST(GltfMesh, TexturesThatShareAnImageAreDecodedOnce) {
     ASSERT_EQ(mesh.materials.size(), 3u);
     EXPECT_EQ(mesh.textures.size(), 1u);
     for (const GroundMaterial& m : mesh.materials) EXPECT_EQ(m.texture, 0);
+}
+
+// Embedded images are kept as PNG bytes at load and decoded only when a material uses them, once: an unused image
+// whose header claims 16384^2 costs nothing.
+TEST(GltfMesh, EmbeddedImagesAreDecodedOnlyWhenUsed) {
+    const fs::path dir = fs::canonical(tempDir());
+    writePng(dir / "tex.png", 2, 1, 3, 8, {1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f});
+    std::ifstream in(dir / "tex.png", std::ios::binary);
+    const std::vector<uint8_t> png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<uint8_t> huge = png;
+    for (size_t at : {16u, 20u}) huge[at] = 0, huge[at + 1] = 0, huge[at + 2] = 0x40, huge[at + 3] = 0; // 16384
+    std::vector<uint8_t> bytes = triangleBytes();
+    const float uvs[6] = {0, 0, 1, 0, 0, 1};
+    bytes.insert(bytes.end(), reinterpret_cast<const uint8_t*>(uvs), reinterpret_cast<const uint8_t*>(uvs) + 24);
+    nlohmann::json j = triangleJson("data:application/octet-stream;base64," + base64(bytes), bytes.size());
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 24}});
+    j["accessors"].push_back({{"bufferView", 2}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+    j["images"] = {{{"uri", "data:image/png;base64," + base64(huge)}},
+                   {{"uri", "data:image/png;base64," + base64(png)}}};
+    j["textures"] = {{{"source", 1}}, {{"source", 1}}};
+    j["materials"] = {{{"name", "a"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}},
+                      {{"name", "b"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 1}}}}}}};
+    const nlohmann::json primitive = j["meshes"][0]["primitives"][0];
+    j["meshes"][0]["primitives"] = nlohmann::json::array();
+    for (int i = 0; i < 2; ++i) {
+        nlohmann::json p = primitive;
+        p["attributes"]["TEXCOORD_0"] = 2;
+        p["material"] = i;
+        j["meshes"][0]["primitives"].push_back(p);
+    }
+    const TriangleMesh mesh = loadGltfMesh(writeJson(dir / "embedded.gltf", j));
+    ASSERT_EQ(mesh.textures.size(), 1u);
+    EXPECT_EQ(mesh.textures[0].width, 2u);
+    EXPECT_EQ(mesh.textures[0].rgba, (std::vector<uint8_t>{255, 0, 0, 255, 0, 0, 255, 255}));
 }
