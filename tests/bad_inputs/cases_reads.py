@@ -7,7 +7,7 @@ import shutil
 import subprocess
 
 from cases import (Case, base_scene, write_scene, grey_png, png_bytes, triangle_gltf, with_object, atlas, scene_with,
-                   eval_case, export_case)
+                   eval_case, export_case, ground_mesh)
 
 OUTSIDE_AUX_XML = "<PAMDataset><Metadata><MDI key=\"k\">v</MDI></Metadata></PAMDataset>\n"
 
@@ -136,4 +136,23 @@ CASES = [
          r"poses\.txt.*not a regular file", needs_dataset=True),
     export_case("sward-export frames.jsonl a FIFO", fifo_instead_of("frames.jsonl"),
                 r"frames\.jsonl.*not a regular file", "--layout", "colmap"),
+]
+
+
+def ground_image(uri):
+    """A glTF ground whose material's base-colour texture is the image `uri`."""
+    def add(gltf):
+        gltf["meshes"][0]["primitives"][0]["material"] = 0
+        gltf["materials"] = [{"name": "grass", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+        gltf["textures"] = [{"source": 0}]
+        gltf["images"] = [{"uri": uri}]
+    return ground_mesh(triangle_gltf(image=add))
+
+
+CASES += [
+    Case("glTF ground image uri ../../../../../../../../etc/passwd", "sward-render",
+         scene_with(ground_image("../" * 8 + "etc/passwd")), 1,
+         r"image 0 uri: '(\.\./)+etc/passwd' resolves to /etc/passwd, outside the scene's folder"),
+    Case("glTF ground image uri /etc/passwd", "sward-render", scene_with(ground_image("/etc/passwd")), 1,
+         r"image 0 uri: '/etc/passwd' resolves to /etc/passwd, outside the scene's folder"),
 ]

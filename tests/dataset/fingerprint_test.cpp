@@ -119,6 +119,13 @@ TEST(Fingerprint, SceneAssetsListTheFilesTheLoadersOpenedRelativeToTheScene) {
     std::vector<std::string> keys;
     for (const SceneAsset& a : assets) keys.push_back(a.key);
     EXPECT_EQ(keys, (std::vector<std::string>{"grass_map", "objects[0].model", "objects[0].model/rover mesh.bin"}));
+    // The same file as a ground mesh: its images no material uses are not read either.
+    scene.terrain.meshPath = scene.objects[0].model;
+    loadGltfMesh(scene.terrain.meshPath, scene.assets);
+    keys.clear();
+    for (const SceneAsset& a : sceneAssets(scene)) keys.push_back(a.key);
+    EXPECT_EQ(keys, (std::vector<std::string>{"grass_map", "terrain.mesh.file", "terrain.mesh.file/rover mesh.bin",
+                                              "objects[0].model", "objects[0].model/rover mesh.bin"}));
     const nlohmann::json manifest = assetManifest(assets, dir.string());
     EXPECT_EQ(manifest.at("objects[0].model/rover mesh.bin").at("path"), "models/rover mesh.bin");
     EXPECT_EQ(manifest.at("grass_map").at("sha256"), assetHashes(assets).at("grass_map"));
