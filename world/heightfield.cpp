@@ -154,6 +154,18 @@ std::vector<float> gridHeights(const std::string& path, uint32_t width, uint32_t
     return heights;
 }
 
+// A heightmap's ground costs far more than its file: about 96 bytes a sample (the float height, the ground mesh's
+// 64-byte vertex on the host and again on the GPU, six indices a cell); an 8192^2 GeoTIFF of 0.3 MB took 6.2 GB and
+// then VK_ERROR_OUT_OF_DEVICE_MEMORY. Checked once the size is known, before the heights are copied.
+void requireHeightmapBudget(const std::string& path, uint32_t width, uint32_t height) {
+    const uint64_t samples = uint64_t(width) * height;
+    require(samples <= kMaxHeightmapSamples,
+            "heightfield '" + path + "' has " + std::to_string(width) + "x" + std::to_string(height) + " = " +
+                std::to_string(samples) + " samples: its ground would take about " +
+                std::to_string(samples * kHeightmapBytesPerSample >> 20) + " MiB, over the limit of " +
+                std::to_string(kMaxHeightmapSamples) + " samples (4096x4096); resample it (gdalwarp -tr)");
+}
+
 // The sample spacing of a GDAL raster: `spacing` when given, else its square pixels in metres.
 float rasterSpacing(const RasterBand& raster, float spacing) {
     if (spacing > 0.0f) return spacing;
@@ -180,6 +192,7 @@ Heightfield loadHeightfield(const std::string& path, float verticalScale, float 
         RasterReadOptions options;
         options.folders = folders;
         const RasterBand raster = readRasterBand(path, options);
+        requireHeightmapBudget(path, raster.width, raster.height);
         const float step = rasterSpacing(raster, spacing);
         std::vector<float> heights = gridHeights(
             path, raster.width, raster.height,
@@ -192,6 +205,7 @@ Heightfield loadHeightfield(const std::string& path, float verticalScale, float 
     }
     require(spacing > 0.0f, "heightfield '" + path + "' is a PNG / EXR without georeferencing: give its metres per pixel");
     ImageData image = loadImage(path);
+    requireHeightmapBudget(path, image.width, image.height);
     require(image.bitDepth != 8,
             "heightfield '" + path + "' is an 8-bit PNG; use a 16-bit PNG or a float EXR (8 bits give terraces)");
     require(image.channels == 1, "heightfield '" + path + "' has " + std::to_string(image.channels) +

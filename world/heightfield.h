@@ -70,14 +70,20 @@ struct ProceduralTerrainParams {
 // for an origin that is not a whole multiple of spacing (within 1e-6 relative) or beyond +-1e8 m.
 Heightfield makeProceduralTerrain(const ProceduralTerrainParams& params);
 
+// A loaded heightmap has at most kMaxHeightmapSamples samples: its ground costs about kHeightmapBytesPerSample bytes
+// a sample (about 1.5 GiB at the limit). The procedural terrain has its own limit (8192 cells a side).
+inline constexpr uint64_t kMaxHeightmapSamples = uint64_t(1) << 24;
+inline constexpr uint64_t kHeightmapBytesPerSample = 96;
+
 // Loads a heightfield from a single-channel 16-bit PNG (height = sample / 65535 * verticalScale + heightOffset), a
 // float OpenEXR or any single-band raster GDAL reads (io/raster_file.h; height = value * verticalScale +
 // heightOffset). The image is a top-down map with north (+y) up: its top row is the grid's last row (largest y),
 // and pixel (i, row) is the vertex at origin + spacing * (i, height - 1 - row). spacing 0 takes a GDAL raster's
 // georeferencing (square pixels of a projected coordinate system, in metres). Throws sward::Error naming the file
 // for a missing file, an unsupported format, an 8-bit PNG (too coarse: visible terraces), more than one channel,
-// a non-finite or nodata height, a height beyond 1e6 m, and spacing 0 without usable georeferencing. A GDAL
-// raster's companion files are read only inside `folders` (RasterReadOptions::folders) and logged there.
+// a non-finite or nodata height, a height beyond 1e6 m, more than kMaxHeightmapSamples samples, and spacing 0
+// without usable georeferencing. A GDAL raster's companion files are read only inside `folders`
+// (RasterReadOptions::folders) and logged there.
 Heightfield loadHeightfield(const std::string& path, float verticalScale, float spacing,
                             glm::vec2 origin = glm::vec2(0.0f), float heightOffset = 0.0f,
                             const InputFolders& folders = {});

@@ -13,10 +13,11 @@ import zlib
 from cases import Case, scene_with, set_key, triangle_gltf
 
 
-def zero_png(width, height, colour_type):
-    """An all-zero 8-bit PNG (colour type 2 RGB, 6 RGBA) of any size: about 1 KB of deflate per 1 MB of pixels."""
+def zero_png(width, height, colour_type, bits=8):
+    """An all-zero PNG (colour type 0 grey, 2 RGB, 6 RGBA; 8 or 16 bits) of any size: about 1 KB of deflate per 1 MB
+    of pixels."""
     channels = {0: 1, 2: 3, 6: 4}[colour_type]
-    row = b"\0" * (1 + width * channels)  # filter byte 0, zero samples
+    row = b"\0" * (1 + width * channels * bits // 8)  # filter byte 0, zero samples
     rows_per_block = max(1, (1 << 22) // len(row))
     blocks, rest = divmod(height, rows_per_block)
     first = zlib.compressobj(9, zlib.DEFLATED, -15)
@@ -29,7 +30,7 @@ def zero_png(width, height, colour_type):
 
     def chunk(kind, body):
         return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xffffffff)
-    header = struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0)
+    header = struct.pack(">IIBBBBB", width, height, bits, colour_type, 0, 0, 0)
     return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", idat) + chunk(b"IEND", b"")
 
 
@@ -107,6 +108,11 @@ CASES = [
          scene_with(with_file("dem.tif", lambda: claimed_tiff(16384, 16384),
                               set_key(["terrain"], {"heightmap": {"file": "dem.tif", "metres_per_pixel": 1}}))), 1,
          r"'terrain\.heightmap'.*dem\.tif' has size 16384x16384: 268435456 pixels, over the limit of 67108864"),
+    Case("heightmap 16-bit PNG of 8192x8192", "sward-render",
+         scene_with(with_file("dem.png", lambda: zero_png(8192, 8192, 0, 16),
+                              set_key(["terrain"], {"heightmap": {"file": "dem.png", "metres_per_pixel": 0.05}}))), 1,
+         r"'terrain\.heightmap'.*dem\.png' has 8192x8192 = 67108864 samples: its ground would take about 6144 MiB, "
+         r"over the limit of 16777216 samples \(4096x4096\)"),
     Case("land_cover TIFF of 150 bytes claiming 16384x16384", "sward-render",
          scene_with(with_file("cover.tif", lambda: claimed_tiff(16384, 16384),
                               set_key(["land_cover"], {"file": "cover.tif", "preset": "esa_worldcover"}))), 1,

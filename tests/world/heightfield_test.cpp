@@ -129,3 +129,14 @@ TEST(Heightfield, ProceduralOriginOffTheLatticeIsRefused) {
     p.origin = {101.0, 0.0};
     EXPECT_THROW(makeProceduralTerrain(p), Error);
 }
+
+// An 8192^2 GeoTIFF of 0.3 MB took 6.2 GB and then VK_ERROR_OUT_OF_DEVICE_MEMORY: the ground is priced once the
+// heightmap's size is known, before its heights are copied or meshed.
+TEST(HeightfieldErrors, AHeightmapOverTheSampleLimitIsRefusedNamingItsCost) {
+    const std::string path = (tempDir() / "big.png").string();
+    const uint32_t width = 4097, height = 4096; // 2^24 + 4096 samples
+    writePng16(path, width, height, 1, std::vector<uint16_t>(size_t(width) * height, 0));
+    expectError([&] { loadHeightfield(path, 1.0f, 1.0f); },
+                {path, "4097x4096 = 16781312 samples: its ground would take about 1536 MiB, over the limit of "
+                       "16777216 samples (4096x4096)"});
+}
