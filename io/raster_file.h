@@ -27,10 +27,10 @@ inline constexpr const char* kRasterDrivers[] = {"GTiff",          "PNG",  "JPEG
 
 // Largest raster read: each edge at most kMaxRasterEdge pixels and at most kMaxRasterPixels pixels in all, checked
 // from the header before any pixel is allocated, so a corrupt header cannot ask for more. The pixel budget prices
-// the whole chain, not only this read (8 bytes a pixel): a heightmap adds its float heights and the ground mesh
-// (about 13 bytes a pixel in all), a land cover its class index, box-filter planes and float grass map (about 32
-// bytes a pixel). 2^26 pixels (8192x8192, or 16384x4096) keeps a land cover within about 2 GiB; 16384x16384, a
-// 1.2 MB deflate GeoTIFF, took 3.4 GB (heightmap) and 8.3 GB then std::bad_alloc (land cover).
+// the chain behind the read (8 bytes a pixel): a land cover adds its class index, box-filter planes, float grass
+// map and far-band cover (an 8192x8192 one: 2.75 GB peak and 21 s on the tiny test scene); a heightmap's ground is
+// priced on its own (world/heightfield.h, 2^24 samples). 16384x16384, a 1.2 MB deflate GeoTIFF, took 3.4 GB
+// (heightmap) and 8.3 GB then std::bad_alloc (land cover).
 inline constexpr uint32_t kMaxRasterEdge = kMaxImageEdge;
 inline constexpr uint64_t kMaxRasterPixels = uint64_t(1) << 26;
 
