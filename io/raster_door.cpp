@@ -68,14 +68,17 @@ Check check(const char* gdalName, fs::path& real) {
     std::error_code error;
     real = fs::canonical(name, error);
     if (error) return Check::Missing;
-    if (!gDoor->folders->allows(real)) {
+    const bool allowed = gDoor->folders->allows(real);
+    const fs::file_status status = fs::status(real, error);
+    // A folder is never read, only looked at: outside the allowed ones it is absent to GDAL.
+    if (fs::is_directory(status)) return allowed ? Check::Folder : Check::Missing;
+    // The kind by the name GDAL asked for: a "dem.tif.aux.xml" symlinked to /dev/zero is still checked. A file
+    // of no kind GDAL needs is absent, wherever it is.
+    if (real != gDoor->raster && !companionKind(name)) return Check::Missing;
+    if (!allowed) {
         refuse(name, "resolves to " + real.string() + ", outside the scene's folder (allow with --allow-assets DIR)");
         return Check::Refused;
     }
-    const fs::file_status status = fs::status(real, error);
-    if (fs::is_directory(status)) return Check::Folder;
-    // The kind by the name GDAL asked for: a "dem.tif.aux.xml" symlinked to /dev/zero is still checked.
-    if (real != gDoor->raster && !companionKind(name)) return Check::Missing; // no kind GDAL needs: absent
     if (!fs::is_regular_file(status)) {
         refuse(name, "is not a regular file");
         return Check::Refused;
