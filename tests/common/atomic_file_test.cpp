@@ -4,6 +4,8 @@
 
 #include "common/error.h"
 
+#include "test_files.h"
+
 #include <gtest/gtest.h>
 
 #include <csignal>
@@ -18,21 +20,6 @@ using namespace sward;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string freshDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    fs::path dir = fs::temp_directory_path() / ("sward_common_tests_" + std::string(info->name()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir.string();
-}
-
-std::string readFile(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::stringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
 
 std::vector<std::string> namesIn(const std::string& dir) {
     std::vector<std::string> names;
@@ -73,35 +60,36 @@ std::string errorWithFileSizeLimit(rlim_t limit, const std::function<void()>& bo
 } // namespace
 
 TEST(AtomicFile, WritesTheBytesAndLeavesNoTemporary) {
-    const std::string dir = freshDir();
+    const std::string dir = test::tempDir().string();
     writeTextAtomically(dir + "/a.txt", "hello");
-    EXPECT_EQ(readFile(dir + "/a.txt"), "hello");
+    EXPECT_EQ(test::readText(dir + "/a.txt"), "hello");
     writeTextAtomically(dir + "/a.txt", "replaced");
-    EXPECT_EQ(readFile(dir + "/a.txt"), "replaced");
+    EXPECT_EQ(test::readText(dir + "/a.txt"), "replaced");
     EXPECT_EQ(namesIn(dir), std::vector<std::string>{"a.txt"});
 }
 
 TEST(AtomicFile, AFailedWriteIsOneClearErrorAndLeavesNoFileUnderTheName) {
-    const std::string dir = freshDir();
+    const std::string dir = test::tempDir().string();
     const std::string big(64 * 1024, 'x');
     const std::string message = errorWithFileSizeLimit(4096, [&] { writeTextAtomically(dir + "/big.bin", big); });
-    EXPECT_EQ(message, "cannot write '" + dir + "/big.bin': file too large for the file system or the process's "
-                       "file size limit");
+    EXPECT_EQ(message, "cannot write '" + dir +
+                           "/big.bin': file too large for the file system or the process's "
+                           "file size limit");
     EXPECT_TRUE(namesIn(dir).empty()) << "no partial file and no temporary";
 }
 
 TEST(AtomicFile, AFailedReplacementKeepsTheOldFileWhole) {
-    const std::string dir = freshDir();
+    const std::string dir = test::tempDir().string();
     writeTextAtomically(dir + "/keep.bin", "old content");
     const std::string big(64 * 1024, 'y');
     const std::string message = errorWithFileSizeLimit(4096, [&] { writeTextAtomically(dir + "/keep.bin", big); });
     EXPECT_NE(message.find("cannot write '" + dir + "/keep.bin': file too large"), std::string::npos) << message;
-    EXPECT_EQ(readFile(dir + "/keep.bin"), "old content");
+    EXPECT_EQ(test::readText(dir + "/keep.bin"), "old content");
     EXPECT_EQ(namesIn(dir), std::vector<std::string>{"keep.bin"});
 }
 
 TEST(AtomicFile, AMissingFolderIsNamedInTheError) {
-    const std::string dir = freshDir();
+    const std::string dir = test::tempDir().string();
     try {
         writeTextAtomically(dir + "/nope/a.txt", "x");
         FAIL() << "expected an error";
@@ -111,10 +99,10 @@ TEST(AtomicFile, AMissingFolderIsNamedInTheError) {
 }
 
 TEST(AtomicFile, CreateFileExclusivelyNeverReplaces) {
-    const std::string dir = freshDir();
+    const std::string dir = test::tempDir().string();
     EXPECT_TRUE(createFileExclusively(dir + "/once.json", "first"));
     EXPECT_FALSE(createFileExclusively(dir + "/once.json", "second"));
-    EXPECT_EQ(readFile(dir + "/once.json"), "first");
+    EXPECT_EQ(test::readText(dir + "/once.json"), "first");
     EXPECT_EQ(namesIn(dir), std::vector<std::string>{"once.json"});
 }
 
@@ -123,13 +111,13 @@ TEST(AtomicFile, TemporaryNamesAreRecognisedExactly) {
     EXPECT_EQ(temporaryPathFor("out/left/000001.exr", 42), "out/left/.000001.exr.sward-42.tmp");
     EXPECT_TRUE(isSwardTemporary(".000001.exr.sward-42.tmp", pid));
     EXPECT_EQ(pid, 42);
-    for (const char* foreign : {"notes.tmp", "000001.exr.tmp", ".x.sward-.tmp", ".x.sward-12a.tmp", ".sward-1.tmp",
-                                ".x.sward-1.tmp.bak"})
+    for (const char* foreign :
+         {"notes.tmp", "000001.exr.tmp", ".x.sward-.tmp", ".x.sward-12a.tmp", ".sward-1.tmp", ".x.sward-1.tmp.bak"})
         EXPECT_FALSE(isSwardTemporary(foreign, pid)) << foreign;
 }
 
 TEST(AtomicFile, OnlyTheTemporariesOfDeadProcessesAreRemoved) {
-    const std::string dir = freshDir();
+    const std::string dir = test::tempDir().string();
     const pid_t child = fork(); // a process that is surely gone: its pid names a stale temporary
     if (child == 0) _exit(0);
     waitpid(child, nullptr, 0);

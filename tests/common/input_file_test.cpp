@@ -3,6 +3,8 @@
 
 #include "common/error.h"
 
+#include "test_files.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -13,30 +15,10 @@
 
 using namespace sward;
 
-namespace {
-
-std::filesystem::path freshDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("sward_input_file_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
-}
-
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
-
-} // namespace
+namespace {} // namespace
 
 TEST(InputFile, ReadsAWholeRegularFile) {
-    const auto dir = freshDir();
+    const auto dir = test::tempDir();
     std::ofstream(dir / "a.json", std::ios::binary) << "{\"a\": 1}";
     EXPECT_EQ(readInputFile((dir / "a.json").string(), "scene file"), "{\"a\": 1}");
     EXPECT_EQ(readInputBytes((dir / "a.json").string(), "scene file").size(), 8u);
@@ -44,30 +26,32 @@ TEST(InputFile, ReadsAWholeRegularFile) {
 }
 
 TEST(InputFile, AFifoIsRefusedWithoutBlocking) {
-    const auto dir = freshDir();
+    const auto dir = test::tempDir();
     const std::string fifo = (dir / "scene.json").string();
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    EXPECT_EQ(errorOf([&] { readInputFile(fifo, "scene file"); }), fifo + ": the scene file is not a regular file");
+    EXPECT_EQ(test::errorOf([&] { readInputFile(fifo, "scene file"); }),
+              fifo + ": the scene file is not a regular file");
     std::filesystem::remove_all(dir);
 }
 
 TEST(InputFile, ADeviceAndAFolderAreRefused) {
-    EXPECT_EQ(errorOf([&] { readInputFile("/dev/zero", "glTF file"); }),
+    EXPECT_EQ(test::errorOf([&] { readInputFile("/dev/zero", "glTF file"); }),
               "/dev/zero: the glTF file is not a regular file");
-    const auto dir = freshDir();
-    EXPECT_NE(errorOf([&] { openInputFile(dir.string(), "image"); }).find("not a regular file"), std::string::npos);
+    const auto dir = test::tempDir();
+    EXPECT_NE(test::errorOf([&] { openInputFile(dir.string(), "image"); }).find("not a regular file"),
+              std::string::npos);
     std::filesystem::remove_all(dir);
 }
 
 TEST(InputFile, AMissingFileNamesItself) {
-    EXPECT_EQ(errorOf([&] { readInputFile("/nonexistent/x.bin", "glTF file"); }),
+    EXPECT_EQ(test::errorOf([&] { readInputFile("/nonexistent/x.bin", "glTF file"); }),
               "/nonexistent/x.bin: cannot open the glTF file (missing or unreadable)");
 }
 
 TEST(InputFile, AFileOverTheLimitIsRefusedBeforeReading) {
-    const auto dir = freshDir();
+    const auto dir = test::tempDir();
     std::ofstream(dir / "big.bin", std::ios::binary) << std::string(2000, 'x');
-    EXPECT_EQ(errorOf([&] { readInputFile((dir / "big.bin").string(), "glTF file", 1000); }),
+    EXPECT_EQ(test::errorOf([&] { readInputFile((dir / "big.bin").string(), "glTF file", 1000); }),
               (dir / "big.bin").string() + ": the glTF file has 2000 bytes, over the limit of 1000 bytes");
     std::filesystem::remove_all(dir);
 }

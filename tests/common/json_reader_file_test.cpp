@@ -1,12 +1,13 @@
 // The one JSON loading function: duplicate keys, invalid JSON, nesting and size limits, each one clear error.
 #include "common/error.h"
 #include "common/json_reader.h"
+#include "common/stopwatch.h"
 
 #include "test_files.h"
 
 #include <gtest/gtest.h>
 
-#include <chrono>
+#include <algorithm>
 #include <fstream>
 #include <functional>
 
@@ -42,8 +43,8 @@ TEST(JsonFile, DuplicateKeysAreRefusedNamingTheirJsonPath) {
 }
 
 TEST(JsonFile, TheSameKeyInDifferentObjectsIsFine) {
-    const nlohmann::json json = parseJsonText(R"({"a": {"k": 1}, "b": {"k": 2}, "l": [{"k": 3}, {"k": 4}], "k": 5})",
-                                              "s.json", "scene file");
+    const nlohmann::json json =
+        parseJsonText(R"({"a": {"k": 1}, "b": {"k": 2}, "l": [{"k": 3}, {"k": 4}], "k": 5})", "s.json", "scene file");
     EXPECT_EQ(json["l"][1]["k"], 4);
     EXPECT_EQ(json["k"], 5);
 }
@@ -51,7 +52,8 @@ TEST(JsonFile, TheSameKeyInDifferentObjectsIsFine) {
 TEST(JsonFile, ANumberBeyondADoubleNamesItsKey) {
     EXPECT_EQ(parseError(R"({"camera": {"fov_y_deg": 1e400}})"),
               "s.json: 'camera.fov_y_deg' is outside the range of a double");
-    EXPECT_EQ(parseError(R"({"points": [[1, 2], [3, -1e999]]})"), "s.json: 'points[1][1]' is outside the range of a double");
+    EXPECT_EQ(parseError(R"({"points": [[1, 2], [3, -1e999]]})"),
+              "s.json: 'points[1][1]' is outside the range of a double");
     EXPECT_EQ(parseError("1e400"), "s.json: a number is outside the range of a double");
 }
 
@@ -89,23 +91,37 @@ TEST(JsonFile, AFileOverTheSizeLimitIsRefusedBeforeItIsRead) {
               path + ": the scene file has 67108865 bytes, over the limit of 64 MiB");
 }
 
+namespace {
+
+// {"colliders": [{"r":1}, ... `items` times]}, parsed; returns the parse's process CPU time in ms (CPU, not wall:
+// the test machines are shared, and another process's load must not look like a slower parser).
+double cpuMsToParseItems(size_t items) {
+    std::string text = "{\"colliders\": [";
+    text.reserve(items * 8 + 32);
+    for (size_t i = 0; i < items; ++i) text += i ? ",{\"r\":1}" : "{\"r\":1}";
+    text += "]}";
+    const Stopwatch clock = Stopwatch::withCpuTime();
+    const nlohmann::json json = parseJsonText(text, "s.json", "scene file");
+    const double ms = clock.cpuMs();
+    EXPECT_EQ(json["colliders"].size(), items);
+    EXPECT_EQ(json["colliders"][items - 1]["r"], 1);
+    return ms;
+}
+
+} // namespace
+
 // nlohmann's callback parser rescanned the whole enclosing array after every object in it (O(n^2): 200,000
-// colliders took 20.7 s, 10^6 gave no answer in 120 s); the checked builder is linear.
+// colliders took 20.7 s, 10^6 gave no answer in 120 s); the checked builder is linear. Checked as a ratio in one
+// run: 8x the items must cost well under 8^2 = 64x the time (linear is 8x; 24x leaves room for noise and caches).
 TEST(JsonFile, AMillionArrayItemsParseInLinearTime) {
     constexpr size_t kItems = 1000000;
-    std::string text = "{\"colliders\": [";
-    text.reserve(kItems * 12 + 32);
-    for (size_t i = 0; i < kItems; ++i) text += i ? ",{\"r\":1}" : "{\"r\":1}";
-    text += "]}";
-    const auto start = std::chrono::steady_clock::now();
-    const nlohmann::json json = parseJsonText(text, "s.json", "scene file");
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    ASSERT_EQ(json["colliders"].size(), kItems);
-    EXPECT_EQ(json["colliders"][kItems - 1]["r"], 1);
-    // Timed in an optimised build without sanitizers only (they are several times slower); the parse above runs
-    // everywhere.
+    const double small = std::max(cpuMsToParseItems(kItems / 8), 1.0);
+    const double large = cpuMsToParseItems(kItems);
+    EXPECT_LT(large, 24.0 * small) << "10^6 items: " << large << " ms of CPU, 125,000: " << small << " ms";
+    // The issue's figure (under 2 s for 10^6 items), in an optimised build without sanitizers only (they are
+    // several times slower); the parses above run everywhere.
     if (kTimedBuild) {
-        EXPECT_LT(seconds, 2.0) << "parsing 10^6 array items took " << seconds << " s";
+        EXPECT_LT(large, 2000.0) << "parsing 10^6 array items took " << large << " ms of CPU";
     }
 }
 

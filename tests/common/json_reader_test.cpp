@@ -1,7 +1,7 @@
 // The one JSON reader: typed, range-checked values, unknown keys rejected, errors naming file and JSON path.
 #include "common/error.h"
-#include "test_files.h"
 #include "common/json_reader.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 
@@ -40,7 +40,8 @@ TEST(JsonReader, ErrorsNameTheFileAndTheJsonPath) {
                   r.finish();
               }),
               "f.json: unknown key 'typo'");
-    EXPECT_EQ(errorOf([&] { JsonReader(nlohmann::json::array(), "f.json"); }), "f.json: the file must hold a JSON object");
+    EXPECT_EQ(errorOf([&] { JsonReader(nlohmann::json::array(), "f.json"); }),
+              "f.json: the file must hold a JSON object");
 }
 
 TEST(JsonReader, ChoiceReturnsTheIndexOfANamedValue) {
@@ -48,7 +49,9 @@ TEST(JsonReader, ChoiceReturnsTheIndexOfANamedValue) {
     JsonReader r(json, "f.json");
     EXPECT_EQ(r.choice("shape", 0, {"sphere", "capsule", "box"}), 2);
     EXPECT_EQ(r.choice("absent", 1, {"sphere", "capsule", "box"}), 1);
-    EXPECT_EQ(errorOf([&] { r.choice("bad", 0, {"sphere", "capsule", "box"}); }),
+    EXPECT_EQ(errorOf([&] {
+                  r.choice("bad", 0, {"sphere", "capsule", "box"});
+              }),
               "f.json: 'bad' must be sphere, capsule or box");
     EXPECT_EQ(errorOf([&] { r.choice("number", 0, {"x", "y"}); }), "f.json: 'number' must be x or y");
 }
@@ -107,5 +110,6 @@ TEST(JsonReader, FloatValuesStayFinite) {
     const auto json = nlohmann::json::parse(R"({"huge": 1e308, "x": 2})");
     JsonReader r(json, "s.json");
     EXPECT_EQ(r.numberF("x", 0.0f, 0.0f, 10.0f), 2.0f);
-    EXPECT_EQ(errorOf([&] { r.numberF("huge", 0.0f, 0.0f, 1e6f); }), "s.json: 'huge' must be between 0 and 1e+06 (got 1e+308)");
+    EXPECT_EQ(errorOf([&] { r.numberF("huge", 0.0f, 0.0f, 1e6f); }),
+              "s.json: 'huge' must be between 0 and 1e+06 (got 1e+308)");
 }

@@ -5,6 +5,8 @@
 
 #include "common/error.h"
 
+#include "test_files.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -18,21 +20,6 @@ using namespace sward;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string freshDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    fs::path dir = fs::temp_directory_path() / ("sward_output_lock_tests_" + std::string(info->name()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir.string();
-}
-
-std::string readFile(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::stringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
 
 // The error a second OutputLock on `dir` throws ("" when it took the lock).
 std::string secondLockError(const std::string& dir, OutputLock::Mode mode) {
@@ -54,7 +41,7 @@ long deadPid() {
 } // namespace
 
 TEST(OutputLock, ASecondWriterFailsAtOnceNamingTheHoldersPid) {
-    const std::string dir = freshDir();
+    const std::string dir = test::tempDir().string();
     OutputLock first(dir, OutputLock::Mode::Exclusive);
     const std::string pid = "pid " + std::to_string(::getpid());
     for (OutputLock::Mode mode : {OutputLock::Mode::Exclusive, OutputLock::Mode::Shared}) {
@@ -64,7 +51,7 @@ TEST(OutputLock, ASecondWriterFailsAtOnceNamingTheHoldersPid) {
 }
 
 TEST(OutputLock, ShardsShareTheFolderAndExcludeEveryOtherWriter) {
-    const std::string dir = freshDir();
+    const std::string dir = test::tempDir().string();
     std::optional<OutputLock> shard0(std::in_place, dir, OutputLock::Mode::Shared);
     EXPECT_EQ(secondLockError(dir, OutputLock::Mode::Shared), "");
     EXPECT_NE(secondLockError(dir, OutputLock::Mode::Exclusive), "");
@@ -75,29 +62,29 @@ TEST(OutputLock, ShardsShareTheFolderAndExcludeEveryOtherWriter) {
 }
 
 TEST(OutputLock, TheLastHolderLeavesNoLockFile) {
-    const std::string dir = freshDir();
+    const std::string dir = test::tempDir().string();
     {
         OutputLock lock(dir, OutputLock::Mode::Exclusive);
-        EXPECT_EQ(std::stol(readFile(dir + "/" + kOutputLockFile)), long(::getpid()));
+        EXPECT_EQ(std::stol(test::readText(dir + "/" + kOutputLockFile)), long(::getpid()));
     }
     EXPECT_TRUE(fs::is_empty(dir));
     EXPECT_EQ(secondLockError(dir, OutputLock::Mode::Exclusive), "");
 }
 
 TEST(OutputLock, ADeadProcesssLockFileIsTakenOver) {
-    const std::string dir = freshDir();
+    const std::string dir = test::tempDir().string();
     const long dead = deadPid();
     std::ofstream(dir + "/" + kOutputLockFile) << dead << "\n";
     OutputLock lock(dir, OutputLock::Mode::Exclusive);
-    EXPECT_EQ(std::stol(readFile(dir + "/" + kOutputLockFile)), long(::getpid()));
+    EXPECT_EQ(std::stol(test::readText(dir + "/" + kOutputLockFile)), long(::getpid()));
 }
 
 TEST(OutputLock, ALinkInPlaceOfTheLockFileIsRefusedNotFollowed) {
-    const std::string dir = freshDir();
+    const std::string dir = test::tempDir().string();
     fs::create_directories(dir + "/out");
     std::ofstream(dir + "/elsewhere") << "keep\n";
     fs::create_symlink(dir + "/elsewhere", dir + "/out/" + kOutputLockFile);
     const std::string error = secondLockError(dir + "/out", OutputLock::Mode::Exclusive);
     EXPECT_NE(error.find("is a symbolic link"), std::string::npos) << error;
-    EXPECT_EQ(readFile(dir + "/elsewhere"), "keep\n");
+    EXPECT_EQ(test::readText(dir + "/elsewhere"), "keep\n");
 }

@@ -31,7 +31,7 @@ TEST(Snorm, RoundingEqualsTheShadersBranchingFormAtEveryHalfAndBetween) {
     for (int32_t k = -40000; k <= 40000; ++k) {
         const float half = float(k) + 0.5f;
         for (float v : {half, std::nextafter(half, -1e9f), std::nextafter(half, 1e9f), float(k),
-                         std::nextafter(float(k), -1e9f), std::nextafter(float(k), 1e9f)})
+                        std::nextafter(float(k), -1e9f), std::nextafter(float(k), 1e9f)})
             ASSERT_EQ(roundHalfAway(v), shaders(v)) << v;
     }
     for (uint32_t bits = 0; bits < 0x47800000u; bits += 4099) // every magnitude below 65536, both signs

@@ -4,6 +4,8 @@
 
 #include "common/error.h"
 
+#include "test_files.h"
+
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -22,24 +24,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string freshDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    fs::path dir = fs::temp_directory_path() / ("sward_staged_folder_tests_" + std::string(info->name()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir.string();
-}
-
 void writeFile(const std::string& path, const std::string& text) {
     fs::create_directories(fs::path(path).parent_path());
     std::ofstream(path, std::ios::binary) << text;
-}
-
-std::string readFile(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::stringstream text;
-    text << file.rdbuf();
-    return text.str();
 }
 
 // Every entry below `dir` with its content ("<dir>" for folders, "-> target" for links).
@@ -49,7 +36,7 @@ std::map<std::string, std::string> treeOf(const std::string& dir) {
         const std::string name = fs::relative(e.path(), dir).string();
         tree[name] = e.is_symlink()     ? "-> " + fs::read_symlink(e.path()).string()
                      : e.is_directory() ? "<dir>"
-                                        : readFile(e.path().string());
+                                        : test::readText(e.path().string());
     }
     return tree;
 }
@@ -86,7 +73,7 @@ bool refuseEntries(const std::string& dir, bool refuse) {
 } // namespace
 
 TEST(StagedFolder, CommitMovesTheFilesInAndLeavesForeignFilesAlone) {
-    const std::string dir = freshDir(), out = dir + "/out";
+    const std::string dir = test::tempDir().string(), out = dir + "/out";
     writeFile(out + "/000000/im0.png", "old");
     writeFile(out + "/notes.txt", "mine");
     {
@@ -104,7 +91,7 @@ TEST(StagedFolder, CommitMovesTheFilesInAndLeavesForeignFilesAlone) {
 }
 
 TEST(StagedFolder, ALinkInTheFinalFolderIsRefusedBeforeAnyWork) {
-    const std::string dir = freshDir(), out = dir + "/exp";
+    const std::string dir = test::tempDir().string(), out = dir + "/exp";
     fs::create_directories(dir + "/elsewhere");
     writeFile(out + "/000003/im0.png", "old");
     fs::create_symlink(dir + "/elsewhere", out + "/000003/extra");
@@ -120,7 +107,7 @@ TEST(StagedFolder, ALinkInTheFinalFolderIsRefusedBeforeAnyWork) {
 }
 
 TEST(StagedFolder, ALinkMadeDuringTheRunIsRefusedAtCommitAndNothingMoves) {
-    const std::string dir = freshDir(), out = dir + "/exp";
+    const std::string dir = test::tempDir().string(), out = dir + "/exp";
     fs::create_directories(dir + "/elsewhere");
     fs::create_directories(out);
     StagedFolder staged(out, "output folder");
@@ -135,7 +122,7 @@ TEST(StagedFolder, ALinkMadeDuringTheRunIsRefusedAtCommitAndNothingMoves) {
 }
 
 TEST(StagedFolder, AFileWhereAFolderGoesFailsBeforeAnythingIsReplaced) {
-    const std::string dir = freshDir(), out = dir + "/exp";
+    const std::string dir = test::tempDir().string(), out = dir + "/exp";
     writeFile(out + "/000000/im0.png", "old");
     writeFile(out + "/000001", "a file");
     const auto before = treeOf(out);
@@ -151,7 +138,7 @@ TEST(StagedFolder, AFileWhereAFolderGoesFailsBeforeAnythingIsReplaced) {
 }
 
 TEST(StagedFolder, AMoveThatFailsPartWayIsRolledBack) {
-    const std::string dir = freshDir(), out = dir + "/exp";
+    const std::string dir = test::tempDir().string(), out = dir + "/exp";
     writeFile(out + "/a.txt", "old a");
     writeFile(out + "/b/x.txt", "old x");
     const auto before = treeOf(out);
@@ -170,7 +157,7 @@ TEST(StagedFolder, AMoveThatFailsPartWayIsRolledBack) {
 }
 
 TEST(StagedFolder, TheStagingFoldersOfDeadProcessesAreRemoved) {
-    const std::string dir = freshDir(), out = dir + "/exp";
+    const std::string dir = test::tempDir().string(), out = dir + "/exp";
     const std::string stale = dir + "/.exp.sward-" + std::to_string(deadPid()) + ".tmp";
     const std::string live = dir + "/.exp.sward-" + std::to_string(::getppid()) + ".tmp";
     const std::string other = dir + "/.other.sward-" + std::to_string(deadPid()) + ".tmp";
@@ -185,7 +172,7 @@ TEST(StagedFolder, TheStagingFoldersOfDeadProcessesAreRemoved) {
 }
 
 TEST(StagedFolder, ADerivedFolderThatIsALinkIsRefusedAChosenOneIsWritten) {
-    const std::string dir = freshDir();
+    const std::string dir = test::tempDir().string();
     fs::create_directories(dir + "/elsewhere");
     fs::create_directories(dir + "/dataset");
     fs::create_symlink(dir + "/elsewhere", dir + "/dataset/eval");
@@ -201,12 +188,12 @@ TEST(StagedFolder, ADerivedFolderThatIsALinkIsRefusedAChosenOneIsWritten) {
         writeFile(staged.path() + "/report.md", "report");
         staged.commit();
     }
-    EXPECT_EQ(readFile(dir + "/elsewhere/report.md"), "report");
+    EXPECT_EQ(test::readText(dir + "/elsewhere/report.md"), "report");
     EXPECT_TRUE(fs::is_symlink(dir + "/dataset/eval"));
 }
 
 TEST(StagedFolder, ASecondWriterOfTheFolderFailsAndAFailedRunLeavesNothing) {
-    const std::string dir = freshDir(), out = dir + "/new/exp";
+    const std::string dir = test::tempDir().string(), out = dir + "/new/exp";
     {
         StagedFolder first(out, "output folder");
         try {

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <functional>
 #include <initializer_list>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -22,10 +23,16 @@ namespace sward::test {
 inline std::filesystem::path tempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     auto dir = std::filesystem::temp_directory_path() /
-               ("sward_vegetation_tests_" + std::string(info->test_suite_name()) + "_" + info->name());
+               ("sward_tests_" + std::string(info->test_suite_name()) + "_" + info->name());
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
+}
+
+// The whole content of a file ("" when it cannot be read).
+inline std::string readText(const std::filesystem::path& path) {
+    std::ifstream file(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
 }
 
 inline uint32_t crc32(const unsigned char* data, size_t size, uint32_t crc = 0) {
