@@ -106,8 +106,9 @@ int64_t latticeIndex(double origin, float spacing) {
 } // namespace
 
 Heightfield makeProceduralTerrain(const ProceduralTerrainParams& p) {
-    require(p.size > 0.0f && p.spacing > 0.0f && p.size / p.spacing <= 8192.0f,
-            "terrain size / spacing must be positive and give at most 8192 cells per side");
+    require(p.size > 0.0f && p.spacing > 0.0f && p.size / p.spacing <= float(kMaxHeightfieldCells),
+            "terrain size / spacing must be positive and give at most " + std::to_string(kMaxHeightfieldCells) +
+                " cells per side");
     require(p.featureSize > 0.0f && std::isfinite(p.amplitude), "terrain feature size must be positive");
     uint32_t cells = uint32_t(std::lround(p.size / p.spacing));
     uint32_t n = cells + 1;
@@ -159,11 +160,11 @@ std::vector<float> gridHeights(const std::string& path, uint32_t width, uint32_t
 // then VK_ERROR_OUT_OF_DEVICE_MEMORY. Checked once the size is known, before the heights are copied.
 void requireHeightmapBudget(const std::string& path, uint32_t width, uint32_t height) {
     const uint64_t samples = uint64_t(width) * height;
-    require(samples <= kMaxHeightmapSamples,
+    require(samples <= kMaxHeightfieldSamples,
             "heightfield '" + path + "' has " + std::to_string(width) + "x" + std::to_string(height) + " = " +
                 std::to_string(samples) + " samples: its ground would take about " +
-                std::to_string(samples * kHeightmapBytesPerSample >> 20) + " MiB, over the limit of " +
-                std::to_string(kMaxHeightmapSamples) + " samples (4096x4096); resample it (gdalwarp -tr)");
+                std::to_string(samples * kHeightfieldBytesPerSample >> 20) + " MiB, over the limit of " +
+                std::to_string(kMaxHeightfieldSamples) + " samples (4097x4097); resample it (gdalwarp -tr)");
 }
 
 // The sample spacing of a GDAL raster: `spacing` when given, else its square pixels in metres.

@@ -64,16 +64,20 @@ struct ProceduralTerrainParams {
     glm::dvec2 origin{0.0};
 };
 
+// A heightfield ground (a heightmap or the procedural terrain) has at most kMaxHeightfieldSamples samples, 4097x4097
+// (4096 cells a side): each costs about kHeightfieldBytesPerSample bytes once meshed and uploaded (the float height,
+// the 64-byte vertex on the host and the GPU, six indices a cell), about 1.5 GiB at the limit. 8000 procedural cells
+// a side took 54 s and 10 GB for a 32x24 render; an 8192^2 heightmap VK_ERROR_OUT_OF_DEVICE_MEMORY.
+inline constexpr uint32_t kMaxHeightfieldCells = 4096;
+inline constexpr uint64_t kMaxHeightfieldSamples = uint64_t(kMaxHeightfieldCells + 1) * (kMaxHeightfieldCells + 1);
+inline constexpr uint64_t kHeightfieldBytesPerSample = 96;
+
 // Rolling hills from hashed value noise (fBm), a pure function of the lattice point: vertex (i, j) lies at
 // origin + spacing * (i, j) and its height depends on nothing else. Uses only + - * and floor, never libm
 // transcendentals, so the heights are bitwise identical on every x86-64 machine and compiler. Throws sward::Error
-// for an origin that is not a whole multiple of spacing (within 1e-6 relative) or beyond +-1e8 m.
+// for an origin that is not a whole multiple of spacing (within 1e-6 relative) or beyond +-1e8 m, and for more than
+// kMaxHeightfieldCells cells a side.
 Heightfield makeProceduralTerrain(const ProceduralTerrainParams& params);
-
-// A loaded heightmap has at most kMaxHeightmapSamples samples: its ground costs about kHeightmapBytesPerSample bytes
-// a sample (about 1.5 GiB at the limit). The procedural terrain has its own limit (8192 cells a side).
-inline constexpr uint64_t kMaxHeightmapSamples = uint64_t(1) << 24;
-inline constexpr uint64_t kHeightmapBytesPerSample = 96;
 
 // Loads a heightfield from a single-channel 16-bit PNG (height = sample / 65535 * verticalScale + heightOffset), a
 // float OpenEXR or any single-band raster GDAL reads (io/raster_file.h; height = value * verticalScale +
@@ -81,7 +85,7 @@ inline constexpr uint64_t kHeightmapBytesPerSample = 96;
 // and pixel (i, row) is the vertex at origin + spacing * (i, height - 1 - row). spacing 0 takes a GDAL raster's
 // georeferencing (square pixels of a projected coordinate system, in metres). Throws sward::Error naming the file
 // for a missing file, an unsupported format, an 8-bit PNG (too coarse: visible terraces), more than one channel,
-// a non-finite or nodata height, a height beyond 1e6 m, more than kMaxHeightmapSamples samples, and spacing 0
+// a non-finite or nodata height, a height beyond 1e6 m, more than kMaxHeightfieldSamples samples, and spacing 0
 // without usable georeferencing. A GDAL raster's companion files are read only inside `folders`
 // (RasterReadOptions::folders) and logged there.
 Heightfield loadHeightfield(const std::string& path, float verticalScale, float spacing,

@@ -112,7 +112,7 @@ CASES = [
          scene_with(with_file("dem.png", lambda: zero_png(8192, 8192, 0, 16),
                               set_key(["terrain"], {"heightmap": {"file": "dem.png", "metres_per_pixel": 0.05}}))), 1,
          r"'terrain\.heightmap'.*dem\.png' has 8192x8192 = 67108864 samples: its ground would take about 6144 MiB, "
-         r"over the limit of 16777216 samples \(4096x4096\)"),
+         r"over the limit of 16785409 samples \(4097x4097\)"),
     Case("land_cover TIFF of 150 bytes claiming 16384x16384", "sward-render",
          scene_with(with_file("cover.tif", lambda: claimed_tiff(16384, 16384),
                               set_key(["land_cover"], {"file": "cover.tif", "preset": "esa_worldcover"}))), 1,

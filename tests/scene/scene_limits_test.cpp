@@ -76,3 +76,12 @@ TEST(SceneLimits, ASceneResolutionOverThePixelLimitIsRefusedWithItsImagesBytes) 
               "the limit of 67108864 (8192x8192)");
     EXPECT_NO_THROW(parseScene({{"render", {{"resolution", {16384, 4096}}}}}, "s.json")) << "exactly at the limit";
 }
+
+TEST(SceneLimits, AProceduralTerrainIsPricedAsAHeightmapIs) {
+    // 8000 cells a side took 54 s and 10 GB for a 32x24 render.
+    EXPECT_EQ(parseError({{"terrain", {{"size", 4000}, {"spacing", 0.5}}}}),
+              "s.json: 'terrain.size' / 'terrain.spacing' exceeds 4096 cells a side: its ground would take about "
+              "5860 MiB");
+    // Exactly at the limit (such a tile's default meadow is refused for its plant count instead).
+    EXPECT_EQ(parseError({{"terrain", {{"size", 2048}, {"spacing", 0.5}}}}).find("cells"), std::string::npos);
+}

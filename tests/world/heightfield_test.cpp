@@ -134,9 +134,9 @@ TEST(Heightfield, ProceduralOriginOffTheLatticeIsRefused) {
 // heightmap's size is known, before its heights are copied or meshed.
 TEST(HeightfieldErrors, AHeightmapOverTheSampleLimitIsRefusedNamingItsCost) {
     const std::string path = (tempDir() / "big.png").string();
-    const uint32_t width = 4097, height = 4096; // 2^24 + 4096 samples
+    const uint32_t width = 4098, height = 4097; // 4097^2 + 4097 samples
     writePng16(path, width, height, 1, std::vector<uint16_t>(size_t(width) * height, 0));
     expectError([&] { loadHeightfield(path, 1.0f, 1.0f); },
-                {path, "4097x4096 = 16781312 samples: its ground would take about 1536 MiB, over the limit of "
-                       "16777216 samples (4096x4096)"});
+                {path, "4098x4097 = 16789506 samples: its ground would take about 1537 MiB, over the limit of "
+                       "16785409 samples (4097x4097)"});
 }
