@@ -89,7 +89,8 @@ int main(int argc, char** argv) {
     sward::GenerateBenchOptions generate;
     CLI::App* gen = app.add_subcommand("generate", "Generate and upload one full tile of plants");
     sward::addReal(*gen, "--density", generate.density, 0.001, 1000.0, "Grass plants per m^2");
-    sward::addReal(*gen, "--tile-size", generate.tileSize, 1.0, 10000.0, "Tile edge in metres");
+    // 8192 m: 4096 cells of the bench ground's 2 m spacing, the largest heightfield ground (world/heightfield.h).
+    sward::addReal(*gen, "--tile-size", generate.tileSize, 1.0, 8192.0, "Tile edge in metres");
     sward::addUnsigned(*gen, "--threads", generate.threads, 0, sward::kMaxThreadsOption,
                        "Worker threads (0 = all cores)");
     sward::addUnsigned(*gen, "--repeats", generate.repeats, 1, 1000, "Generation runs (median reported)");
