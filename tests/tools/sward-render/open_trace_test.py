@@ -5,12 +5,12 @@ Renders the example scenes (examples/*.json and the generated build/examples/{hi
 frame, under strace (open, openat, openat2, creat), and fails naming each file opened outside the allowed places:
 the scene file's folder, the --out folder, and the system paths of ALLOWED_SYSTEM (libraries, drivers, fonts,
 GDAL's and PROJ's data, /proc, /sys, /dev), listed in docs/testing.md. Scenes that name the same asset files and
-the same kinds of input (objects, range sensors, a world, ...) open the same files, so by default one of each such
-group is traced (9 of 16, about 40 s on two cores); --all traces every one. A control run first: a grass map
+the same kinds of input (objects, range sensors, a world, ...) open the same files: every scene is traced (16,
+about 100 s on two busy cores), --one-per-group traces one of each such group for a quick local run (9 of 16). A control run first: a grass map
 outside the scene's folder, allowed with --allow-assets, must be reported, so the harness is seen to catch an
 outside open. Exits 77 (skipped) without strace.
 
-usage: open_trace_test.py BIN_DIR SOURCE_DIR BUILD_DIR [--all]
+usage: open_trace_test.py BIN_DIR SOURCE_DIR BUILD_DIR [--one-per-group]
 """
 import concurrent.futures
 import glob
@@ -113,8 +113,8 @@ def trace_one(render, scene, work, *extra):
 
 
 def main():
-    every = "--all" in sys.argv
-    args = [a for a in sys.argv[1:] if a != "--all"]
+    every = "--one-per-group" not in sys.argv
+    args = [a for a in sys.argv[1:] if a != "--one-per-group"]
     if len(args) != 3:
         sys.exit(__doc__.strip().splitlines()[-1])
     bin_dir, source, build = (os.path.abspath(a) for a in args)
