@@ -284,6 +284,9 @@ void DatasetWriter::begin(const nlohmann::json& fingerprint, bool overwrite) {
     for (auto it = missing.rbegin(); it != missing.rend(); ++it) createFolder(it->string());
     for (const std::string& dir : directories()) createFolder(root_ + "/" + dir);
     requireNoLinks(); // a link made meanwhile in place of a folder
+    // From here on every file is written relative to a handle on the folder, following no link below it: a link
+    // swapped in for left/ while the render runs is refused at the next write, not followed out of --out.
+    outputRoot_ = std::make_unique<OutputRoot>(root_);
     removeStaleTemporaries(root_);
     for (const std::string& dir : directories()) removeStaleTemporaries(root_ + "/" + dir);
 

@@ -15,6 +15,7 @@
 // file (.sward.lock) is no dataset file: never listed, hashed or compared, and gone after the last writer.
 #pragma once
 
+#include "common/atomic_file.h"
 #include "common/output_lock.h"
 #include "dataset/frame_images.h"
 #include "dataset/frame_truth.h"
@@ -126,6 +127,7 @@ private:
     std::vector<RangeFiles> rangeSensors_;
     std::vector<std::string> createdFiles_, createdFolders_;
     std::unique_ptr<OutputLock> lock_;
+    std::unique_ptr<OutputRoot> outputRoot_; // from begin(): every file below root_ is written through no link
 };
 
 } // namespace sward

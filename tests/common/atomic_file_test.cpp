@@ -134,3 +134,39 @@ TEST(AtomicFile, ErrorReasonsAreWordedForPeople) {
     EXPECT_EQ(ioErrorReason(EIO), "input/output error");
     EXPECT_EQ(ioErrorReason(EDQUOT), "disk quota exceeded");
 }
+
+// A link swapped in for a dataset's folder while a render runs: below an OutputRoot it is refused at the next write
+// and nothing reaches the link's target; a link in place of the file itself is replaced, not written through.
+TEST(AtomicFile, BelowAnOutputRootNoLinkIsFollowed) {
+    const std::string dir = test::tempDir().string(), out = dir + "/out", elsewhere = dir + "/elsewhere";
+    fs::create_directories(out + "/left");
+    fs::create_directories(elsewhere);
+    const OutputRoot root(out);
+    writeTextAtomically(out + "/left/a.txt", "in place");
+    EXPECT_EQ(test::readText(out + "/left/a.txt"), "in place");
+
+    fs::remove_all(out + "/left");
+    fs::create_directory_symlink(elsewhere, out + "/left");
+    EXPECT_EQ(test::errorOf([&] { writeTextAtomically(out + "/left/b.txt", "x"); }),
+              "cannot write '" + out + "/left/b.txt': a folder on its way is a symbolic link or not a folder (sward " +
+                  "writes through no link in an output folder)");
+    EXPECT_THROW(createFileExclusively(out + "/left/c.txt", "x"), Error);
+    EXPECT_TRUE(namesIn(elsewhere).empty());
+
+    std::ofstream(elsewhere + "/target.txt") << "keep";
+    fs::create_symlink(elsewhere + "/target.txt", out + "/name.txt");
+    writeTextAtomically(out + "/name.txt", "replaced");
+    EXPECT_FALSE(fs::is_symlink(out + "/name.txt"));
+    EXPECT_EQ(test::readText(out + "/name.txt"), "replaced");
+    EXPECT_EQ(test::readText(elsewhere + "/target.txt"), "keep");
+}
+
+// The --out a user names may itself be a link (their choice): the root is opened through it.
+TEST(AtomicFile, AnOutputRootMayItselfBeALink) {
+    const std::string dir = test::tempDir().string();
+    fs::create_directories(dir + "/real/left");
+    fs::create_directory_symlink(dir + "/real", dir + "/out");
+    const OutputRoot root(dir + "/out/");
+    writeTextAtomically(dir + "/out/left/a.txt", "through the user's link");
+    EXPECT_EQ(test::readText(dir + "/real/left/a.txt"), "through the user's link");
+}

@@ -242,6 +242,22 @@ TEST(DatasetWriter, ALinkAmongTheDatasetsNamesIsRefusedAndOverwriteNeverRemovesT
     EXPECT_EQ(listing(elsewhere), outside);
 }
 
+// The checks above run when a render starts; a link swapped in for left/ while it runs is refused at the next write
+// (the writer writes below a handle on its folder, common/atomic_file.h's OutputRoot) and nothing reaches its target.
+TEST(DatasetWriter, ALinkSwappedInMidRunIsRefusedAtTheNextWrite) {
+    const std::string dir = freshDir(), elsewhere = dir + "-elsewhere";
+    std::filesystem::remove_all(elsewhere);
+    std::filesystem::create_directories(elsewhere);
+    DatasetWriter writer(dir, false);
+    writer.begin(kPrint, false);
+    writer.writeFrame(0, tinyFrame(false), Camera{}, 0.1);
+    std::filesystem::remove_all(dir + "/left");
+    std::filesystem::create_directory_symlink(elsewhere, dir + "/left");
+    EXPECT_NE(errorOf([&] { writer.writeFrame(1, tinyFrame(false), Camera{}, 0.2); }).find("symbolic link"),
+              std::string::npos);
+    EXPECT_TRUE(listing(elsewhere).empty());
+}
+
 TEST(DatasetWriter, ASecondWriterIsRefusedNamingTheFirstAndAFailedRunLeavesNoLockFile) {
     const std::string dir = freshDir();
     DatasetWriter first(dir, false);
