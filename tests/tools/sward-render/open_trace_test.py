@@ -100,7 +100,10 @@ def trace_one(render, scene, work, *extra):
     name = os.path.splitext(os.path.basename(scene))[0]
     folder = tempfile.mkdtemp(prefix=name + "-", dir=work)
     out, trace = os.path.join(folder, "out"), os.path.join(folder, "trace.txt")
-    env = dict(os.environ, MESA_SHADER_CACHE_DISABLE="true")
+    # The driver stack's caches (the Vulkan validation layer's shader cache, which tests turn on) go to a cache
+    # folder of the run's own (XDG_CACHE_HOME), allowed like the system's files; ~/.cache itself is not.
+    cache = os.path.join(folder, "cache")
+    env = dict(os.environ, MESA_SHADER_CACHE_DISABLE="true", XDG_CACHE_HOME=cache)
     env.pop("DISPLAY", None)
     result = subprocess.run(["strace", "-f", "-qq", "-s", "4096", "-o", trace,
                              "-e", "trace=open,openat,openat2,creat", render, scene, "--out", out,
@@ -108,7 +111,7 @@ def trace_one(render, scene, work, *extra):
                             cwd=folder, env=env, capture_output=True, text=True, timeout=300)
     if result.returncode != 0:
         return name, [f"sward-render failed: {result.stderr.strip()}"]
-    allowed = [os.path.realpath(os.path.dirname(scene)), os.path.realpath(out)]
+    allowed = [os.path.realpath(os.path.dirname(scene)), os.path.realpath(out), os.path.realpath(cache)]
     return name, outside_opens(trace, allowed, folder)
 
 
