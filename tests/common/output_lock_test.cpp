@@ -23,19 +23,7 @@ namespace {
 
 // The error a second OutputLock on `dir` throws ("" when it took the lock).
 std::string secondLockError(const std::string& dir, OutputLock::Mode mode) {
-    try {
-        OutputLock second(dir, mode);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
-
-long deadPid() {
-    const pid_t child = ::fork();
-    if (child == 0) ::_exit(0);
-    ::waitpid(child, nullptr, 0);
-    return long(child);
+    return test::errorOf([&] { OutputLock second(dir, mode); });
 }
 
 } // namespace
@@ -73,7 +61,7 @@ TEST(OutputLock, TheLastHolderLeavesNoLockFile) {
 
 TEST(OutputLock, ADeadProcesssLockFileIsTakenOver) {
     const std::string dir = test::tempDir().string();
-    const long dead = deadPid();
+    const long dead = test::deadPid();
     std::ofstream(dir + "/" + kOutputLockFile) << dead << "\n";
     OutputLock lock(dir, OutputLock::Mode::Exclusive);
     EXPECT_EQ(std::stol(test::readText(dir + "/" + kOutputLockFile)), long(::getpid()));

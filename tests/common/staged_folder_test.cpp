@@ -42,19 +42,7 @@ std::map<std::string, std::string> treeOf(const std::string& dir) {
 }
 
 std::string commitError(StagedFolder& staged) {
-    try {
-        staged.commit();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
-
-long deadPid() {
-    const pid_t child = ::fork();
-    if (child == 0) ::_exit(0);
-    ::waitpid(child, nullptr, 0);
-    return long(child);
+    return test::errorOf([&] { staged.commit(); });
 }
 
 // Makes `dir` refuse new entries even for root (the immutable flag), or read-only for anyone else; false where
@@ -158,9 +146,9 @@ TEST(StagedFolder, AMoveThatFailsPartWayIsRolledBack) {
 
 TEST(StagedFolder, TheStagingFoldersOfDeadProcessesAreRemoved) {
     const std::string dir = test::tempDir().string(), out = dir + "/exp";
-    const std::string stale = dir + "/.exp.sward-" + std::to_string(deadPid()) + ".tmp";
+    const std::string stale = dir + "/.exp.sward-" + std::to_string(test::deadPid()) + ".tmp";
     const std::string live = dir + "/.exp.sward-" + std::to_string(::getppid()) + ".tmp";
-    const std::string other = dir + "/.other.sward-" + std::to_string(deadPid()) + ".tmp";
+    const std::string other = dir + "/.other.sward-" + std::to_string(test::deadPid()) + ".tmp";
     for (const std::string& folder : {stale, live, other}) writeFile(folder + "/000000/im0.png", "half");
     {
         StagedFolder staged(out, "output folder");

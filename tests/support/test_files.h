@@ -15,6 +15,8 @@
 #include <initializer_list>
 #include <iterator>
 #include <string>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 namespace sward::test {
@@ -33,6 +35,14 @@ inline std::filesystem::path tempDir() {
 inline std::string readText(const std::filesystem::path& path) {
     std::ifstream file(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+}
+
+// The pid of a process that has surely ended (a child that exited and was reaped): it names a dead writer.
+inline long deadPid() {
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    ::waitpid(child, nullptr, 0);
+    return long(child);
 }
 
 inline uint32_t crc32(const unsigned char* data, size_t size, uint32_t crc = 0) {
