@@ -65,7 +65,11 @@ bool readBufferFile(std::vector<unsigned char>* out, std::string*, const std::st
     files.lastUri = files.uriOf(path);
     try {
         // The door: a FIFO never blocks, a device is refused; what is read is logged for the fingerprint.
-        *out = readInputBytes(opened, path == files.gltfPath ? "glTF file" : "buffer file of '" + files.gltfPath + "'");
+        const std::string what = path == files.gltfPath ? "glTF file" : "buffer file of '" + files.gltfPath + "'";
+        *out = readInputBytes(opened, what);
+        // tinygltf takes the first byte of what it is given (an empty .glb threw std::out_of_range from it), and its
+        // own reader refused an empty file: so does this one.
+        if (out->empty()) throw Error(opened + ": the " + what + " is empty");
         files.assets.folders().record(files.gltfPath, std::filesystem::weakly_canonical(opened).string());
         return true;
     } catch (const Error& e) {

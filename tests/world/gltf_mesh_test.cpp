@@ -89,6 +89,16 @@ TEST(GltfMesh, ExternalBufferInTheFolderLoads) {
 
 // 2^62 uint32 indices: 4 * (2^62 - 1) + 4 wraps to 0 in 64 bits, which passed the old check and read past the
 // buffer (AddressSanitizer: heap-buffer-overflow).
+// tinygltf takes the first byte of a .glb it is handed: an empty file threw std::out_of_range from inside it (found
+// by fuzz_glb, fuzz/regressions/glb/empty-file). The door's reader refuses it first.
+TEST(GltfMeshErrors, AnEmptyFileIsOneClearError) {
+    const fs::path dir = test::tempDir();
+    for (const char* name : {"m.glb", "m.gltf"}) {
+        std::ofstream(dir / name).close();
+        expectBothFail((dir / name).string(), {name, "is empty"});
+    }
+}
+
 TEST(GltfMeshErrors, AccessorCountNear2To62IsRefusedBeforeAnyRead) {
     const fs::path dir = tempDir();
     const std::string indices = writeEdited(dir, [](nlohmann::json& j) { j["accessors"][1]["count"] = 1ull << 62; });
