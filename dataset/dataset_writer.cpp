@@ -249,7 +249,7 @@ void DatasetWriter::requireNoLinks() const {
     for (const std::string& folder : rangeFoldersIn(root_)) refuseLinksIn(root_ + "/" + folder, frameOrTemporary);
 }
 
-void DatasetWriter::lock(bool shared) {
+void DatasetWriter::createRoot() {
     std::vector<fs::path> missing; // the root and its missing parents, innermost first
     std::error_code ec;
     for (fs::path p = fs::path(root_).lexically_normal(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
@@ -257,6 +257,10 @@ void DatasetWriter::lock(bool shared) {
         if (p.parent_path() == p) break;
     }
     for (auto it = missing.rbegin(); it != missing.rend(); ++it) createFolder(it->string());
+}
+
+void DatasetWriter::lock(bool shared) {
+    createRoot();
     lock_ = std::make_unique<OutputLock>(root_, shared ? OutputLock::Mode::Shared : OutputLock::Mode::Exclusive);
 }
 
@@ -276,12 +280,7 @@ void DatasetWriter::begin(const nlohmann::json& fingerprint, bool overwrite) {
     std::error_code ec;
     requireNoLinks(); // again, now that this run holds the folder
     if (overwrite && fs::is_directory(root_, ec)) removeOldDataset();
-    std::vector<fs::path> missing; // the root and its missing parents, innermost first
-    for (fs::path p = fs::path(root_).lexically_normal(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
-        missing.push_back(p);
-        if (p.parent_path() == p) break;
-    }
-    for (auto it = missing.rbegin(); it != missing.rend(); ++it) createFolder(it->string());
+    createRoot();
     for (const std::string& dir : directories()) createFolder(root_ + "/" + dir);
     requireNoLinks(); // a link made meanwhile in place of a folder
     // From here on every file is written relative to a handle on the folder, following no link below it: a link

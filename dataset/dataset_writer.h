@@ -115,6 +115,8 @@ private:
     // The absolute path of `relative`, remembered as created by this run when no file of that name exists yet.
     std::string target(const std::string& relative);
     void createFolder(const std::string& path);
+    // Creates the root folder and its missing parents (each recorded as created, so a failed run removes them).
+    void createRoot();
     void removeOldDataset() const;
     void requireNoLinks() const;
     std::string root_;
