@@ -4,3 +4,4 @@
 int stereoMain(int argc, char** argv);   // stereo.cpp: `sward-eval [stereo] DATASET`
 int flowMain(int argc, char** argv);     // flow.cpp: `sward-eval flow DATASET`
 int odometryMain(int argc, char** argv); // odometry.cpp: `sward-eval odometry DATASET`
+int lookMain(int argc, char** argv);     // look.cpp: `sward-eval look DATASET`

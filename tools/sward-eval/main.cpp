@@ -10,5 +10,6 @@ int main(int argc, char** argv) {
     if (command == "stereo") return stereoMain(argc - 1, argv + 1);
     if (command == "flow") return flowMain(argc - 1, argv + 1);
     if (command == "odometry") return odometryMain(argc - 1, argv + 1);
+    if (command == "look") return lookMain(argc - 1, argv + 1);
     return stereoMain(argc, argv);
 }
