@@ -47,25 +47,26 @@ std::vector<cv::Point2f> detect(const cv::Ptr<cv::Feature2D>& detector, const cv
     return points;
 }
 
-// Mean and population std of `values` where `mask` is set (double sums in raster order).
+// Mean and population std of `values` where `mask` is set, from sums of the differences to the first such value
+// (double, raster order): equal values give exactly their value and a std of exactly 0.
 struct Moments {
     uint64_t n = 0;
     double mean = NAN, std = NAN;
 };
 template <class T> Moments momentsOf(const cv::Mat& values, const cv::Mat& mask) {
     Moments m;
-    double sum = 0;
+    double shift = 0, sum = 0, squares = 0;
     for (int y = 0; y < values.rows; ++y)
-        for (int x = 0; x < values.cols; ++x)
-            if (mask.at<uint8_t>(y, x)) sum += double(values.at<T>(y, x)), ++m.n;
+        for (int x = 0; x < values.cols; ++x) {
+            if (!mask.at<uint8_t>(y, x)) continue;
+            if (m.n++ == 0) shift = double(values.at<T>(y, x));
+            const double d = double(values.at<T>(y, x)) - shift;
+            sum += d, squares += d * d;
+        }
     if (m.n == 0) return m;
-    m.mean = sum / double(m.n);
-    double squares = 0;
-    for (int y = 0; y < values.rows; ++y)
-        for (int x = 0; x < values.cols; ++x)
-            if (mask.at<uint8_t>(y, x))
-                squares += (double(values.at<T>(y, x)) - m.mean) * (values.at<T>(y, x) - m.mean);
-    m.std = std::sqrt(squares / double(m.n));
+    const double meanDifference = sum / double(m.n);
+    m.mean = shift + meanDifference;
+    m.std = std::sqrt(std::max(0.0, squares / double(m.n) - meanDifference * meanDifference));
     return m;
 }
 
@@ -212,10 +213,13 @@ double percentileOf(std::vector<double> values, double q) {
 }
 
 LookImage prepareLookImage(const cv::Mat& bgr, bool detectKeypoints) {
-    cv::Mat colour;
-    bgr.convertTo(colour, CV_32FC3, bgr.depth() == CV_8U ? 1.0 / 255 : 1.0);
+    // HSV in double from the input's own values; the grey through OpenCV (which converts 32-bit floats only).
+    const double scale = bgr.depth() == CV_8U ? 1.0 / 255 : 1.0;
+    cv::Mat colour, colour32;
+    bgr.convertTo(colour, CV_64FC3, scale);
+    bgr.convertTo(colour32, CV_32FC3, scale);
     LookImage image;
-    cv::cvtColor(colour, image.grey, cv::COLOR_BGR2GRAY);
+    cv::cvtColor(colour32, image.grey, cv::COLOR_BGR2GRAY);
     image.hue.create(bgr.size(), CV_64F);
     image.saturation.create(bgr.size(), CV_64F);
     image.value.create(bgr.size(), CV_64F);
@@ -223,7 +227,7 @@ LookImage prepareLookImage(const cv::Mat& bgr, bool detectKeypoints) {
     double sum = 0;
     for (int y = 0; y < bgr.rows; ++y)
         for (int x = 0; x < bgr.cols; ++x) {
-            const cv::Vec3f c = colour.at<cv::Vec3f>(y, x);
+            const cv::Vec3d c = colour.at<cv::Vec3d>(y, x);
             const Hsv hsv = toHsv(c[2], c[1], c[0]);
             image.hue.at<double>(y, x) = hsv.h;
             image.saturation.at<double>(y, x) = hsv.s;
