@@ -360,6 +360,31 @@ TEST(LookRegions, ReferencePathsMayNotLeaveTheFolder) {
                       {"link.png", "out of the reference folder"});
 }
 
+TEST(LookRegions, BadRegionsFileIsOneClearError) {
+    const fs::path dir = test::tempDir();
+    cv::imwrite((dir / "a.png").string(), cv::Mat(20, 30, CV_8UC3, cv::Scalar(1, 2, 3)));
+    cv::imwrite((dir / "small.png").string(), cv::Mat(10, 10, CV_8U, cv::Scalar(255)));
+    const std::pair<const char*, const char*> cases[] = {
+        {R"({"a.png": )", "not valid JSON"},
+        {R"({"b.png": {"soil": [[0, 0, 5, 5]]}})", "'b.png' is no image of the folder"},
+        {R"({"a.png": {"soil": [[0, 0, 5]]}})", "a crop rectangle is [x, y, w, h]"},
+        {R"({"a.png": {"soil": [[0, 0, 0, 5]]}})", "positive width and height"},
+        {R"({"a.png": {"soil": "small.png"}})", "the region mask is 10x10, its image 30x20"},
+        {R"({"a.png": {"soil": "missing.png"}})", "missing.png"},
+        {R"({"a.png": {"soil": 3}})", "expected crop rectangles or a mask file name"},
+    };
+    for (const auto& [text, message] : cases) {
+        std::ofstream(dir / "regions.json") << text;
+        test::expectError([&] { readReferenceImages(dir.string()); }, {message});
+    }
+}
+
+TEST(LookRegions, AFolderWithoutImagesIsOneClearError) {
+    const fs::path dir = test::tempDir();
+    std::ofstream(dir / "notes.txt") << "no image";
+    test::expectError([&] { readReferenceImages(dir.string()); }, {"holds no image"});
+}
+
 TEST(LookRegions, MissingReferenceFolderIsOneClearError) {
     test::expectError([] { readReferenceImages("/nonexistent/sward-look-reference"); },
                       {"reference folder '/nonexistent/sward-look-reference' does not exist"});
