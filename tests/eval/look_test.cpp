@@ -466,8 +466,12 @@ TEST(LookTool, OneAndTwoThreadsWriteBitwiseIdenticalFiles) {
 TEST(LookTool, JsonHoldsEveryFrameRegionAndTheGap) {
     const fs::path root = test::tempDir();
     const fs::path dir = writeTinyDataset(root);
+    // The reference: frames 1 and 2 themselves, region "all" their non-sky rows: every median is sward's own.
     fs::create_directories(root / "real");
-    cv::imwrite((root / "real" / "photo.png").string(), cv::imread((dir / "preview" / "000001.png").string()));
+    for (const char* frame : {"000001", "000002"})
+        fs::copy_file(dir / "preview" / (std::string(frame) + ".png"), root / "real" / (std::string(frame) + ".png"));
+    std::ofstream(root / "real" / "regions.json")
+        << R"({"000001.png": {"all": [[0, 16, 128, 80]]}, "000002.png": {"all": [[0, 16, 128, 80]]}})";
     const RunResult r =
         runLookTool("'" + dir.string() + "' --reference '" + (root / "real").string() + "' --frames 1:3 --no-pictures");
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -478,9 +482,12 @@ TEST(LookTool, JsonHoldsEveryFrameRegionAndTheGap) {
     EXPECT_EQ(j["frames"][0]["regions"]["all"]["pixels"], 128 * 80);
     EXPECT_TRUE(j["frames"][0]["regions"]["far"]["spectrum_slope"].is_null()); // 8 rows: no 64 px window
     EXPECT_EQ(j["summary"]["all"]["images"], 2);
-    EXPECT_EQ(j["reference_images"][0]["file"], "photo.png");
-    EXPECT_TRUE(j["gap"]["all"]["gradient_mean"].is_number() || j["gap"]["all"]["gradient_mean"].is_null());
-    EXPECT_TRUE(j["gap"]["all"].contains("orb_per_mp"));
+    EXPECT_EQ(j["reference_images"][1]["file"], "000002.png");
+    EXPECT_EQ(j["summary"]["all"], j["reference_summary"]["all"]);
+    ASSERT_TRUE(j["gap"]["all"]["gradient_mean"].is_number());
+    for (const auto& [key, gap] : j["gap"]["all"].items())
+        EXPECT_TRUE(gap.is_null() || gap.get<double>() == 0.0) << key << " " << gap;
+    EXPECT_FALSE(j["gap"].contains("soil")); // the reference has no soil region
     EXPECT_FALSE(fs::exists(dir / "eval-look" / "look_all.png"));
 }
 
