@@ -41,7 +41,14 @@ LookImageResult measureImage(const std::string& name, const cv::Mat& bgr, const 
 LookImageResult measureFrame(const std::string& dir, uint32_t frame) {
     const cv::Mat bgr = readPreview(dir, kPreviewFolder, frame, false);
     const cv::Mat semantic = readSemantic(dir, frame, uint32_t(bgr.cols), uint32_t(bgr.rows));
-    return measureImage(frameName(frame), bgr, swardRegions(semantic));
+    LookImageResult result = measureImage(frameName(frame), bgr, swardRegions(semantic));
+    const LookStatistics& all = result.regions[0].second;
+    const LookStatistics& turf = result.regions[3].second;
+    if (all.pixels > 0) {
+        const double smooth = turf.pixels == 0 ? 0 : std::round(double(turf.pixels) * (1 - turf.sharpFraction));
+        result.smoothTurfShare = smooth / double(all.pixels);
+    }
+    return result;
 }
 
 std::vector<uint32_t> indices(size_t n) {
@@ -156,6 +163,10 @@ LookResult evaluateLook(const LookOptions& options) {
         [&](LookImageResult& image) { result.reference.push_back(std::move(image)); });
     result.regionOrder = regionOrder(result);
     result.sward = summarise(result.frames);
+    std::vector<double> shares;
+    for (const LookImageResult& frame : result.frames)
+        if (std::isfinite(frame.smoothTurfShare)) shares.push_back(frame.smoothTurfShare);
+    result.smoothTurfShare = percentileOf(shares, 0.5);
     result.real = summarise(result.reference);
     return result;
 }

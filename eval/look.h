@@ -34,6 +34,9 @@ struct LookImageResult {
     std::string name; // the frame name "000042" or the reference file name
     uint32_t width = 0, height = 0;
     std::vector<std::pair<std::string, LookStatistics>> regions;
+    // Sward frames: the turf pixels failing the sharp-texture test, as a share of the non-sky pixels (NaN without
+    // any non-sky pixel).
+    double smoothTurfShare = NAN;
 };
 
 // One statistic as the reports name it, and whether it is compared with the real images (counts are not).
@@ -58,6 +61,7 @@ struct LookResult {
     std::vector<LookImageResult> frames, reference;
     std::vector<std::string> regionOrder; // sward's regions, then any other reference region, first seen first
     LookSummaries sward, real;
+    double smoothTurfShare = NAN; // median over the frames
 };
 
 // The summary of `images`, per region name.

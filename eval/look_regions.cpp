@@ -21,7 +21,7 @@ namespace sward {
 
 namespace {
 
-enum RegionBits : uint8_t { kInAll = 1, kInVegetation = 2, kInSoil = 4, kInSurface = 8 };
+enum RegionBits : uint8_t { kInAll = 1, kInVegetation = 2, kInSoil = 4, kInTurf = 8, kInSurface = 16 };
 
 // What each semantic id counts in (dataset/naming.h's table).
 std::array<uint8_t, 256> regionTable() {
@@ -32,6 +32,7 @@ std::array<uint8_t, 256> regionTable() {
         if (group != "sky") bits |= kInAll;
         if (group == "vegetation" || name == "turf") bits |= kInVegetation;
         if (name == "ground" || name == "track") bits |= kInSoil;
+        if (name == "turf") bits |= kInTurf;
         if (group != "sky" && group != "object") bits |= kInSurface;
         table[c.id] = bits;
     }
@@ -114,7 +115,7 @@ std::vector<LookRegion> swardRegions(const cv::Mat& semantic) {
     for (int y = 0; y < semantic.rows; ++y)
         for (int x = 0; x < semantic.cols; ++x) {
             const uint8_t bits = table[semantic.at<uint8_t>(y, x)];
-            for (int r = 0; r < 3; ++r)
+            for (int r = 0; r < 4; ++r)
                 if (bits & (1 << r)) regions[size_t(r)].mask.at<uint8_t>(y, x) = 255;
             if ((bits & kInSurface) && top < 0) top = y;
         }
@@ -122,7 +123,7 @@ std::vector<LookRegion> swardRegions(const cv::Mat& semantic) {
     const int end = std::min(semantic.rows, top + int(std::ceil(kLookFarBandFraction * semantic.rows)));
     for (int y = top; y < end; ++y)
         for (int x = 0; x < semantic.cols; ++x)
-            if (table[semantic.at<uint8_t>(y, x)] & kInSurface) regions[3].mask.at<uint8_t>(y, x) = 255;
+            if (table[semantic.at<uint8_t>(y, x)] & kInSurface) regions[4].mask.at<uint8_t>(y, x) = 255;
     return regions;
 }
 

@@ -21,10 +21,10 @@ struct LookRegion {
 
 // The regions of a sward frame, always these four in this order (a region may be empty):
 // "all" every non-sky pixel; "vegetation" the vegetation categories, felled, cut and turf; "soil" ground and
-// track; "far" the pixels neither sky nor object in the kLookFarBandFraction of the frame height (rounded up)
+// track; "turf" the turf class alone (issue 46's smooth-turf test); "far" the pixels neither sky nor object in the kLookFarBandFraction of the frame height (rounded up)
 // from the topmost row holding such a pixel.
 std::vector<LookRegion> swardRegions(const cv::Mat& semantic);
-inline constexpr const char* kSwardRegionNames[] = {"all", "vegetation", "soil", "far"};
+inline constexpr const char* kSwardRegionNames[] = {"all", "vegetation", "soil", "turf", "far"};
 
 // One real photograph of the reference folder and what regions.json says of it.
 struct ReferenceImage {

@@ -24,13 +24,14 @@ Json statisticsObject(const LookStatistics& s) {
     return j;
 }
 
-Json imagesArray(const std::vector<LookImageResult>& images, const char* nameKey) {
+Json imagesArray(const std::vector<LookImageResult>& images, const char* nameKey, bool frames) {
     Json list = Json::array();
     for (const LookImageResult& image : images) {
         Json j;
         j[nameKey] = image.name;
         j["width"] = image.width;
         j["height"] = image.height;
+        if (frames) j["smooth_turf_share"] = number(image.smoothTurfShare);
         Json regions = Json::object();
         for (const auto& [name, stats] : image.regions) regions[name] = statisticsObject(stats);
         j["regions"] = regions;
@@ -109,10 +110,11 @@ std::string lookJson(const LookResult& r) {
     Json j;
     j["dataset"] = r.datasetDir;
     j["reference"] = r.referenceDir.empty() ? Json(nullptr) : Json(r.referenceDir);
-    j["frames"] = imagesArray(r.frames, "frame");
+    j["frames"] = imagesArray(r.frames, "frame", true);
+    j["smooth_turf_share"] = number(r.smoothTurfShare);
     j["summary"] = summaryObject(r.sward, r.regionOrder);
     if (!r.referenceDir.empty()) {
-        j["reference_images"] = imagesArray(r.reference, "file");
+        j["reference_images"] = imagesArray(r.reference, "file", false);
         j["reference_summary"] = summaryObject(r.real, r.regionOrder);
         j["gap"] = gapObject(r);
     }
@@ -143,6 +145,9 @@ std::string lookMarkdown(const LookResult& r, bool pictures) {
                                  : "; " + std::to_string(r.reference.size()) + " real images of " + r.referenceDir +
                                        ".\n- gap = (sward median - real median) / real IQR (the real std where the "
                                        "IQR is 0).\n";
+    md += "- Smooth turf (turf pixels failing the sharp-texture test, share of the non-sky pixels; median over the "
+          "frames): " +
+          percent(r.smoothTurfShare) + ".\n";
     md += "- Medians over the images holding the region; every statistic is defined in docs/evaluation.md "
           "(\"Realism statistics\"); per-frame values in look.json and look.csv.\n";
     const std::vector<std::string> drawn = pictures ? lookPictureRegions(r) : std::vector<std::string>();

@@ -301,22 +301,24 @@ cv::Mat syntheticSemantic() {
 
 TEST(LookRegions, SwardRegionsFollowTheSemanticClasses) {
     const std::vector<LookRegion> regions = swardRegions(syntheticSemantic());
-    ASSERT_EQ(regions.size(), 4u);
+    ASSERT_EQ(regions.size(), 5u);
     EXPECT_EQ(regions[0].name, "all");
     EXPECT_EQ(cv::countNonZero(regions[0].mask), 80 * 80); // every non-sky pixel, the object too
     EXPECT_EQ(regions[1].name, "vegetation");
     EXPECT_EQ(cv::countNonZero(regions[1].mask), 2 * 20 * 20); // category 0 and turf
     EXPECT_EQ(regions[2].name, "soil");
     EXPECT_EQ(cv::countNonZero(regions[2].mask), 80 * 80 - 2 * 400 - 100); // ground and track, not the object
+    EXPECT_EQ(regions[3].name, "turf");
+    EXPECT_EQ(cv::countNonZero(regions[3].mask), 400);
 }
 
 TEST(LookRegions, FarBandIsEightPercentOfTheHeightBelowTheTopOfTheGround) {
     const std::vector<LookRegion> regions = swardRegions(syntheticSemantic());
-    EXPECT_EQ(regions[3].name, "far");
+    EXPECT_EQ(regions[4].name, "far");
     // Rows 20 .. 27 (8 % of 100 rows), without the object's 20 x 5 pixels.
-    EXPECT_EQ(cv::countNonZero(regions[3].mask), 8 * 80 - 100);
-    EXPECT_EQ(cv::countNonZero(regions[3].mask.rowRange(0, 20)), 0);
-    EXPECT_EQ(cv::countNonZero(regions[3].mask.rowRange(28, 100)), 0);
+    EXPECT_EQ(cv::countNonZero(regions[4].mask), 8 * 80 - 100);
+    EXPECT_EQ(cv::countNonZero(regions[4].mask.rowRange(0, 20)), 0);
+    EXPECT_EQ(cv::countNonZero(regions[4].mask.rowRange(28, 100)), 0);
 }
 
 TEST(LookRegions, AllSkyFrameHasEmptyRegions) {
@@ -489,6 +491,27 @@ TEST(LookTool, JsonHoldsEveryFrameRegionAndTheGap) {
         EXPECT_TRUE(gap.is_null() || gap.get<double>() == 0.0) << key << " " << gap;
     EXPECT_FALSE(j["gap"].contains("soil")); // the reference has no soil region
     EXPECT_FALSE(fs::exists(dir / "eval-look" / "look_all.png"));
+}
+
+TEST(LookTool, SmoothTurfIsTheShareOfNonSkyPixelsOfTurfWithoutSharpTexture) {
+    // Frame 0: flat, all turf below the sky: every turf pixel is smooth. Frame 1: strong noise, all turf: none is.
+    const fs::path dir = test::tempDir() / "dataset";
+    fs::create_directories(dir / "preview");
+    fs::create_directories(dir / "semantic");
+    cv::Mat semantic(64, 64, CV_8U, cv::Scalar(11));
+    semantic.rowRange(0, 16).setTo(0);
+    cv::Mat noisy(64, 64, CV_8UC3);
+    for (int i = 0; i < 64 * 64; ++i)
+        noisy.at<cv::Vec3b>(i / 64, i % 64) = cv::Vec3b::all(uint8_t(255 * uniform(uint64_t(i))));
+    cv::imwrite((dir / "preview" / "000000.png").string(), cv::Mat(64, 64, CV_8UC3, cv::Scalar(40, 90, 60)));
+    cv::imwrite((dir / "preview" / "000001.png").string(), noisy);
+    for (const char* name : {"000000.png", "000001.png"}) cv::imwrite((dir / "semantic" / name).string(), semantic);
+    const RunResult r = runLookTool("'" + dir.string() + "' --no-pictures");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(test::readText(dir / "eval-look" / "look.json"));
+    EXPECT_EQ(j["frames"][0]["smooth_turf_share"], 1.0);
+    EXPECT_EQ(j["frames"][1]["smooth_turf_share"], 0.0);
+    EXPECT_EQ(j["smooth_turf_share"], 0.5); // the median
 }
 
 TEST(LookTool, MissingPreviewIsOneClearError) {
