@@ -1,6 +1,7 @@
 #include "interaction/ground_tracks.h"
 
 #include "common/error.h"
+#include "common/hash.h"
 #include "shared/gpu_layout.h"
 #include "world/ground.h"
 
@@ -31,6 +32,19 @@ glm::vec2 treadDirection(const Collider& c, glm::vec2 motion) {
     if (glm::dot(d, d) < 1e-12f) d = glm::vec2(1.0f, 0.0f);
     d = glm::normalize(d);
     return d.x < 0.0f || (d.x == 0.0f && d.y < 0.0f) ? -d : d;
+}
+
+constexpr uint64_t kTreadDomain = 0x5452454144303031ull; // "TREAD001"
+
+// How far a groove between two lugs raises the rut's floor, as a share of the tread depth, at u tread pitches along
+// the direction of travel. Lug k spans [k, k + 1): its groove starts at a point jittered by up to 15 % of the pitch
+// around the middle, and is worn to 40-100 % of the full depth (soil falls back into it, a lug prints unevenly), so
+// a print is no perfectly periodic pattern. The hash of k keeps it the same at every tick and in every run.
+float treadGroove(float u) {
+    const double lug = std::floor(double(u));
+    const uint64_t h = hashKey({kTreadDomain, uint64_t(int64_t(lug))});
+    const double start = 0.5 + 0.3 * (unitDouble(mix64(h ^ 1u)) - 0.5), wear = 0.4 + 0.6 * unitDouble(mix64(h ^ 2u));
+    return double(u) - lug >= start ? float(wear) : 0.0f;
 }
 
 Collider moved(const Collider& c, glm::vec3 delta) {
@@ -88,10 +102,7 @@ void GroundTracks::pressHull(const Collider& hull, glm::vec2 forward, const Grou
             const glm::vec2 xy = trackVertexPosition(i, j);
             const float gap = signedDistance(hull, glm::vec3(xy, ground.height(xy)));
             float d = std::min(rut.depth, rut.depth - gap);
-            if (rut.treadPitch > 0.0f) {
-                const float u = glm::dot(xy, forward) / rut.treadPitch;
-                if (u - std::floor(u) >= 0.5f) d -= rut.treadDepth; // a groove between two lugs
-            }
+            if (rut.treadPitch > 0.0f) d -= treadGroove(glm::dot(xy, forward) / rut.treadPitch) * rut.treadDepth;
             pressVertex(i, j, d);
         }
 }

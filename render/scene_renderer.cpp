@@ -209,7 +209,8 @@ SceneRenderer::~SceneRenderer() {
     destroyBuffer(ctx_, constants_);
 }
 
-void SceneRenderer::addTile(TileCoord coord, const Ground& ground, const VegetationTile* plants, const CoverMap* cover) {
+void SceneRenderer::addTile(TileCoord coord, const Ground& ground, const VegetationTile* plants,
+                            const CoverMap* cover) {
     require(!hasTile(coord), "SceneRenderer: the tile is resident already");
     TerrainTile tile;
     const GroundDrawMesh mesh = groundDrawMesh(ground);
@@ -255,7 +256,8 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Sh
     c.skyZenith = glm::vec4(scene_.sky.zenith, 0.0f);
     c.skyHorizon = glm::vec4(scene_.sky.horizon, 0.0f);
     c.groundAmbient = glm::vec4(scene_.sky.groundAmbient, 0.0f);
-    c.viewport = glm::vec4(float(camera.width), float(camera.height), 1.0f / float(camera.width), 1.0f / float(camera.height));
+    c.viewport =
+        glm::vec4(float(camera.width), float(camera.height), 1.0f / float(camera.width), 1.0f / float(camera.height));
     c.timeParams = glm::vec4(float(timeSeconds), 0.0f, 0.0f, 0.0f);
 
     // Sun shadows: the cascades fitted to the reference camera, the same for both views of a stereo pair.
@@ -265,8 +267,9 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Sh
     c.shadowParams = glm::vec4(shadows ? float(cascades.size()) : 0.0f, 0.0f, 0.0f, 0.0f);
     for (size_t k = 0; k < cascades.size(); ++k) {
         c.shadowCascades[k] = glm::mat4(cascades[k].viewProj);
-        c.shadowTiles[k] = glm::vec4(float(cascades[k].mapOffset) / float(extent.x), float(cascades[k].mapSize) / float(extent.x),
-                                     float(cascades[k].mapSize) / float(extent.y), 1.0f / float(cascades[k].mapSize));
+        c.shadowTiles[k] =
+            glm::vec4(float(cascades[k].mapOffset) / float(extent.x), float(cascades[k].mapSize) / float(extent.x),
+                      float(cascades[k].mapSize) / float(extent.y), 1.0f / float(cascades[k].mapSize));
         c.shadowEnds[int(k)] = float(cascades[k].end);
         c.shadowBias[int(k)] = float(cascades[k].depthBias);
     }
@@ -310,10 +313,10 @@ void SceneRenderer::createShadowMap() {
     // 0) so bindings stay valid.
     const glm::uvec2 shadowExtent = shadowMapExtent(shadowParams_);
     shadowMap_ = std::make_unique<RenderTarget>(ctx_, RenderTargetDesc{.width = shadowExtent.x,
-                                                                      .height = shadowExtent.y,
-                                                                      .depthFormat = VK_FORMAT_D32_SFLOAT,
-                                                                      .depthClear = 0.0f,
-                                                                      .sampleDepth = true});
+                                                                       .height = shadowExtent.y,
+                                                                       .depthFormat = VK_FORMAT_D32_SFLOAT,
+                                                                       .depthClear = 0.0f,
+                                                                       .sampleDepth = true});
 }
 
 ShadowCascadeParams SceneRenderer::makeShadowCascadeParams(bool vegetation) const {
@@ -392,7 +395,8 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const Descr
         const double dy = std::max({0.0, tile.boundsMin.y - reference.y, reference.y - tile.boundsMax.y});
         if (std::sqrt(dx * dx + dy * dy) > viewDistance_) continue;
         const DescriptorBinding cover = sampledImage(gpu::kBindingCoverMap, tile.cover.view, coverSampler_);
-        const gpu::TerrainTileConstants constants{.coverRect = tile.coverRect};
+        const gpu::TerrainTileConstants constants{.coverRect = tile.coverRect,
+                                                  .material = glm::uvec4(scene_.terrain.material, 0u, 0u, 0u)};
         if (pass == PlantPass::Main) {
             if (ruts)
                 pushDescriptors(ctx_.device, cmd, pipeline,
@@ -475,8 +479,10 @@ void SceneRenderer::recordMainPass(VkCommandBuffer cmd, RenderTarget& main, uint
     // Objects and plants first, the ground after them: the ground's samples they hide fail the early depth test
     // and are never shaded (the turf and far-cover shading is the main pass's most expensive per fragment).
     if (objects_) objects_->recordMain(cmd, frame, shadow, slot);
-    if (vegetation_ && baked) vegetation_->drawBaked(cmd, *baked, frame, shadow, slot);
-    else if (vegetation_) vegetation_->draw(cmd, PlantPass::Main, frame, shadow, slot);
+    if (vegetation_ && baked)
+        vegetation_->drawBaked(cmd, *baked, frame, shadow, slot);
+    else if (vegetation_)
+        vegetation_->draw(cmd, PlantPass::Main, frame, shadow, slot);
     drawTerrain(cmd, PlantPass::Main, frame, reference);
     // Sky last: the depth test (GREATER_OR_EQUAL against the far-plane clear) shades only uncovered pixels.
     bindPipeline(cmd, skyPipeline_);

@@ -6,8 +6,9 @@
 #include "common/parse_number.h"
 #include "scene/land_cover_params.h"
 #include "scene/scene_limits.h"
-#include "world/ground.h"
+#include "shared/gpu_layout.h"
 #include "vegetation/placement.h"
+#include "world/ground.h"
 
 #include <filesystem>
 
@@ -93,6 +94,9 @@ void readTerrain(JsonReader r, Scene& scene) {
         readProceduralTerrain(r, t.procedural);
     }
     t.selection.maxSlopeDegrees = r.number("max_slope_deg", t.selection.maxSlopeDegrees, 1.0, 90.0);
+    // In the order of gpu::kGroundMaterial*.
+    t.material = uint32_t(r.choice("material", int(t.material), {"soil", "dry_soil", "mud", "gravel", "forest_floor"}));
+    static_assert(gpu::kGroundMaterialForestFloor == 4 && gpu::kGroundMaterialCount == 5);
     r.finish();
 }
 
@@ -331,8 +335,8 @@ Camera sceneCamera(const Scene& scene, const Ground& terrain, uint32_t width, ui
     return Camera::lookAt(position, target, glm::dvec3(0.0, 0.0, 1.0), c.fovYDegrees, width, height);
 }
 
-std::vector<Collider> sceneColliders(const Scene& scene, const std::vector<ObjectModel>& models,
-                                     const Ground& terrain, uint64_t tick) {
+std::vector<Collider> sceneColliders(const Scene& scene, const std::vector<ObjectModel>& models, const Ground& terrain,
+                                     uint64_t tick) {
     const double time = double(tick) * scene.sequence.timeStep;
     std::vector<Collider> colliders = actorColliders(scene.actors, terrain, time, tick, float(scene.sequence.timeStep));
     if (!models.empty()) {

@@ -33,11 +33,11 @@ namespace sward {
 // A heightmap raster as the ground (terrain.heightmap). Samples sit on a regular grid, north up: the raster's top
 // row is the northern edge, its bottom-left sample lies at `origin`.
 struct HeightmapParams {
-    std::string path;           // "file": 16-bit PNG, float EXR, or any single-band raster GDAL reads (GeoTIFF, ...)
-    double metresPerPixel = 0;  // sample spacing; 0 = the file's own georeferencing (GDAL rasters only)
-    double heightScale = 1.0;   // PNG: metres at the full-scale value 65535; other formats: metres per unit
-    double heightOffset = 0.0;  // metres added to every height
-    glm::dvec2 origin{0.0};     // world xy of the south-west sample
+    std::string path;          // "file": 16-bit PNG, float EXR, or any single-band raster GDAL reads (GeoTIFF, ...)
+    double metresPerPixel = 0; // sample spacing; 0 = the file's own georeferencing (GDAL rasters only)
+    double heightScale = 1.0;  // PNG: metres at the full-scale value 65535; other formats: metres per unit
+    double heightOffset = 0.0; // metres added to every height
+    glm::dvec2 origin{0.0};    // world xy of the south-west sample
 };
 
 // "terrain": the ground plants stand on — the procedural heightfield (default), a heightmap or a glTF mesh.
@@ -46,8 +46,9 @@ struct TerrainParams {
     Source source = Source::Procedural;
     ProceduralTerrainParams procedural; // size, spacing, amplitude, feature_size, octaves (procedural only)
     HeightmapParams heightmap;
-    std::string meshPath;       // terrain.mesh.file: .gltf / .glb, Y-up as exporters write it
-    GroundSelection selection;  // terrain.mesh.vegetation_materials, terrain.max_slope_deg
+    std::string meshPath;      // terrain.mesh.file: .gltf / .glb, Y-up as exporters write it
+    GroundSelection selection; // terrain.mesh.vegetation_materials, terrain.max_slope_deg
+    uint32_t material = 0;     // terrain.material: the bare ground's preset, gpu::kGroundMaterial*
 };
 
 struct SunParams {
@@ -82,13 +83,13 @@ struct CameraParams {
 
 // A fixed-step sequence (issue 7 renders datasets from it).
 struct SequenceParams {
-    uint32_t frames = 1;           // frames 0 .. frames-1, frame i at time i * timeStep
-    double timeStep = 1.0 / 30.0;  // seconds per frame and per simulation tick
+    uint32_t frames = 1;          // frames 0 .. frames-1, frame i at time i * timeStep
+    double timeStep = 1.0 / 30.0; // seconds per frame and per simulation tick
 };
 
 struct RenderParams {
     uint32_t width = 1280, height = 720;
-    uint32_t samples = 4; // 1 or 4
+    uint32_t samples = 4;          // 1 or 4
     uint32_t shadowMapSize = 2048; // texels per edge; 0 disables sun shadows
     float shadowDistance = 60.0f;  // metres from the camera covered by the first (finest) shadow cascade
     uint32_t shadowCascades = 3;   // cascades up to lod.far + lod.band (world/sun_shadow.h); 1..kMaxShadowCascades
@@ -107,14 +108,14 @@ struct Scene {
     SequenceParams sequence;
     LodParams lod;
     WindParams wind;
-    VegetationParams vegetation;   // "vegetation" object, see vegetation_params.h
+    VegetationParams vegetation;                                 // "vegetation" object, see vegetation_params.h
     bool vegetationTileSet = false, vegetationOriginSet = false; // tile_size / world_origin given in the file
-    InteractionParams interaction; // "interaction" object, see collision.h (recovery time step = sequence's)
-    ActorParams actors;            // "vehicles", "colliders", "gusts"
+    InteractionParams interaction;     // "interaction" object, see collision.h (recovery time step = sequence's)
+    ActorParams actors;                // "vehicles", "colliders", "gusts"
     std::vector<ObjectParams> objects; // "objects": glTF models on paths (vegetation/objects.h), object k = index k
-    bool vegetationEnabled = true; // false: bare ground (paired studies, --no-vegetation)
-    std::string grassMapPath;      // "grass_map", resolved against the scene's folder; empty = procedural meadow
-    LandCoverParams landCover;     // "land_cover" (scene/land_cover_params.h): file resolved likewise; empty = none
+    bool vegetationEnabled = true;     // false: bare ground (paired studies, --no-vegetation)
+    std::string grassMapPath;          // "grass_map", resolved against the scene's folder; empty = procedural meadow
+    LandCoverParams landCover;         // "land_cover" (scene/land_cover_params.h): file resolved likewise; empty = none
     std::string atlasPngPath, atlasJsonPath; // "atlas": {"png", "json"}; empty = the built-in procedural atlas
     AssetPolicy assets; // where the files it names may be read from (loadScene: the scene file's folder)
     WorldParams world;  // "world": many tiles around interest points (scene/world_tiles.h); off = one tile
@@ -146,8 +147,8 @@ Camera sceneCamera(const Scene& scene, const Ground& terrain, uint32_t width, ui
 
 // Every collider acting on the vegetation during tick `tick` (at time tick * sequence.time_step): the scene's
 // vehicles, free colliders and gusts (actorColliders) followed by the objects' node colliders (objectColliders).
-std::vector<Collider> sceneColliders(const Scene& scene, const std::vector<ObjectModel>& models,
-                                     const Ground& terrain, uint64_t tick);
+std::vector<Collider> sceneColliders(const Scene& scene, const std::vector<ObjectModel>& models, const Ground& terrain,
+                                     uint64_t tick);
 // True when anything in the scene can touch the vegetation (the interaction simulation must run).
 bool sceneHasColliders(const Scene& scene);
 // True when a collider of the scene presses ruts into the ground (RutParams::depth > 0).

@@ -16,6 +16,7 @@ layout(location = 2) out float outViewDepth;
 layout(location = 3) out vec4 outAlbedo;
 layout(location = 4) out vec3 outUvLayer;
 layout(location = 6) out float outRut; // unpressed: ruts are drawn as patches of their own (track.vert)
+layout(location = 7) out float outLoose;
 
 void main() {
     vec4 world = vec4(inPosition.xyz, 1.0);
@@ -25,6 +26,7 @@ void main() {
     outAlbedo = inAlbedo;
     outUvLayer = inUvLayer.xyz;
     outRut = 0.0;
+    outLoose = 0.0;
     // Planar depth along the optical axis: view space uses OpenCV camera axes (z forward).
     outViewDepth = (frame.view * world).z;
 }

@@ -21,6 +21,7 @@ layout(location = 3) out vec4 outAlbedo;
 layout(location = 4) out vec3 outUvLayer;
 layout(location = 5) flat out vec3 outTriangleNormal; // camera frame, unit, facing the camera (truth pass)
 layout(location = 6) out float outRut;
+layout(location = 7) out float outLoose; // soil the wheel pushed up beside the rut (terrain_fragment.glsl)
 
 // The stored vertex at a corner of the drawn grid: its level of detail draws every (1 << level)-th vertex.
 uint patchVertex(uint entry, uvec2 corner) {
@@ -29,14 +30,33 @@ uint patchVertex(uint entry, uvec2 corner) {
     return patchIndex * kTrackPatchVertices * kTrackPatchVertices + stored.y * kTrackPatchVertices + stored.x;
 }
 
+// Loose soil beside a rut: an unpressed vertex within two cells of a pressed one holds the soil pushed out of it, in
+// proportion to the deepest rut there (full from 1 cm). Only the colour uses it: the surface stays the lattice's.
+float looseSoil(uint entry, uvec2 corner, float rut) {
+    if (rut > 0.0) return 0.0;
+    uint base = (entry & ((1u << kTrackLodShift) - 1u)) * kTrackPatchVertices * kTrackPatchVertices;
+    ivec2 stored = ivec2(corner << (entry >> kTrackLodShift));
+    float nearest = 0.0;
+    const ivec2 offsets[8] = ivec2[](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1), ivec2(2, 0), ivec2(-2, 0),
+                                     ivec2(0, 2), ivec2(0, -2));
+    for (int k = 0; k < 8; ++k) {
+        ivec2 p = clamp(stored + offsets[k], ivec2(0), ivec2(int(kTrackPatchVertices) - 1));
+        nearest = max(nearest, vertices[base + uint(p.y) * kTrackPatchVertices + uint(p.x)].positionHeight.w);
+    }
+    return clamp(nearest / 0.01, 0.0, 1.0);
+}
+
 void main() {
     uint entry = visiblePatches[gl_InstanceIndex];
     uint cellsPerSide = (kTrackPatchVertices - 1u) >> (entry >> kTrackLodShift);
     TerrainVertex v;
     uvec2 c0, c1, c2;
+    float loose = 0.0;
     if (PASS == kPassMain) { // indexed: gl_VertexIndex is a vertex of the level's grid, row by row
         uint side = cellsPerSide + 1u;
-        v = vertices[patchVertex(entry, uvec2(uint(gl_VertexIndex) % side, uint(gl_VertexIndex) / side))];
+        uvec2 corner = uvec2(uint(gl_VertexIndex) % side, uint(gl_VertexIndex) / side);
+        v = vertices[patchVertex(entry, corner)];
+        loose = looseSoil(entry, corner, v.positionHeight.w);
     } else { // three vertices per triangle, in the main pass's index order (render/track_renderer.cpp)
         uint triangle = uint(gl_VertexIndex) / 3u, corner = uint(gl_VertexIndex) % 3u;
         uvec2 cell = uvec2((triangle / 2u) % cellsPerSide, (triangle / 2u) / cellsPerSide);
@@ -54,6 +74,7 @@ void main() {
     outAlbedo = v.albedo;
     outUvLayer = v.uvLayer.xyz;
     outRut = v.positionHeight.w;
+    outLoose = loose;
     outTriangleNormal = vec3(0.0);
     if (PASS == kPassTruth) {
         vec3 p0 = vertices[patchVertex(entry, c0)].positionHeight.xyz,

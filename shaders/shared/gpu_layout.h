@@ -91,7 +91,16 @@ struct FrameConstants {
 // Per-tile constants of the terrain's main pass (push constants of terrain.frag): each tile has its own cover map.
 struct TerrainTileConstants {
     vec4 coverRect; // the cover map's tile: xy world south-west corner, z 1 / edge (0: no cover), w unused
+    uvec4 material; // x the bare ground's material (kGroundMaterial*, terrain.material), yzw unused
 };
+
+// Ground material presets (terrain.material; ground_material.glsl holds their albedos and textures).
+SWARD_CONST(uint, kGroundMaterialSoil, 0u);
+SWARD_CONST(uint, kGroundMaterialDrySoil, 1u);
+SWARD_CONST(uint, kGroundMaterialMud, 2u);
+SWARD_CONST(uint, kGroundMaterialGravel, 3u);
+SWARD_CONST(uint, kGroundMaterialForestFloor, 4u);
+SWARD_CONST(uint, kGroundMaterialCount, 5u);
 
 // FrameConstants::debug.x flags: viewer visualisations drawn by the main-pass shaders.
 SWARD_CONST(uint, kDebugLodColors, 1u);      // tint plants by level of detail (near red, mid green, far blue)
@@ -491,7 +500,7 @@ struct ExpansionStats {
 
 #ifdef __cplusplus
 static_assert(sizeof(FrameConstants) == (6 + kMaxShadowCascades) * 64 + (18 + kMaxShadowCascades) * 16);
-static_assert(sizeof(TerrainTileConstants) == 16);
+static_assert(sizeof(TerrainTileConstants) == 32);
 static_assert(sizeof(DebugLineVertex) == 32);
 static_assert(sizeof(VegetationConstants) == 17 * 16);
 static_assert(sizeof(ExpandedPlant) == 32);

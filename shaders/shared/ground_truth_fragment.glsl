@@ -2,7 +2,7 @@
 #define SWARD_GROUND_TRUTH_FRAGMENT_GLSL
 // Terrain ground truth (1 sample per pixel): the planar depth of the surface at the pixel centre, stored as
 // float bits in an R32_UINT attachment, the label (semantic class "track" where a rut is pressed at least
-// kTrackLabelDepth deep, "turf" where terrain.frag shades turf at this point, else "ground"; no instance) and the
+// kTrackLabelDepth deep, "turf" where terrain.frag shades turf at least half at this point, else "ground"; no instance) and the
 // triangle's normal (terrain_truth.vert, track.vert). truth_holes.frag leaves the blocks drawn as rut
 // patches to them (render/track_renderer.h). Integer and 32-bit float attachments written without blending hold exactly what
 // the shader computed.
@@ -26,7 +26,7 @@ void main() {
     if (inTrackPatch(inWorld.xy)) discard;
 #endif
     outDepthBits = floatBitsToUint(inViewDepth);
-    bool turf = turfFraction(groundCover(coverUv(inWorld)).a) >= 0.5;
+    bool turf = turfAt(inWorld) >= 0.5;
     uint semantic = inRut >= kTrackLabelDepth ? kSemanticTrack : turf ? kSemanticTurf : kSemanticGround;
     outLabel = uvec2(semantic << kInstanceBits, 0u);
     outNormal = vec4(inNormal, 0.0);

@@ -1,14 +1,16 @@
 #ifndef SWARD_TERRAIN_FRAGMENT_GLSL
 #define SWARD_TERRAIN_FRAGMENT_GLSL
-// Terrain shading: a mesh ground's material colour and texture, or soil albedo varied by slope, sun (Lambert) +
-// hemispherical ambient. Under dense vegetation the ground is turf (gpu_layout.h, turfFraction): the sward's low
-// base, coloured from the cover map (vegetation/cover_map.h), so the meadow is closed seen from above. Beyond the
+// Terrain shading: a mesh ground's material colour and texture, or a ground material (ground_material.glsl: soil
+// with clods, grains, cracks and specks, its relief tilting the shading normal), sun (Lambert) + hemispherical
+// ambient. Under dense vegetation the ground is turf (ground_cover.glsl, turfAt): the sward's low base of thatch,
+// coloured from the cover map (vegetation/cover_map.h), so the meadow is closed seen from above. Beyond the
 // far LOD limit, where the plants have dissolved, the ground takes the vegetation's look from the cover map, lit
 // as the plants are, so the meadow goes on in colour instead of ending in a bare band. Ruts (track.vert) are
 // compacted, darker soil (turf is pressed, not removed: the felled plants over it show the track there);
 // terrain_holes.frag leaves their blocks to them.
 #include "shared/frame.glsl"
 #include "shared/ground_cover.glsl"
+#include "shared/ground_material.glsl"
 #ifdef SWARD_TERRAIN_HOLES
 #include "shared/ground_tracks.glsl"
 #endif
@@ -22,6 +24,7 @@ layout(location = 2) in float inViewDepth;
 layout(location = 3) in vec4 inAlbedo;
 layout(location = 4) in vec3 inUvLayer; // flat in practice: the layer is constant per triangle
 layout(location = 6) in float inRut;    // metres pressed down (render/track_renderer.h)
+layout(location = 7) in float inLoose;  // 0..1: soil pushed up beside a rut (track.vert)
 
 layout(location = 0) out vec4 outColor;
 
@@ -35,8 +38,6 @@ const float kPlantOcclusion = 0.77;
 const float kCoverDepth = 1.1;
 // Mean sunlit fraction of the plant surface seen from afar: the plants shade each other and the ground between them.
 const float kPlantSunlit = 0.95;
-// Turf: the sward's base is darker than the plants' mean (older leaves, litter, shade of the blades above).
-const float kTurfShade = 0.55;
 // A rut: soil compacted by the wheel is darker (smoother, wetter); fully so from this depth on.
 const float kRutFullDepth = 0.01;
 const float kRutDarkening = 0.4;
@@ -55,30 +56,48 @@ float coverWeight(vec3 world) {
     return clamp((distance(world, frame.cameraPosition.xyz) - start) / max(frame.coverBand.y, 1e-3), 0.0, 1.0);
 }
 
-// Value noise in [0, 1] on a lattice of `cell` metres: integer hashing (no sin), the same on every device.
-float latticeNoise(vec2 xy, float cell) {
-    vec2 p = xy / cell, i = floor(p), f = p - i;
-    uvec2 c = uvec2(ivec2(i));
-    float n00 = unitFromHash(pcgHash(c.x + pcgHash(c.y)));
-    float n10 = unitFromHash(pcgHash(c.x + 1u + pcgHash(c.y)));
-    float n01 = unitFromHash(pcgHash(c.x + pcgHash(c.y + 1u)));
-    float n11 = unitFromHash(pcgHash(c.x + 1u + pcgHash(c.y + 1u)));
-    f = f * f * (3.0 - 2.0 * f);
-    return mix(mix(n00, n10, f.x), mix(n01, n11, f.x), f.y);
-}
-
-// Brightness of the turf around `world`: clumps of a few decimetres and short shoots of a few centimetres; the
-// fine octave fades where a pixel covers more than it (no shimmer in the distance).
-float turfGrain(vec3 world) {
-    float footprint = length(fwidth(world.xy));
-    float fine = mix(latticeNoise(world.xy, 0.035), 0.5, clamp(footprint / 0.035 - 0.5, 0.0, 1.0));
-    return 0.65 + 0.45 * latticeNoise(world.xy, 0.3) + 0.35 * (fine - 0.5);
-}
-
 // plant.frag's light for a plant standing along the ground normal (up_normal_blend aside).
 vec3 plantLight(vec3 n, float shadow) {
     float sun = clamp(dot(n, frame.sunDirection.xyz) * 0.6 + 0.4, 0.0, 1.0) * shadow * kPlantSunlit;
     return frame.sunRadiance.rgb * sun + ambientLight(n) * kPlantOcclusion;
+}
+
+// A rut's soil: compacted by the wheel, darker and smoother (its clods flattened), with a fine grain of its own;
+// beside it, the loose soil it pushed out: lighter, drier and crumbly.
+void pressRut(inout GroundSample g, float pressed, float loose, float footprint) {
+    if (pressed > 0.0) {
+        float grain = octaveWeight(0.01, footprint) * (valueNoise(inWorld.xy, 0.01, 90u) - 0.5);
+        g.albedo *= (1.0 - kRutDarkening * pressed) * (1.0 + 0.25 * pressed * grain);
+        g.slope *= 1.0 - 0.7 * pressed;
+    }
+    if (loose > 0.0) {
+        vec3 crumbs = noiseWithGradient(inWorld.xy, 0.012, 91u);
+        float w = loose * octaveWeight(0.012, footprint);
+        g.albedo *= 1.0 + loose * 0.18 + w * 0.35 * (crumbs.x - 0.5);
+        g.slope += w * 0.4 * 0.012 * crumbs.yz;
+    }
+}
+
+// Turf pressed into a rut: the thatch flattened, its blades lying along the track and showing their lighter, drier
+// faces (a track through a meadow reads lighter than the meadow beside it), with less relief.
+void pressTurf(inout GroundSample t, float pressed) {
+    t.albedo = mix(t.albedo, mix(t.albedo, vec3(0.26, 0.22, 0.13), 0.3) * 1.15, pressed);
+    t.slope *= 1.0 - 0.7 * pressed;
+}
+
+// The bare ground's albedo at this pixel and the bump slope of its texture: a mesh ground's material colour times its
+// texture, or where a material has no texture, the preset's texture scaled to the material's colour; else the
+// scene's preset (terrain.material).
+GroundSample bareGroundHere(float footprint) {
+    GroundMaterial m = groundMaterialPreset(tile.material.x);
+    GroundSample g = bareGround(m, inWorld.xy, footprint);
+    if (inAlbedo.a > 0.0) {
+        if (inUvLayer.z >= 0.0)
+            return GroundSample(inAlbedo.rgb * texture(groundTextures, vec3(inUvLayer.xy, round(inUvLayer.z))).rgb,
+                                vec2(0.0));
+        g.albedo *= inAlbedo.rgb / m.albedo;
+    }
+    return g;
 }
 
 void main() {
@@ -87,23 +106,22 @@ void main() {
 #endif
     vec3 n = normalize(inNormal);
     float pressed = clamp(inRut / kRutFullDepth, 0.0, 1.0);
-    float slope = 1.0 - n.z;
-    vec3 soil = vec3(0.16, 0.12, 0.07);
-    vec3 compact = vec3(0.07, 0.10, 0.03);
-    // Low-frequency variation from position only (no texture): keeps large flat areas from looking uniform.
-    float variation = 0.5 + 0.5 * sin(inWorld.x * 0.071 + 1.3 * sin(inWorld.y * 0.053));
-    vec3 albedo = mix(compact, soil, clamp(slope * 4.0 + 0.25 * variation, 0.0, 1.0));
-    // A mesh ground is drawn with its materials' base colours, times their textures.
-    if (inAlbedo.a > 0.0) albedo = inAlbedo.rgb;
-    if (inUvLayer.z >= 0.0) albedo *= texture(groundTextures, vec3(inUvLayer.xy, round(inUvLayer.z))).rgb;
-    albedo *= 1.0 - kRutDarkening * pressed;
+    float footprint = groundFootprint(inWorld);
+    GroundSample ground = bareGroundHere(footprint);
+    pressRut(ground, pressed, inLoose, footprint);
     float shadow = sunShadow(inWorld);
-    float sun = max(dot(n, frame.sunDirection.xyz), 0.0) * shadow;
-    vec3 color = albedo * (frame.sunRadiance.rgb * sun + ambientLight(n));
     vec2 uv = coverUv(inWorld);
     vec4 cover = groundCover(uv);
-    float turf = turfFraction(cover.a);
-    if (turf > 0.0) color = mix(color, cover.rgb * (kTurfShade * turfGrain(inWorld)) * plantLight(n, shadow), turf);
+    float turf = turfAt(inWorld);
+    if (turf > 0.0) {
+        GroundSample t = turfGround(cover.rgb, ground.albedo, inWorld.xy, footprint);
+        pressTurf(t, pressed);
+        ground.albedo = mix(ground.albedo, t.albedo, turf);
+        ground.slope = mix(ground.slope, t.slope, turf);
+    }
+    vec3 shading = bumpedNormal(n, ground.slope);
+    float sun = max(dot(shading, frame.sunDirection.xyz), 0.0) * shadow;
+    vec3 color = ground.albedo * (frame.sunRadiance.rgb * sun + ambientLight(shading));
     float weight = inCoverTile(uv) ? coverWeight(inWorld) : 0.0;
     if (weight > 0.0)
         color = mix(color, cover.rgb * kPlantBrightness * plantLight(n, shadow), weight * hiddenFraction(cover.a, inWorld));

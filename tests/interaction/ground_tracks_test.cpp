@@ -8,6 +8,8 @@
 #include "world/ground.h"
 
 #include <gtest/gtest.h>
+#include <map>
+#include <set>
 
 #include <cmath>
 #include <cstring>
@@ -78,20 +80,39 @@ TEST(GroundTracks, AFastWheelLeavesAContinuousRutOfItsDepthFollowingTheGround) {
     EXPECT_EQ(tracks.depth(lattice(10.0f), lattice(18.2f)), 0.0f);
 }
 
-TEST(GroundTracks, TreadsRaiseTheFloorInGroovesAcrossTheDirectionOfTravel) {
+TEST(GroundTracks, TreadsRaiseTheFloorInWornJitteredGroovesAcrossTheDirectionOfTravel) {
     const Ground ground = slopedGround();
     const RutParams rut{kRut, 0.1f, 0.015f};
     const GroundTracks tracks = drive(ground, {10.0f}, 10.0f, 0.13f, 40, rut);
-    uint32_t lugs = 0, grooves = 0;
+    // Walk the rut's centre line lug by lug (lug k spans y in [k, k + 1) pitches): each lug's floor is the full rut,
+    // then a groove raises it by a share of the tread depth that is the lug's own.
+    std::map<int64_t, std::pair<uint32_t, uint32_t>> perLug; // lug -> (floor vertices, groove vertices)
+    std::set<int32_t> wear;                                  // groove raises in 0.1 mm
     for (int64_t j = lattice(11.0f); j < lattice(14.0f); ++j) {
         const float d = tracks.depth(lattice(10.0f), j);
-        const float u = trackVertexPosition(lattice(10.0f), j).y / rut.treadPitch; // as the stamp computes it
-        const bool groove = u - std::floor(u) >= 0.5f;
-        EXPECT_NEAR(d, groove ? kRut - rut.treadDepth : kRut, 2e-4f) << "at y = " << float(j) * gpu::kTrackCell;
-        (groove ? grooves : lugs) += 1;
+        const int64_t lug = int64_t(std::floor(trackVertexPosition(lattice(10.0f), j).y / rut.treadPitch));
+        if (std::abs(d - kRut) < 2e-4f) {
+            ++perLug[lug].first;
+            continue;
+        }
+        const float raise = kRut - d;
+        EXPECT_GE(raise, 0.4f * rut.treadDepth - 2e-4f) << "at y = " << float(j) * gpu::kTrackCell;
+        EXPECT_LE(raise, rut.treadDepth + 2e-4f) << "at y = " << float(j) * gpu::kTrackCell;
+        ++perLug[lug].second;
+        wear.insert(int32_t(std::lround(raise * 1e4f)));
     }
-    EXPECT_GT(lugs, 40u);
-    EXPECT_GT(grooves, 40u);
+    uint32_t lugs = 0, minGroove = 1000, maxGroove = 0;
+    for (const auto& [lug, counts] : perLug) {
+        if (counts.first + counts.second < 4) continue; // a lug cut by the walk's ends
+        ++lugs;
+        EXPECT_GT(counts.first, 0u) << "lug " << lug << " has no floor";
+        EXPECT_GT(counts.second, 0u) << "lug " << lug << " has no groove";
+        minGroove = std::min(minGroove, counts.second);
+        maxGroove = std::max(maxGroove, counts.second);
+    }
+    EXPECT_GT(lugs, 25u);
+    EXPECT_GT(maxGroove, minGroove) << "every groove the same length: no jitter";
+    EXPECT_GT(wear.size(), 10u) << "every groove the same depth: no wear";
 }
 
 TEST(GroundTracks, DepthsAreTheSameWhateverTheOrderOfTheColliders) {

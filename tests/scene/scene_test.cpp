@@ -2,6 +2,7 @@
 #include "engine/memory.h"
 #include "scene/rover_model.h"
 #include "scene/scene.h"
+#include "shared/gpu_layout.h"
 #include "world/camera.h"
 
 #include "test_files.h"
@@ -32,7 +33,8 @@ TEST(Scene, DefaultsAreValid) {
 
 TEST(Scene, RejectsBadValuesNamingFileAndKey) {
     EXPECT_NE(errorOf(R"({"terrain": {"amplitude": -1}})").find("s.json: 'terrain.amplitude'"), std::string::npos);
-    EXPECT_NE(errorOf(R"({"terrain": {"spacing": "2"}})").find("'terrain.spacing' must be a number"), std::string::npos);
+    EXPECT_NE(errorOf(R"({"terrain": {"spacing": "2"}})").find("'terrain.spacing' must be a number"),
+              std::string::npos);
     EXPECT_NE(errorOf(R"({"terain": {}})").find("unknown key 'terain'"), std::string::npos);
     EXPECT_NE(errorOf(R"({"render": {"samples": 2}})").find("render.samples"), std::string::npos);
     EXPECT_NE(errorOf(R"({"camera": {"position": [1, 2]}})").find("camera.position"), std::string::npos);
@@ -40,6 +42,18 @@ TEST(Scene, RejectsBadValuesNamingFileAndKey) {
     EXPECT_NE(errorOf(R"({"lod": {"slice_layers": 1}})").find("'lod.slice_layers' must be 0 (off) or at least 2"),
               std::string::npos);
     EXPECT_EQ(parseScene(nlohmann::json::parse(R"({"lod": {"slice_layers": 0}})"), "s.json").lod.sliceLayers, 0.0f);
+}
+
+TEST(Scene, TerrainMaterialNamesAPresetOfAnyGround) {
+    EXPECT_EQ(parseScene(nlohmann::json::object(), "s.json").terrain.material, gpu::kGroundMaterialSoil);
+    EXPECT_EQ(parseScene(nlohmann::json::parse(R"({"terrain": {"material": "gravel"}})"), "s.json").terrain.material,
+              gpu::kGroundMaterialGravel);
+    EXPECT_EQ(
+        parseScene(nlohmann::json::parse(R"({"terrain": {"material": "forest_floor"}})"), "s.json").terrain.material,
+        gpu::kGroundMaterialForestFloor);
+    EXPECT_NE(errorOf(R"({"terrain": {"material": "sand"}})")
+                  .find("'terrain.material' must be soil, dry_soil, mud, gravel or forest_floor"),
+              std::string::npos);
 }
 
 TEST(Scene, MissingFileNamesIt) {
@@ -94,8 +108,10 @@ TEST(Scene, VegetationEnabledTakesBooleansAndColliderShapesMustBeStrings) {
 }
 
 TEST(Scene, StereoRigKeysAreReadAndChecked) {
-    Scene scene = parseScene(nlohmann::json::parse(
-        R"({"camera": {"baseline": 0.3, "min_depth": 2, "focal_length_px": 500, "principal_point": [300, 200]}})"), "s.json");
+    Scene scene = parseScene(
+        nlohmann::json::parse(
+            R"({"camera": {"baseline": 0.3, "min_depth": 2, "focal_length_px": 500, "principal_point": [300, 200]}})"),
+        "s.json");
     EXPECT_DOUBLE_EQ(scene.camera.rig.baseline, 0.3);
     EXPECT_DOUBLE_EQ(scene.camera.rig.minDepth, 2.0);
     Ground terrain = buildTerrain(scene);
@@ -151,9 +167,10 @@ nlohmann::json sceneNaming(const std::string& key, const std::string& path) {
 
 TEST(SceneAssets, PathsLeavingTheSceneFolderAreRefusedWithoutAllowAssets) {
     AssetFolders f;
-    const std::vector<std::pair<std::string, std::string>> keys = {
-        {"model", "'objects[0].model'"}, {"grass_map", "'grass_map'"}, {"land_cover", "'land_cover.file'"},
-        {"atlas", "'atlas.png'"}};
+    const std::vector<std::pair<std::string, std::string>> keys = {{"model", "'objects[0].model'"},
+                                                                   {"grass_map", "'grass_map'"},
+                                                                   {"land_cover", "'land_cover.file'"},
+                                                                   {"atlas", "'atlas.png'"}};
     for (const auto& [key, name] : keys) {
         const std::string file = key == "model" ? "m.gltf" : key == "atlas" ? "atlas.png" : "map.png";
         for (const std::string& path : f.waysOut(file)) {
