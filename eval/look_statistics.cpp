@@ -180,10 +180,17 @@ void measureKeypoints(const LookImage& image, const cv::Mat& mask, LookStatistic
     }
 }
 
-// Sharp-texture fraction: sqrt(Gauss_3(highPass^2)) > 0.02 at region pixels. Noise floor: 16 px blocks from the
-// frame's corner, entirely inside the region and with no clipped pixel; 10th percentile of their highPass std.
+// The region's own texture: every Gaussian is a normalised convolution over the region (Gauss(v m) / Gauss(m), m
+// the mask in {0, 1}), so a smooth gap between textured plants stays smooth. h = grey - Gauss_1(grey); sharp-texture
+// fraction: sqrt(Gauss_3(h^2)) > 0.02 at region pixels. Noise floor: 16 px blocks from the frame's corner, entirely
+// inside the region and with no clipped pixel; 10th percentile of their std of h.
 void measureTexture(const LookImage& image, const cv::Mat& mask, LookStatistics& s) {
-    const cv::Mat localRms = gauss(image.highPass.mul(image.highPass), 3);
+    cv::Mat m;
+    mask.convertTo(m, CV_32F, 1.0 / 255);
+    // Far outside the region the normalised blur is 0 / 0: h is set to 0 there, so it never enters a sum.
+    cv::Mat h = image.centred - gauss(image.centred.mul(m), 1) / gauss(m, 1);
+    h.setTo(0, mask == 0);
+    const cv::Mat localRms = gauss(h.mul(h), 3) / gauss(m, 3);
     uint64_t sharp = 0;
     for (int y = 0; y < mask.rows; ++y)
         for (int x = 0; x < mask.cols; ++x)
@@ -195,7 +202,7 @@ void measureTexture(const LookImage& image, const cv::Mat& mask, LookStatistics&
         for (int x = 0; x + b <= mask.cols; x += b) {
             const cv::Rect block(x, y, b, b);
             if (cv::countNonZero(mask(block)) != b * b || cv::countNonZero(image.clipped(block)) != 0) continue;
-            stds.push_back(momentsOf<float>(image.highPass(block), cv::Mat(b, b, CV_8U, cv::Scalar(255))).std);
+            stds.push_back(momentsOf<float>(h(block), cv::Mat(b, b, CV_8U, cv::Scalar(255))).std);
         }
     s.noiseBlocks = stds.size();
     s.noiseFloor = percentileOf(std::move(stds), kLookNoisePercentile);
@@ -238,7 +245,6 @@ LookImage prepareLookImage(const cv::Mat& bgr, bool detectKeypoints) {
             sum += image.grey.at<float>(y, x);
         }
     image.centred = image.grey - float(sum / double(bgr.total()));
-    image.highPass = image.centred - gauss(image.centred, 1);
     if (!detectKeypoints) return image;
     cv::Mat grey8;
     image.grey.convertTo(grey8, CV_8U, 255); // rounded, saturated

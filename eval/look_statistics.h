@@ -32,7 +32,6 @@ struct LookImage {
     cv::Mat saturation;                                // CV_64F [0, 1]: (max - min) / max, 0 where max = 0
     cv::Mat value;                                     // CV_64F [0, 1]: max of R, G, B
     cv::Mat clipped;                                   // CV_8U: 255 where a channel is 0 or 1 (0 or 255 in 8 bits)
-    cv::Mat highPass;                                  // CV_32F: grey - Gauss(sigma 1)
     std::array<std::vector<cv::Point2f>, 3> keypoints; // ORB, SIFT, FAST, on the whole frame's 8-bit grey
 };
 
@@ -57,8 +56,8 @@ struct LookStatistics {
     uint64_t spectrumWindows = 0;                               // 64x64 windows inside the region
     std::array<double, 3> keypointsPerMegapixel{NAN, NAN, NAN}; // ORB, SIFT, FAST
     uint64_t erodedPixels = 0;                                  // the region eroded by kLookKeypointErosionPx
-    double sharpFraction = NAN; // share of region pixels with sqrt(Gauss_3(highPass^2)) > 0.02
-    double noiseFloor = NAN;    // 10th percentile of the std of highPass over unclipped 16 px blocks
+    double sharpFraction = NAN; // share of region pixels with sqrt(Gauss_3(h^2)) > 0.02, h = grey - Gauss_1(grey)
+    double noiseFloor = NAN;    // 10th percentile of the std of h over unclipped 16 px blocks (both within the region)
     uint64_t noiseBlocks = 0;
     std::vector<double> spectrum; // mean radial power per 1-px frequency bin k = 0..32 (f = k / 64)
     std::vector<uint64_t> greyHistogram, saturationHistogram; // kLookHistogramBins bins over [0, 1] (pictures)

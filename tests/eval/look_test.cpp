@@ -204,6 +204,18 @@ TEST(LookNoise, SharpTextureFractionSeparatesStrongFromWeakNoise) {
     EXPECT_EQ(weak.sharpFraction, 0.0);
 }
 
+TEST(LookNoise, AFlatRegionBesideStrongTextureIsSmooth) {
+    // The texture statistics see the region alone: the noise next to it leaks into neither test.
+    cv::Mat grey = whiteNoise(128, 0.5, 0.1, 7);
+    grey.colRange(64, 128).setTo(0.4);
+    cv::Mat flat = cv::Mat::zeros(grey.size(), CV_8U);
+    flat.colRange(64, 128).setTo(255);
+    const LookStatistics s = measureRegion(prepareLookImage(greyToBgr(grey), false), flat);
+    EXPECT_EQ(s.sharpFraction, 0.0);
+    EXPECT_EQ(s.noiseBlocks, 32u);
+    EXPECT_NEAR(s.noiseFloor, 0.0, 1e-6);
+}
+
 TEST(LookSpectrum, OneOverFImageHasPowerSlopeMinusTwo) {
     const LookStatistics s = measureRegion(prepareLookImage(greyToBgr(oneOverF(256)), false), full({256, 256}));
     EXPECT_NEAR(s.spectrumSlope, -2.0, 0.04);
