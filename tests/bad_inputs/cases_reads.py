@@ -113,6 +113,25 @@ def pose_file_fifo(env):
     return ["odometry", dataset, "--poses", fifo_path, "--out", env.out]
 
 
+def look_reference(make):
+    """sward-eval look against a reference folder holding one real image (a copy of the dataset's preview), broken
+    by make(reference_folder)."""
+    def setup(env):
+        reference = env.path("real")
+        os.makedirs(reference)
+        shutil.copyfile(os.path.join(env.base_dataset, "preview", "000000.png"), os.path.join(reference, "a.png"))
+        make(reference, env)
+        env.out = env.path("report")
+        return ["look", env.base_dataset, "--reference", reference, "--out", env.out]
+    return setup
+
+
+def look_mask_outside(reference, env):
+    env.write("outside.png", "not read")
+    with open(os.path.join(reference, "regions.json"), "w") as f:
+        f.write('{"a.png": {"soil": "../outside.png"}}')
+
+
 CASES = [
     Case("land_cover .aux.xml symlinked outside the scene folder", "sward-render",
          scene_with(land_cover_with(symlink_outside)), 1, r"cover\.png\.aux\.xml.*outside the scene's folder"),
@@ -134,6 +153,14 @@ CASES = [
     eval_case("dataset calib.txt a FIFO", fifo_instead_of("calib.txt"), r"calib\.txt.*not a regular file"),
     Case("pose file a FIFO (sward-eval odometry --poses)", "sward-eval", pose_file_fifo, 1,
          r"poses\.txt.*not a regular file", needs_dataset=True),
+    Case("reference image a FIFO (sward-eval look --reference)", "sward-eval",
+         look_reference(lambda reference, env: os.mkfifo(os.path.join(reference, "b.png"))), 1,
+         r"b\.png.*not a regular file", needs_dataset=True),
+    Case("reference regions.json a FIFO (sward-eval look)", "sward-eval",
+         look_reference(lambda reference, env: os.mkfifo(os.path.join(reference, "regions.json"))), 1,
+         r"regions\.json.*not a regular file", needs_dataset=True),
+    Case("reference region mask leaving the folder (sward-eval look)", "sward-eval", look_reference(look_mask_outside),
+         1, r"\.\./outside\.png.*not a file name inside the reference folder", needs_dataset=True),
     export_case("sward-export frames.jsonl a FIFO", fifo_instead_of("frames.jsonl"),
                 r"frames\.jsonl.*not a regular file", "--layout", "colmap"),
 ]
