@@ -19,7 +19,7 @@ cv::Mat gauss(const cv::Mat& image, double sigma) {
     return out;
 }
 
-// Grey in [0, 1] and HSV of one pixel's R, G, B in [0, 1].
+// HSV of one pixel's R, G, B in [0, 1]: hue in degrees, saturation (max - min) / max, value max.
 struct Hsv {
     double h, s, v;
 };
@@ -101,9 +101,7 @@ void measureColour(const LookImage& image, const cv::Mat& mask, LookStatistics& 
 
 // Sobel / 8 on the grey, at region pixels whose 3x3 neighbourhood lies inside the frame.
 void measureGradients(const LookImage& image, const cv::Mat& mask, LookStatistics& s) {
-    cv::Mat dx, dy;
-    cv::Sobel(image.centred, dx, CV_64F, 1, 0, 3, 1.0 / 8, 0, cv::BORDER_REFLECT_101);
-    cv::Sobel(image.centred, dy, CV_64F, 0, 1, 3, 1.0 / 8, 0, cv::BORDER_REFLECT_101);
+    const cv::Mat &dx = image.dx, &dy = image.dy;
     cv::Mat inner = cv::Mat::zeros(mask.size(), CV_8U);
     if (mask.rows > 2 && mask.cols > 2)
         mask(cv::Rect(1, 1, mask.cols - 2, mask.rows - 2)).copyTo(inner(cv::Rect(1, 1, mask.cols - 2, mask.rows - 2)));
@@ -139,24 +137,18 @@ cv::Mat downsampleMask(const cv::Mat& mask, cv::Size size) {
     return out;
 }
 
-// Level k = G_k - pyrUp(G_{k+1}) (G_0 the centred grey, G_{k+1} = pyrDown(G_k)); RMS over the region's pixels
-// at that level, divided by the region's mean grey.
+// The RMS of each Laplacian level over the region's pixels at that level, divided by the region's mean grey.
 void measureLaplacian(const LookImage& image, const cv::Mat& mask, LookStatistics& s) {
-    cv::Mat g = image.centred, m = mask;
-    for (int k = 0; k < kLookPyramidLevels; ++k) {
-        if (g.cols < 2 || g.rows < 2) return;
-        cv::Mat next, up;
-        cv::pyrDown(g, next);
-        cv::pyrUp(next, up, g.size());
-        const cv::Mat band = g - up;
+    cv::Mat m = mask;
+    for (size_t k = 0; k < image.laplacian.size(); ++k) {
+        const cv::Mat& band = image.laplacian[k];
+        if (k > 0) m = downsampleMask(m, band.size());
         double squares = 0;
         uint64_t n = 0;
         for (int y = 0; y < band.rows; ++y)
             for (int x = 0; x < band.cols; ++x)
                 if (m.at<uint8_t>(y, x)) squares += double(band.at<float>(y, x)) * band.at<float>(y, x), ++n;
-        if (n > 0 && s.greyMean > 0) s.laplacianRms[size_t(k)] = std::sqrt(squares / double(n)) / s.greyMean;
-        m = downsampleMask(m, next.size());
-        g = next;
+        if (n > 0 && s.greyMean > 0) s.laplacianRms[k] = std::sqrt(squares / double(n)) / s.greyMean;
     }
 }
 
@@ -245,6 +237,17 @@ LookImage prepareLookImage(const cv::Mat& bgr, bool detectKeypoints) {
             sum += image.grey.at<float>(y, x);
         }
     image.centred = image.grey - float(sum / double(bgr.total()));
+    cv::Sobel(image.centred, image.dx, CV_64F, 1, 0, 3, 1.0 / 8, 0, cv::BORDER_REFLECT_101);
+    cv::Sobel(image.centred, image.dy, CV_64F, 0, 1, 3, 1.0 / 8, 0, cv::BORDER_REFLECT_101);
+    // Level k = G_k - pyrUp(G_{k+1}), G_0 the centred grey, G_{k+1} = pyrDown(G_k); levels stop at a 1 px side.
+    cv::Mat g = image.centred;
+    for (int k = 0; k < kLookPyramidLevels && g.cols >= 2 && g.rows >= 2; ++k) {
+        cv::Mat next, up;
+        cv::pyrDown(g, next);
+        cv::pyrUp(next, up, g.size());
+        image.laplacian.push_back(g - up);
+        g = next;
+    }
     if (!detectKeypoints) return image;
     cv::Mat grey8;
     image.grey.convertTo(grey8, CV_8U, 255); // rounded, saturated

@@ -24,7 +24,8 @@ inline constexpr int kLookHistogramBins = 64;
 
 // One image prepared once for every region: grey (luma of the sRGB values, OpenCV's BGR2GRAY weights
 // 0.299 R + 0.587 G + 0.114 B, on values in [0, 1]) and HSV in [0, 1] (hue in degrees), the frame's mean grey
-// subtracted before any filter (so a flat image filters to exact zeros), and the whole frame's keypoints.
+// subtracted before any filter (so a flat image filters to exact zeros), its gradients and Laplacian pyramid, and
+// the whole frame's keypoints.
 struct LookImage {
     cv::Mat grey;                                      // CV_32F in [0, 1]
     cv::Mat centred;                                   // CV_32F: grey minus the frame's mean grey
@@ -32,6 +33,8 @@ struct LookImage {
     cv::Mat saturation;                                // CV_64F [0, 1]: (max - min) / max, 0 where max = 0
     cv::Mat value;                                     // CV_64F [0, 1]: max of R, G, B
     cv::Mat clipped;                                   // CV_8U: 255 where a channel is 0 or 1 (0 or 255 in 8 bits)
+    cv::Mat dx, dy;                                    // CV_64F: Sobel 3x3 / 8 of the grey
+    std::vector<cv::Mat> laplacian;                    // CV_32F: Laplacian-pyramid levels 0 .. kLookPyramidLevels - 1
     std::array<std::vector<cv::Point2f>, 3> keypoints; // ORB, SIFT, FAST, on the whole frame's 8-bit grey
 };
 
