@@ -130,11 +130,11 @@ void writeLookPictures(const LookResult& result, const std::string& outDir) {
         drawHistogram(canvas, 0, ("grey, region " + region).c_str(), sward, real, true);
         drawHistogram(canvas, 1, "HSV saturation", sward, real, false);
         drawSpectrum(canvas, sward, real);
-        cv::putText(canvas, "sward", {3 * kPanelWidth - 120, kPanelHeight - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
-                    kSwardColour, 1, cv::LINE_AA);
+        cv::putText(canvas, "sward", {3 * kPanelWidth - 110, 18}, cv::FONT_HERSHEY_SIMPLEX, 0.45, kSwardColour, 1,
+                    cv::LINE_AA);
         if (real.any)
-            cv::putText(canvas, "real", {3 * kPanelWidth - 60, kPanelHeight - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
-                        kRealColour, 1, cv::LINE_AA);
+            cv::putText(canvas, "real", {3 * kPanelWidth - 50, 18}, cv::FONT_HERSHEY_SIMPLEX, 0.45, kRealColour, 1,
+                        cv::LINE_AA);
         writePng(outDir + "/look_" + region + ".png", canvas);
     }
 }
