@@ -39,8 +39,8 @@ GroundMaterial groundMaterialPreset(uint preset) {
         return GroundMaterial(vec3(0.080, 0.064, 0.048), vec3(0.06, 0.05, 0.04), vec3(0.19, 0.13, 0.07), 0.5, 0.55,
                               0.03, 0.0, 0.0, 1.0);
     // kGroundMaterialSoil: moist loam in clods, a few pebbles and bits of dead plant.
-    return GroundMaterial(vec3(0.13, 0.108, 0.087), vec3(0.10, 0.081, 0.062), vec3(0.20, 0.19, 0.175), 0.28, 0.06,
-                          0.008, 0.4, 0.16, 0.8);
+    return GroundMaterial(vec3(0.125, 0.110, 0.094), vec3(0.098, 0.085, 0.068), vec3(0.20, 0.19, 0.175), 0.28, 0.06,
+                          0.008, 0.2, 0.16, 0.8);
 }
 
 // The hash of lattice point c under `salt` (each layer of texture its own, so layers do not repeat each other).
@@ -120,9 +120,9 @@ struct GroundSample {
 GroundSample bareGround(GroundMaterial m, vec2 xy, float footprint) {
     // Field scale: wetter and drier patches of a few metres (value), organic-rich and sandy ones (hue).
     float patches = valueNoise(xy, 4.0, 11u) * 0.6 + valueNoise(xy, 1.3, 12u) * 0.4;
-    float hue = valueNoise(xy, 2.2, 13u);
+    vec2 hue = vec2(valueNoise(xy, 2.2, 13u), valueNoise(xy, 0.8, 14u)) - 0.5;
     vec3 albedo = mix(m.albedo, m.patchTint, smoothstep(0.3, 0.8, patches));
-    albedo *= vec3(1.0 + 0.3 * (hue - 0.5), 1.0, 1.0 - 0.35 * (hue - 0.5));
+    albedo *= vec3(1.0 + 0.2 * hue.x, 1.0 + 0.1 * hue.y, 1.0 - 0.25 * hue.x); // redder / yellower / greyer-green
     // Clods and grains: octaves from 40 cm down to 3 mm, each relief about as steep as the next (fractal soil),
     // each also a little lighter on top (dry crust) and darker in its hollows.
     vec2 slope = vec2(0.0);
@@ -137,34 +137,39 @@ GroundSample bareGround(GroundMaterial m, vec2 xy, float footprint) {
     }
     albedo *= 1.0 + shade;
     // Clods with cracks between them, each its own shade and tint, lit as low domes: large ones, and small ones
-    // on them. The lattice is warped so that no two clods have the same shape.
+    // on them. The lattice is warped so that no two clods have the same shape, and clods gather in patches with
+    // finer, smoother soil between (a field is not cobbled).
+    float cloddy = 0.5 + 0.5 * smoothstep(0.25, 0.65, valueNoise(xy, 1.7, 37u));
     for (uint k = 0u; k < 2u; ++k) {
-        float size = k == 0u ? m.clodSize : m.clodSize * 0.3;
-        float wc = size > 0.0 ? octaveWeight(size * 0.5, footprint) : 0.0;
+        float size = k == 0u ? m.clodSize : m.clodSize * 0.45;
+        float wc = size > 0.0 ? octaveWeight(size * 0.75, footprint) * cloddy : 0.0;
         if (wc <= 0.0) break;
-        vec2 warped = xy + size * 0.45 * (vec2(valueNoise(xy, size * 1.3, 32u + k), valueNoise(xy, size * 1.3, 34u + k)) - 0.5);
+        vec2 warp = vec2(valueNoise(xy, size * 1.3, 32u + k), valueNoise(xy, size * 1.3, 34u + k)) - 0.5;
         vec2 toCentre;
-        vec4 clod = clodAt(warped, size, 30u + 4u * k, toCentre);
-        float own = clod.z - 0.5, strength = k == 0u ? 1.0 : 0.6;
-        albedo *= 1.0 + wc * strength * (0.22 * own + 0.1 * (clod.x - 0.5));
-        albedo *= 1.0 + wc * strength * m.hueJitter * 0.25 * vec3(own, 0.0, -own);
+        vec4 clod = clodAt(xy + size * 0.45 * warp, size, 30u + 4u * k, toCentre);
+        float own = clod.z - 0.5, strength = k == 0u ? 1.0 : 0.9;
+        albedo *= 1.0 + wc * strength * (0.32 * own + 0.1 * (clod.x - 0.5));
+        albedo *= 1.0 + wc * strength * m.hueJitter * 0.35 * vec3(own, 0.1 * own, -own);
         // Cracks open only in patches (where the soil dried), not around every clod.
         float open = smoothstep(0.45, 0.75, valueNoise(xy, 0.6, 36u + k));
         float crack = open * (1.0 - smoothstep(0.0, max(0.06 * size, footprint), clod.y));
-        if (k == 0u) albedo *= 1.0 - wc * m.cracks * crack; // the small clods sit on the large ones
-        slope -= wc * strength * (clod.x > 0.0 ? 0.45 : 0.15) * toCentre / size;
+        albedo *= 1.0 - wc * m.cracks * crack * (k == 0u ? 1.0 : 0.5);
+        // The dome flattens towards the clod's border, so neighbouring clods meet without a seam of light.
+        float dome = smoothstep(0.0, 0.08 * size, clod.y);
+        slope -= wc * strength * dome * (clod.x > 0.0 ? 0.45 : 0.15) * toCentre / size;
     }
-    // Specks: pebbles / leaves / straw of the material, each its own shade; where they are smaller than the pixel,
-    // their mean share of the ground.
-    if (m.specks > 0.0) {
-        float ws = octaveWeight(m.speckSize, footprint);
-        vec3 s = ws > 0.0 ? speckAt(xy, m.speckSize, m.specks, footprint, 40u) : vec3(0.0);
+    // Specks: pebbles / leaves / straw of the material, each its own shade, and a few four times larger; where they
+    // are smaller than the pixel, their mean share of the ground.
+    for (uint k = 0u; k < 2u && m.specks > 0.0; ++k) {
+        float size = m.speckSize * (k == 0u ? 1.0 : 4.0), share = m.specks * (k == 0u ? 1.0 : 0.4);
+        float ws = octaveWeight(size, footprint);
+        vec3 s = ws > 0.0 ? speckAt(xy, size, share, footprint, 40u + 8u * k) : vec3(0.0);
         vec3 tint = vec3(1.0);
         if (ws > 0.0) { // each speck its own value and hue: grey stone, rusty, olive bits of plant
-            vec2 hs = vec2(valueNoise(xy, m.speckSize * 2.0, 41u), valueNoise(xy, m.speckSize * 3.0, 42u)) - 0.5;
+            vec2 hs = vec2(valueNoise(xy, size * 2.0, 41u + 8u * k), valueNoise(xy, size * 3.0, 42u + 8u * k)) - 0.5;
             tint = (1.0 + 0.5 * hs.x) * (vec3(1.0) + m.hueJitter * vec3(0.5 * hs.y, 0.3 * abs(hs.y), -0.6 * hs.y));
         }
-        albedo = mix(albedo, m.speck * tint, ws * s.x + (1.0 - ws) * m.specks);
+        albedo = mix(albedo, m.speck * tint, ws * s.x + (1.0 - ws) * share);
         slope += ws * s.yz * 0.8;
     }
     return GroundSample(albedo, slope);
