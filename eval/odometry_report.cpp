@@ -172,8 +172,8 @@ std::string featuresTable(const OdometryResult& r, size_t first, size_t end) {
 
 std::string segmentsTable(const OdometryResult& r) {
     std::string t = "| segment | frames | distance (m) | drift (%) | rotation (deg/m) | failed | keypoints | stereo "
-                    "matches | inliers | inliers on vegetation | inliers on track |\n|---|---:|---:|---:|---:|---:|"
-                    "---:|---:|---:|---:|---:|\n";
+                    "matches | inliers | inliers on ground / turf | inliers on vegetation | inliers on track |\n|---|"
+                    "---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const OdometrySegment& s : r.segments) {
         const auto [first, end] = indexRange(r, s.first, s.end);
         const SegmentDrift d = segmentDrift(r.metrics, uint32_t(first), uint32_t(end));
@@ -181,7 +181,7 @@ std::string segmentsTable(const OdometryResult& r) {
              std::to_string(end - first) + " | " + fixed(d.distanceMetres, 2) + " | " + fixed(d.translationPercent, 2) +
              " | " + fixed(d.rotationDegPerMetre, 3) + " |";
         if (r.frames.empty()) {
-            t += " | | | | | |\n";
+            t += " | | | | | | |\n";
             continue;
         }
         const double frames = std::max(1.0, double(end - first));
@@ -190,8 +190,10 @@ std::string segmentsTable(const OdometryResult& r) {
         t += " " + std::to_string(failuresIn(r, first, end)) + " | " +
              fixed(double(total(sum(r, &FrameOdometry::keypoints, first, end))) / frames, 1) + " | " +
              fixed(double(total(sum(r, &FrameOdometry::stereoMatches, first, end))) / frames, 1) + " | " +
-             fixed(double(total(inliers)) / motions, 1) + " | " + fixed(double(inliers[kFcVegetation]) / motions, 1) +
-             " | " + fixed(double(inliers[kFcTrack]) / motions, 1) + " |\n";
+             fixed(double(total(inliers)) / motions, 1) + " | " +
+             fixed(double(inliers[kFcGround] + inliers[kFcTurf]) / motions, 1) + " | " +
+             fixed(double(inliers[kFcVegetation]) / motions, 1) + " | " +
+             fixed(double(inliers[kFcTrack]) / motions, 1) + " |\n";
     }
     return t;
 }

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -145,6 +146,19 @@ void writePoses(const std::string& path, const std::vector<Pose>& poses) {
     std::ofstream(path) << kittiPosesText(poses);
 }
 
+// The cells of the first Markdown table row of `text` starting with `start`, trimmed.
+std::vector<std::string> tableCells(const std::string& text, const std::string& start) {
+    const size_t at = text.find("\n" + start);
+    if (at == std::string::npos) return {};
+    const std::string line = text.substr(at + 1, text.find('\n', at + 1) - at - 1);
+    std::vector<std::string> cells;
+    for (size_t b = 1, e; (e = line.find('|', b)) != std::string::npos; b = e + 1) {
+        const size_t first = line.find_first_not_of(' ', b), last = line.find_last_not_of(' ', e - 1);
+        cells.push_back(first < e ? line.substr(first, last - first + 1) : "");
+    }
+    return cells;
+}
+
 int runEval(const std::string& args, std::string* err = nullptr) {
     const std::string errFile = tempDir("_stderr") + "/err.txt";
     const int status = std::system((std::string(SWARD_EVAL_EXE) + " " + args + " >/dev/null 2>" + errFile).c_str());
@@ -199,6 +213,16 @@ TEST(Odometry, OrbOdometryOnATexturedSceneIsCloseAndBitwiseReproducible) {
     EXPECT_LT(j["ate_first_frame_rmse_m"].get<double>(), 0.1); // 2.5 m travelled
     EXPECT_GT(j["features"]["inliers"]["ground"].get<double>(), 0);
     EXPECT_EQ(j["segments"].size(), 2u);
+    // report.md's segment table has a column of inliers on ground and turf, agreeing with metrics.json.
+    const std::string md = readFile(dir + "/one/report.md");
+    const std::vector<std::string> header = tableCells(md, "| segment |"), row = tableCells(md, "| b (3:6) |");
+    const auto column = std::find(header.begin(), header.end(), "inliers on ground / turf");
+    ASSERT_NE(column, header.end());
+    ASSERT_EQ(row.size(), header.size());
+    const nlohmann::json& inliers = j["segments"][1]["features"]["inliers_per_frame"];
+    const double ground = inliers["ground"].get<double>() + inliers["turf"].get<double>();
+    EXPECT_GT(ground, 0);
+    EXPECT_NEAR(std::stod(row[size_t(column - header.begin())]), ground, 0.05);
 }
 
 TEST(Odometry, AJumpInThePoseFileGivesTheExpectedErrors) {
