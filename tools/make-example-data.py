@@ -8,7 +8,7 @@
   gis/dem.tif         a GeoTIFF heightmap (UTM 33N, 2 m pixels, float32 metres) of a known analytic surface
   gis/landcover.tif   a GeoTIFF of ESA WorldCover class codes over the scene's 500 m vegetation tile, whose
                       south-west corner is the DEM's south-west sample (4 m pixels, byte)
-  tracks/grass.png    the grass map of examples/tracks: meadow west of x = 40 m, bare soil east of it
+  tracks/grass.png    the grass map of examples/tracks: meadow west of a wandering edge near x = 40 m, bare soil east
 
 The surfaces are closed-form functions below; tests compare what sward builds from these files with them. The
 GeoTIFFs are written by GDAL's own gdal_translate from ASCII grids. Usage: make-example-data.py OUT_DIR
@@ -204,7 +204,9 @@ TRACKS_SIZE, TRACKS_TEXELS, TRACKS_BARE_FROM = 75.0, 150, 40.0
 def tracks_pixel(i, r):
     x = (i + 0.5) * TRACKS_SIZE / TRACKS_TEXELS
     y = (TRACKS_TEXELS - r - 0.5) * TRACKS_SIZE / TRACKS_TEXELS  # row 0 is north
-    meadow = min(max((TRACKS_BARE_FROM - x) / 2.0, 0.0), 1.0)  # a 2 m wide edge
+    # A 2 m wide edge that wanders by up to 1.9 m either side of x = 40 m, as a field's edge does (not a straight step).
+    edge = TRACKS_BARE_FROM + 1.2 * math.sin(0.29 * y) + 0.7 * math.sin(0.71 * y + 2.0)
+    meadow = min(max((edge - x) / 2.0, 0.0), 1.0)
     flowers = 0.5 + 0.5 * math.sin(0.9 * x) * math.sin(0.7 * y)
     return (0, round(235 * meadow), round(200 * meadow * flowers))
 
