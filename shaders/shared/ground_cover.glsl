@@ -24,9 +24,9 @@ vec4 groundCover(vec2 uv) {
 float borderNoise(vec2 xy, float cell, uint salt) {
     vec2 p = xy / cell, i = floor(p), f = p - i;
     uvec2 c = uvec2(ivec2(i));
-    float n00 = unitFromHash(pcgHash(c.x + pcgHash(c.y ^ salt))), n10 = unitFromHash(pcgHash(c.x + 1u + pcgHash(c.y ^ salt)));
-    float n01 = unitFromHash(pcgHash(c.x + pcgHash((c.y + 1u) ^ salt)));
-    float n11 = unitFromHash(pcgHash(c.x + 1u + pcgHash((c.y + 1u) ^ salt)));
+    uint y0 = pcgHash(c.y ^ salt), y1 = pcgHash((c.y + 1u) ^ salt);
+    float n00 = unitFromHash(pcgHash(c.x + y0)), n10 = unitFromHash(pcgHash(c.x + 1u + y0));
+    float n01 = unitFromHash(pcgHash(c.x + y1)), n11 = unitFromHash(pcgHash(c.x + 1u + y1));
     f = f * f * (3.0 - 2.0 * f);
     return mix(mix(n00, n10, f.x), mix(n01, n11, f.x), f.y);
 }
