@@ -211,11 +211,19 @@ void runVisualOdometry(const Setup& setup, OdometryResult& result) {
         FrameOdometry& f = result.frames[i];
         f.temporalMatches = motions[i].matches;
         f.inliers = motions[i].inliers;
-        f.failed = !motions[i].solved;
-        if (motions[i].solved) last = motions[i].bFromA;
+        f.implausible =
+            motions[i].solved && !plausibleMotion(motions[i].bFromA, options.maxStepMetres, options.maxTurnDegrees);
+        f.failed = !motions[i].solved || f.implausible;
+        if (!f.failed) last = motions[i].bFromA;
         result.failures += f.failed;
+        result.implausible += f.implausible;
         result.estimate.push_back(result.estimate.back() * inverseRigid(last));
     }
+}
+
+std::string gateDescription(const OdometryOptions& options) {
+    return "; a motion over " + metres(options.maxStepMetres) + " m or " + metres(options.maxTurnDegrees) +
+           " deg per frame fails";
 }
 
 void requireSegments(const Setup& setup) {
@@ -225,6 +233,11 @@ void requireSegments(const Setup& setup) {
 }
 
 } // namespace
+
+bool plausibleMotion(const Pose& bFromA, double maxStepMetres, double maxTurnDegrees) {
+    const double step = std::hypot(bFromA(0, 3), bFromA(1, 3), bFromA(2, 3));
+    return step <= maxStepMetres && rotationAngleDegrees(bFromA) <= maxTurnDegrees;
+}
 
 OdometryResult evaluateOdometry(const OdometryOptions& options) {
     Setup setup;
@@ -254,6 +267,7 @@ OdometryResult evaluateOdometry(const OdometryOptions& options) {
         result.method = options.truthMatcher ? "ground-truth correspondences (depth + poses), every " +
                                                    std::to_string(kTruthGridPx) + "th pixel"
                                              : detectorDescription(options.detector);
+        result.method += gateDescription(options);
         runVisualOdometry(setup, result);
     }
     result.seconds = estimation.seconds();
@@ -275,7 +289,8 @@ OdometryResult runOdometry(const OdometryOptions& options) {
         options.log(result.datasetDir + ": " + std::to_string(m.frames) + " frames, " + fixed(m.pathMetres, 2) +
                     " m, ATE " + fixed(m.ateFirstFrameRmse, 4) + " m (first-frame aligned), " +
                     fixed(m.ateUmeyamaRmse, 4) + " m (rigid), drift " + fixed(m.driftPercent, 2) + " %, " +
-                    std::to_string(result.failures) + " failed frames; " + fixed(result.seconds, 2) + " s");
+                    std::to_string(result.failures) + " failed frames (" + std::to_string(result.implausible) +
+                    " implausible); " + fixed(result.seconds, 2) + " s");
         options.log("report written to " + outDir + "/report.md");
     }
     return result;

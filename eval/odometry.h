@@ -36,8 +36,10 @@ struct OdometryOptions {
     std::optional<std::pair<uint32_t, uint32_t>> frames; // [first, last) frame numbers; default: all
     std::vector<double> lengthsMetres = {1, 2, 5, 10};   // relative-error sub-sequence lengths
     std::vector<OdometrySegment> segments;
-    unsigned threads = 0;                        // frames processed at once; 0: hardware concurrency
-    bool pictures = true;                        // the PNG plots
+    double maxStepMetres = 2.0;   // a motion moving the camera farther than this between two frames fails
+    double maxTurnDegrees = 30.0; // a motion turning it more than this between two frames fails
+    unsigned threads = 0;         // frames processed at once; 0: hardware concurrency
+    bool pictures = true;         // the PNG plots
     std::function<void(const std::string&)> log; // progress lines; may be empty
 };
 
@@ -58,7 +60,8 @@ struct FrameOdometry {
     ClassCounts stereoMatches{};   // left keypoints with a left-right match, triangulated
     ClassCounts temporalMatches{}; // previous frame's triangulated keypoints matched into this frame: PnP input
     ClassCounts inliers{};         // those RANSAC kept
-    bool failed = false;           // fewer than kMinInliers inliers (or no solution): motion not measured
+    bool failed = false;           // fewer than kMinInliers inliers, no solution or implausible: not measured
+    bool implausible = false;      // solved, but beyond --max-step or --max-turn (a wrong PnP solution)
 };
 
 struct OdometryResult {
@@ -69,10 +72,15 @@ struct OdometryResult {
     std::vector<Pose> truth, estimate;
     std::vector<FrameOdometry> frames; // empty when the trajectory came from a pose file
     uint32_t failures = 0;
+    uint32_t implausible = 0; // of the failures, those rejected by the plausibility gate
     TrajectoryMetrics metrics;
     std::vector<OdometrySegment> segments;
     double seconds = 0; // wall-clock time of the VO (log only)
 };
+
+// The plausibility gate: a frame-to-frame motion (x_b = R x_a + t) whose translation exceeds maxStepMetres or whose
+// rotation angle exceeds maxTurnDegrees cannot be the camera's; the VO counts it as a failed frame.
+bool plausibleMotion(const Pose& bFromA, double maxStepMetres, double maxTurnDegrees);
 
 // Runs (or reads) the trajectory and evaluates it; writes nothing.
 OdometryResult evaluateOdometry(const OdometryOptions& options);

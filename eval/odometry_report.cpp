@@ -103,6 +103,7 @@ nlohmann::json perFrameJson(const OdometryResult& r) {
             const FrameOdometry& f = r.frames[i];
             for (const auto& [name, count] : kCounts) j[name] = countsJson(f.*count);
             j["failed"] = f.failed;
+            j["implausible"] = f.implausible;
         }
         frames.push_back(std::move(j));
     }
@@ -131,6 +132,7 @@ std::string odometryJson(const OdometryResult& r) {
     j["relative_errors"] = relative;
     if (!r.frames.empty()) {
         j["failed_frames"] = r.failures;
+        j["implausible_frames"] = r.implausible;
         j["feature_classes"] = kFeatureClassNames;
         j["features"] = featuresJson(r, 0, r.frames.size());
     }
@@ -212,8 +214,9 @@ std::string odometryMarkdown(const OdometryResult& r, bool pictures) {
     md += "| drift: translational relative error (%, m per 100 m) | " + fixed(m.driftPercent, 3) + " |\n";
     md += "| rotational relative error (deg/m) | " + fixed(m.rotationDegPerMetre, 4) + " |\n";
     if (!r.frames.empty())
-        md +=
-            "| failed frames (< " + std::to_string(kMinInliers) + " inliers) | " + std::to_string(r.failures) + " |\n";
+        md += "| failed frames (< " + std::to_string(kMinInliers) + " inliers, or implausible) | " +
+              std::to_string(r.failures) + " |\n| of them implausible (beyond the step or turn bound) | " +
+              std::to_string(r.implausible) + " |\n";
     md += "\n## Relative errors (KITTI, lengths scaled to the path)\n\n| length (m) | pairs | translation (%) | "
           "rotation (deg/m) |\n|---:|---:|---:|---:|\n";
     for (const RelativeError& e : m.relative)

@@ -197,6 +197,45 @@ TEST(Odometry, PerfectMatcherFollowsATurn) {
     EXPECT_LT(r.metrics.rotationDegPerMetre, 1e-4);
 }
 
+// The gate on one motion: the study's wrong PnP solutions (ORB's 5.7 km from a 0.6 m step, AKAZE's 174 degree
+// flip) fail it, a true 0.6 m step with a 10 degree turn passes, and the bounds are inclusive.
+TEST(Odometry, ThePlausibilityGateRejectsImpossibleStepsAndTurns) {
+    const auto motion = [](double forward, double yawDegrees) {
+        SyntheticRig s;
+        s.step = forward, s.yawStep = yawDegrees;
+        return relativePose(scenePose(s, 1), scenePose(s, 0)); // camera 0 to camera 1: x_1 = R x_0 + t
+    };
+    EXPECT_TRUE(plausibleMotion(motion(0.6, 10), 2, 30));
+    EXPECT_TRUE(plausibleMotion(motion(2, 0), 2, 30));
+    EXPECT_TRUE(plausibleMotion(motion(0.6, 30), 2, 30));
+    EXPECT_FALSE(plausibleMotion(motion(2.01, 0), 2, 30));
+    EXPECT_FALSE(plausibleMotion(motion(5700, 0), 2, 30));
+    EXPECT_FALSE(plausibleMotion(motion(0.6, 31), 2, 30));
+    EXPECT_FALSE(plausibleMotion(motion(0.3, 174), 2, 30));
+}
+
+// Exact motions beyond the bounds fail like frames without enough inliers: counted, and the chain repeats the last
+// accepted motion (none here: the estimate stays at frame 0's pose).
+TEST(Odometry, AMotionBeyondTheBoundsFailsAndKeepsTheLastAcceptedMotion) {
+    SyntheticRig s;
+    s.yawStep = 4;
+    const std::string dir = tempDir();
+    writeScene(dir, s);
+    for (const auto& [maxStep, maxTurn] : {std::pair{0.4, 30.0}, std::pair{2.0, 3.0}}) {
+        OdometryOptions options = truthOptions(dir);
+        options.maxStepMetres = maxStep, options.maxTurnDegrees = maxTurn;
+        const OdometryResult r = evaluateOdometry(options);
+        EXPECT_EQ(r.failures, 7u);
+        EXPECT_EQ(r.implausible, 7u);
+        EXPECT_TRUE(r.frames[3].failed && r.frames[3].implausible);
+        EXPECT_EQ(r.frames[3].inliers, r.frames[3].temporalMatches); // solved exactly, then rejected
+        for (const Pose& p : r.estimate) EXPECT_EQ(p, r.estimate[0]);
+    }
+    const OdometryResult r = evaluateOdometry(truthOptions(dir)); // the defaults: 2 m, 30 degrees
+    EXPECT_EQ(r.failures, 0u);
+    EXPECT_LT(r.metrics.ateFirstFrameRmse, 1e-6);
+}
+
 TEST(Odometry, OrbOdometryOnATexturedSceneIsCloseAndBitwiseReproducible) {
     const std::string dir = tempDir();
     SyntheticRig s;
