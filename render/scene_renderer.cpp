@@ -107,8 +107,8 @@ void SceneRenderer::createPipelines(const Atlas* atlas, uint32_t instanceCapacit
     PipelineLayoutDesc shadedLayout = layout; // + the sun shadow map
     shadedLayout.bindings.push_back(
         layoutBinding(gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
-    PipelineLayoutDesc terrainLayout = shadedLayout; // + the tile's far cover and the ground textures
-    for (uint32_t binding : {gpu::kBindingCoverMap, gpu::kBindingGroundTextures})
+    PipelineLayoutDesc terrainLayout = shadedLayout; // + the tile's far cover, ground textures and material weights
+    for (uint32_t binding : {gpu::kBindingCoverMap, gpu::kBindingGroundTextures, gpu::kBindingGroundMaterials})
         terrainLayout.bindings.push_back(
             layoutBinding(binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT));
     terrainLayout.pushConstantSize = sizeof(gpu::TerrainTileConstants);
@@ -239,6 +239,7 @@ void SceneRenderer::removeTile(TileCoord coord) {
     retireBuffer(ctx_, it->second.vertices);
     retireBuffer(ctx_, it->second.indices);
     retireImage(ctx_, it->second.cover);
+    retireImage(ctx_, it->second.groundWeights);
     tiles_.erase(it);
     if (vegetation_) vegetation_->removeTile(coord);
 }
@@ -395,14 +396,16 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const Descr
         const double dy = std::max({0.0, tile.boundsMin.y - reference.y, reference.y - tile.boundsMax.y});
         if (std::sqrt(dx * dx + dy * dy) > viewDistance_) continue;
         const DescriptorBinding cover = sampledImage(gpu::kBindingCoverMap, tile.cover.view, coverSampler_);
-        const gpu::TerrainTileConstants constants{.coverRect = tile.coverRect,
-                                                  .material = glm::uvec4(scene_.terrain.material, 0u, 0u, 0u)};
+        const DescriptorBinding weights =
+            sampledImage(gpu::kBindingGroundMaterials, tile.groundWeights.view, coverSampler_);
+        gpu::TerrainTileConstants constants{.coverRect = tile.coverRect, .material = groundMaterialConstants(scene_)};
+        constants.material.y &= uint32_t(tile.groundMaterials);
         if (pass == PlantPass::Main) {
             if (ruts)
                 pushDescriptors(ctx_.device, cmd, pipeline,
-                                {frame, shadowBinding(), cover, textures, tracks_->tableBinding()});
+                                {frame, shadowBinding(), cover, textures, weights, tracks_->tableBinding()});
             else
-                pushDescriptors(ctx_.device, cmd, pipeline, {frame, shadowBinding(), cover, textures});
+                pushDescriptors(ctx_.device, cmd, pipeline, {frame, shadowBinding(), cover, textures, weights});
             pushConstants(cmd, pipeline, constants);
         } else if (truth) {
             const DescriptorBinding vertices = storageBuffer(gpu::kBindingMeshVertices, tile.vertices.handle);
@@ -424,7 +427,7 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const Descr
         }
         if (!ruts) continue; // ruts: a one-tile scene, the patches over its ground
         if (pass == PlantPass::Main)
-            tracks_->drawMain(cmd, frame, shadowBinding(), cover, textures, constants);
+            tracks_->drawMain(cmd, frame, shadowBinding(), cover, textures, weights, constants);
         else
             tracks_->drawTruth(cmd, frame, cover, constants, pass == PlantPass::TruthFlow);
     }
@@ -434,17 +437,36 @@ void SceneRenderer::setGroundTracks(const GroundTracks* tracks, const Ground* gr
     if (tracks_) tracks_->setSource(tracks, ground);
 }
 
+glm::uvec4 groundMaterialConstants(const Scene& scene) {
+    const uint32_t terrain = scene.terrain.material;
+    glm::uvec4 material(terrain, 0u, 0u, 0u);
+    for (uint32_t c = 0; c < scene.vegetation.categoryCount; ++c) {
+        const int32_t own = scene.vegetation.categories[c].groundMaterial; // same order as gpu::kGroundMaterial*
+        const uint32_t preset = own == kNoGroundMaterial ? terrain : uint32_t(own);
+        material.y |= uint32_t(preset != terrain);
+        material.z |= preset << (8 * c);
+    }
+    return material;
+}
+
 // Half floats: linear filtering of 16-bit float textures is mandatory in Vulkan, of 32-bit ones is not.
+// The ground material weights likewise, beside it (1x1 zero without: lavapipe needs every binding written).
 void SceneRenderer::uploadCoverMap(TerrainTile& tile, const CoverMap* cover) {
     const bool present = cover && !cover->texels.empty();
-    const uint32_t width = present ? cover->width : 1, height = present ? cover->height : 1;
-    std::vector<uint16_t> texels(size_t(width) * height * 4, 0);
-    if (present)
-        for (size_t i = 0; i < cover->texels.size(); ++i)
-            for (int k = 0; k < 4; ++k) texels[4 * i + size_t(k)] = floatToHalfBits(cover->texels[i][k]);
-    const std::span<const uint8_t> bytes = bytesOf(texels);
-    tile.cover = createImageWithData(
-        ctx_, {.format = VK_FORMAT_R16G16B16A16_SFLOAT, .width = width, .height = height, .mipLevels = 1}, {&bytes, 1});
+    const auto upload = [&](const std::vector<glm::vec4>* source) {
+        const uint32_t width = source ? cover->width : 1, height = source ? cover->height : 1;
+        std::vector<uint16_t> texels(size_t(width) * height * 4, 0);
+        if (source)
+            for (size_t i = 0; i < source->size(); ++i)
+                for (int k = 0; k < 4; ++k) texels[4 * i + size_t(k)] = floatToHalfBits((*source)[i][k]);
+        const std::span<const uint8_t> bytes = bytesOf(texels);
+        return createImageWithData(
+            ctx_, {.format = VK_FORMAT_R16G16B16A16_SFLOAT, .width = width, .height = height, .mipLevels = 1},
+            {&bytes, 1});
+    };
+    tile.cover = upload(present ? &cover->texels : nullptr);
+    tile.groundMaterials = present && !cover->groundWeights.empty();
+    tile.groundWeights = upload(tile.groundMaterials ? &cover->groundWeights : nullptr);
     tile.coverRect = present ? glm::vec4(cover->origin, 1.0f / cover->size, 0.0f) : glm::vec4(0.0f);
 }
 

@@ -11,25 +11,25 @@
 //               pixels"), whatever the colour pass's sample count.
 #pragma once
 
+#include "dataset/frame_images.h"
+#include "engine/context.h"
+#include "engine/pipelines.h"
+#include "engine/render_target.h"
+#include "render/vegetation_renderer.h"
+#include "scene/scene.h"
 #include "vegetation/atlas.h"
 #include "vegetation/cover_map.h"
 #include "vegetation/vegetation_tile.h"
 #include "world/camera.h"
-#include "dataset/frame_images.h"
-#include "engine/context.h"
 #include "world/ground.h"
-#include "engine/pipelines.h"
-#include "engine/render_target.h"
-#include "scene/scene.h"
-#include "render/vegetation_renderer.h"
 #include "world/sun_shadow.h"
 
 #include <cmath>
 #include <functional>
 #include <map>
-#include <utility>
-#include <span>
 #include <memory>
+#include <span>
+#include <utility>
 
 namespace sward {
 
@@ -39,6 +39,11 @@ class ObjectRenderer;
 class TrackRenderer;
 struct ObjectModel;
 struct BakedPlants;
+
+// TerrainTileConstants::material of a scene (gpu_layout.h): x terrain.material; y 1 when some category's
+// ground_material differs from it (the tiles' ground material weights are read), else 0, so a scene whose categories
+// have none, or the terrain's, draws exactly the terrain's material; z the categories' materials, 8 bits each.
+glm::uvec4 groundMaterialConstants(const Scene& scene);
 
 // Formats and clear values of the passes, in attachment order.
 RenderTargetDesc mainPassTargetDesc(uint32_t width, uint32_t height, uint32_t samples);
@@ -83,8 +88,8 @@ public:
 
     // Records the whole frame into `cmd`. `frameIndex` selects the constants slot (modulo gpu::kFrameDataSlots),
     // so frames may be in flight. `truth` may be null (viewer). Timers (optional) get one entry per pass.
-    void record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget* truth, const Camera& camera,
-                double timeSeconds, uint32_t frameIndex, GpuTimers* timers = nullptr);
+    void record(VkCommandBuffer cmd, RenderTarget& main, RenderTarget* truth, const Camera& camera, double timeSeconds,
+                uint32_t frameIndex, GpuTimers* timers = nullptr);
     // One instant seen by a rectified stereo rig (views[1] = views[0] moved along its own +x axis) or a single
     // view. The vegetation is expanded once — LODs, cross-fades and billboard orientation from views[0]'s
     // position, culling against the union of the frusta — and the sun shadow map is rendered once, so both
@@ -132,8 +137,9 @@ private:
     struct TerrainTile {
         Buffer vertices, indices;
         uint32_t indexCount = 0;
-        Image cover;
+        Image cover, groundWeights; // groundWeights: CoverMap::groundWeights (1x1 zero without)
         glm::vec4 coverRect{0.0f};
+        bool groundMaterials = false;              // the tile has ground material weights
         glm::dvec2 boundsMin{0.0}, boundsMax{0.0}; // xy
     };
     using TileKey = std::pair<int32_t, int32_t>; // (y, x): the drawing order

@@ -265,12 +265,12 @@ DescriptorBinding TrackRenderer::tableBinding() const {
 
 void TrackRenderer::drawMain(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& shadow,
                              const DescriptorBinding& cover, const DescriptorBinding& textures,
-                             const gpu::TerrainTileConstants& tile) {
+                             const DescriptorBinding& groundMaterials, const gpu::TerrainTileConstants& tile) {
     if (visibleCount_ == 0) return;
     bindPipeline(cmd, patchMain_);
-    pushDescriptors(
-        ctx_.device, cmd, patchMain_,
-        {frame, shadow, cover, textures, storageBuffer(gpu::kBindingMeshVertices, vertices_.handle), visibleBinding()});
+    pushDescriptors(ctx_.device, cmd, patchMain_,
+                    {frame, shadow, cover, textures, groundMaterials,
+                     storageBuffer(gpu::kBindingMeshVertices, vertices_.handle), visibleBinding()});
     pushConstants(cmd, patchMain_, tile);
     vkCmdBindIndexBuffer(cmd, gridIndices_.handle, 0, VK_INDEX_TYPE_UINT32);
     drawVisible(cmd, true);

@@ -71,7 +71,7 @@ public:
     // buffers) and the tile's push constants.
     void drawMain(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& shadow,
                   const DescriptorBinding& cover, const DescriptorBinding& textures,
-                  const gpu::TerrainTileConstants& tile);
+                  const DescriptorBinding& groundMaterials, const gpu::TerrainTileConstants& tile);
     void drawTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& cover,
                    const gpu::TerrainTileConstants& tile, bool flow = false);
 

@@ -55,6 +55,10 @@ CoverMap makeCoverMap(const GrassMap& map, std::span<const CategoryLook> looks, 
                    .origin = params.worldOrigin,
                    .size = params.tileSize};
     cover.texels.resize(size_t(cover.width) * cover.height);
+    const bool materials =
+        std::any_of(params.categories.begin(), params.categories.begin() + params.categoryCount,
+                    [](const VegetationCategory& c) { return c.groundMaterial != kNoGroundMaterial; });
+    if (materials) cover.groundWeights.resize(cover.texels.size());
     const std::vector<float>& values = map.values();
     const uint32_t channels = map.channels();
     std::vector<double> density(channels);
@@ -68,11 +72,13 @@ CoverMap makeCoverMap(const GrassMap& map, std::span<const CategoryLook> looks, 
                         density[channel] += double(values[(size_t(y) * map.width() + x) * channels + channel]);
             const double texels = double(y1 - row * f) * double(x1 - column * f);
             glm::dvec3 colour(0.0);
+            glm::dvec4 weights(0.0);
             double area = 0.0;
             for (uint32_t channel = 0; channel < channels; ++channel) {
                 const int32_t c = params.channelCategory[channel];
                 if (c == kUnusedChannel) continue;
                 const double mean = f == 1 ? density[channel] : density[channel] / texels;
+                weights[c] += mean;
                 const double hidden =
                     mean * params.categories[size_t(c)].density * params.densityMultiplier * looks[size_t(c)].area;
                 colour += hidden * glm::dvec3(looks[size_t(c)].colour);
@@ -80,6 +86,8 @@ CoverMap makeCoverMap(const GrassMap& map, std::span<const CategoryLook> looks, 
             }
             cover.texels[size_t(row) * cover.width + column] =
                 area > 0.0 ? glm::vec4(glm::vec3(colour / area), float(area)) : glm::vec4(0.0f);
+            if (materials)
+                cover.groundWeights[size_t(row) * cover.width + column] = glm::min(glm::vec4(weights), glm::vec4(1.0f));
         }
     return cover;
 }

@@ -31,8 +31,12 @@ std::vector<CategoryLook> categoryLooks(const Atlas& atlas, const VegetationPara
 struct CoverMap {
     uint32_t width = 0, height = 0;
     std::vector<glm::vec4> texels; // rgb linear albedo of the cover, a = S (m^2 of plant per m^2); top row north
-    glm::vec2 origin{0.0f};        // world xy of the vegetation tile's south-west corner, which the map covers
-    float size = 0.0f;             // tile edge, metres
+    // Ground material weights, texel for texel of `texels`: component c the grass-map value of category c (the mean
+    // over the texel's block, the sum of its channels, at most 1), which blends the category's ground_material
+    // into the bare ground. Empty when no category has a ground material of its own.
+    std::vector<glm::vec4> groundWeights;
+    glm::vec2 origin{0.0f}; // world xy of the vegetation tile's south-west corner, which the map covers
+    float size = 0.0f;      // tile edge, metres
 };
 
 // Largest cover map edge: a finer grass map is averaged in square blocks (about 0.25 m a texel on a 500 m tile).
@@ -40,7 +44,7 @@ inline constexpr uint32_t kMaxCoverMapEdge = 2048;
 
 // The cover of the map's tile (origin and size from params), texel for texel of the grass map up to
 // kMaxCoverMapEdge per edge; beyond, each texel covers f x f grass-map texels (f the least that fits; the blocks of
-// the last row and column are clipped to the map).
+// the last row and column are clipped to the map). The ground material weights are averaged in the same blocks.
 CoverMap makeCoverMap(const GrassMap& map, const Atlas& atlas, const VegetationParams& params);
 // The same from the categories' looks (a world computes them once for all its tiles).
 CoverMap makeCoverMap(const GrassMap& map, std::span<const CategoryLook> looks, const VegetationParams& params);

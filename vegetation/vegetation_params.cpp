@@ -68,13 +68,13 @@ void validateVegetationParams(const VegetationParams& p, const std::string& sour
     requireRange(source, "cluster_size", p.clusterSize, kClusterSize);
     requireRange(source, "tile_size", p.tileSize, kTileSize);
     require(p.fieldsPerTile() != 0 && p.fieldsPerTile() <= kMaxFieldsPerTileSide,
-            source + ": " + quoted("tile_size") + " (" + formatNumber(p.tileSize) + ") must be a whole multiple (at most " +
-                std::to_string(kMaxFieldsPerTileSide) + ") of " + quoted("field_size") + " (" +
-                formatNumber(p.fieldSize) + ")");
+            source + ": " + quoted("tile_size") + " (" + formatNumber(p.tileSize) +
+                ") must be a whole multiple (at most " + std::to_string(kMaxFieldsPerTileSide) + ") of " +
+                quoted("field_size") + " (" + formatNumber(p.fieldSize) + ")");
     require(p.clustersPerField() != 0 && p.clustersPerField() <= kMaxClustersPerFieldSide,
-            source + ": " + quoted("field_size") + " (" + formatNumber(p.fieldSize) + ") must be a whole multiple (at most " +
-                std::to_string(kMaxClustersPerFieldSide) + ") of " + quoted("cluster_size") + " (" +
-                formatNumber(p.clusterSize) + ")");
+            source + ": " + quoted("field_size") + " (" + formatNumber(p.fieldSize) +
+                ") must be a whole multiple (at most " + std::to_string(kMaxClustersPerFieldSide) + ") of " +
+                quoted("cluster_size") + " (" + formatNumber(p.clusterSize) + ")");
     requireRange(source, "world_origin[0]", p.worldOrigin.x, kWorldOrigin);
     requireRange(source, "world_origin[1]", p.worldOrigin.y, kWorldOrigin);
     requireRange(source, "density_multiplier", p.densityMultiplier, kDensityMultiplier);
@@ -88,9 +88,12 @@ void validateVegetationParams(const VegetationParams& p, const std::string& sour
         requireRange(source, key + "density", c.density, kDensity);
         requireRange(source, key + "height", c.height, kHeight);
         requireRange(source, key + "height_variation", c.heightVariation, kHeightVariation);
-        require(c.variants >= 1 && c.variants <= gpu::kMaxPlantVariants,
-                source + ": " + quoted(key + "variants") + " must be between 1 and 64 (got " +
-                    std::to_string(c.variants) + ")");
+        require(c.variants >= 1 && c.variants <= gpu::kMaxPlantVariants, source + ": " + quoted(key + "variants") +
+                                                                             " must be between 1 and 64 (got " +
+                                                                             std::to_string(c.variants) + ")");
+        require(c.groundMaterial >= kNoGroundMaterial && c.groundMaterial <= 4,
+                source + ": " + quoted(key + "ground_material") + " must be a preset 0..4 or none (got " +
+                    std::to_string(c.groundMaterial) + ")");
     }
     for (uint32_t ch = 0; ch < 4; ++ch) {
         int32_t cat = p.channelCategory[ch];
@@ -108,6 +111,9 @@ void parseCategory(JsonReader r, VegetationCategory& c) {
     c.height = readNumber(r, "height", c.height, kHeight);
     c.heightVariation = readNumber(r, "height_variation", c.heightVariation, kHeightVariation);
     c.variants = uint32_t(r.integer("variants", c.variants, 1, gpu::kMaxPlantVariants));
+    // In the order of terrain.material's names (scene.cpp readTerrain).
+    c.groundMaterial =
+        r.choice("ground_material", c.groundMaterial, {"soil", "dry_soil", "mud", "gravel", "forest_floor"});
     r.finish();
 }
 

@@ -17,6 +17,8 @@
 //     height            base plant height in metres, 0.01..20          [0.6, 0.35, 0.45]
 //     height_variation  relative +- spread of the height, 0..0.95       [0.3, 0.35, 0.4]
 //     variants          atlas columns, 1..64                            [4, 8, 8]
+//     ground_material   the bare ground's preset where the category grows, as terrain.material  [none: the
+//                       terrain's]
 //   channels            [{"r": 0, "g": 1, "b": 2, "a": null}]  grass-map channel -> category index or name;
 //                                null = unused
 #pragma once
@@ -69,7 +71,13 @@ struct VegetationCategory {
     float height = 0.35f;          // base height in metres (the size byte scales it per plant)
     float heightVariation = 0.35f; // plant height = height * (1 + heightVariation * r), r uniform in [-1, 1]
     uint32_t variants = 8;         // atlas columns to pick from uniformly
+    // The bare ground's preset where this category grows (ground_material): soil, dry_soil, mud, gravel,
+    // forest_floor as 0..4 (the order of terrain.material and gpu::kGroundMaterial*; the GPU layer maps them), or
+    // kNoGroundMaterial: the terrain's own.
+    int32_t groundMaterial = -1;
 };
+
+inline constexpr int32_t kNoGroundMaterial = -1;
 
 // Built-in defaults of category index i (0 ferns / forest floor, 1 grass, 2 shrubs and flowers, 3 "extra").
 VegetationCategory defaultVegetationCategory(uint32_t index);

@@ -62,6 +62,8 @@ SWARD_CONST(uint, kBindingTrackTable, 9u);       // the blocks drawn as rut patc
 SWARD_CONST(uint, kBindingFlowStatics, 10u);     // truth pass with flow: PlantStatic[] (plant.vert: a plant's size)
 SWARD_CONST(uint, kBindingFlowDynamicsPrevious, 11u); // PlantDynamic[] at the previous tick
 SWARD_CONST(uint, kBindingFlowDynamicsNext, 12u);     // PlantDynamic[] at the next tick
+SWARD_CONST(uint, kBindingGroundMaterials, 13u); // the tile's ground material weights per category (terrain.frag,
+                                                 // cover map texels; vegetation/cover_map.h), main pass only
 
 // Vegetation expansion (vegetation_expand.comp), besides its constants at kBindingVegetation.
 SWARD_CONST(uint, kExpandBindingStatics, 0u);

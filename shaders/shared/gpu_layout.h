@@ -91,7 +91,10 @@ struct FrameConstants {
 // Per-tile constants of the terrain's main pass (push constants of terrain.frag): each tile has its own cover map.
 struct TerrainTileConstants {
     vec4 coverRect; // the cover map's tile: xy world south-west corner, z 1 / edge (0: no cover), w unused
-    uvec4 material; // x the bare ground's material (kGroundMaterial*, terrain.material), yzw unused
+    uvec4 material; // x the bare ground's material (kGroundMaterial*, terrain.material); y 1: some category has
+                    // a material of its own (vegetation.categories[i].ground_material), blended in by the tile's
+                    // ground material weights (kBindingGroundMaterials), 0: they are not read; z the categories'
+                    // materials, 8 bits each, category 0 lowest (the terrain's where a category has none); w unused
 };
 
 // Ground material presets (terrain.material; ground_material.glsl holds their albedos and textures).

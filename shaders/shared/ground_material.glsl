@@ -43,6 +43,32 @@ GroundMaterial groundMaterialPreset(uint preset) {
                           0.008, 0.2, 0.16, 0.8);
 }
 
+// m + w * a, field by field.
+void addGroundMaterial(inout GroundMaterial m, GroundMaterial a, float w) {
+    m.albedo += w * a.albedo;
+    m.patchTint += w * a.patchTint;
+    m.speck += w * a.speck;
+    m.relief += w * a.relief;
+    m.specks += w * a.specks;
+    m.speckSize += w * a.speckSize;
+    m.cracks += w * a.cracks;
+    m.clodSize += w * a.clodSize;
+    m.hueJitter += w * a.hueJitter;
+}
+
+// The ground where the vegetation categories grow with `weights` (their grass-map values) on `terrain`'s ground:
+// every parameter the weighted mean of the categories' presets (`presets`: 8 bits each, category 0 lowest) and the
+// terrain's, which keeps the weight left, max(0, 1 - sum). Weights summing to more than 1 are scaled to 1.
+GroundMaterial blendGroundMaterials(GroundMaterial terrain, uint presets, vec4 weights) {
+    float sum = weights.x + weights.y + weights.z + weights.w;
+    weights /= max(sum, 1.0);
+    GroundMaterial m = GroundMaterial(vec3(0.0), vec3(0.0), vec3(0.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    addGroundMaterial(m, terrain, max(0.0, 1.0 - sum));
+    for (uint c = 0u; c < 4u; ++c)
+        if (weights[c] > 0.0) addGroundMaterial(m, groundMaterialPreset((presets >> (8u * c)) & 0xffu), weights[c]);
+    return m;
+}
+
 // The hash of lattice point c under `salt` (each layer of texture its own, so layers do not repeat each other).
 float latticeHash(ivec2 c, uint salt) { return unitFromHash(pcgHash(uint(c.x) + pcgHash(uint(c.y) ^ salt))); }
 

@@ -17,6 +17,8 @@
 #include "shared/shadow.glsl"
 
 layout(set = 0, binding = kBindingGroundTextures) uniform sampler2DArray groundTextures;
+// Per cover texel, each category's grass-map value: how much of its ground_material the bare ground takes.
+layout(set = 0, binding = kBindingGroundMaterials) uniform sampler2D groundMaterialWeights;
 
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inNormal;
@@ -87,9 +89,14 @@ void pressTurf(inout GroundSample t, float pressed) {
 
 // The bare ground's albedo at this pixel and the bump slope of its texture: a mesh ground's material colour times its
 // texture, or where a material has no texture, the preset's texture scaled to the material's colour; else the
-// scene's preset (terrain.material).
+// scene's preset (terrain.material), blended with the ground materials of the categories growing here.
 GroundSample bareGroundHere(float footprint) {
     GroundMaterial m = groundMaterialPreset(tile.material.x);
+    if (tile.material.y != 0u) {
+        vec2 uv = coverUv(inWorld);
+        vec4 weights = inCoverTile(uv) ? texture(groundMaterialWeights, vec2(uv.x, 1.0 - uv.y)) : vec4(0.0);
+        m = blendGroundMaterials(m, tile.material.z, weights);
+    }
     GroundSample g = bareGround(m, inWorld.xy, footprint);
     if (inAlbedo.a > 0.0) {
         if (inUvLayer.z >= 0.0)

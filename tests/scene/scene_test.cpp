@@ -56,6 +56,22 @@ TEST(Scene, TerrainMaterialNamesAPresetOfAnyGround) {
               std::string::npos);
 }
 
+TEST(Scene, ACategoryGroundMaterialNamesAPresetOrDefaultsToTheTerrains) {
+    const Scene scene = parseScene(
+        nlohmann::json::parse(R"({"vegetation": {"categories": [{"ground_material": "mud"}, {}, {"ground_material":
+                                  "forest_floor"}]}})"),
+        "s.json");
+    EXPECT_EQ(scene.vegetation.categories[0].groundMaterial, int32_t(gpu::kGroundMaterialMud));
+    EXPECT_EQ(scene.vegetation.categories[1].groundMaterial, kNoGroundMaterial) << "none: the terrain's";
+    EXPECT_EQ(scene.vegetation.categories[2].groundMaterial, int32_t(gpu::kGroundMaterialForestFloor));
+    EXPECT_EQ(parseScene(nlohmann::json::object(), "s.json").vegetation.categories[0].groundMaterial,
+              kNoGroundMaterial);
+    EXPECT_NE(
+        errorOf(R"({"vegetation": {"categories": [{"ground_material": "sand"}]}})")
+            .find("'vegetation.categories[0].ground_material' must be soil, dry_soil, mud, gravel or forest_floor"),
+        std::string::npos);
+}
+
 TEST(Scene, MissingFileNamesIt) {
     try {
         loadScene("/nonexistent/scene.json");
