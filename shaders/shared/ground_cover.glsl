@@ -4,6 +4,8 @@
 #ifndef SWARD_GROUND_COVER_GLSL
 #define SWARD_GROUND_COVER_GLSL
 
+#include "shared/hash_noise.glsl"
+
 layout(set = 0, binding = kBindingCoverMap) uniform sampler2D coverMap;
 layout(push_constant) uniform Push { TerrainTileConstants tile; };
 
@@ -20,25 +22,14 @@ vec4 groundCover(vec2 uv) {
     return texture(coverMap, vec2(uv.x, 1.0 - uv.y)); // the texture's v runs north to south, as the grass map's
 }
 
-// Hashed value noise in [0, 1] on a lattice of `cell` metres (integer hashing: the same in every pass and device).
-float borderNoise(vec2 xy, float cell, uint salt) {
-    vec2 p = xy / cell, i = floor(p), f = p - i;
-    uvec2 c = uvec2(ivec2(i));
-    uint y0 = pcgHash(c.y ^ salt), y1 = pcgHash((c.y + 1u) ^ salt);
-    float n00 = unitFromHash(pcgHash(c.x + y0)), n10 = unitFromHash(pcgHash(c.x + 1u + y0));
-    float n01 = unitFromHash(pcgHash(c.x + y1)), n11 = unitFromHash(pcgHash(c.x + 1u + y1));
-    f = f * f * (3.0 - 2.0 * f);
-    return mix(mix(n00, n10, f.x), mix(n01, n11, f.x), f.y);
-}
-
 // How much of the ground at `world` is turf: turfFraction of the cover's S, read at a point displaced by noise of
 // 3 m down to 15 cm (at most about half a metre), so the border between meadow and bare ground wanders and frays
 // instead of following the grass map's texels in a straight step. Inside a closed meadow or bare field the
 // displaced point has the same S, and nothing changes. The colour and the truth pass both call this.
 float turfAt(vec3 world) {
-    vec2 warp = 0.8 * vec2(borderNoise(world.xy, 3.0, 81u), borderNoise(world.xy, 3.0, 84u)) +
-                0.25 * vec2(borderNoise(world.xy, 0.7, 82u), borderNoise(world.xy, 0.7, 85u)) +
-                0.06 * vec2(borderNoise(world.xy, 0.15, 83u), borderNoise(world.xy, 0.15, 86u));
+    vec2 warp = 0.8 * vec2(valueNoise(world.xy, 3.0, 81u), valueNoise(world.xy, 3.0, 84u)) +
+                0.25 * vec2(valueNoise(world.xy, 0.7, 82u), valueNoise(world.xy, 0.7, 85u)) +
+                0.06 * vec2(valueNoise(world.xy, 0.15, 83u), valueNoise(world.xy, 0.15, 86u));
     return turfFraction(groundCover(coverUv(world + vec3(warp - 0.555, 0.0))).a);
 }
 

@@ -13,6 +13,8 @@
 #ifndef SWARD_GROUND_MATERIAL_GLSL
 #define SWARD_GROUND_MATERIAL_GLSL
 
+#include "shared/hash_noise.glsl"
+
 struct GroundMaterial {
     vec3 albedo;    // mean linear albedo
     vec3 patchTint; // albedo of the field-scale patches (wetter / drier / organic) the base blends with
@@ -69,22 +71,6 @@ GroundMaterial blendGroundMaterials(GroundMaterial terrain, uint presets, vec4 w
     return m;
 }
 
-// The hash of lattice point c under `salt` (each layer of texture its own, so layers do not repeat each other).
-float latticeHash(ivec2 c, uint salt) { return unitFromHash(pcgHash(uint(c.x) + pcgHash(uint(c.y) ^ salt))); }
-
-// Value noise in [0, 1] on a lattice of `cell` metres with its gradient (per metre): x value, yz d/dx, d/dy.
-vec3 noiseWithGradient(vec2 xy, float cell, uint salt) {
-    vec2 p = xy / cell, i = floor(p), f = p - i;
-    ivec2 c = ivec2(i);
-    float n00 = latticeHash(c, salt), n10 = latticeHash(c + ivec2(1, 0), salt);
-    float n01 = latticeHash(c + ivec2(0, 1), salt), n11 = latticeHash(c + ivec2(1, 1), salt);
-    vec2 s = f * f * (3.0 - 2.0 * f), ds = 6.0 * f * (1.0 - f) / cell;
-    float a = mix(n00, n10, s.x), b = mix(n01, n11, s.x);
-    return vec3(mix(a, b, s.y), mix(n10 - n00, n11 - n01, s.y) * ds.x, (b - a) * ds.y);
-}
-
-float valueNoise(vec2 xy, float cell, uint salt) { return noiseWithGradient(xy, cell, salt).x; }
-
 // How much of an octave of `cell` metres survives a pixel footprint of `footprint` metres: all of it up to a quarter
 // cell, none from half a cell on (its mean is what the pixel would average to).
 float octaveWeight(float cell, float footprint) { return clamp(2.0 - 4.0 * footprint / cell, 0.0, 1.0); }
@@ -122,7 +108,9 @@ vec4 clodAt(vec2 xy, float size, uint salt, out vec2 toCentre) {
     for (int j = -1; j <= 1; ++j)
         for (int i = -1; i <= 1; ++i) {
             ivec2 q = c + ivec2(i, j);
-            vec2 centre = vec2(q) + 0.15 + 0.7 * vec2(latticeHash(q, salt), latticeHash(q, salt + 1u));
+            // One hash per cell: its low and high halves place the centre (the cell's cost on a CPU driver).
+            uint h = pcgHash(uint(q.x) + pcgHash(uint(q.y) ^ salt));
+            vec2 centre = vec2(q) + 0.15 + (0.7 / 65536.0) * vec2(float(h & 0xffffu), float(h >> 16u));
             float d = dot(p - centre, p - centre);
             if (d < f1) {
                 f2 = f1;
@@ -201,6 +189,15 @@ GroundSample bareGround(GroundMaterial m, vec2 xy, float footprint) {
     return GroundSample(albedo, slope);
 }
 
+// The direction of d as a number in [0, 4) that grows with its angle (a quarter turn per unit), from + - * / alone:
+// enough to lay stripes around a point, and the same on every device (no atan).
+float diamondAngle(vec2 d) {
+    float s = abs(d.x) + abs(d.y);
+    if (s <= 0.0) return 0.0;
+    float q = d.y / s;
+    return d.x >= 0.0 ? (d.y >= 0.0 ? q : 4.0 + q) : 2.0 - q;
+}
+
 // Blades lying in a direction hashed per 12 cm cell (thatch is tangled): 1 on a blade, 0 in the gaps between, for
 // blades `width` x `length` metres. Cells are independent, so blades end at their borders as broken ones do.
 float lyingBlades(vec2 xy, float width, float length, uint salt) {
@@ -231,8 +228,8 @@ GroundSample turfGround(vec3 cover, vec3 soil, vec2 xy, float footprint) {
         float kind = clamp(clump.z + 0.6 * (dry - 0.5), 0.0, 1.0);
         vec3 own = kind < 0.45 ? cover * (0.6 + 0.5 * clump.z) : kind < 0.75 ? mix(cover, straw, 0.5) : kind < 0.92 ? straw : dead;
         // Its blades radiate from its centre: stripes around it, a dozen or so, broken along their length.
-        float angle = atan(toCentre.y, toCentre.x), radius = length(toCentre);
-        float blades = valueNoise(vec2(angle * 2.3 + 17.0 * clump.z, radius * 30.0), 1.0, 58u);
+        float angle = diamondAngle(toCentre), radius = length(toCentre);
+        float blades = valueNoise(vec2(angle * 3.6 + 17.0 * clump.z, radius * 30.0), 1.0, 58u);
         own *= 0.55 + 0.9 * smoothstep(0.3, 0.7, blades) * octaveWeight(0.012, footprint) +
                0.45 * (1.0 - octaveWeight(0.012, footprint));
         vec3 clumpColour = mix(gap, own, smoothstep(0.0, 0.35, clump.x));
