@@ -26,6 +26,7 @@ struct Rig {
     double f = 0, cx = 0, cy = 0, doffs = 0, baselineMetres = 0;
     uint32_t width = 0, height = 0;
     cv::Matx33d K() const { return {f, 0, cx, 0, f, cy, 0, 0, 1}; }
+    double horizontalFovDegrees() const { return 2 * std::atan(width / (2 * f)) * 180 / CV_PI; }
 };
 
 struct Setup {
@@ -187,6 +188,10 @@ Motion truthMotion(const Setup& setup, const FrameFeatures& a, const Pose& poseA
     return solveMotion(rig, object, image, classes);
 }
 
+double maxTurnDegrees(const Setup& setup) {
+    return setup.options->maxTurnDegrees.value_or(setup.rig.horizontalFovDegrees());
+}
+
 // The VO over the chosen frames: features per frame, then motions per consecutive pair, both in parallel with
 // one output slot per index; the chain is built in frame order.
 void runVisualOdometry(const Setup& setup, OdometryResult& result) {
@@ -205,14 +210,14 @@ void runVisualOdometry(const Setup& setup, OdometryResult& result) {
         motions[i + 1] = options.truthMatcher ? truthMotion(setup, features[i], setup.truth[i], setup.truth[i + 1])
                                               : descriptorMotion(setup, features[i], features[i + 1]);
     });
+    const double maxTurn = maxTurnDegrees(setup);
     result.estimate = {setup.truth[0]};
     Pose last = Pose::eye(); // a failed frame repeats the last measured motion (constant velocity)
     for (uint32_t i = 1; i < n; ++i) {
         FrameOdometry& f = result.frames[i];
         f.temporalMatches = motions[i].matches;
         f.inliers = motions[i].inliers;
-        f.implausible =
-            motions[i].solved && !plausibleMotion(motions[i].bFromA, options.maxStepMetres, options.maxTurnDegrees);
+        f.implausible = motions[i].solved && !plausibleMotion(motions[i].bFromA, options.maxStepMetres, maxTurn);
         f.failed = !motions[i].solved || f.implausible;
         if (!f.failed) last = motions[i].bFromA;
         result.failures += f.failed;
@@ -221,9 +226,9 @@ void runVisualOdometry(const Setup& setup, OdometryResult& result) {
     }
 }
 
-std::string gateDescription(const OdometryOptions& options) {
-    return "; a motion over " + metres(options.maxStepMetres) + " m or " + metres(options.maxTurnDegrees) +
-           " deg per frame fails";
+std::string gateDescription(const Setup& setup) {
+    return "; a motion over " + metres(setup.options->maxStepMetres) + " m or " + fixed(maxTurnDegrees(setup), 1) +
+           " deg" + (setup.options->maxTurnDegrees ? "" : " (the field of view)") + " per frame fails";
 }
 
 void requireSegments(const Setup& setup) {
@@ -267,7 +272,7 @@ OdometryResult evaluateOdometry(const OdometryOptions& options) {
         result.method = options.truthMatcher ? "ground-truth correspondences (depth + poses), every " +
                                                    std::to_string(kTruthGridPx) + "th pixel"
                                              : detectorDescription(options.detector);
-        result.method += gateDescription(options);
+        result.method += gateDescription(setup);
         runVisualOdometry(setup, result);
     }
     result.seconds = estimation.seconds();

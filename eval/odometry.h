@@ -36,10 +36,12 @@ struct OdometryOptions {
     std::optional<std::pair<uint32_t, uint32_t>> frames; // [first, last) frame numbers; default: all
     std::vector<double> lengthsMetres = {1, 2, 5, 10};   // relative-error sub-sequence lengths
     std::vector<OdometrySegment> segments;
-    double maxStepMetres = 2.0;   // a motion moving the camera farther than this between two frames fails
-    double maxTurnDegrees = 30.0; // a motion turning it more than this between two frames fails
-    unsigned threads = 0;         // frames processed at once; 0: hardware concurrency
-    bool pictures = true;         // the PNG plots
+    double maxStepMetres = 2.0; // a motion moving the camera farther than this between two frames fails
+    // A motion turning the camera more than this between two frames fails; default: the horizontal field of view
+    // (2 atan(width / 2f) of calib.txt), beyond which the two views share nothing to match.
+    std::optional<double> maxTurnDegrees;
+    unsigned threads = 0;                        // frames processed at once; 0: hardware concurrency
+    bool pictures = true;                        // the PNG plots
     std::function<void(const std::string&)> log; // progress lines; may be empty
 };
 

@@ -231,9 +231,10 @@ TEST(Odometry, AMotionBeyondTheBoundsFailsAndKeepsTheLastAcceptedMotion) {
         EXPECT_EQ(r.frames[3].inliers, r.frames[3].temporalMatches); // solved exactly, then rejected
         for (const Pose& p : r.estimate) EXPECT_EQ(p, r.estimate[0]);
     }
-    const OdometryResult r = evaluateOdometry(truthOptions(dir)); // the defaults: 2 m, 30 degrees
+    const OdometryResult r = evaluateOdometry(truthOptions(dir)); // the defaults: 2 m, the field of view (77 deg)
     EXPECT_EQ(r.failures, 0u);
     EXPECT_LT(r.metrics.ateFirstFrameRmse, 1e-6);
+    EXPECT_NE(r.method.find("2 m or 77.3 deg (the field of view)"), std::string::npos) << r.method;
 }
 
 TEST(Odometry, OrbOdometryOnATexturedSceneIsCloseAndBitwiseReproducible) {

@@ -71,8 +71,10 @@ int odometryMain(int argc, char** argv) {
                      "Frame ranges reported on their own, e.g. bare:0:20,grass:20:40", "NAME:A:B,...", parseSegments);
     sward::addReal(app, "--max-step", options.maxStepMetres, 0.001, 1e6,
                    "A motion moving the camera farther than this between two frames fails (metres, default 2)");
-    sward::addReal(app, "--max-turn", options.maxTurnDegrees, 0.001, 180,
-                   "A motion turning the camera more than this between two frames fails (degrees, default 30)");
+    sward::addReal(
+        app, "--max-turn", options.maxTurnDegrees, 0.001, 180,
+        "A motion turning the camera more than this between two frames fails (degrees; default: the horizontal "
+        "field of view of calib.txt)");
     sward::addUnsigned(app, "--threads", options.threads, 0, sward::kMaxThreadsOption,
                        "Frames processed at once (default 0: all cores)");
     app.add_flag("--no-pictures", noPictures, "Skip the PNG plots");
