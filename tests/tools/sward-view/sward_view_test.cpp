@@ -70,7 +70,9 @@ TEST(SwardView, RendersGrassThroughTheSwapchainWhileResizedAndMinimised) {
     ASSERT_FALSE(image.empty()) << "no screenshot at " << png << "\n" << r.output;
     EXPECT_EQ(image.cols, 256);
     EXPECT_EQ(image.rows, 192);
-    // Grass: green clearly above red and blue. The camera looks down into the meadow, so most pixels are plants.
+    // Grass: green clearly above red and blue. The camera looks down into the meadow, so most pixels are plants or
+    // the turf between them; since issue 46 part of both is dry (straw, dead clumps, soil specks), so a fifth of the
+    // image is clearly green (0.21 measured), against none in a flat or black image.
     int grass = 0;
     for (int y = 0; y < image.rows; ++y)
         for (int x = 0; x < image.cols; ++x) {
@@ -78,7 +80,7 @@ TEST(SwardView, RendersGrassThroughTheSwapchainWhileResizedAndMinimised) {
             grass += p[1] > 30 && p[1] > p[2] + 8 && p[1] > p[0] + 8;
         }
     double fraction = double(grass) / double(image.total());
-    EXPECT_GT(fraction, 0.25) << "grass pixels: " << fraction;
+    EXPECT_GT(fraction, 0.15) << "grass pixels: " << fraction;
     cv::Scalar mean, stddev;
     cv::meanStdDev(image, mean, stddev);
     EXPECT_GT(stddev[1], 8.0) << "a flat image is not a rendered meadow";
