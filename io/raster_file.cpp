@@ -171,6 +171,20 @@ void checkFinite(const RasterBand& raster, uint32_t band) {
     }
 }
 
+// GDAL reads a raster a block (a TIFF strip or tile) at a time and allocates the block whole: a small raster whose
+// header claims a huge block would have GDAL allocate gigabytes before reading a pixel (fuzz_raster's finding, a
+// 320-byte GeoTIFF). A block may be as large as the largest raster sward reads, no larger.
+void checkBlockSize(const std::string& path, GDALRasterBandH band) {
+    int blockWidth = 0, blockHeight = 0;
+    GDALGetBlockSize(band, &blockWidth, &blockHeight);
+    const uint64_t bytes = uint64_t(std::max(blockWidth, 0)) * uint64_t(std::max(blockHeight, 0)) *
+                           uint64_t(std::max(GDALGetDataTypeSizeBytes(GDALGetRasterDataType(band)), 1));
+    require(bytes <= kMaxRasterBlockBytes, "raster '" + path + "' stores its pixels in blocks of " +
+                                               std::to_string(blockWidth) + "x" + std::to_string(blockHeight) + " (" +
+                                               std::to_string(bytes) + " bytes), over the limit of " +
+                                               std::to_string(kMaxRasterBlockBytes) + " bytes (corrupt file?)");
+}
+
 } // namespace
 
 bool RasterBand::isNodata(double value) const {
@@ -187,6 +201,7 @@ RasterBand readRasterBand(const std::string& path, const RasterReadOptions& opti
     const int width = GDALGetRasterXSize(ds), height = GDALGetRasterYSize(ds);
     checkSize(path, width, height);
     GDALRasterBandH band = selectBand(ds, path, options.band);
+    checkBlockSize(path, band);
 
     RasterBand raster;
     raster.width = uint32_t(width);

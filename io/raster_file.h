@@ -33,6 +33,9 @@ inline constexpr const char* kRasterDrivers[] = {"GTiff",          "PNG",  "JPEG
 // (heightmap) and 8.3 GB then std::bad_alloc (land cover).
 inline constexpr uint32_t kMaxRasterEdge = kMaxImageEdge;
 inline constexpr uint64_t kMaxRasterPixels = uint64_t(1) << 26;
+// Largest storage block (TIFF strip or tile) of a raster, bytes: the largest raster's pixels at 8 bytes each. GDAL
+// allocates a block whole, so a header claiming more is refused before GDAL reads it.
+inline constexpr uint64_t kMaxRasterBlockBytes = kMaxRasterPixels * 8;
 
 // A north-up georeferencing: world x = originX + (column + 0.5) * pixelWidth at a pixel centre, world y = originY -
 // (row + 0.5) * pixelHeight (rows go south). Units are those of the file's coordinate system (metres in a projected
