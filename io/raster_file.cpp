@@ -11,6 +11,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iterator>
 #include <memory>
@@ -183,6 +184,19 @@ void checkBlockSize(const std::string& path, GDALRasterBandH band) {
                                                std::to_string(blockWidth) + "x" + std::to_string(blockHeight) + " (" +
                                                std::to_string(bytes) + " bytes), over the limit of " +
                                                std::to_string(kMaxRasterBlockBytes) + " bytes (corrupt file?)");
+    // A TIFF block's stored size is read into a buffer of that size: none can be larger than the file.
+    const uint64_t fileBytes = std::filesystem::file_size(path);
+    const int64_t across = (GDALGetRasterBandXSize(band) + blockWidth - 1) / std::max(blockWidth, 1);
+    const int64_t down = (GDALGetRasterBandYSize(band) + blockHeight - 1) / std::max(blockHeight, 1);
+    for (int64_t y = 0; y < down; ++y)
+        for (int64_t x = 0; x < across; ++x) {
+            const std::string key = "BLOCK_SIZE_" + std::to_string(x) + "_" + std::to_string(y);
+            const char* stored = GDALGetMetadataItem(band, key.c_str(), "TIFF");
+            if (!stored) return; // not a TIFF
+            require(std::strtoull(stored, nullptr, 10) <= fileBytes, "raster '" + path + "' claims a block of " +
+                                                                         stored + " bytes in a file of " +
+                                                                         std::to_string(fileBytes) + " (corrupt file)");
+        }
 }
 
 } // namespace
