@@ -15,6 +15,7 @@
 #include "common/half_float.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -98,8 +99,10 @@ void writeExrFloatChannels(const std::string& path, uint32_t width, uint32_t hei
 
 void writeExrDepth(const std::string& path, uint32_t width, uint32_t height, std::span<const float> depth,
                    bool withZCopy) {
-    if (withZCopy) writeExrFloatChannels(path, width, height, {"Y", "Z"}, {depth, depth});
-    else writeExrFloatChannels(path, width, height, {"Y"}, {depth});
+    if (withZCopy)
+        writeExrFloatChannels(path, width, height, {"Y", "Z"}, {depth, depth});
+    else
+        writeExrFloatChannels(path, width, height, {"Y"}, {depth});
 }
 
 void writeExr(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
@@ -152,13 +155,42 @@ void writePng16(const std::string& path, uint32_t width, uint32_t height, uint32
     writePngSamples(path, width, height, channels, samples);
 }
 
+namespace {
+
+// Narkowicz's fit of the ACES filmic curve, on a luminance.
+float filmicCurve(float x) {
+    return std::clamp(x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+}
+
+} // namespace
+
+std::array<float, 3> toneMap(std::array<float, 3> linear, float exposure) {
+    std::array<float, 3> x;
+    for (int c = 0; c < 3; ++c) x[c] = std::max(linear[c] * exposure, 0.0f);
+    const float luminance = 0.2126f * x[0] + 0.7152f * x[1] + 0.0722f * x[2];
+    if (!(luminance > 1e-8f)) return {0.0f, 0.0f, 0.0f};
+    // The curve maps the luminance; the colour scales with it, so its hue and saturation are kept (the curve per
+    // channel would steepen the ratios between channels in its toe: saturation 0.64 -> 0.83 on sward's meadow).
+    const float mapped = filmicCurve(luminance);
+    for (float& c : x) c *= mapped / luminance;
+    // A channel that would clip pulls the colour towards grey at the same luminance until it fits: it fades to
+    // white instead of shifting hue.
+    const float peak = std::max({x[0], x[1], x[2]});
+    if (peak > 1.0f)
+        for (float& c : x) c = mapped + (c - mapped) * ((1.0f - mapped) / (peak - mapped));
+    return x;
+}
+
 std::vector<uint8_t> tonemapPreview(std::span<const uint16_t> rgbaHalf, uint32_t width, uint32_t height,
                                     float exposure) {
     std::vector<uint8_t> rgb(size_t(width) * height * 3);
     for (size_t p = 0; p < size_t(width) * height; ++p) {
+        const std::array<float, 3> mapped =
+            toneMap({halfBitsToFloat(rgbaHalf[p * 4]), halfBitsToFloat(rgbaHalf[p * 4 + 1]),
+                     halfBitsToFloat(rgbaHalf[p * 4 + 2])},
+                    exposure);
         for (int c = 0; c < 3; ++c) {
-            float x = std::max(halfBitsToFloat(rgbaHalf[p * 4 + c]) * exposure, 0.0f);
-            x = std::clamp(x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f); // ACES fit
+            float x = std::clamp(mapped[c], 0.0f, 1.0f);
             x = x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f; // sRGB
             rgb[p * 3 + c] = uint8_t(std::clamp(x * 255.0f + 0.5f, 0.0f, 255.0f));
         }

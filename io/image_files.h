@@ -6,6 +6,7 @@
 // included) throw one sward::Error naming the file.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -41,7 +42,12 @@ void writePng8(const std::string& path, uint32_t width, uint32_t height, uint32_
 void writePng16(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
                 std::span<const uint16_t> samples);
 
-// Linear HDR half RGBA -> 8-bit sRGB RGB preview with an exposure and Narkowicz's ACES filmic curve fit.
+// The preview's tone curve on one linear RGB colour: exposure, then Narkowicz's ACES filmic curve fit on the
+// luminance with the colour scaled by the same ratio (hue and saturation kept), and a channel that would pass 1
+// desaturating towards grey at the same luminance. Result in [0, 1], linear. sward-view's present.frag is a copy.
+std::array<float, 3> toneMap(std::array<float, 3> linear, float exposure);
+
+// Linear HDR half RGBA -> 8-bit sRGB RGB preview: toneMap, then sRGB encoding.
 std::vector<uint8_t> tonemapPreview(std::span<const uint16_t> rgbaHalf, uint32_t width, uint32_t height,
                                     float exposure = 0.5f);
 

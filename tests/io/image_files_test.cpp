@@ -11,8 +11,9 @@
 
 #include <sys/stat.h>
 
-#include <cmath>
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -238,4 +239,67 @@ TEST(ImageFiles, APipeOrDeviceIsRefusedInsteadOfReadForever) {
     ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
     sward::test::expectError([&] { loadImage(fifo); }, {fifo, "not a regular file"});
     sward::test::expectError([&] { readImageFileBytes("/dev/zero"); }, {"/dev/zero", "not a regular file"});
+}
+
+namespace {
+
+float hsvSaturation(std::array<float, 3> c) {
+    const float peak = std::max({c[0], c[1], c[2]});
+    return peak > 0.0f ? 1.0f - std::min({c[0], c[1], c[2]}) / peak : 0.0f;
+}
+
+// Saturated plant, flower and sky colours (linear radiance), each over intensities from deep shadow to 8x sunlit.
+const std::array<float, 3> kSaturatedColours[] = {
+    {0.10f, 0.30f, 0.04f}, {0.25f, 0.22f, 0.03f}, {0.9f, 0.05f, 0.02f}, {0.05f, 0.2f, 0.9f}, {0.6f, 0.5f, 0.45f}};
+const float kIntensities[] = {0.01f, 0.03f, 0.1f, 0.2f, 0.4f, 0.7f, 1.0f, 1.5f, 2.0f, 3.0f, 5.0f, 8.0f};
+
+} // namespace
+
+TEST(ToneCurve, DoesNotRaiseSaturation) {
+    // The curve per channel took sward's meadow from saturation 0.64 to 0.83: its toe steepens the ratios.
+    for (const auto& colour : kSaturatedColours)
+        for (float k : kIntensities) {
+            std::array<float, 3> linear{colour[0] * k, colour[1] * k, colour[2] * k};
+            std::array<float, 3> mapped = toneMap(linear, 0.5f);
+            EXPECT_LE(hsvSaturation(mapped), hsvSaturation(linear) + 1e-5f)
+                << linear[0] << " " << linear[1] << " " << linear[2];
+        }
+}
+
+TEST(ToneCurve, KeepsHueBelowClippingAndFadesToWhiteAbove) {
+    const std::array<float, 3> green{0.10f, 0.30f, 0.04f};
+    std::array<float, 3> mapped = toneMap(green, 0.5f);
+    EXPECT_NEAR(mapped[0] / mapped[1], green[0] / green[1], 1e-5f);
+    EXPECT_NEAR(mapped[2] / mapped[1], green[2] / green[1], 1e-5f);
+    std::array<float, 3> bright = toneMap({green[0] * 100.0f, green[1] * 100.0f, green[2] * 100.0f}, 0.5f);
+    EXPECT_LE(std::max({bright[0], bright[1], bright[2]}), 1.0f);
+    EXPECT_LT(hsvSaturation(bright), 0.5f * hsvSaturation(green));
+}
+
+TEST(ToneCurve, GreyStaysGrey) {
+    for (float k : kIntensities) {
+        std::vector<uint8_t> rgb = tonemapPreview(std::vector<uint16_t>(4, floatToHalfBits(k)), 1, 1);
+        EXPECT_EQ(rgb[0], rgb[1]) << k;
+        EXPECT_EQ(rgb[1], rgb[2]) << k;
+    }
+}
+
+TEST(ToneCurve, IsMonotonicInIntensity) {
+    for (const auto& colour : kSaturatedColours) {
+        std::array<float, 3> previous{0.0f, 0.0f, 0.0f};
+        std::vector<uint8_t> previousBytes(3, 0);
+        for (int step = 1; step <= 400; ++step) {
+            float k = 0.02f * float(step);
+            std::array<float, 3> mapped = toneMap({colour[0] * k, colour[1] * k, colour[2] * k}, 0.5f);
+            std::vector<uint16_t> half{floatToHalfBits(colour[0] * k), floatToHalfBits(colour[1] * k),
+                                       floatToHalfBits(colour[2] * k), floatToHalfBits(1.0f)};
+            std::vector<uint8_t> bytes = tonemapPreview(half, 1, 1);
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_GE(mapped[c], previous[c] - 1e-6f) << k;
+                EXPECT_GE(bytes[c], previousBytes[c]) << k;
+            }
+            previous = mapped;
+            previousBytes = bytes;
+        }
+    }
 }
