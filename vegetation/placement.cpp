@@ -3,6 +3,7 @@
 #include "common/error.h"
 #include "common/hash.h"
 #include "common/parallel_for.h"
+#include "vegetation/meadow_pattern.h"
 #include "vegetation/records.h"
 
 #include "shared/gpu_layout.h"
@@ -67,11 +68,14 @@ ClusterDensity planCluster(const GrassMap& map, const VegetationParams& p, const
     for (uint32_t c = 0; c < p.categoryCount; ++c) scale[c] = double(p.categories[c].density) * p.densityMultiplier;
     for (uint32_t j = 0; j < kDensityGrid; ++j) {
         for (uint32_t i = 0; i < kDensityGrid; ++i) {
-            const glm::vec4 intensity = map.sample(
-                glm::vec2(float((x0 + (i + 0.5) * cell) / p.tileSize), float((y0 + (j + 0.5) * cell) / p.tileSize)));
+            const double x = x0 + (i + 0.5) * cell, y = y0 + (j + 0.5) * cell; // tile-relative
+            const glm::vec4 intensity = map.sample(glm::vec2(float(x / p.tileSize), float(y / p.tileSize)));
             for (uint32_t ch = 0; ch < 4; ++ch) {
                 const int32_t c = p.channelCategory[ch];
-                if (c != kUnusedChannel) plan.cells[c][j * kDensityGrid + i] += double(intensity[int(ch)]) * scale[c];
+                if (c == kUnusedChannel) continue;
+                const double patches =
+                    patchDensityFactor(p.pattern, p.seed, uint32_t(c), frame.tileOriginX + x, frame.tileOriginY + y);
+                plan.cells[c][j * kDensityGrid + i] += double(intensity[int(ch)]) * scale[c] * patches;
             }
         }
     }
@@ -139,8 +143,16 @@ void placeCategory(const Ground& ground, const VegetationParams& p, const FieldF
             // i = i: clang 14 cannot capture a structured binding by reference (C++20 allows it; clang 16 does).
             auto [j, fy] =
                 invertCdf(v * columns[i], kDensityGrid, [&, i = i](uint32_t b) { return d[b * kDensityGrid + i]; });
-            const double lx = double(cx) * p.clusterSize + (i + fx) * cell;
-            const double ly = double(cy) * p.clusterSize + (j + fy) * cell;
+            double lx = double(cx) * p.clusterSize + (i + fx) * cell; // field-relative
+            double ly = double(cy) * p.clusterSize + (j + fy) * cell;
+            const double wx = frame.tileOriginX + frame.localX + lx, wy = frame.tileOriginY + frame.localY + ly;
+            if (p.pattern.clumping > 0.0f) {
+                // Pulled toward its tussock (meadow_pattern.h), and kept inside the cluster whose records and
+                // bounds it belongs to.
+                const glm::dvec2 moved = clumpPosition(p.pattern, p.seed, c, wx, wy);
+                lx = std::clamp(lx + (moved.x - wx), double(cx) * p.clusterSize, double(cx + 1) * p.clusterSize);
+                ly = std::clamp(ly + (moved.y - wy), double(cy) * p.clusterSize, double(cy + 1) * p.clusterSize);
+            }
             // Truncation is floor here (non-negative), without a libm call.
             const uint32_t qx = std::min(uint32_t(lx * frame.stepsPerMetre), 65535u);
             const uint32_t qy = std::min(uint32_t(ly * frame.stepsPerMetre), 65535u);
@@ -149,7 +161,8 @@ void placeCategory(const Ground& ground, const VegetationParams& p, const FieldF
             // No ground here, or ground the scene keeps bare (material, slope): the plant does not exist.
             if (!ground_ || !ground_->plantable) continue;
             const glm::vec3 blended = worldUp + (ground_->normal - worldUp) * p.upNormalBlend;
-            const double sizeScale = 1.0 + category.heightVariation * (2.0 * unitDouble(g) - 1.0);
+            const double sizeScale = (1.0 + category.heightVariation * (2.0 * unitDouble(g) - 1.0)) *
+                                     patchHeightFactor(p.pattern, p.seed, c, wx, wy);
             const uint32_t size = std::clamp(uint32_t(sizeScale * gpu::kPlantSizeDivisor + 0.5), 1u, 255u);
             const PlantInstance plant{
                 .positionX = qx,
@@ -193,7 +206,8 @@ uint64_t physicalMemoryBytes() {
 void checkPlantIdSpace(uint64_t plants, const std::string& what) {
     require(plants <= gpu::kMaxPlantInstances,
             what + " " + std::to_string(plants) + " plants per tile, over the limit of " +
-                std::to_string(gpu::kMaxPlantInstances) + " (the plant instance ids of the ground-truth labels); lower "
+                std::to_string(gpu::kMaxPlantInstances) +
+                " (the plant instance ids of the ground-truth labels); lower "
                 "'vegetation.density_multiplier', the categories' 'density' or 'vegetation.tile_size'");
 }
 

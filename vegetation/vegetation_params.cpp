@@ -37,7 +37,8 @@ struct Range {
 };
 constexpr Range kTileSize{1.0, 65536.0}, kFieldSize{1.0, 256.0}, kClusterSize{0.5, 256.0}, kWorldOrigin{-1e7, 1e7},
     kDensityMultiplier{0.0, 100.0}, kUpNormalBlend{0.0, 1.0}, kMemoryBudgetMib{1.0, 1024.0 * 1024.0},
-    kDensity{0.0, 1000.0}, kHeight{0.01, 20.0}, kHeightVariation{0.0, 0.95};
+    kDensity{0.0, 1000.0}, kHeight{0.01, 20.0}, kHeightVariation{0.0, 0.95}, kPatchSize{1.0, 200.0},
+    kPatchiness{0.0, 1.0}, kHeightGradient{0.0, 0.9}, kClumping{0.0, 0.9}, kClumpSize{0.05, 5.0};
 
 // Messages in the JSON reader's wording: "<source>: 'vegetation.<key>' must be ...".
 std::string quoted(const std::string& key) {
@@ -95,6 +96,11 @@ void validateVegetationParams(const VegetationParams& p, const std::string& sour
                 source + ": " + quoted(key + "ground_material") + " must be a preset 0..4 or none (got " +
                     std::to_string(c.groundMaterial) + ")");
     }
+    requireRange(source, "pattern.patch_size", p.pattern.patchSize, kPatchSize);
+    requireRange(source, "pattern.patchiness", p.pattern.patchiness, kPatchiness);
+    requireRange(source, "pattern.height_gradient", p.pattern.heightGradient, kHeightGradient);
+    requireRange(source, "pattern.clumping", p.pattern.clumping, kClumping);
+    requireRange(source, "pattern.clump_size", p.pattern.clumpSize, kClumpSize);
     for (uint32_t ch = 0; ch < 4; ++ch) {
         int32_t cat = p.channelCategory[ch];
         require(cat == kUnusedChannel || (cat >= 0 && uint32_t(cat) < p.categoryCount),
@@ -114,6 +120,15 @@ void parseCategory(JsonReader r, VegetationCategory& c) {
     // In the order of terrain.material's names (scene.cpp readTerrain).
     c.groundMaterial =
         r.choice("ground_material", c.groundMaterial, {"soil", "dry_soil", "mud", "gravel", "forest_floor"});
+    r.finish();
+}
+
+void parsePattern(JsonReader r, MeadowPattern& m) {
+    m.patchSize = readNumber(r, "patch_size", m.patchSize, kPatchSize);
+    m.patchiness = readNumber(r, "patchiness", m.patchiness, kPatchiness);
+    m.heightGradient = readNumber(r, "height_gradient", m.heightGradient, kHeightGradient);
+    m.clumping = readNumber(r, "clumping", m.clumping, kClumping);
+    m.clumpSize = readNumber(r, "clump_size", m.clumpSize, kClumpSize);
     r.finish();
 }
 
@@ -166,6 +181,7 @@ VegetationParams parseVegetationParams(const nlohmann::json& json, const std::st
     for (int32_t& cat : p.channelCategory)
         if (cat != kUnusedChannel && uint32_t(cat) >= p.categoryCount) cat = kUnusedChannel;
     if (r.has("channels")) parseChannels(r.child("channels"), p);
+    if (r.has("pattern")) parsePattern(r.child("pattern"), p.pattern);
     r.finish();
     validateVegetationParams(p, source);
     return p;

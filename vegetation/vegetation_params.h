@@ -21,9 +21,16 @@
 //                       terrain's]
 //   channels            [{"r": 0, "g": 1, "b": 2, "a": null}]  grass-map channel -> category index or name;
 //                                null = unused
+//   pattern             [all strengths 0: the map alone]  field-scale structure (meadow_pattern.h):
+//     patch_size        metres, 1..200                                  [8]
+//     patchiness        density contrast between patches, 0..1          [0]
+//     height_gradient   relative height change between patches, 0..0.9 [0]
+//     clumping          pull toward tussock centres, 0..0.9             [0]
+//     clump_size        tussock spacing in metres, 0.05..5              [0.5]
 #pragma once
 
 #include "shared/plant_layout.h"
+#include "vegetation/meadow_pattern.h"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -102,6 +109,7 @@ struct VegetationParams {
         defaultVegetationCategory(3)};
     // channelCategory[c]: category fed by grass-map channel c (R, G, B, A), or kUnusedChannel.
     std::array<int32_t, 4> channelCategory = {0, 1, 2, kUnusedChannel};
+    MeadowPattern pattern; // patches, height gradients and tussocks over the map's densities
 
     uint32_t fieldsPerTile() const;    // per side
     uint32_t clustersPerField() const; // per side
