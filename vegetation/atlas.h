@@ -91,9 +91,10 @@ void validateAtlasDesc(const AtlasDesc& desc, const std::string& source);
 
 // Which procedural painter fills a row.
 enum class AtlasPlantKind {
-    Grass,   // clumps of tapered, curved blades, greens to straw tips, some with seed heads
-    Ferns,   // fronds with leaflets over brown leaf litter (forest floor)
-    Flowers, // stems with coloured flower heads over leaf rosettes, and small flowering shrubs
+    Grass,   // clumps of tapered, curved blades (some bent or broken), live greens mixed with dry, yellowed and
+             // dead blades, every third clump with seed heads
+    Ferns,   // green fronds with leaflets over a few dead leaves, each variant its own frond count, size and arch
+    Flowers, // stems with small petalled heads (daisy, spike, cup) over leaf rosettes, and small flowering shrubs
 };
 
 struct AtlasRowSpec {
@@ -106,7 +107,7 @@ struct AtlasRowSpec {
 AtlasPlantKind atlasPlantKindForCategory(const std::string& category);
 
 // Rows of the built-in atlas: the default categories of VegetationParams in order, with their variant counts
-// (ferns 4, grass 8, flowers 8). variantsOverride > 0 gives every row that many columns instead.
+// (ferns 8, grass 12, flowers 8). variantsOverride > 0 gives every row that many columns instead.
 std::vector<AtlasRowSpec> defaultAtlasRows(uint32_t variantsOverride = 0);
 
 struct AtlasGenParams {

@@ -64,8 +64,9 @@ private:
         colour *= 1.0f - s.shadeBase * (1.0f - smoothstep(0.0f, 0.45f, t));
         colour *= 1.0f + s.sideShade * lateral;
         colour *= 1.0f + s.midrib * std::max(0.0f, 1.0f - std::abs(lateral) * 3.0f);
-        const float grain = float(valueNoise(grainSeed_, 0, double(p.x) / 3.0, double(p.y) / 3.0));
-        colour = glm::clamp(colour * (1.0f + 0.07f * grain), 0.0f, 1.0f);
+        // A faint mottle (veins, dust, small lesions); low so that it reads as soft texture, not as edges.
+        const float grain = float(valueNoise(grainSeed_, 0, double(p.x) / 4.0, double(p.y) / 4.0));
+        colour = glm::clamp(colour * (1.0f + 0.035f * grain), 0.0f, 1.0f);
 
         vec4& dst = texels_[size_t(y) * size_ + size_t(x)];
         dst = vec4(colour * coverage, coverage) + dst * (1.0f - coverage);

@@ -11,9 +11,9 @@ namespace sward {
 VegetationCategory defaultVegetationCategory(uint32_t index) {
     switch (index) {
     case 0:
-        return {.name = "ferns", .density = 1.5f, .height = 0.6f, .heightVariation = 0.3f, .variants = 4};
+        return {.name = "ferns", .density = 1.5f, .height = 0.6f, .heightVariation = 0.3f, .variants = 8};
     case 1:
-        return {.name = "grass", .density = 16.0f, .height = 0.35f, .heightVariation = 0.35f, .variants = 8};
+        return {.name = "grass", .density = 16.0f, .height = 0.35f, .heightVariation = 0.35f, .variants = 12};
     case 2:
         return {.name = "flowers", .density = 1.0f, .height = 0.45f, .heightVariation = 0.4f, .variants = 8};
     default:
