@@ -18,8 +18,10 @@ namespace {
 
 // ---- grass -----------------------------------------------------------------------------------------------------
 
-const vec3 kLiveGreens[] = {albedo(0.060f, 0.110f, 0.040f), albedo(0.075f, 0.120f, 0.040f),
-                            albedo(0.055f, 0.095f, 0.042f), albedo(0.085f, 0.130f, 0.045f)};
+// Live greens run from a bluish shade leaf to a yellowish sunlit one; blue stays low (chlorophyll and carotenoids
+// absorb it), so the sky's blue fill light does not turn the meadow grey-teal.
+const vec3 kLiveGreens[] = {albedo(0.062f, 0.110f, 0.032f), albedo(0.080f, 0.122f, 0.034f),
+                            albedo(0.056f, 0.096f, 0.036f), albedo(0.090f, 0.130f, 0.038f)};
 const vec3 kStraw = albedo(0.34f, 0.29f, 0.17f);      // dry blade
 const vec3 kYellowed = albedo(0.20f, 0.19f, 0.08f);   // senescing blade, chlorophyll going
 const vec3 kDeadBrown = albedo(0.15f, 0.105f, 0.06f); // dead blade or leaf
@@ -131,7 +133,7 @@ void paintSeedHeads(Plant& plant, Dice& dice, float S, uint32_t variant, float s
 // ---- ferns and forest floor ------------------------------------------------------------------------------------
 
 // Fern pinnae: darker, bluer green than grass (shade leaves), young tips lighter and yellower.
-const vec3 kFernOld = albedo(0.040f, 0.080f, 0.030f), kFernYoung = albedo(0.085f, 0.135f, 0.045f);
+const vec3 kFernOld = albedo(0.042f, 0.080f, 0.026f), kFernYoung = albedo(0.090f, 0.135f, 0.038f);
 
 // A fern variant's habit: how many fronds, how tall, how far they arch over, how wide the pinnae stand.
 struct FernHabit {
@@ -193,8 +195,8 @@ void paintFrond(Plant& plant, Dice& dice, float S, const FernHabit& habit, float
 
 // ---- flowers and shrubs ----------------------------------------------------------------------------------------
 
-const vec3 kLeafGreens[] = {albedo(0.050f, 0.095f, 0.035f), albedo(0.070f, 0.115f, 0.040f),
-                            albedo(0.045f, 0.085f, 0.035f)};
+const vec3 kLeafGreens[] = {albedo(0.052f, 0.095f, 0.030f), albedo(0.072f, 0.115f, 0.034f),
+                            albedo(0.047f, 0.085f, 0.030f)};
 
 enum class FlowerForm { Daisy, Spike, Cup, Shrub };
 
