@@ -2,9 +2,10 @@
 #extension GL_GOOGLE_include_directive : require
 // Plant shading, main pass. With 4x MSAA the atlas alpha drives alpha-to-coverage (sharpened to about one
 // texel of transition, so edges stay crisp but anti-aliased); at 1x it is an alpha test at 0.5.
-// Lighting uses the plant's up vector (paper 3.4), sun with shadow, sky ambient, darker towards the base; the
-// per-plant terms and the sun shadow's map coordinate come from the vertex shader (shared/plant_shading.glsl,
-// plantShadowCoordinate).
+// Lighting: the sun reflected and transmitted through the leaf with a sheen, on a shading normal rounded across the
+// plant, with the shadow; sky ambient for the plant's up vector (paper 3.4); occlusion towards the base. The
+// per-plant and per-corner terms and the sun shadow's map coordinate come from the vertex shader
+// (shared/plant_shading.glsl, plantShadowCoordinate).
 #include "shared/frame.glsl"
 #include "shared/plant_fragment.glsl"
 #include "shared/shadow.glsl"
@@ -13,8 +14,9 @@ layout(constant_id = 1) const bool ALPHA_TO_COVERAGE = false;
 layout(location = 3) in vec4 inShadow; // plantShadowCoordinate, from the vertex shader
 layout(location = 10) flat in mat3 inAlbedo; // locations 10-12
 layout(location = 13) flat in vec3 inAlbedoOffset;
-layout(location = 14) flat in vec3 inSunLight;
+layout(location = 14) in vec3 inSunLight; // plantSunLight, interpolated across the card
 layout(location = 15) flat in vec3 inAmbient;
+layout(location = 20) in vec3 inSheen;    // plantSunLight
 layout(location = 0) out vec4 outColor;
 
 void main() {
@@ -29,7 +31,15 @@ void main() {
     }
     // Per-plant terms from the vertex shader (plant_shading.glsl); here only what varies across the plant.
     vec3 albedo = inAlbedo * texel.rgb + inAlbedoOffset;
-    float occlusion = mix(0.35, 1.0, inHeightFraction); // ambient occlusion darkens the base
-    vec3 light = inSunLight * plantShadow(inShadow) + inAmbient * occlusion;
-    outColor = vec4(albedo * light, clamp(alpha, 0.0, 1.0));
+    // Occlusion towards the base: the blades above a point hide the sky and the sun from it, and a tuft's blades
+    // crowd together low down, so it grows with the cube of the depth below the top: the lower third is dark (sky
+    // 0.3, sun 0.7 at the base), the upper half nearly open. The sun's part adds to its shadow map, which is too
+    // coarse for a tuft's own blades. The blades that cast the sun shadow are thin leaves too: near the top, where one
+    // or two of them shade a point, 0.3 of the sun comes through; deep in the canopy, through many, none.
+    float depth = clamp(1.0 - inHeightFraction, 0.0, 1.0);
+    depth *= depth * depth;
+    float shadow = plantShadow(inShadow);
+    float sun = (shadow + (1.0 - shadow) * 0.3 * (1.0 - depth)) * (1.0 - 0.3 * depth);
+    vec3 light = inSunLight * sun + inAmbient * (1.0 - 0.7 * depth);
+    outColor = vec4(albedo * light + inSheen * sun, clamp(alpha, 0.0, 1.0));
 }

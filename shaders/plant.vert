@@ -34,8 +34,9 @@ layout(location = 8) flat out uint outTile;  // ground truth: the tile's label (
 layout(location = 9) flat out vec3 outNormal; // ground truth: the triangle's camera-frame normal (truthNormal)
 layout(location = 10) flat out mat3 outAlbedo; // colour pass: plantShading (locations 10-15)
 layout(location = 13) flat out vec3 outAlbedoOffset;
-layout(location = 14) flat out vec3 outSunLight;
+layout(location = 14) out vec3 outSunLight;  // plantSunLight: varies across the card
 layout(location = 15) flat out vec3 outAmbient;
+layout(location = 20) out vec3 outSheen;     // plantSunLight (16-17: flow_vertex.glsl)
 layout(location = 18) flat out vec4 outUvRect; // the cell's atlas rectangle (outUv is in cell coordinates)
 layout(location = 19) flat out vec2 outMerge; // far merging: PlantQuad::repeat (copies across), PlantQuad::opacity
 
@@ -90,15 +91,27 @@ void main() {
 #endif
     }
     if (PASS == kPassMain) {
-        PlantShading shading = plantShading(instance.fade, push.lod, octahedralDecode(instance.up), v.random);
+        uint plant = instancePlants[gl_InstanceIndex];
+        vec3 up = octahedralDecode(instance.up);
+        PlantShading shading = plantShading(instance.fade, push.lod, up, v.random, plantColourHash(plant));
         outAlbedo = shading.albedo;
         outAlbedoOffset = shading.albedoOffset;
-        outSunLight = shading.sunLight;
         outAmbient = shading.ambient;
-        uint plant = instancePlants[gl_InstanceIndex];
+        // The corner's place across the plant for the rounded shading normal; far billboards, a few pixels wide,
+        // stay flat (their gradient would only add edges between neighbours).
+        vec3 toCamera = normalize(veg.cameraPosition.xyz - v.position);
+        float across = clamp(dot(v.position - quad.base, quad.side) / max(0.5 * quad.width, 1e-6), -1.0, 1.0);
+        PlantSunLight sun = plantSunLight(cross(quad.side, quad.rise), quad.side, push.lod == kLodFar ? 0.0 : across, up,
+                                          toCamera);
+        outSunLight = sun.diffuse;
+        outSheen = sun.sheen;
         outShadow = plantShadowCoordinate(v.position, instance.positionHeight.xyz, plantShadowHash(plant));
     }
-    if (PASS != kPassMain) outShadow = vec4(0.0);
+    if (PASS != kPassMain) {
+        outShadow = vec4(0.0);
+        outSunLight = vec3(0.0);
+        outSheen = vec3(0.0);
+    }
     if (PASS != kPassTruth) {
         outLabel = 0u;
         outTile = 0u;

@@ -20,8 +20,9 @@ layout(location = 6) flat out float outRandom;
 layout(location = 7) flat out uint outLabel; // ground truth only: plant_fragment.glsl declares it for every pass
 layout(location = 10) flat out mat3 outAlbedo; // plantShading (locations 10-15)
 layout(location = 13) flat out vec3 outAlbedoOffset;
-layout(location = 14) flat out vec3 outSunLight;
+layout(location = 14) out vec3 outSunLight;
 layout(location = 15) flat out vec3 outAmbient;
+layout(location = 20) out vec3 outSheen;
 layout(location = 18) flat out vec4 outUvRect; // baked coordinates are the atlas's own
 layout(location = 19) flat out vec2 outMerge;
 
@@ -33,11 +34,15 @@ void main() {
     outWorld = v.positionFraction.xyz;
     outViewDepth = (frame.view * vec4(v.positionFraction.xyz, 1.0)).z;
     // Baked vertices carry no LOD: the LOD overlay shows every plant as far.
-    PlantShading shading = plantShading(v.upFade.y, kLodFar, octahedralDecode(v.upFade.x), v.uvRandom.z);
+    vec3 up = octahedralDecode(v.upFade.x);
+    PlantShading shading = plantShading(v.upFade.y, kLodFar, up, v.uvRandom.z, v.uvRandom.z);
     outAlbedo = shading.albedo;
     outAlbedoOffset = shading.albedoOffset;
-    outSunLight = shading.sunLight;
     outAmbient = shading.ambient;
+    // Baked vertices keep no card: lit as a card facing up (the same instructions as plant.vert's).
+    PlantSunLight sun = plantSunLight(up, vec3(0.0), 0.0, up, normalize(frame.cameraPosition.xyz - v.positionFraction.xyz));
+    outSunLight = sun.diffuse;
+    outSheen = sun.sheen;
     // Baked vertices keep no root: the cascade is chosen per vertex (a timing baseline; its images are not compared).
     outShadow = plantShadowCoordinate(v.positionFraction.xyz, v.positionFraction.xyz, v.uvRandom.z);
     outFade = v.upFade.y;

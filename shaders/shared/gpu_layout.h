@@ -406,6 +406,12 @@ float depthMergeHash(uint index) { return plantHash(index, 0xBB67AE85u); }
 constexpr
 #endif
 float plantShadowHash(uint plant) { return plantHash(plant, 0x3C6EF372u); }
+// The colour pass's per-plant hue shift (plant_shading.glsl): its own key, so a plant's hue follows none of its
+// other decisions.
+#ifdef __cplusplus
+constexpr
+#endif
+float plantColourHash(uint plant) { return plantHash(plant, 0x9B05688Cu); }
 // The 8-bit field of a merging scale (a unit is kWidthScaleUnit; 0: not drawn).
 #ifdef __cplusplus
 inline

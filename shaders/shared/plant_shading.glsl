@@ -1,21 +1,31 @@
-// Per-plant shading terms of the colour pass, computed once per vertex instead of once per fragment: on a CPU
-// driver every fragment lane runs every instruction (both sides of each branch), and all of this is constant over a
-// plant. The fragment shader (plant.frag) adds only what varies across the plant: texel, sun shadow and the darkening
-// towards the base. Needs frame.glsl first.
+// Shading terms of the colour pass computed per vertex instead of per fragment: on a CPU driver every fragment lane
+// runs every instruction (both sides of each branch). The per-plant terms (albedo, ambient) are constant over a
+// plant; the sun's terms vary smoothly across a card (its rounded normal) and are interpolated from its corners.
+// The fragment shader (plant.frag) adds only what varies faster: texel, sun shadow and the occlusion towards the
+// base. Needs frame.glsl first.
 #ifndef SWARD_PLANT_SHADING_GLSL
 #define SWARD_PLANT_SHADING_GLSL
 
 struct PlantShading {
     mat3 albedo;       // albedo = albedo * texel.rgb + albedoOffset
     vec3 albedoOffset;
-    vec3 sunLight;     // sun radiance times the wrap-lit leaf's response, before the shadow
-    vec3 ambient;      // sky ambient for the plant's up, before the darkening towards the base
+    vec3 ambient;      // sky ambient for the plant's up, before the occlusion towards the base
 };
 
-// `fade`: ExpandedPlant::fade (the plant's state in bits 17-20), `up`: the plant's unit up vector.
-PlantShading plantShading(uint fade, uint lod, vec3 up, float random) {
+// Rotation of an RGB colour about the grey axis by `angle` radians (Rodrigues): a hue shift that keeps grey grey.
+mat3 hueRotation(float angle) {
+    float c = cos(angle), s = sin(angle) * 0.57735027, k = (1.0 - c) / 3.0;
+    // Columns of c I + k (1 1 1)(1 1 1)^T + s [(1 1 1)]x.
+    return mat3(c + k, k + s, k - s, k - s, c + k, k + s, k + s, k - s, c + k);
+}
+
+// `fade`: ExpandedPlant::fade (the plant's state in bits 17-20), `up`: the plant's unit up vector, `random`: the
+// plant's random value, `colourHash`: plantColourHash of the plant.
+PlantShading plantShading(uint fade, uint lod, vec3 up, float random, float colourHash) {
     PlantShading s;
-    s.albedo = mat3(mix(0.8, 1.15, random)); // per-plant brightness variation
+    // Per-plant variation: value +-15 % from the plant's random value, and hue +-10 degrees from its own hash
+    // (negative: green towards yellow, positive: towards blue-green), as neighbouring real plants differ.
+    s.albedo = mix(0.85, 1.15, random) * hueRotation(radians(20.0) * (colourHash - 0.5));
     s.albedoOffset = vec3(0.0);
     uint state = bitfieldExtract(fade, 17, 4);
     // Flattened blades show their paler undersides and bruised, straw-coloured stems: mix 40 % of the texel's
@@ -34,9 +44,40 @@ PlantShading plantShading(uint fade, uint lod, vec3 up, float random) {
                        : state == kPlantStateFelled     ? vec3(0.9, 0.05, 0.05)
                                                         : vec3(0.7, 0.1, 0.9);
     }
-    // Thin leaves: wrap lighting lets light through from behind.
-    s.sunLight = frame.sunRadiance.rgb * clamp(dot(up, frame.sunDirection.xyz) * 0.6 + 0.4, 0.0, 1.0);
     s.ambient = ambientLight(up);
+    return s;
+}
+
+struct PlantSunLight {
+    vec3 diffuse; // sun light reflected and transmitted by the leaf, times the albedo in plant.frag; before the shadow
+    vec3 sheen;   // the leaf's specular sheen, added without the albedo; before the shadow
+};
+
+// Sun light at one corner of a card (or blade): `face` is its unit normal (either side), `side` its unit horizontal
+// direction, `across` the corner's place across the plant along `side` (-1 .. 1, 0 on the plant's axis), `up` the
+// plant's up, `toCamera` the unit direction from the corner to the camera.
+// A tuft is lit as one rounded body, not as flat cards: its shading normal leans outwards from the axis (the side of
+// the tuft facing the sun is lit, the other darker, smoothly) and is the same for every card through a point, so
+// crossing cards do not flicker against each other. A thin leaf reflects the sun that reaches its camera side and
+// transmits the sun that reaches its back, a little less and yellow-green (the card's face only picks which); a
+// small broad specular lobe gives the waxy sheen. The wrap stands for the light a tuft scatters inside.
+PlantSunLight plantSunLight(vec3 face, vec3 side, float across, vec3 up, vec3 toCamera) {
+    const float kRounding = 0.4; // the normal's outward lean at the plant's edge, against 1 up
+    vec3 n = normalize(up + side * (kRounding * across));
+    vec3 l = frame.sunDirection.xyz;
+    float d = dot(n, l);
+    const float kWrap = 0.5;
+    // Scaled so a plant standing upright under a sun 40 degrees high gets about the light of the wrap lighting
+    // before (0.8 of the sun's radiance): the plant's average brightness stays.
+    float irradiance = 1.05 * clamp((d + kWrap) / (1.0 + kWrap), 0.0, 1.0);
+    const vec3 kTransmittance = vec3(0.9, 0.9, 0.65); // relative to the albedo: leaves pass more yellow-green light
+    bool backlit = dot(face, l) * dot(face, toCamera) < 0.0;
+    PlantSunLight s;
+    s.diffuse = frame.sunRadiance.rgb * (irradiance * (backlit ? kTransmittance : vec3(1.0)));
+    float specular = max(dot(n, normalize(l + toCamera)), 0.0);
+    specular *= specular;
+    specular *= specular;
+    s.sheen = frame.sunRadiance.rgb * (0.03 * specular * specular * max(d, 0.0));
     return s;
 }
 

@@ -120,7 +120,8 @@ TEST(PlantHashes, AreUncorrelated) {
     using Hash = float (*)(uint32_t);
     const std::pair<const char*, Hash> hashes[] = {{"width merge", [](uint32_t i) { return gpu::mergeHash(i); }},
                                                    {"depth merge", [](uint32_t i) { return gpu::depthMergeHash(i); }},
-                                                   {"shadow", [](uint32_t i) { return gpu::plantShadowHash(i); }}};
+                                                   {"shadow", [](uint32_t i) { return gpu::plantShadowHash(i); }},
+                                                   {"colour", [](uint32_t i) { return gpu::plantColourHash(i); }}};
     constexpr uint32_t kPlants = 1u << 18;
     for (size_t a = 0; a < std::size(hashes); ++a)
         for (size_t b = a + 1; b < std::size(hashes); ++b) {
