@@ -124,13 +124,16 @@ TEST(SwardView, AWorldStreamsItsTilesAroundTheCamera) {
     EXPECT_GE(resident, 4) << "the camera stands where four tiles meet:\n" << r.output;
     cv::Mat image = cv::imread(png, cv::IMREAD_COLOR); // BGR
     ASSERT_FALSE(image.empty()) << r.output;
+    // Since issue 47 the plants' albedos are measured greens, varied per plant, and the tone curve keeps their
+    // saturation instead of raising it: a fifth of the image is clearly green (0.21 measured), none of a flat or black
+    // one.
     int grass = 0;
     for (int y = 0; y < image.rows; ++y)
         for (int x = 0; x < image.cols; ++x) {
             cv::Vec3b p = image.at<cv::Vec3b>(y, x);
             grass += p[1] > 30 && p[1] > p[2] + 8 && p[1] > p[0] + 8;
         }
-    EXPECT_GT(double(grass) / double(image.total()), 0.25) << r.output;
+    EXPECT_GT(double(grass) / double(image.total()), 0.15) << r.output;
 }
 
 TEST(SwardView, MissingSceneIsOneClearError) {
