@@ -5,6 +5,7 @@
 #include "engine/timestamps.h"
 #include "render/ground_mesh.h"
 #include "render/object_renderer.h"
+#include "render/sky_constants.h"
 #include "render/track_renderer.h"
 #include "render/vegetation_renderer.h"
 #include "shared/config.h"
@@ -254,9 +255,7 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Sh
     c.cameraPosition = glm::vec4(glm::vec3(camera.position), 1.0f);
     c.sunDirection = glm::vec4(scene_.sun.direction(), 0.0f);
     c.sunRadiance = glm::vec4(scene_.sun.radiance, 0.0f);
-    c.skyZenith = glm::vec4(scene_.sky.zenith, 0.0f);
-    c.skyHorizon = glm::vec4(scene_.sky.horizon, 0.0f);
-    c.groundAmbient = glm::vec4(scene_.sky.groundAmbient, 0.0f);
+    writeSkyConstants(scene_, c);
     c.viewport =
         glm::vec4(float(camera.width), float(camera.height), 1.0f / float(camera.width), 1.0f / float(camera.height));
     c.timeParams = glm::vec4(float(timeSeconds), 0.0f, 0.0f, 0.0f);
@@ -284,7 +283,7 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Sh
         if (vegetation_) c.shadowParams.w = float(vegetation_->shadowAtlasLevel(2.0 * drawn.radius / drawn.mapSize));
     }
     c.debug = glm::uvec4(debugFlags_, 0u, 0u, 0u);
-    c.coverBand = glm::vec4(scene_.lod.farLimit, scene_.lod.band, 0.0f, 0.0f);
+    c.coverBand = glm::vec4(scene_.lod.farLimit, scene_.lod.band, scene_.lod.midToFar, 0.0f);
     if (flow) {
         c.viewProjPrevious = glm::mat4(flow->previous[view]->viewProjection());
         c.viewProjNext = glm::mat4(flow->next[view]->viewProjection());

@@ -108,6 +108,15 @@ void readSun(JsonReader r, SunParams& sun) {
 }
 
 void readSky(JsonReader r, SkyParams& sky) {
+    const bool colours = r.has("zenith") || r.has("horizon");
+    sky.model = SkyParams::Model(r.choice("model", colours ? 1 : 0, {"physical", "gradient"}));
+    if (sky.model == SkyParams::Model::Physical && colours)
+        r.fail("'" + r.path() +
+               "': 'zenith' and 'horizon' belong to the gradient model (the physical sky's "
+               "colours come from the sun and 'turbidity')");
+    sky.turbidity = r.number("turbidity", sky.turbidity, 1.7, 10.0);
+    sky.clouds = r.number("clouds", sky.clouds, 0.0, 1.0);
+    sky.visibility = r.number("visibility_m", sky.visibility, 0.0, 1e6);
     sky.zenith = toVec3(r.vector<3>("zenith", glm::dvec3(sky.zenith), 0.0, 1e6));
     sky.horizon = toVec3(r.vector<3>("horizon", glm::dvec3(sky.horizon), 0.0, 1e6));
     sky.groundAmbient = toVec3(r.vector<3>("ground", glm::dvec3(sky.groundAmbient), 0.0, 1e6));

@@ -58,9 +58,17 @@ struct SunParams {
     glm::vec3 direction() const;          // unit vector towards the sun
 };
 
+// "sky": the physical model (world/sky.h, Preetham) from the sun and a turbidity, or a horizon-to-zenith gradient of
+// given colours (the default when the scene gives "zenith" or "horizon"); both light the scene's ambient and colour
+// the aerial perspective's haze (shaders/shared/atmosphere.glsl).
 struct SkyParams {
-    glm::vec3 zenith{0.25f, 0.45f, 0.95f};
-    glm::vec3 horizon{0.75f, 0.85f, 1.0f};
+    enum class Model { Physical, Gradient };
+    Model model = Model::Physical;
+    double turbidity = 3.0;                // physical: 2 very clear, 3 clear, 6 hazy
+    double clouds = 0.0;                   // physical: cover of the procedural cumulus, 0 (none) .. 1 (overcast)
+    double visibility = 20000.0;           // metres at which the haze hides a dark object (Koschmieder); 0: no haze
+    glm::vec3 zenith{0.25f, 0.45f, 0.95f}; // gradient only
+    glm::vec3 horizon{0.75f, 0.85f, 1.0f}; // gradient only
     glm::vec3 groundAmbient{0.12f, 0.11f, 0.08f};
 };
 

@@ -17,4 +17,5 @@ void main() {
     float sun = max(dot(n, frame.sunDirection.xyz), 0.0) * sunShadow(inWorld);
     vec3 light = frame.sunRadiance.rgb * sun + ambientLight(n);
     outColor = vec4(inBaseColor * light, 1.0);
+    outColor.rgb = aerialPerspective(outColor.rgb, inWorld);
 }

@@ -42,4 +42,5 @@ void main() {
     float sun = (shadow + (1.0 - shadow) * 0.3 * (1.0 - depth)) * (1.0 - 0.3 * depth);
     vec3 light = inSunLight * sun + inAmbient * (1.0 - 0.7 * depth);
     outColor = vec4(albedo * light + inSheen * sun, clamp(alpha, 0.0, 1.0));
+    outColor.rgb = aerialPerspective(outColor.rgb, inWorld);
 }

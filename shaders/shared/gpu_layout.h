@@ -71,7 +71,7 @@ struct FrameConstants {
                          // the drawn cascade (plant.vert culls the others), w the atlas level every plant of the
                          // draw reads its alpha from (VegetationRenderer::shadowAtlasLevel; plantShadowAlpha)
     uvec4 debug;         // x kDebug* flags (sward-view overlays; 0 for renders), yzw unused
-    vec4 coverBand;      // x lod.far, y lod.band (the plants' dissolve band around it), zw unused
+    vec4 coverBand;      // x lod.far, y lod.band (the plants' dissolve band around it), z lod.mid, w unused
     // Cascaded sun shadows (world/sun_shadow.h, shadow.glsl): cascade k is tile k of a row of square maps.
     mat4 shadowCascades[kMaxShadowCascades]; // world -> cascade k's clip space (orthographic, reversed Z)
     vec4 shadowTiles[kMaxShadowCascades];    // cascade k's tile in the shadow image: x u offset, y u scale, z v scale,
@@ -86,7 +86,20 @@ struct FrameConstants {
     vec4 flowReferenceNext;     // ... at the next tick
     vec4 flowTimes;             // x the wind's time at the previous tick, y at the next, zw unused
     uvec4 flowParams;           // x object transforms per tick (the previous tick's follow this tick's, then the next's)
+    // The sky and the atmosphere (render/sky_constants.h; frame.glsl, atmosphere.glsl).
+    vec4 skyParams;       // x kSkyGradient / kSkyPhysical, y haze extinction per metre (0: none), z cloud cover, w unused
+    vec4 skyPerez[5];     // physical sky: Perez coefficients A..E, xyz for (Y, x, y) (world/sky.h)
+    vec4 skyZenithOverF0; // physical sky: the zenith's (Y, x, y) over F(0, sun's zenith angle)
+    vec4 skyAmbient;      // rgb the sky's cosine-weighted mean radiance: the ambient light of an up-facing surface
+    vec4 hazeToward;      // rgb the horizon's radiance towards the sun's azimuth (the haze's colour), w unused
+    vec4 hazeSide;        // ... across it
+    vec4 hazeAway;        // ... away from it
+    vec4 sunHorizontal;   // xy the unit horizontal direction towards the sun, zw unused
 };
+
+// FrameConstants::skyParams.x: the sky model.
+SWARD_CONST(float, kSkyGradient, 0.0);
+SWARD_CONST(float, kSkyPhysical, 1.0);
 
 // Per-tile constants of the terrain's main pass (push constants of terrain.frag): each tile has its own cover map.
 struct TerrainTileConstants {
@@ -508,7 +521,7 @@ struct ExpansionStats {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameConstants) == (6 + kMaxShadowCascades) * 64 + (18 + kMaxShadowCascades) * 16);
+static_assert(sizeof(FrameConstants) == (6 + kMaxShadowCascades) * 64 + (30 + kMaxShadowCascades) * 16);
 static_assert(sizeof(TerrainTileConstants) == 32);
 static_assert(sizeof(DebugLineVertex) == 32);
 static_assert(sizeof(VegetationConstants) == 17 * 16);

@@ -35,12 +35,21 @@ float mergedAlpha(float alpha) {
     return inMerge.y != 1.0 ? 1.0 - pow(1.0 - min(alpha, 0.996), inMerge.y) : alpha;
 }
 
+// A far billboard's colour is prefiltered over this many times its footprint (a mip level and a half coarser than
+// its alpha): a plant a few pixels high shows its mean colour, as a camera's optics and demosaicing would, not a
+// texel-sharp pattern of blades. Its alpha, and so its silhouette and the truth pass's coverage, stays at the
+// footprint.
+const float kFarColourFootprint = 2.8;
+
 // The plant's atlas texel here, filtered trilinearly. The mip level comes from the unwrapped coordinate, the same on
 // both sides of a merged billboard's seam. The colour and truth passes both sample through here, so they keep the
-// same texels.
+// same texels (alpha).
 vec4 plantTexel() {
-    vec2 size = inUvRect.zw - inUvRect.xy;
-    vec4 texel = textureGrad(atlas, plantAtlasUv(), dFdx(inUv) * size, dFdy(inUv) * size);
+    vec2 size = inUvRect.zw - inUvRect.xy, uv = plantAtlasUv();
+    vec2 dx = dFdx(inUv) * size, dy = dFdy(inUv) * size;
+    vec4 texel = textureGrad(atlas, uv, dx, dy);
+    if (((inFade >> 21) & 3u) == kLodFar) // bits 21-22 of inFade: the draw's LOD (plant.vert)
+        texel.rgb = textureGrad(atlas, uv, dx * kFarColourFootprint, dy * kFarColourFootprint).rgb;
     texel.a = mergedAlpha(texel.a);
     return texel;
 }

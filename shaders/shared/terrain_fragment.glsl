@@ -51,11 +51,19 @@ float hiddenFraction(float area, vec3 world) {
     return 1.0 - exp(-area / max(kCoverDepth * tanElevation, 1e-6));
 }
 
-// How much of the pixel the far cover takes: 0 inside the plants' range, rising over their dissolve band exactly
-// as their dither removes them (plants use the same 3D distance to the camera).
+// Between the mid LOD limit and the far limit the far billboards stand for the plants but not for the blades between
+// them, each far below a pixel there, which a real meadow's far field is full of: the ground between the billboards
+// takes this much of the far cover's look at the far limit, rising from none at the mid limit, so the far field's
+// gaps do not show bare ground at pixel contrast.
+const float kSubpixelCanopy = 0.7;
+
+// How much of the pixel the far cover takes: kSubpixelCanopy at most inside the plants' range, rising to all over
+// their dissolve band exactly as their dither removes them (plants use the same 3D distance to the camera).
 float coverWeight(vec3 world) {
-    float start = frame.coverBand.x - 0.5 * frame.coverBand.y;
-    return clamp((distance(world, frame.cameraPosition.xyz) - start) / max(frame.coverBand.y, 1e-3), 0.0, 1.0);
+    float start = frame.coverBand.x - 0.5 * frame.coverBand.y, d = distance(world, frame.cameraPosition.xyz);
+    float beyond = clamp((d - start) / max(frame.coverBand.y, 1e-3), 0.0, 1.0);
+    float within = clamp((d - frame.coverBand.z) / max(start - frame.coverBand.z, 1e-3), 0.0, 1.0);
+    return max(beyond, kSubpixelCanopy * within);
 }
 
 // plant.frag's light for a plant standing along the ground normal (up_normal_blend aside).
@@ -132,7 +140,7 @@ void main() {
     float weight = inCoverTile(uv) ? coverWeight(inWorld) : 0.0;
     if (weight > 0.0)
         color = mix(color, cover.rgb * kPlantBrightness * plantLight(n, shadow), weight * hiddenFraction(cover.a, inWorld));
-    outColor = vec4(color, 1.0);
+    outColor = vec4(aerialPerspective(color, inWorld), 1.0);
 }
 
 #endif

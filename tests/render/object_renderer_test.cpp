@@ -9,6 +9,7 @@
 #include "render/object_renderer.h"
 #include "scene/rover_model.h"
 #include "render/scene_renderer.h"
+#include "render/sky_constants.h"
 
 #include "shared/gpu_layout.h"
 
@@ -88,9 +89,7 @@ protected:
         c.cameraPosition = glm::vec4(glm::vec3(camera.position), 1.0f);
         c.sunDirection = glm::vec4(scene.sun.direction(), 0.0f);
         c.sunRadiance = glm::vec4(scene.sun.radiance, 0.0f);
-        c.skyZenith = glm::vec4(scene.sky.zenith, 0.0f);
-        c.skyHorizon = glm::vec4(scene.sky.horizon, 0.0f);
-        c.groundAmbient = glm::vec4(scene.sky.groundAmbient, 0.0f);
+        writeSkyConstants(scene, c);
         c.viewport = glm::vec4(kWidth, kHeight, 1.0f / kWidth, 1.0f / kHeight);
         const double radius = 5.0, reach = 20.0, size = 512.0;
         const glm::dmat4 lightView =

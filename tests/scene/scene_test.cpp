@@ -240,3 +240,22 @@ TEST(SceneAssets, BuiltInScenesAndParsedJsonStayUnconfined) {
     const Scene scene = parseScene(sceneNaming("grass_map", "/etc/passwd"), "s.json");
     EXPECT_EQ(scene.grassMapPath, "/etc/passwd");
 }
+
+// "sky": the physical model unless the scene gives gradient colours; the two cannot be mixed.
+TEST(Scene, SkyIsPhysicalByDefaultAndAGradientWhereColoursAreGiven) {
+    const Scene plain = parseScene(nlohmann::json::object(), "empty");
+    EXPECT_EQ(plain.sky.model, SkyParams::Model::Physical);
+    EXPECT_EQ(plain.sky.turbidity, 3.0);
+    EXPECT_EQ(plain.sky.visibility, 20000.0);
+    const Scene gradient = parseScene(nlohmann::json::parse(R"({"sky": {"zenith": [0.2, 0.4, 0.9]}})"), "s.json");
+    EXPECT_EQ(gradient.sky.model, SkyParams::Model::Gradient);
+    const Scene hazy = parseScene(
+        nlohmann::json::parse(R"({"sky": {"turbidity": 6, "clouds": 0.3, "visibility_m": 5000}})"), "s.json");
+    EXPECT_EQ(hazy.sky.turbidity, 6.0);
+    EXPECT_EQ(hazy.sky.clouds, 0.3);
+    EXPECT_EQ(hazy.sky.visibility, 5000.0);
+    const std::string mixed = errorOf(R"({"sky": {"model": "physical", "horizon": [1, 1, 1]}})");
+    EXPECT_NE(mixed.find("belong to the gradient model"), std::string::npos) << mixed;
+    EXPECT_NE(errorOf(R"({"sky": {"model": "hosek"}})").find("sky.model"), std::string::npos);
+    EXPECT_NE(errorOf(R"({"sky": {"turbidity": 1}})").find("sky.turbidity"), std::string::npos);
+}
