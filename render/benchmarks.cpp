@@ -132,7 +132,7 @@ nlohmann::json fragmentFigures(const PassCounts& counts) {
     for (const char* pass : {"shadow", "main", "truth"}) {
         const bool perPixel = std::string(pass) != "shadow";
         out[pass] = figures(pass, perPixel);
-        for (const char* lod : {"near", "mid", "far"})
+        for (const char* lod : {"near", "mid", "far", "blades"})
             out[pass][lod] = figures(std::string(pass) + "." + lod, perPixel);
     }
     return out;
@@ -278,7 +278,8 @@ nlohmann::json benchFrame(const FrameBenchOptions& options) {
     VegetationRenderer& vegetation = *renderer.vegetation();
     using Shading = VegetationRenderer::MainShading;
     const Atlas atlas = options.cutoutCorners.empty() ? Atlas{} : buildAtlas(resources.scene); // createSceneGpu let go of it
-    PipelineStatistics statistics(ctx.device, 3 * (gpu::kMaxShadowCascades + 2)); // 3 LODs of the one tile: per shadow cascade, main, truth
+    // The 3 LODs and the near blades of the one tile: per shadow cascade, main, truth.
+    PipelineStatistics statistics(ctx.device, (gpu::kLodCount + 1) * (gpu::kMaxShadowCascades + 2));
     std::vector<std::pair<uint32_t, Shading>> variants = {{0, Shading::Full}};
     for (uint32_t corners : options.cutoutCorners) variants.push_back({corners, Shading::Full});
     if (options.floor) variants.insert(variants.end(), {{0, Shading::Floor}, {0, Shading::Off}});

@@ -3,6 +3,8 @@
 #include "engine/barriers.h"
 #include "vegetation/atlas_cutout.h"
 
+#include "shared/plant_blades.h"
+
 #include <algorithm>
 #include <cstring>
 
@@ -19,7 +21,8 @@ std::vector<VkDescriptorSetLayoutBinding> plantDrawBindings() {
             layoutBinding(gpu::kBindingVegetation, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kDrawStages),
             layoutBinding(gpu::kBindingPlantInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kDrawStages),
             layoutBinding(gpu::kBindingAtlasCells, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kDrawStages),
-            layoutBinding(gpu::kBindingAtlas, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_FRAGMENT_BIT)};
+            // The blades' vertex shader reads their colour from the atlas too (plant_blade.vert).
+            layoutBinding(gpu::kBindingAtlas, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kDrawStages)};
 }
 
 VkDescriptorSetLayoutBinding shadowMapLayoutBinding() {
@@ -53,7 +56,7 @@ VegetationRenderer::Tile::Tile(Context& ctx, const VegetationTile& tile, uint64_
     constants = createBuffer(ctx, constantsBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryIntent::Upload);
     clusterCounts = createBuffer(ctx, uint64_t(std::max(buffers.clusterCount, 1u)) * 16, kStorage,
                                  MemoryIntent::DeviceLocal);
-    draws = createBuffer(ctx, gpu::kLodCount * sizeof(VkDrawIndexedIndirectCommand),
+    draws = createBuffer(ctx, (gpu::kLodCount + 1) * sizeof(VkDrawIndexedIndirectCommand), // + the near blades
                          kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryIntent::DeviceLocal);
     stats = createBuffer(ctx, sizeof(gpu::ExpansionStats), kStorage, MemoryIntent::DeviceLocal);
     clusterBoxes = sward::clusterBoxes(tile);
@@ -143,6 +146,7 @@ VegetationRenderer::~VegetationRenderer() {
     for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &truthPipeline_,
                         &truthFlowPipeline_, &shadowPipeline_, &bakePipeline_, &staticPipeline_, &floorPipeline_})
         destroyPipeline(ctx_.device, *p);
+    for (Pipeline& p : bladePipelines_) destroyPipeline(ctx_.device, p);
     for (Buffer* b : {&instances_, &instancePlants_, &cursor_, &atlasCells_, &cornerIndices_}) destroyBuffer(ctx_, *b);
     destroyImage(ctx_, atlasImage_);
     vkDestroySampler(ctx_.vk(), atlasSampler_, nullptr);
@@ -198,6 +202,7 @@ void VegetationRenderer::uploadCutoutBuffers() {
     for (uint32_t lod = 0; lod < gpu::kLodCount; ++lod)
         for (uint32_t k = 0; k < gpu::plantVertexCount(lod, cutoutCorners_); ++k)
             corners.push_back(gpu::plantIndex(lod, cutoutCorners_, k));
+    for (uint32_t k = 0; k < gpu::kMaxNearBlades * gpu::kBladeIndices; ++k) corners.push_back(gpu::bladeIndex(k));
     cornerIndices_ = createBufferWithData(ctx_, bytesOf(corners), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
 }
 
@@ -275,7 +280,7 @@ void VegetationRenderer::writeConstants(const Tile& tile, const Camera& camera, 
     const WorldParams& w = scene_.world;
     if (w.enabled && w.tilesX * w.tilesY > 1)
         c.tile = glm::uvec4(uint32_t(tile.coord.y) * w.tilesX + uint32_t(tile.coord.x) + 1u, 0u, 0u, 0u);
-    c.options = glm::uvec4(cutoutCorners_, 0u, 0u, 0u);
+    c.options = glm::uvec4(cutoutCorners_, scene_.lod.nearBlades, scene_.lod.nearBlades ? bladeCategories() : 0u, 0u);
     c.categoryCard = cardCover_;
     c.categoryAspect = meanAspects_;
     c.farLod = glm::vec4(scene_.lod.sliceLayers, scene_.lod.mergeWidth, float(camera.fy), scene_.lod.depthMerge);
@@ -338,7 +343,12 @@ void VegetationRenderer::expandTile(VkCommandBuffer cmd, const Tile& tile, uint3
                      storageBuffer(gpu::kScanBindingCursor, cursor_.handle),
                      storageBuffer(gpu::kScanBindingClusterOrder, tile.clusterOrder.handle,
                                    (slot % gpu::kFrameDataSlots) * tile.orderStride, tile.orderStride)});
-    pushConstants(cmd, scanPipeline_, gpu::ScanConstants{.clusterCount = b.clusterCount, .capacity = capacity_, .firstTile = firstTile ? 1u : 0u, .cutoutCorners = cutoutCorners_});
+    pushConstants(cmd, scanPipeline_,
+                  gpu::ScanConstants{.clusterCount = b.clusterCount,
+                                     .capacity = capacity_,
+                                     .firstTile = firstTile ? 1u : 0u,
+                                     .cutoutCorners = cutoutCorners_,
+                                     .nearBlades = scene_.lod.nearBlades});
     vkCmdDispatch(cmd, 1, 1, 1); // one workgroup scans every cluster
     computeToComputeBarrier(cmd);
 
@@ -358,27 +368,41 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
                                : pass == PlantPass::Shadow          ? shadowPipeline_
                                : mainShading_ == MainShading::Floor ? floorPipeline_
                                                                     : mainPipeline_;
-    bindPipeline(cmd, pipeline);
     vkCmdBindIndexBuffer(cmd, cornerIndices_.handle, 0, VK_INDEX_TYPE_UINT32);
     DescriptorBinding instances = storageBuffer(gpu::kBindingPlantInstances, instances_.handle);
     DescriptorBinding plants = storageBuffer(gpu::kBindingInstancePlants, instancePlants_.handle);
     const char* passName = pass == PlantPass::Main ? "main" : pass == PlantPass::Shadow ? "shadow" : "truth";
     static const char* const kLodNames[gpu::kLodCount] = {".near", ".mid", ".far"};
+    const bool blades = scene_.lod.nearBlades > 0 && (lodMask & (1u << gpu::kLodNear)) &&
+                        !(pass == PlantPass::Main && mainShading_ == MainShading::Floor);
     for (const auto& [key, tile] : tiles_) {
         if (!tile->expanded) continue;
-        if (pass == PlantPass::Main)
-            pushDescriptors(ctx_.device, cmd, pipeline,
-                            {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(),
-                             shadowMap, plants});
-        else if (pass == PlantPass::TruthFlow)
-            pushDescriptors(ctx_.device, cmd, pipeline,
-                            {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(),
-                             plants, storageBuffer(gpu::kBindingFlowStatics, tile->buffers.statics.handle),
-                             storageBuffer(gpu::kBindingFlowDynamicsPrevious, keptStates_[latestKept_ ^ 1u].handle),
-                             storageBuffer(gpu::kBindingFlowDynamicsNext, tile->buffers.dynamics.handle)});
-        else
-            pushDescriptors(ctx_.device, cmd, pipeline,
-                            {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(), plants});
+        auto bind = [&](const Pipeline& p) {
+            bindPipeline(cmd, p);
+            if (pass == PlantPass::Main)
+                pushDescriptors(ctx_.device, cmd, p,
+                                {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(),
+                                 shadowMap, plants});
+            else if (pass == PlantPass::TruthFlow)
+                pushDescriptors(ctx_.device, cmd, p,
+                                {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(),
+                                 plants, storageBuffer(gpu::kBindingFlowStatics, tile->buffers.statics.handle),
+                                 storageBuffer(gpu::kBindingFlowDynamicsPrevious, keptStates_[latestKept_ ^ 1u].handle),
+                                 storageBuffer(gpu::kBindingFlowDynamicsNext, tile->buffers.dynamics.handle)});
+            else
+                pushDescriptors(ctx_.device, cmd, p,
+                                {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(),
+                                 plants});
+        };
+        // The near blades first: opaque and nearest, they hide what the cards behind them would shade.
+        if (blades) {
+            bind(bladePipeline(pass));
+            if (statistics_) statistics_->begin(cmd, std::string(passName) + ".blades");
+            vkCmdDrawIndexedIndirect(cmd, tile->draws.handle, gpu::kLodCount * sizeof(VkDrawIndexedIndirectCommand), 1,
+                                     sizeof(VkDrawIndexedIndirectCommand));
+            if (statistics_) statistics_->end(cmd);
+        }
+        bind(pipeline);
         for (uint32_t lod = 0; lod < gpu::kLodCount; ++lod) {
             if (!(lodMask & (1u << lod))) continue;
             pushConstants(cmd, pipeline, lod);
@@ -476,14 +500,18 @@ BakedPlants VegetationRenderer::bake(uint32_t slot) {
              .pushConstantSize = sizeof(gpu::BakeConstants),
              .pushConstantStages = cs});
     BakedPlants baked{.stats = readStats()};
-    const uint32_t verticesPerPlant[gpu::kLodCount] = {gpu::plantVertexCount(gpu::kLodNear, cutoutCorners_),
-                                                       gpu::plantVertexCount(gpu::kLodMid, cutoutCorners_),
-                                                       gpu::plantVertexCount(gpu::kLodFar, cutoutCorners_)};
-    uint32_t kept = std::min(baked.stats.instances.w, capacity_);
-    for (uint32_t lod = 0, first = 0; lod < gpu::kLodCount; ++lod) {
-        uint32_t count = std::min(baked.stats.instances[int(lod)], kept - std::min(kept, first));
-        baked.vertexCount += count * verticesPerPlant[lod];
-        first += baked.stats.instances[int(lod)];
+    // [near | mid | far | near blades]: the blades (lod kLodCount in plant_bake.comp) of the near instances again.
+    const uint32_t verticesPerPlant[gpu::kLodCount + 1] = {
+        gpu::plantVertexCount(gpu::kLodNear, cutoutCorners_), gpu::plantVertexCount(gpu::kLodMid, cutoutCorners_),
+        gpu::plantVertexCount(gpu::kLodFar, cutoutCorners_), scene_.lod.nearBlades * gpu::kBladeIndices};
+    const uint32_t kept = std::min(baked.stats.instances.w, capacity_);
+    auto keptOf = [&](uint32_t lod, uint32_t first) {
+        const uint32_t l = lod == gpu::kLodCount ? gpu::kLodNear : lod;
+        return std::min(baked.stats.instances[int(l)], kept - std::min(kept, first));
+    };
+    for (uint32_t lod = 0, first = 0; lod <= gpu::kLodCount; ++lod) {
+        baked.vertexCount += keptOf(lod, lod == gpu::kLodCount ? 0u : first) * verticesPerPlant[lod];
+        if (lod < gpu::kLodCount) first += baked.stats.instances[int(lod)];
     }
     baked.vertices = createBuffer(ctx_, std::max<uint64_t>(uint64_t(baked.vertexCount) * sizeof(gpu::BakedVertex), 16),
                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -493,17 +521,17 @@ BakedPlants VegetationRenderer::bake(uint32_t slot) {
         pushDescriptors(ctx_.device, cmd, bakePipeline_,
                         {constantsBinding(onlyTile(), slot), storageBuffer(gpu::kBindingPlantInstances, instances_.handle),
                          atlasCellsBinding(), storageBuffer(gpu::kBindingBakedVertices, baked.vertices.handle)});
-        for (uint32_t lod = 0, firstInstance = 0, firstVertex = 0; lod < gpu::kLodCount; ++lod) {
-            uint32_t count = std::min(baked.stats.instances[int(lod)], kept - std::min(kept, firstInstance));
+        for (uint32_t lod = 0, firstInstance = 0, firstVertex = 0; lod <= gpu::kLodCount; ++lod) {
+            if (lod == gpu::kLodCount) firstInstance = 0; // the near instances' blades
             gpu::BakeConstants push{.lod = lod,
                                     .firstInstance = firstInstance,
                                     .firstVertex = firstVertex,
-                                    .vertexCount = count * verticesPerPlant[lod]};
+                                    .vertexCount = keptOf(lod, firstInstance) * verticesPerPlant[lod]};
             if (push.vertexCount > 0) {
                 pushConstants(cmd, bakePipeline_, push);
                 dispatchLinear(cmd, push.vertexCount, gpu::kComputeGroupSize);
             }
-            firstInstance += baked.stats.instances[int(lod)];
+            if (lod < gpu::kLodCount) firstInstance += baked.stats.instances[int(lod)];
             firstVertex += push.vertexCount;
         }
         // Baked vertices are drawn (vertex shader) and read back by tests (copy).

@@ -4,7 +4,9 @@
 //   expand()  count pass (workgroup per cluster: frustum + distance cull, LOD choice, per-LOD counts)
 //             -> scan (one workgroup: exclusive prefix sums in cluster order -> offsets + 3 indirect draws)
 //             -> write pass (same choices; instances written at offset + rank: a fixed, deterministic order)
-//   draw()    three vkCmdDrawIndirect (near 4 quads, mid 2 quads, far 1 billboard) into the current pass:
+//   draw()    three vkCmdDrawIndirect (near 4 quads, mid 2 quads, far 1 billboard) into the current pass, and with
+//             lod.near_blades a fourth before them: the near plants of the grass categories as opaque blades
+//             (shaders/plant_blade.vert, vegetation_blades.cpp), whose near cards the first leaves out;
 //             main colour (alpha-to-coverage at 4x MSAA, alpha test at 1x), ground truth or sun shadow map;
 //             with setCutout(N), near and mid quads as fans over their atlas cell's cut-out polygon.
 // The tiles share one instance pool: each scan starts where the previous tile's ended (a GPU-side cursor), so the
@@ -23,6 +25,7 @@
 #include "shared/config.h"
 #include "shared/gpu_layout.h"
 
+#include <array>
 #include <map>
 #include <memory>
 #include <utility>
@@ -33,7 +36,8 @@ namespace sward {
 // and the previous tick (shaders/shared/flow_fragment.glsl).
 enum class PlantPass { Main, Truth, Shadow, TruthFlow };
 
-// The latest expansion baked into static vertices ([near | mid | far]), for baselines and reference tests.
+// The latest expansion baked into static vertices ([near | mid | far | near blades]), for baselines and reference
+// tests.
 struct BakedPlants {
     Buffer vertices;          // gpu::BakedVertex[vertexCount]
     uint32_t vertexCount = 0;
@@ -154,6 +158,10 @@ private:
     PipelineLayoutDesc drawLayout(bool withShadowMap) const; // the plant draws' layout: main (shadow map) or not
     GraphicsPipelineDesc mainPipelineDesc(const char* fragmentShader) const;
     GraphicsPipelineDesc truthPipelineDesc() const; // the truth pass's plant draw (without flow)
+    // The near blades' pipeline for `pass` (vegetation_blades.cpp), made on first use.
+    const Pipeline& bladePipeline(PlantPass pass);
+    // The categories drawn as blades (bit c: category c), those the atlas paints as grass.
+    uint32_t bladeCategories() const;
     // The tile's expansion inputs for this frame slot: its constants and its clusters' frontToBack order.
     void writeConstants(const Tile& tile, const Camera& camera, double timeSeconds, uint32_t slot,
                         const std::array<glm::vec4, 5>& planes);
@@ -183,6 +191,7 @@ private:
     Pipeline countPipeline_, scanPipeline_, writePipeline_;
     Pipeline mainPipeline_, truthPipeline_, shadowPipeline_;
     Pipeline truthFlowPipeline_;                             // enableFlow()
+    std::array<Pipeline, 4> bladePipelines_;                 // by PlantPass; bladePipeline()
     Buffer keptStates_[2];                                   // PlantDynamic[plants] of two earlier ticks (enableFlow())
     uint32_t latestKept_ = 0;                                // the buffer recordKeepState() wrote last
     Pipeline bakePipeline_, staticPipeline_, floorPipeline_; // created on first use (benchmarks, tests)

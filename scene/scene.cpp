@@ -7,6 +7,7 @@
 #include "scene/land_cover_params.h"
 #include "scene/scene_limits.h"
 #include "shared/gpu_layout.h"
+#include "shared/plant_blades.h"
 #include "vegetation/placement.h"
 #include "world/ground.h"
 
@@ -191,6 +192,7 @@ void readLod(JsonReader r, LodParams& l) {
     l.sliceLayers = r.numberF("slice_layers", l.sliceLayers, 0.0, 100.0);
     l.mergeWidth = r.numberF("merge_width", l.mergeWidth, 0.0, 64.0);
     l.depthMerge = r.numberF("depth_merge", l.depthMerge, 0.0, 64.0);
+    l.nearBlades = uint32_t(r.integer("near_blades", l.nearBlades, 0, gpu::kMaxNearBlades));
     if (l.sliceLayers > 0.0f && l.sliceLayers < 2.0f)
         r.fail(r.name("slice_layers") +
                " must be 0 (off) or at least 2 (fewer would show the ground through the plants)");

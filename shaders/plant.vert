@@ -5,6 +5,7 @@
 #include "shared/frame.glsl"
 #include "shared/vegetation.glsl"
 #include "shared/plant_vertex.glsl"
+#include "shared/plant_blades.glsl"
 #include "shared/plant_shading.glsl"
 #include "shared/shadow.glsl"
 #include "shared/flow_vertex.glsl"
@@ -51,6 +52,10 @@ void main() {
             gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
             return;
         }
+    }
+    if (push.lod == kLodNear && drawnAsBlades(instance)) { // drawn as blades instead (plant_blade.vert)
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+        return;
     }
     uint cell;
     const uint perQuad = quadCornerCount(push.lod, veg.options.x);

@@ -2,12 +2,14 @@
 #extension GL_GOOGLE_include_directive : require
 // Exclusive prefix sum of the per-cluster LOD counts, in the frame's cluster order (front to back from the camera:
 // vegetation_tile.h, frontToBack), by a single workgroup; turns counts into instance offsets (in place) and writes
-// the three indexed indirect draw commands (the plant index buffers hold each LOD's pattern: plantFirstIndex). A
+// the indexed indirect draw commands, one per LOD and one for the near blades (the plant index buffers hold each
+// LOD's pattern: plantFirstIndex, then the blades' pattern). A
 // tile's instances are laid out as [all near | all mid | all far], each LOD in that cluster order, from the pool's
 // cursor on; the scan advances the cursor past what it kept, so the tiles of a frame (expanded one after another, in
 // tile order) share one pool.
 #include "shared/config.h"
 #include "shared/gpu_layout.h"
+#include "shared/plant_blades.h"
 
 layout(local_size_x = kScanGroupSize) in;
 
@@ -67,6 +69,11 @@ void main() {
         uint kept = base >= push.capacity ? 0u : min(count, push.capacity - base);
         draws[lane] = DrawIndexedIndirectCommand(plantVertexCount(lane, push.cutoutCorners), kept,
                                                  plantFirstIndex(lane, push.cutoutCorners), 0, base);
+        // The near blades (plant_blades.h): the same near instances, the blade pattern after the LODs' patterns.
+        if (lane == kLodNear)
+            draws[kLodCount] = DrawIndexedIndirectCommand(push.nearBlades * kBladeIndices,
+                                                          push.nearBlades > 0u ? kept : 0u,
+                                                          plantFirstIndex(kLodCount, push.cutoutCorners), 0, base);
     }
     barrier();
     if (lane == 0u) {

@@ -2,6 +2,8 @@
 
 #include "vegetation/records.h"
 
+#include "shared/plant_blades.h"
+
 #include <glm/gtc/packing.hpp>
 
 #include <algorithm>
@@ -290,6 +292,26 @@ std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, u
         // Between the quad's bottom and top edges, as the shader places a polygon corner.
         const glm::vec2 at = cutoutFanCorner(plant, *cutout, v % perQuad);
         vertices.push_back(glm::mix(q.point({at.x, 0.0f}), q.point({at.x, 1.0f}), at.y));
+    }
+    return vertices;
+}
+
+std::vector<glm::vec3> referenceBladeVertices(const gpu::ExpandedPlant& plant, uint32_t blades, float aspect) {
+    // plant_blades.glsl's bladePlant.
+    const glm::vec3 base(plant.positionHeight), up = decodeOctahedral(plant.up);
+    const float height = plant.positionHeight.w;
+    const float cardWidth = height * aspect * (float((plant.fade >> 8) & 0xffu) / gpu::kWidthScaleUnit);
+    const float orientation = float((plant.attributes >> 8) & 0xffu) * (6.2831853f / 256.0f);
+    const float widthScale = 1.0f - float(plant.fade & 0xffu) * (1.0f / 255.0f);
+    const bool felled = ((plant.fade >> 17) & 0xfu) == gpu::kPlantStateFelled;
+    const glm::vec2 layTip = glm::unpackHalf2x16(plant.tip), tip = felled ? glm::vec2(0.0f) : layTip;
+    const uint32_t key = gpu::bladeKey(plant.attributes, plant.up);
+    std::vector<glm::vec3> vertices;
+    for (uint32_t k = 0; k < blades * gpu::kBladeIndices; ++k) {
+        const uint32_t vertex = gpu::bladeIndex(k), j = vertex % gpu::kBladeVertices;
+        const gpu::BladeShape s = gpu::bladeShape(base, up, height, cardWidth, orientation, key,
+                                                  vertex / gpu::kBladeVertices, blades, felled, layTip);
+        vertices.push_back(gpu::bladePoint(s, j / 2, j & 1u, widthScale, height, up, tip));
     }
     return vertices;
 }

@@ -65,4 +65,9 @@ std::vector<glm::vec3> referencePlantVertices(const gpu::ExpandedPlant& plant, u
                                               glm::vec3 cellBaseAspect, const CutoutPolygon* cutout = nullptr,
                                               uint32_t cutoutCorners = 0);
 
+// The near blades of `plant` (lod.near_blades = `blades`; shaders/shared/plant_blades.h, the same text as the
+// shaders'), as the blade draw's triangles: gpu::kBladeIndices vertices per blade in bladeIndex order, for an atlas
+// cell of width / height `aspect`.
+std::vector<glm::vec3> referenceBladeVertices(const gpu::ExpandedPlant& plant, uint32_t blades, float aspect);
+
 } // namespace sward

@@ -59,6 +59,10 @@ struct LodParams {
     // Far billboards shorter on screen than this many pixels are merged in depth (gpu::depthMergeHash, kDepthMerge-
     // Exponent): fewer, denser cards, so a grazing ray meets the same coverage through fewer layers. 0: off.
     float depthMerge = 16.0f;
+    // Near plants of the grass categories drawn as this many opaque blades each (shaders/shared/plant_blades.h)
+    // instead of their four alpha-tested cards: a CPU driver tests depth before shading opaque geometry, so a view
+    // through dense grass shades about one layer instead of every card. 0: cards.
+    uint32_t nearBlades = 0;
 };
 
 // Procedural wind (a pure function of simulation time; see shaders/shared/vegetation.glsl).

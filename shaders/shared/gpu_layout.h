@@ -443,6 +443,7 @@ struct VegetationConstants {
     uvec4 atlasColumns;    // variants (atlas columns) per category
     uvec4 tile;            // x: the tile's ground-truth label in a world of several tiles (y * tilesX + x + 1), else 0
     uvec4 options;         // x: cut-out corners (>= 3: near and mid quads drawn as their cell's polygon; 0: off)
+                           // y: blades per near plant of the categories in mask z (plant_blades.h; 0: cards)
     vec4 categoryCard;     // per category: opaque card area per height^2 (cardCover(), vegetation/atlas.h)
     vec4 categoryAspect;   // per category: mean width / height of its atlas cells (meanAspects(), far merging)
     vec4 farLod;           // x: card layers a ray crosses above a far billboard's cut (LodParams::sliceLayers; 0: off),
@@ -503,6 +504,7 @@ struct ScanConstants {
     uint capacity; // instance capacity of the frame's pool: draws keep instances below it
     uint firstTile; // 1: the frame's first tile, whose instances start at 0 (the cursor is only written)
     uint cutoutCorners; // as VegetationConstants::options.x: the draws' vertex counts follow it
+    uint nearBlades;    // as VegetationConstants::options.y: draw kLodCount, the near blades (plant_blades.h), if > 0
 };
 
 // Bake pass parameters (push constants of plant_bake.comp): one dispatch per level of detail.
@@ -531,7 +533,7 @@ static_assert(sizeof(ExpansionStats) == 32);
 static_assert(sizeof(BakedVertex) == 48);
 static_assert(sizeof(PlantContact) == 16);
 static_assert(sizeof(RecoveryConstants) == 48);
-static_assert(sizeof(ScanConstants) == 16);
+static_assert(sizeof(ScanConstants) == 20);
 static_assert(sizeof(BakeConstants) == 16);
 static_assert(sizeof(TerrainVertex) == 64);
 } // namespace sward::gpu
