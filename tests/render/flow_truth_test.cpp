@@ -9,6 +9,8 @@
 #include "range/plant_quads.h"
 #include "scene/scene.h"
 #include "scene/scene_resources.h"
+#include "shared/plant_blades.h"
+#include "vegetation/expansion_reference.h"
 #include "shared/gpu_layout.h"
 
 #include <nlohmann/json.hpp>
@@ -239,6 +241,73 @@ TEST(FlowTruth, WindMovedPlantsFollowTheCpuExpansionReference) {
     ASSERT_GT(errors.size(), 2000u);
     EXPECT_GT(motion / double(errors.size()), 0.2) << "the wind must move the plants";
     std::printf("wind: %zu plant pixels, mean motion %.3f px, flow error median %.2e, 99 %% %.2e, max %.2e px\n",
+                errors.size(), motion / double(errors.size()), percentile(errors, 0.5), percentile(errors, 0.99),
+                percentile(errors, 1.0));
+    EXPECT_LT(percentile(errors, 0.99), 1e-3);
+}
+
+// With lod.near_blades the flow of a grass pixel is where its point of its blade moves: the CPU mirror's blades
+// (referenceBladeVertices) at this tick and the next.
+TEST(FlowTruth, WindMovedBladesFollowTheCpuMirror) {
+    const std::string scenePath = flowScene("blades", true, false, false);
+    nlohmann::json json = nlohmann::json::parse(readFile(scenePath));
+    json["lod"]["near_blades"] = 8;
+    std::ofstream(scenePath) << json.dump(2);
+    const std::string out = tempDir("flow-blades");
+    std::string err;
+    ASSERT_EQ(render(scenePath + " --out " + out + " --frames 1:2", err), 0) << err;
+    const sward::SceneResources r = sward::buildSceneResources(sward::loadScene(scenePath));
+    ASSERT_TRUE(r.tile && r.atlas);
+    const sward::AtlasAlpha atlas(*r.atlas);
+    const cv::Mat depth = cv::imread(out + "/depth/000001.exr", cv::IMREAD_UNCHANGED);
+    const cv::Mat instance = cv::imread(out + "/instance/000001.exr", cv::IMREAD_UNCHANGED);
+    const cv::Mat semantic = cv::imread(out + "/semantic/000001.png", cv::IMREAD_UNCHANGED);
+    const Flo flo = readFlo(out + "/flow_forward/000001.flo");
+    const Pose pose = framePose(out, 1);
+    const cv::Vec3d origin(pose.worldFromCamera(0, 3), pose.worldFromCamera(1, 3), pose.worldFromCamera(2, 3));
+    const double time = 1 * r.scene.sequence.timeStep, next = 2 * r.scene.sequence.timeStep;
+    std::vector<double> errors;
+    double motion = 0.0;
+    for (int y = 0; y < depth.rows; ++y)
+        for (int x = 0; x < depth.cols; ++x) {
+            if (semantic.at<uint8_t>(y, x) != sward::gpu::kSemanticVegetation + 1) continue; // grass
+            const uint32_t plant = uint32_t(instance.at<float>(y, x)) - 1;
+            const sward::FieldVegetation* field = nullptr;
+            for (const sward::FieldVegetation& f : r.tile->fields)
+                if (plant >= f.firstPlant && plant < f.firstPlant + f.staticRecords.size()) field = &f;
+            ASSERT_NE(field, nullptr);
+            const uint32_t i = plant - field->firstPlant;
+            const float aspect = atlas.baseAspects[atlas.cellOf(field->staticRecords[i].attributes)].z;
+            auto bladesAt = [&](double t) {
+                const sward::gpu::ExpandedPlant expanded = sward::expandWholePlant(
+                    r.scene.vegetation, r.scene.wind, *field, i, field->dynamicRecords[i], t);
+                return sward::referenceBladeVertices(expanded, 8, aspect);
+            };
+            const std::vector<glm::vec3> now = bladesAt(time), then = bladesAt(next);
+            auto at = [](const std::vector<glm::vec3>& v, size_t k) { return cv::Vec3d(v[k].x, v[k].y, v[k].z); };
+            const cv::Vec3d point = worldPoint(pose, x, y, depth.at<float>(y, x));
+            const cv::Vec3d ray = (point - origin) / cv::norm(point - origin);
+            double best = INFINITY, b1 = 0.0, b2 = 0.0;
+            size_t triangle = 0;
+            for (size_t k = 0; k + 2 < now.size(); k += 3) {
+                double t, u, v;
+                if (!hitTriangle(origin, ray, at(now, k), at(now, k + 1) - at(now, k), at(now, k + 2) - at(now, k), t,
+                                 u, v))
+                    continue;
+                const double miss = std::abs(t - cv::norm(point - origin));
+                if (miss < best) best = miss, b1 = u, b2 = v, triangle = k;
+            }
+            if (best > 1e-3) continue; // a blade whose triangle the float ray misses at an edge
+            const cv::Vec3d moved = at(then, triangle) + b1 * (at(then, triangle + 1) - at(then, triangle)) +
+                                    b2 * (at(then, triangle + 2) - at(then, triangle));
+            const cv::Vec3d p = project(pose, moved);
+            const size_t a = size_t(y) * depth.cols + x;
+            errors.push_back(std::hypot(p[0] - x - flo.uv[2 * a], p[1] - y - flo.uv[2 * a + 1]));
+            motion += std::hypot(p[0] - x, p[1] - y);
+        }
+    ASSERT_GT(errors.size(), 1000u);
+    EXPECT_GT(motion / double(errors.size()), 0.2) << "the wind must move the blades";
+    std::printf("blades: %zu grass pixels, mean motion %.3f px, flow error median %.2e, 99 %% %.2e, max %.2e px\n",
                 errors.size(), motion / double(errors.size()), percentile(errors, 0.5), percentile(errors, 0.99),
                 percentile(errors, 1.0));
     EXPECT_LT(percentile(errors, 0.99), 1e-3);
