@@ -14,8 +14,9 @@ constexpr uint32_t kBusy = 0xffffffffu; // a plant's stamp while one thread comp
 } // namespace
 
 PlantFields::PlantFields(RTCDevice device, const VegetationTile& tile, const VegetationParams& vegetation,
-                         const AtlasAlpha& atlas)
-    : device_(device), tile_(tile), vegetation_(vegetation), atlas_(atlas), fields_(tile.fields.size()) {
+                         const AtlasAlpha& atlas, uint32_t nearBlades)
+    : device_(device), tile_(tile), vegetation_(vegetation), atlas_(atlas), nearBlades_(nearBlades),
+      fields_(tile.fields.size()) {
     uint32_t first = 0;
     for (uint32_t f = 0; f < fields_.size(); ++f) {
         fields_[f].owner = this, fields_[f].index = f, fields_[f].firstPlant = first;
@@ -33,13 +34,17 @@ const gpu::PlantDynamic& PlantFields::dynamicOf(const Field& f, uint32_t i) cons
     return dynamics_.empty() ? tile_.fields[f.index].dynamicRecords[i] : dynamics_[f.firstPlant + i];
 }
 
+uint32_t PlantFields::bladesOf(const Field& f, uint32_t i) const {
+    return sward::bladesOf(vegetation_, nearBlades_, tile_.fields[f.index].staticRecords[i].attributes & 3u);
+}
+
 // Plant i's quads of this tick, computed by the first thread that needs them (the others wait for it).
 const PlantQuads& PlantFields::current(Field& f, uint32_t i) {
     std::atomic<uint32_t>& s = f.stamps[i];
     for (uint32_t seen = s.load(std::memory_order_acquire); seen != stamp_; seen = s.load(std::memory_order_acquire)) {
         if (seen != kBusy && s.compare_exchange_strong(seen, kBusy, std::memory_order_acquire)) {
             f.quads[i] = plantQuads(atlas_, vegetation_, wind_, tile_.fields[f.index], i, f.firstPlant + i,
-                                    dynamicOf(f, i), time_, &f.unbent[i]);
+                                    dynamicOf(f, i), time_, &f.unbent[i], bladesOf(f, i));
             prepared_.fetch_add(1, std::memory_order_relaxed);
             s.store(stamp_, std::memory_order_release);
             break;
@@ -121,7 +126,8 @@ void PlantFields::prepare(Field& f) {
     f.isTouched = touchedNow(f);
     if (f.isTouched) {
         for (uint32_t i = 0; i < n; ++i) {
-            f.quads[i] = plantQuads(atlas_, vegetation_, wind_, field, i, f.firstPlant + i, dynamicOf(f, i), time_);
+            f.quads[i] = plantQuads(atlas_, vegetation_, wind_, field, i, f.firstPlant + i, dynamicOf(f, i), time_,
+                                    nullptr, bladesOf(f, i));
             f.stamps[i].store(stamp_, std::memory_order_relaxed);
         }
         prepared_.fetch_add(n, std::memory_order_relaxed);
@@ -129,7 +135,8 @@ void PlantFields::prepare(Field& f) {
         f.restLo.resize(n), f.restHi.resize(n), f.unbent.resize(n);
         for (uint32_t i = 0; i < n; ++i) {
             f.unbent[i] = unbentPlant(atlas_, vegetation_, field, i);
-            restingBounds(atlas_, vegetation_, field, i, f.unbent[i], windRange_, f.restLo[i], f.restHi[i]);
+            restingBounds(atlas_, vegetation_, field, i, f.unbent[i], windRange_, f.restLo[i], f.restHi[i],
+                          bladesOf(f, i));
         }
     }
 }

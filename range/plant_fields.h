@@ -21,9 +21,10 @@ namespace sward {
 
 class PlantFields {
 public:
-    // `tile`, `vegetation` and `atlas` must outlive the fields; `device` builds on one thread.
+    // `tile`, `vegetation` and `atlas` must outlive the fields; `device` builds on one thread. `nearBlades`:
+    // lod.near_blades (bladesOf).
     PlantFields(RTCDevice device, const VegetationTile& tile, const VegetationParams& vegetation,
-                const AtlasAlpha& atlas);
+                const AtlasAlpha& atlas, uint32_t nearBlades = 0);
     ~PlantFields();
     PlantFields(const PlantFields&) = delete;
     PlantFields& operator=(const PlantFields&) = delete;
@@ -57,6 +58,7 @@ private:
     static void occluded(const RTCOccludedFunctionNArguments*) {} // rtcOccluded1 is not used
 
     const gpu::PlantDynamic& dynamicOf(const Field& f, uint32_t i) const;
+    uint32_t bladesOf(const Field& f, uint32_t i) const; // the plant's blades (0: quads)
     const PlantQuads& current(Field& f, uint32_t i);
     RTCScene plantScene(Field& f, RTCBoundsFunction bounds);
     bool touchedNow(const Field& f) const;
@@ -67,6 +69,7 @@ private:
     const VegetationTile& tile_;
     const VegetationParams& vegetation_;
     const AtlasAlpha& atlas_;
+    uint32_t nearBlades_ = 0;
     std::vector<Field> fields_;
     WindTipRange windRange_{};
     // The tick's state, read by the intersector while rays are cast.

@@ -1,6 +1,7 @@
 #include "range/plant_quads.h"
 
 #include "common/error.h"
+#include "vegetation/atlas.h"
 #include "vegetation/expansion_reference.h"
 #include "vegetation/records.h"
 
@@ -27,6 +28,26 @@ bool rayHitsBox(glm::vec3 o, glm::vec3 inv, glm::vec3 lo, glm::vec3 hi, float tN
     const glm::vec3 a = (lo - o) * inv, b = (hi - o) * inv;
     const glm::vec3 mn = glm::min(a, b), mx = glm::max(a, b);
     return std::max({mn.x, mn.y, mn.z, tNear}) <= std::min({mx.x, mx.y, mx.z, tFar});
+}
+
+// The nearest hit of o + t d (t in [tNear, best)) on a plant's blade triangles (Moller-Trumbore, two-sided; blades
+// are opaque).
+bool intersectBlades(const PlantQuads& p, glm::vec3 o, glm::vec3 d, float tNear, float& best, glm::vec3& normal) {
+    bool hit = false;
+    for (size_t k = 0; k + 2 < p.blades.size(); k += 3) {
+        const glm::vec3 p0 = p.blades[k], e1 = p.blades[k + 1] - p0, e2 = p.blades[k + 2] - p0;
+        const glm::vec3 q = glm::cross(d, e2);
+        const float det = glm::dot(e1, q);
+        if (std::abs(det) < 1e-20f) continue;
+        const float inv = 1.0f / det;
+        const glm::vec3 s = o - p0;
+        const float b1 = glm::dot(s, q) * inv;
+        const glm::vec3 r = glm::cross(s, e1);
+        const float b2 = glm::dot(d, r) * inv, t = glm::dot(e2, r) * inv;
+        if (b1 < 0.0f || b2 < 0.0f || b1 + b2 > 1.0f || t < tNear || t >= best) continue;
+        best = t, normal = glm::cross(e1, e2), hit = true;
+    }
+    return hit;
 }
 
 } // namespace
@@ -105,7 +126,7 @@ UnbentPlant unbentPlant(const AtlasAlpha& atlas, const VegetationParams& vegetat
 
 PlantQuads plantQuads(const AtlasAlpha& atlas, const VegetationParams& vegetation, const WindParams& wind,
                       const FieldVegetation& field, uint32_t i, uint32_t plantInTile, const gpu::PlantDynamic& dynamic,
-                      double time, const UnbentPlant* unbent) {
+                      double time, const UnbentPlant* unbent, uint32_t blades) {
     PlantQuads p;
     const gpu::ExpandedPlant plant = expandWholePlant(vegetation, wind, field, i, dynamic, time);
     p.cell = atlas.cellOf(plant.attributes);
@@ -113,6 +134,12 @@ PlantQuads plantQuads(const AtlasAlpha& atlas, const VegetationParams& vegetatio
     p.mirrored = plantRandom(plant) > 0.5f;
     p.label = plantLabel(plant, plantInTile);
     p.present = plant.positionHeight.w > 0.0f;
+    if (blades > 0) {
+        p.blades = referenceBladeVertices(plant, blades, atlas.baseAspects[p.cell].z);
+        p.lo = p.hi = p.blades[0];
+        for (const glm::vec3& c : p.blades) p.lo = glm::min(p.lo, c), p.hi = glm::max(p.hi, c);
+        return p;
+    }
     glm::vec3 corners[4 * gpu::kQuadsNear];
     if (unbent) {
         const glm::vec2 tip = glm::unpackHalf2x16(plant.tip);
@@ -131,6 +158,13 @@ PlantQuads plantQuads(const AtlasAlpha& atlas, const VegetationParams& vegetatio
         for (int k = 0; k < 3; ++k) p.p0[k][t] = p0[k], p.e1[k][t] = e1[k], p.e2[k][t] = e2[k];
     }
     return p;
+}
+
+uint32_t bladesOf(const VegetationParams& vegetation, uint32_t nearBlades, uint32_t category) {
+    return nearBlades > 0 && category < vegetation.categoryCount &&
+                   atlasPlantKindForCategory(vegetation.categories[category].name) == AtlasPlantKind::Grass
+               ? nearBlades
+               : 0u;
 }
 
 bool restingGeometry(const gpu::PlantDynamic& dynamic) {
@@ -157,10 +191,18 @@ WindTipRange windTipRange(const WindParams& wind) {
 }
 
 void restingBounds(const AtlasAlpha& atlas, const VegetationParams& vegetation, const FieldVegetation& field,
-                   uint32_t i, const UnbentPlant& unbent, const WindTipRange& wind, glm::vec3& lo, glm::vec3& hi) {
+                   uint32_t i, const UnbentPlant& unbent, const WindTipRange& wind, glm::vec3& lo, glm::vec3& hi,
+                   uint32_t blades) {
     glm::vec3 stillLo = unbent.corners[0], stillHi = unbent.corners[0];
     for (const glm::vec3& c : unbent.corners) stillLo = glm::min(stillLo, c), stillHi = glm::max(stillHi, c);
     const glm::vec3 cell = atlas.baseAspects[atlas.cellOf(field.staticRecords[i].attributes)];
+    if (blades > 0) { // the blades without wind; they bend by the same law as the quads, by at most fraction^2 <= 1
+        const WindParams still{.strength = 0.0f, .gustStrength = 0.0f, .flutter = 0.0f};
+        const gpu::ExpandedPlant plant = expandWholePlant(vegetation, still, field, i, restingPlantDynamic(), 0.0);
+        const std::vector<glm::vec3> points = referenceBladeVertices(plant, blades, cell.z);
+        stillLo = stillHi = points[0];
+        for (const glm::vec3& c : points) stillLo = glm::min(stillLo, c), stillHi = glm::max(stillHi, c);
+    }
     const float h = vegetation.categories[field.staticRecords[i].attributes & 3u].height *
                     (float(decodePlantStatic(field.staticRecords[i]).size) / gpu::kPlantSizeDivisor);
     // quadPoint: a corner moves by tip * h * fraction^2 sideways and drops by h (1 - sqrt(1 - |tip|^2)) * fraction^2
@@ -179,6 +221,7 @@ void restingBounds(const AtlasAlpha& atlas, const VegetationParams& vegetation, 
 bool intersectPlant(const PlantQuads& p, const AtlasAlpha& atlas, glm::vec3 o, glm::vec3 d, float tNear, float& best,
                     glm::vec3& normal) {
     if (!p.present || !rayHitsBox(o, 1.0f / d, p.lo, p.hi, tNear, best)) return false;
+    if (!p.blades.empty()) return intersectBlades(p, o, d, tNear, best, normal);
     // Moller-Trumbore (two-sided) on all eight triangles at once: distance t and barycentrics b1, b2 of p1, p2.
     constexpr uint32_t n = PlantQuads::kTriangles;
     float t[n], b1[n], b2[n], det[n];

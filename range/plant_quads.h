@@ -1,5 +1,6 @@
 // The plants as range sensors see them: each plant's near-LOD quads at one tick (vegetation/expansion_reference.h,
-// the same math as the GPU expansion), the atlas's alpha at a hit, and the boxes Embree builds its BVHs from.
+// the same math as the GPU expansion), or with lod.near_blades a grass plant's blades, the atlas's alpha at a hit,
+// and the boxes Embree builds its BVHs from.
 #pragma once
 
 #include "vegetation/atlas.h"
@@ -27,6 +28,9 @@ struct PlantQuads {
     float cutFraction = 1.0f; // the part of the cell shown (cut plants show their lower part)
     uint32_t label = 0;       // (semantic class << kInstanceBits) | plant index in the tile + 1
     bool mirrored = false, present = false;
+    // lod.near_blades: the plant's opaque blade triangles, three corners each (referenceBladeVertices), instead of
+    // its quads.
+    std::vector<glm::vec3> blades;
 };
 
 // The atlas's level-0 alpha and cell table.
@@ -63,9 +67,14 @@ UnbentPlant unbentPlant(const AtlasAlpha& atlas, const VegetationParams& vegetat
 
 // Plant `i` of `field` (tile index `plantInTile`) with dynamic record `dynamic` at simulation time `time`; `unbent`,
 // for a plant in its resting geometry, saves recomputing its quads' frames (the result is bitwise the same).
+// `blades` > 0: the plant is drawn as that many blades (bladesOf), and so seen.
 PlantQuads plantQuads(const AtlasAlpha& atlas, const VegetationParams& vegetation, const WindParams& wind,
                       const FieldVegetation& field, uint32_t i, uint32_t plantInTile, const gpu::PlantDynamic& dynamic,
-                      double time, const UnbentPlant* unbent = nullptr);
+                      double time, const UnbentPlant* unbent = nullptr, uint32_t blades = 0);
+
+// The blades of a plant of category `category` with lod.near_blades = `nearBlades`: that many for a category the atlas
+// paints as grass (as the renderer draws them), else 0.
+uint32_t bladesOf(const VegetationParams& vegetation, uint32_t nearBlades, uint32_t category);
 
 // True when a dynamic record leaves the plant's geometry as at rest: no bend, standing, uncut (its spring's velocity
 // aside), so only the wind moves it.
@@ -81,8 +90,10 @@ WindTipRange windTipRange(const WindParams& wind);
 
 // The box plant `i` of `field` occupies at rest under any tip offset of `wind`: its quads without wind, shifted by
 // the tip's reach and lowered by its drop.
+// `blades` > 0: of the plant's blades (bladesOf) instead of its quads.
 void restingBounds(const AtlasAlpha& atlas, const VegetationParams& vegetation, const FieldVegetation& field,
-                   uint32_t i, const UnbentPlant& unbent, const WindTipRange& wind, glm::vec3& lo, glm::vec3& hi);
+                   uint32_t i, const UnbentPlant& unbent, const WindTipRange& wind, glm::vec3& lo, glm::vec3& hi,
+                   uint32_t blades = 0);
 
 // The nearest opaque hit of the ray o + t d (t in [tNear, best)) on the plant's eight triangles: updates `best` and
 // `normal` (unnormalised, the triangle's) and returns true when there is one.

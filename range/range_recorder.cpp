@@ -13,7 +13,8 @@ RangeRecorder::RangeRecorder(const SceneResources& r, uint32_t threads) : r_(r),
     require(!r.world, r.scene.source + ": 'range_sensors' need a scene of one tile (not a 'world')");
     const VegetationTile* tile = r.withVegetation() && r.tile ? &*r.tile : nullptr;
     require(!r.withVegetation() || (tile && r.atlas), "range sensors: the vegetation was released before them");
-    rays_ = std::make_unique<RayScene>(r.terrain, r.atlas ? *r.atlas : Atlas{}, r.scene.vegetation, tile);
+    rays_ = std::make_unique<RayScene>(r.terrain, r.atlas ? *r.atlas : Atlas{}, r.scene.vegetation, tile,
+                                       r.scene.lod.nearBlades);
 }
 
 RangeRecorder::~RangeRecorder() = default;

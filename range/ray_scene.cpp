@@ -71,7 +71,8 @@ struct RayScene::Impl {
 
     std::unique_ptr<PlantFields> plants; // null without vegetation
 
-    Impl(const Ground& ground, const Atlas& a, const VegetationParams& vegetation, const VegetationTile* tile)
+    Impl(const Ground& ground, const Atlas& a, const VegetationParams& vegetation, const VegetationTile* tile,
+         uint32_t nearBlades)
         : atlas(a) {
         // One build thread: the BVHs (and so which of two equally near surfaces a ray meets first) are the same on
         // every machine and run.
@@ -88,7 +89,7 @@ struct RayScene::Impl {
         }
         rtcCommitScene(groundScene);
         check("building the ground");
-        if (tile) plants = std::make_unique<PlantFields>(device, *tile, vegetation, atlas);
+        if (tile) plants = std::make_unique<PlantFields>(device, *tile, vegetation, atlas, nearBlades);
         setObjects({});
     }
 
@@ -182,8 +183,8 @@ struct RayScene::Impl {
 };
 
 RayScene::RayScene(const Ground& ground, const Atlas& atlas, const VegetationParams& vegetation,
-                   const VegetationTile* tile)
-    : impl_(std::make_unique<Impl>(ground, atlas, vegetation, tile)) {}
+                   const VegetationTile* tile, uint32_t nearBlades)
+    : impl_(std::make_unique<Impl>(ground, atlas, vegetation, tile, nearBlades)) {}
 
 RayScene::~RayScene() = default;
 

@@ -55,8 +55,10 @@ struct GroundPatch {
 
 class RayScene {
 public:
-    // `tile` (null: no plants) must outlive the scene; its dynamic records are read by setPlants.
-    RayScene(const Ground& ground, const Atlas& atlas, const VegetationParams& vegetation, const VegetationTile* tile);
+    // `tile` (null: no plants) must outlive the scene; its dynamic records are read by setPlants. `nearBlades`:
+    // lod.near_blades, the grass plants' blades instead of their quads (as the cameras draw them).
+    RayScene(const Ground& ground, const Atlas& atlas, const VegetationParams& vegetation, const VegetationTile* tile,
+             uint32_t nearBlades = 0);
     ~RayScene();
     RayScene(const RayScene&) = delete;
     RayScene& operator=(const RayScene&) = delete;

@@ -307,11 +307,15 @@ std::vector<glm::vec3> referenceBladeVertices(const gpu::ExpandedPlant& plant, u
     const glm::vec2 layTip = glm::unpackHalf2x16(plant.tip), tip = felled ? glm::vec2(0.0f) : layTip;
     const uint32_t key = gpu::bladeKey(plant.attributes, plant.up);
     std::vector<glm::vec3> vertices;
-    for (uint32_t k = 0; k < blades * gpu::kBladeIndices; ++k) {
-        const uint32_t vertex = gpu::bladeIndex(k), j = vertex % gpu::kBladeVertices;
-        const gpu::BladeShape s = gpu::bladeShape(base, up, height, cardWidth, orientation, key,
-                                                  vertex / gpu::kBladeVertices, blades, felled, layTip);
-        vertices.push_back(gpu::bladePoint(s, j / 2, j & 1u, widthScale, height, up, tip));
+    vertices.reserve(blades * gpu::kBladeIndices);
+    for (uint32_t blade = 0; blade < blades; ++blade) {
+        const gpu::BladeShape s = gpu::bladeShape(base, up, height, cardWidth, orientation, key, blade, blades, felled,
+                                                  layTip);
+        glm::vec3 points[gpu::kBladeVertices];
+        for (uint32_t j = 0; j < gpu::kBladeVertices; ++j)
+            points[j] = gpu::bladePoint(s, j / 2, j & 1u, widthScale, height, up, tip);
+        for (uint32_t k = blade * gpu::kBladeIndices; k < (blade + 1) * gpu::kBladeIndices; ++k)
+            vertices.push_back(points[gpu::bladeIndex(k) % gpu::kBladeVertices]);
     }
     return vertices;
 }

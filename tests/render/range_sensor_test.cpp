@@ -27,10 +27,11 @@ int render(const std::string& args, std::string& err) {
 }
 
 // The test dataset's scene with every plant in view drawn in the near LOD (the range sensors' LOD) and a LiDAR at the
-// left camera's position looking the same way: no divergence, no noise, so each beam is one exact ray.
-std::string lidarScene() {
+// left camera's position looking the same way: no divergence, no noise, so each beam is one exact ray. `blades`:
+// lod.near_blades.
+std::string lidarScene(uint32_t blades = 0) {
     nlohmann::json scene = nlohmann::json::parse(readFile(SWARD_TEST_DATA_DIR "/dataset_scene.json"));
-    scene["lod"] = {{"near", 60}, {"mid", 70}, {"far", 80}, {"band", 2}};
+    scene["lod"] = {{"near", 60}, {"mid", 70}, {"far", 80}, {"band", 2}, {"near_blades", blades}};
     scene["camera"]["baseline"] = 0.0;
     scene["vehicles"][0]["rut_depth"] = 0.04; // the vehicle's wheels press ruts the LiDAR must see too
     std::vector<double> elevations; // every degree from 45 down to 5 below the horizon
@@ -43,7 +44,7 @@ std::string lidarScene() {
          {"angle_step_deg", 0.1},
          {"elevations_deg", elevations},
          {"mount", {{"position", {53.5, 46.0, 0.0}}, {"height_above_ground", 2.2}, {"yaw_deg", 120.0}}}}};
-    const std::string path = tempDir("range-scene") + "/scene.json";
+    const std::string path = tempDir("range-scene-" + std::to_string(blades)) + "/scene.json";
     std::ofstream(path) << scene.dump(2);
     return path;
 }
@@ -82,10 +83,11 @@ std::vector<LidarPoint> readPly(const std::string& path) {
     return points;
 }
 
-TEST(RangeSensorDatasets, LidarPointsAgreeWithTheCameraDepthOnTheSameSurface) {
-    const std::string out = tempDir("range-consistency");
+// LiDAR points of a sward-render dataset against its camera's truth depth where both see the same class and instance.
+void expectLidarPointsAgreeWithTheCameraDepth(uint32_t blades) {
+    const std::string out = tempDir("range-consistency-" + std::to_string(blades));
     std::string err;
-    ASSERT_EQ(render(lidarScene() + " --out " + out + " --frames 4:5 --resolution 320x240", err), 0) << err;
+    ASSERT_EQ(render(lidarScene(blades) + " --out " + out + " --frames 4:5 --resolution 320x240", err), 0) << err;
     const cv::Mat depth = cv::imread(out + "/depth/000004.exr", cv::IMREAD_UNCHANGED);
     const cv::Mat semantic = cv::imread(out + "/semantic/000004.png", cv::IMREAD_UNCHANGED);
     const cv::Mat instance = cv::imread(out + "/instance/000004.exr", cv::IMREAD_UNCHANGED);
@@ -150,6 +152,15 @@ TEST(RangeSensorDatasets, LidarPointsAgreeWithTheCameraDepthOnTheSameSurface) {
     EXPECT_GT(ground, 100u);
     EXPECT_GT(felled, 0u); // the test scene's vehicle has felled grass by frame 4: the GPU's dynamic records are read
     EXPECT_GT(track, 0u);  // and pressed ruts, which the LiDAR sees where the camera does
+}
+
+TEST(RangeSensorDatasets, LidarPointsAgreeWithTheCameraDepthOnTheSameSurface) {
+    expectLidarPointsAgreeWithTheCameraDepth(0);
+}
+
+// With lod.near_blades the range sensors cast against the blades the cameras draw (felled grass's too).
+TEST(RangeSensorDatasets, LidarPointsAgreeWithTheCameraDepthOnNearBlades) {
+    expectLidarPointsAgreeWithTheCameraDepth(8);
 }
 
 TEST(RangeSensorDatasets, FilesAreTheSameRenderedWholeInShardsOrResumed) {
