@@ -52,6 +52,8 @@ protected:
         return instances;
     }
 
+    void expectPlantNormalsAgreeWithTheDepthImage(uint32_t blades);
+
     Scene scene = smallMeadow();
     Ground terrain = buildTerrain(scene);
     Camera camera = sceneCamera(scene, terrain, kWidth, kHeight);
@@ -145,7 +147,10 @@ std::pair<glm::dvec3, double> neighbourhoodPlane(const Camera& camera, const Fra
 
 // Plants are alpha-tested cards: every plant pixel's normal is unit, faces the camera and is the plane the depth
 // image shows wherever a 3x3 neighbourhood of one plant is planar.
-TEST_F(VegetationTest, PlantNormalsAreUnitFaceTheCameraAndAgreeWithTheDepthImage) {
+// The truth normals of the plants (cards, or with `blades` lod.near_blades the near grass's blades) are unit, face the
+// camera and are the plane the depth image shows around every pixel whose neighbourhood is one flat plant part.
+void VegetationTest::expectPlantNormalsAgreeWithTheDepthImage(uint32_t blades) {
+    scene.lod.nearBlades = blades;
     // Twice the fixture's resolution: more blades are several pixels wide.
     const uint32_t width = 2 * kWidth, height = 2 * kHeight;
     const Camera detailed = sceneCamera(scene, terrain, width, height);
@@ -169,7 +174,7 @@ TEST_F(VegetationTest, PlantNormalsAreUnitFaceTheCameraAndAgreeWithTheDepthImage
                     onePlant = onePlant && frame.labels[size_t(v) * width + u] == frame.labels[i];
             if (!onePlant) continue;
             auto [fitted, residual] = neighbourhoodPlane(detailed, frame, x, y);
-            if (residual > 1e-4) continue; // two cards of one plant, or a card seen edge-on
+            if (residual > 1e-4) continue; // two cards or blades of one plant, or one seen edge-on
             ++planar;
             const double angle = std::acos(std::min(1.0, std::abs(glm::dot(fitted, n))));
             worst = std::max(worst, angle);
@@ -177,7 +182,29 @@ TEST_F(VegetationTest, PlantNormalsAreUnitFaceTheCameraAndAgreeWithTheDepthImage
         }
     std::printf("plant pixels %u, planar neighbourhoods %u, worst angle %.3g rad\n", plants, planar, worst);
     EXPECT_GT(plants, width * height / 4);
-    EXPECT_GT(planar, 2000u) << "too few planar plant neighbourhoods to test";
+    // A blade is a few pixels wide: fewer 3 x 3 neighbourhoods lie on one of its segments than on a card.
+    EXPECT_GT(planar, blades ? 1200u : 2000u) << "too few planar plant neighbourhoods to test";
+}
+
+TEST_F(VegetationTest, PlantNormalsAreUnitFaceTheCameraAndAgreeWithTheDepthImage) {
+    expectPlantNormalsAgreeWithTheDepthImage(0);
+}
+
+TEST_F(VegetationTest, BladeNormalsAreUnitFaceTheCameraAndAgreeWithTheDepthImage) {
+    expectPlantNormalsAgreeWithTheDepthImage(8);
+}
+
+TEST_F(VegetationTest, BladesAtTheSameTimeAreBitwiseIdenticalAndWindMovesThem) {
+    scene.lod.nearBlades = 8;
+    auto r = renderer(true);
+    FrameImages a = renderFrame(*ctx, *r, camera, 1.0);
+    FrameImages b = renderFrame(*ctx, *r, camera, 1.0);
+    FrameImages c = renderFrame(*ctx, *r, camera, 2.5);
+    EXPECT_EQ(a.rgbaHalf, b.rgbaHalf);
+    EXPECT_EQ(a.labels, b.labels);
+    EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * 4));
+    EXPECT_EQ(0, std::memcmp(a.normals.data(), b.normals.data(), a.normals.size() * 4));
+    EXPECT_NE(0, std::memcmp(a.depth.data(), c.depth.data(), a.depth.size() * 4)) << "truth follows the wind";
 }
 
 TEST_F(VegetationTest, SameTimeIsBitwiseIdenticalAndWindMovesPlants) {
