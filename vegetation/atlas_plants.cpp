@@ -33,7 +33,7 @@ struct GrassMix {
 };
 
 GrassMix grassMix(Dice& dice, uint32_t variant) {
-    static constexpr float kDry[] = {0.06f, 0.16f, 0.09f, 0.26f, 0.05f, 0.13f};
+    static constexpr float kDry[] = {0.08f, 0.22f, 0.12f, 0.35f, 0.06f, 0.18f};
     const float dry = kDry[variant % 6] + dice.range(0.0f, 0.08f);
     return {dry, dice.range(0.10f, 0.22f), dice.range(0.04f, 0.10f)};
 }
@@ -42,7 +42,7 @@ GrassMix grassMix(Dice& dice, uint32_t variant) {
 // lighter toward its tip (thinner tissue, sky seen through it), dry and dead ones are straw or brown.
 void colourBlade(Stroke& s, Dice& dice, const GrassMix& mix) {
     const float state = dice();
-    const vec3 green = dice.jitter(glm::mix(kLiveGreens[dice.pick(4)], kLiveGreens[dice.pick(4)], dice()), 0.12f);
+    const vec3 green = dice.jitter(glm::mix(kLiveGreens[dice.pick(4)], kLiveGreens[dice.pick(4)], dice()), 0.18f);
     if (state < mix.dead) {
         s.base = dice.jitter(kDeadBrown, 0.15f);
         s.tip = dice.jitter(glm::mix(kDeadBrown, kStraw, 0.4f), 0.1f);
@@ -57,7 +57,7 @@ void colourBlade(Stroke& s, Dice& dice, const GrassMix& mix) {
         s.tipStart = dice.range(0.45f, 0.75f);
     } else {
         s.base = green;
-        s.tip = glm::mix(green * 1.25f, kYellowed, dice.range(0.05f, 0.25f));
+        s.tip = glm::mix(green * 1.35f, kYellowed, dice.range(0.05f, 0.25f));
         s.tipStart = dice.range(0.35f, 0.7f);
     }
 }
@@ -377,7 +377,7 @@ Plant paintGrass(Dice& dice, float S, uint32_t variant) {
         const float length = S * heightScale * dice.range(0.4f, 0.95f) * (1.0f - 0.25f * std::abs(off));
         const float bend = (lean >= 0.0f ? 1.0f : -1.0f) * (0.1f + 0.9f * dice() * dice());
         BladeShape shape = bladeCentreline(dice, base, lean, bend, length);
-        Stroke s{.points = std::move(shape.points), .shadeBase = 0.2f, .sideShade = 0.05f, .midrib = 0.03f};
+        Stroke s{.points = std::move(shape.points), .shadeBase = 0.3f, .sideShade = 0.05f, .midrib = 0.03f};
         colourBlade(s, dice, mix);
         if (shape.broken) s.tip = glm::mix(s.tip, kStraw, 0.5f); // a broken end dries out
         const float halfWidth = S * dice.range(0.004f, 0.008f);

@@ -105,7 +105,7 @@ TEST(Atlas, CellsKeepAnEmptyBorderAtTopAndSides) {
 }
 
 // Plant albedos are those of real vegetation (vegetation/atlas_plants.cpp): the old saturated palette measured a
-// mean texel saturation of 0.63-0.74 in grass and ferns, the measured albedos 0.38-0.45.
+// mean texel saturation of 0.63-0.74 in grass and ferns, the measured albedos 0.37-0.45.
 TEST(Atlas, GrassIsDesaturatedGreenWithDryBladesInEveryVariant) {
     const Atlas& atlas = defaultAtlas();
     for (uint32_t c = 0; c < atlas.desc.rows[1].cells.size(); ++c) {
