@@ -18,7 +18,7 @@ layout(location = 8) in vec3 inSheen;
 layout(location = 0) out vec4 outColor;
 
 void main() {
-    vec3 albedo = inAlbedo * mix(0.7, 1.05, inAlong);
+    vec3 albedo = inAlbedo * mix(0.8, 1.0, inAlong);
     // plant.frag's occlusion towards the base: the cube of the depth below the plant's top.
     float depth = clamp(1.0 - inHeightFraction, 0.0, 1.0);
     depth *= depth * depth;

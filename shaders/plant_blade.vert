@@ -50,7 +50,7 @@ vec3 bladeAlbedo(BladePlant p, uint blade, PlantShading shading) {
     float level = max(log2(max(cellTexels, 1.0)) - 1.0, 0.0); // the cell 2 x 2 texels
     vec2 quarter = vec2(float(h & 1u), float((h >> 1) & 1u)) * 0.5 + 0.25;
     vec3 mean = textureLod(atlas, mix(rect.xy, rect.zw, quarter), level).rgb;
-    float value = 0.7 + 0.4 * unitFromHash(pcgHash(h));
+    float value = 0.8 + 0.25 * unitFromHash(pcgHash(h));
     return (shading.albedo * mean + shading.albedoOffset) * value;
 }
 
