@@ -21,6 +21,7 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
     vec4 texel = plantTexel(); // before any discard: its mip level needs the whole 2x2 quad
+    texel.rgb = plantColourTexel(texel.rgb); // far billboards: the colour prefiltered (truth keeps the alpha)
     if (!keepFragment()) discard;
     float alpha = texel.a;
     if (ALPHA_TO_COVERAGE) {

@@ -8,7 +8,7 @@ alike. Every run draws whole quads only (`--cutout-corners 0`; the new binary al
 both time the same frame. Prints each run's passes, the medians, and new / old of the medians: only ratios taken
 within one series mean anything on a shared machine.
 
-usage: tools/bench-against.py REV [--pairs 3] [--frames 3] [--json F] [-- sward-bench frame arguments]
+usage: tools/bench-against.py REV [--pairs 3] [--frames 3] [--json F] [--old-scene OLD.json] [-- sward-bench frame arguments]
 example: tools/bench-against.py 073f531 -- examples/meadow.json --resolution 1024x768
 """
 import argparse
@@ -75,6 +75,9 @@ def main() -> int:
     parser.add_argument("--pairs", type=int, default=3, help="old / new pairs (default 3)")
     parser.add_argument("--frames", type=int, default=3, help="measured frames per run (default 3)")
     parser.add_argument("--json", help="also write every run and the ratios here")
+    parser.add_argument("--old-scene", help="the scene REV's binary reads instead of the one after --: the same "
+                        "example as of REV (git show REV:examples/meadow.json > old.json) when the example changed "
+                        "since, so that the old tree with its scene is timed against the new tree with its scene")
     argv = sys.argv[1:]
     split = argv.index("--") if "--" in argv else len(argv)
     args = parser.parse_args(argv[:split])
@@ -88,11 +91,17 @@ def main() -> int:
     for build, path in (("old", args.old_bench or build_old(args.rev)), ("new", args.new_bench)):
         benches[build] = [path, "--cutout-corners", "0", *(["--no-floor"] if knows(path, "--no-floor") else [])]
 
+    scene_args = {"old": args.frame_args, "new": args.frame_args}
+    if args.old_scene:
+        scenes = [i for i, a in enumerate(args.frame_args) if a.endswith(".json")]
+        if not scenes:
+            sys.exit("bench-against: --old-scene needs a scene (a .json file) after --")
+        scene_args["old"] = [args.old_scene if i == scenes[0] else a for i, a in enumerate(args.frame_args)]
     runs = {"old": [], "new": []}
     with tempfile.TemporaryDirectory() as scratch:
         for pair in range(args.pairs):
             for build in ("old", "new") if pair % 2 == 0 else ("new", "old"):
-                figures = frame(benches[build], args.frame_args, args.frames, scratch)
+                figures = frame(benches[build], scene_args[build], args.frames, scratch)
                 runs[build].append(figures)
                 print(f"pair {pair + 1} {build}: " + "  ".join(f"{k} {v:.0f}" for k, v in figures.items()) + " ms",
                       flush=True)

@@ -35,24 +35,31 @@ float mergedAlpha(float alpha) {
     return inMerge.y != 1.0 ? 1.0 - pow(1.0 - min(alpha, 0.996), inMerge.y) : alpha;
 }
 
-// A far billboard is prefiltered over this many times its footprint (0.85 of a mip level coarser): a plant a few
-// pixels high shows its mean colour and a soft silhouette, as a camera's optics and demosaicing would, not a
-// texel-sharp pattern of blades. The atlas's mips preserve coverage (buildMipChain), but a coarser silhouette still
-// lets more of the far ground through: 2.8 (1.5 levels) made 6.8 % of the meadow's ground view smooth turf, 1.8
-// keeps it at 4.4 % (issue 46's bound 5 %) with the far band's sharp fraction at 0.73 (1.0: 0.93; bound 0.90).
-const float kFarFootprint = 1.8;
-
 // The plant's atlas texel here, filtered trilinearly. The mip level comes from the unwrapped coordinate, the same on
 // both sides of a merged billboard's seam. The colour and truth passes both sample through here, so they keep the
-// same texels. One fetch: a second one for the far colour alone cost the truth pass 1.4x, since on lavapipe every
-// lane of every draw runs both sides of a branch.
+// same texels.
 vec4 plantTexel() {
     vec2 size = inUvRect.zw - inUvRect.xy;
-    // Bits 21-22 of inFade: the draw's LOD (plant.vert), the same for the colour and the truth pass.
-    float footprint = ((inFade >> 21) & 3u) == kLodFar ? kFarFootprint : 1.0;
-    vec4 texel = textureGrad(atlas, plantAtlasUv(), dFdx(inUv) * (size * footprint), dFdy(inUv) * (size * footprint));
+    vec4 texel = textureGrad(atlas, plantAtlasUv(), dFdx(inUv) * size, dFdy(inUv) * size);
     texel.a = mergedAlpha(texel.a);
     return texel;
+}
+
+// A far billboard's colour is prefiltered over this many times its footprint (a mip level and a half coarser): a
+// plant a few pixels high shows its mean colour, as a camera's optics and demosaicing would, not a texel-sharp
+// pattern of blades. Its alpha, and so its silhouette and the truth pass's coverage, stays at the footprint
+// (plantTexel): one coarser fetch for both thinned the far field at 1x, where its averaged alpha fails the test.
+const float kFarColourFootprint = 2.8;
+
+// The colour pass's albedo texel: plantTexel's colour, or for a far billboard the colour over kFarColourFootprint.
+// A loop of 0 or 1 trips, not an if: on lavapipe every lane runs both sides of a branch, but a loop whose count is
+// 0 for the whole draw (bits 21-22 of inFade: the draw's LOD, plant.vert) ends at once, so only the far draw pays.
+vec3 plantColourTexel(vec3 colour) {
+    vec2 size = (inUvRect.zw - inUvRect.xy) * kFarColourFootprint;
+    vec2 dx = dFdx(inUv) * size, dy = dFdy(inUv) * size;
+    uint fetches = ((inFade >> 21) & 3u) == kLodFar ? 1u : 0u;
+    for (uint i = 0u; i < fetches; ++i) colour = textureGrad(atlas, plantAtlasUv(), dx, dy).rgb;
+    return colour;
 }
 
 // The shadow pass's alpha: the nearest texel of atlas level `level`, one level for the whole draw. lavapipe's sampler
