@@ -25,9 +25,11 @@ void main() {
     if (!keepFragment()) discard;
     float alpha = texel.a;
     if (ALPHA_TO_COVERAGE) {
-        // Over about two pixels: a camera's optics, not a razor edge (the meadow's ground view: sharp texture 0.91
-        // -> 0.88 of the vegetation, Laplacian level 0 0.129 -> 0.116; truth keeps the alpha test at 0.5).
-        alpha = (alpha - 0.5) / max(2.0 * fwidth(alpha), 1e-4) + 0.5;
+        // Near and mid plants over about two pixels: a camera's optics, not a razor edge (the meadow's ground view:
+        // sharp texture 0.91 -> 0.88 of the vegetation, Laplacian level 0 0.129 -> 0.116; truth keeps the alpha
+        // test at 0.5). Far billboards over one: at the horizon a wider edge tints the sky-labelled pixels above it.
+        float edge = ((inFade >> 21) & 3u) == kLodFar ? 1.0 : 2.0;
+        alpha = (alpha - 0.5) / max(edge * fwidth(alpha), 1e-4) + 0.5;
         if (alpha <= 0.0) discard;
     } else if (alpha < 0.5) {
         discard;
