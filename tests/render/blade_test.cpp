@@ -1,5 +1,6 @@
 // Near plants as blades (lod.near_blades): the GPU's blades against the CPU mirror, the near cards they replace left
 // out, the ground truth and the colour pass drawing the same opaque fragments, and the coverage of the cards kept.
+#include "expansion_fixtures.h"
 #include "gpu_test.h"
 
 #include "common/error.h"
@@ -20,6 +21,8 @@
 
 using namespace sward;
 using sward::test::GpuTest;
+using sward::test::readAll;
+using sward::test::SceneSetup;
 
 namespace {
 
@@ -38,24 +41,6 @@ nlohmann::json bladeFieldJson(uint32_t blades) {
     })");
     json["lod"]["near_blades"] = blades;
     return json;
-}
-
-struct SceneSetup {
-    Scene scene;
-    Ground terrain;
-    VegetationTile tile;
-    Atlas atlas;
-    explicit SceneSetup(const nlohmann::json& json)
-        : scene(parseScene(json, "blade test")), terrain(buildTerrain(scene)), tile(buildVegetation(scene, terrain, 2)),
-          atlas(buildAtlas(scene)) {}
-    Camera camera() const { return sceneCamera(scene, terrain, kWidth, kHeight); }
-};
-
-template <typename T> std::vector<T> readAll(Context& ctx, const Buffer& buffer, uint32_t count) {
-    std::vector<uint8_t> bytes = readBuffer(ctx, buffer, 0, uint64_t(count) * sizeof(T));
-    std::vector<T> out(count);
-    std::memcpy(out.data(), bytes.data(), bytes.size());
-    return out;
 }
 
 } // namespace
@@ -84,8 +69,8 @@ TEST(Blades, IndexPatternCoversEachBladesVertices) {
 // the same points. The near cards of the grass plants are baked degenerate (the card draw leaves them out), the
 // blades of the other categories too.
 TEST_F(GpuTest, NearBladesMatchTheCpuReference) {
-    SceneSetup s(bladeFieldJson(kBlades));
-    const Camera camera = s.camera();
+    SceneSetup s(bladeFieldJson(kBlades), "blade test");
+    const Camera camera = s.camera(kWidth, kHeight);
     SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_1_BIT, &s.tile, &s.atlas);
     VegetationRenderer& vegetation = *renderer.vegetation();
     renderFrame(*ctx, renderer, camera, 0.7);
@@ -139,9 +124,9 @@ TEST_F(GpuTest, NearBladesMatchTheCpuReference) {
 // colour agree; and the blades cover about what the near cards did, from eye height.
 TEST_F(GpuTest, NearBladesAreDrawnAlikeByEveryPassAndCoverWhatTheCardsDid) {
     auto plantPixels = [&](uint32_t blades) {
-        SceneSetup s(bladeFieldJson(blades));
+        SceneSetup s(bladeFieldJson(blades), "blade test");
         SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_1_BIT, &s.tile, &s.atlas);
-        FrameImages frame = renderFrame(*ctx, renderer, s.camera(), 0.7);
+        FrameImages frame = renderFrame(*ctx, renderer, s.camera(kWidth, kHeight), 0.7);
         size_t plants = 0;
         for (uint32_t label : frame.labels)
             plants += (label >> gpu::kInstanceBits) >= gpu::kSemanticVegetation &&
@@ -152,8 +137,8 @@ TEST_F(GpuTest, NearBladesAreDrawnAlikeByEveryPassAndCoverWhatTheCardsDid) {
     std::printf("plant pixels: cards %zu, %u blades %zu\n", cards, kBlades, blades);
     EXPECT_GT(double(blades), 0.85 * double(cards));
 
-    SceneSetup s(bladeFieldJson(kBlades));
-    const Camera camera = s.camera();
+    SceneSetup s(bladeFieldJson(kBlades), "blade test");
+    const Camera camera = s.camera(kWidth, kHeight);
     SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_1_BIT, &s.tile, &s.atlas);
     VegetationRenderer& vegetation = *renderer.vegetation();
     RenderTarget main(*ctx, mainPassTargetDesc(camera.width, camera.height, 1));

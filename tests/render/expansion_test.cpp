@@ -1,4 +1,5 @@
 // GPU expansion against the CPU reference, LOD distribution, wind off, empty and full grass maps.
+#include "expansion_fixtures.h"
 #include "gpu_test.h"
 
 #include "engine/pipeline_statistics.h"
@@ -16,6 +17,8 @@
 
 using namespace sward;
 using sward::test::GpuTest;
+using sward::test::readAll;
+using sward::test::SceneSetup;
 using sward::test::tempDir;
 
 namespace {
@@ -33,24 +36,6 @@ nlohmann::json smallFieldJson() {
     })");
 }
 
-template <typename T> std::vector<T> readAll(Context& ctx, const Buffer& buffer, uint32_t count) {
-    std::vector<uint8_t> bytes = readBuffer(ctx, buffer, 0, uint64_t(count) * sizeof(T));
-    std::vector<T> out(count);
-    std::memcpy(out.data(), bytes.data(), bytes.size());
-    return out;
-}
-
-struct SceneSetup {
-    Scene scene;
-    Ground terrain;
-    VegetationTile tile;
-    Atlas atlas;
-    explicit SceneSetup(const nlohmann::json& json)
-        : scene(parseScene(json, "expansion test")), terrain(buildTerrain(scene)), tile(buildVegetation(scene, terrain, 2)),
-          atlas(buildAtlas(scene)) {}
-    Camera camera(uint32_t w = kWidth, uint32_t h = kHeight) const { return sceneCamera(scene, terrain, w, h); }
-};
-
 // Fraction of terrain pixels that vegetation covers (truth depth in front of the bare terrain).
 double coverage(const FrameImages& bare, const FrameImages& grass) {
     size_t ground = 0, covered = 0;
@@ -64,8 +49,8 @@ double coverage(const FrameImages& bare, const FrameImages& grass) {
 
 // Expands on the GPU and checks instances and baked vertices (whole quads, or cut-out fans) against the CPU reference.
 void expectExpansionMatchesTheCpuReference(Context* ctx, uint32_t cutoutCorners) {
-    SceneSetup s(smallFieldJson());
-    Camera camera = s.camera();
+    SceneSetup s(smallFieldJson(), "expansion test");
+    Camera camera = s.camera(kWidth, kHeight);
     const double time = 0.7;
     ReferenceExpansion reference = referenceExpand(s.tile, s.scene.vegetation, s.scene.lod, s.scene.wind, camera, time,
                                                    {cardCover(s.atlas), meanAspects(s.atlas.desc)});
@@ -86,7 +71,8 @@ void expectExpansionMatchesTheCpuReference(Context* ctx, uint32_t cutoutCorners)
     ASSERT_GT(reference.lods[2].size(), 0u);
     EXPECT_EQ(stats.info.x, reference.visibleClusters);
     EXPECT_EQ(stats.info.z, reference.plantsConsidered);
-    for (uint32_t lod = 0; lod < 3; ++lod) EXPECT_EQ(stats.instances[int(lod)], reference.lods[lod].size()) << "LOD " << lod;
+    for (uint32_t lod = 0; lod < 3; ++lod)
+        EXPECT_EQ(stats.instances[int(lod)], reference.lods[lod].size()) << "LOD " << lod;
 
     auto gpuPlants = readAll<gpu::ExpandedPlant>(*ctx, vegetation.instances(), stats.instances.w);
     BakedPlants baked = vegetation.bake(0);
@@ -107,9 +93,9 @@ void expectExpansionMatchesTheCpuReference(Context* ctx, uint32_t cutoutCorners)
             uint32_t category = actual.attributes & 3u;
             uint32_t variant = ((actual.attributes >> 2) & 63u) % uint32_t(s.atlas.desc.rows[category].cells.size());
             const AtlasCell& cell = s.atlas.desc.rows[category].cells[variant];
-            auto corners = referencePlantVertices(actual, lod, glm::vec3(camera.position),
-                                                  glm::vec3(cell.baseU, cell.baseV, cell.aspect),
-                                                  &polygons[category * s.atlas.desc.maxColumns() + variant], cutoutCorners);
+            auto corners = referencePlantVertices(
+                actual, lod, glm::vec3(camera.position), glm::vec3(cell.baseU, cell.baseV, cell.aspect),
+                &polygons[category * s.atlas.desc.maxColumns() + variant], cutoutCorners);
             ASSERT_EQ(corners.size(), gpu::plantVertexCount(lod, cutoutCorners));
             for (const glm::vec3& p : corners) {
                 ASSERT_LT(glm::distance(glm::vec3(vertices[vertex].positionFraction), p), 1e-4f) << "vertex " << vertex;
@@ -124,7 +110,9 @@ void expectExpansionMatchesTheCpuReference(Context* ctx, uint32_t cutoutCorners)
 
 } // namespace
 
-TEST_F(GpuTest, ExpansionMatchesTheCpuReference) { expectExpansionMatchesTheCpuReference(ctx.get(), 0); }
+TEST_F(GpuTest, ExpansionMatchesTheCpuReference) {
+    expectExpansionMatchesTheCpuReference(ctx.get(), 0);
+}
 
 TEST_F(GpuTest, CutoutExpansionMatchesTheCpuReferenceForFourAndEightCorners) {
     expectExpansionMatchesTheCpuReference(ctx.get(), 4);
@@ -136,8 +124,8 @@ TEST_F(GpuTest, CutoutExpansionMatchesTheCpuReferenceForFourAndEightCorners) {
 // passes draw the same ones: at 1x the same fragments, whole quads and cut-out fans alike.
 TEST_F(GpuTest, IndexedPlantDrawsRasteriseTheTrianglesOfTheUnindexedDraw) {
     if (!ctx->device.supportsPipelineStatistics()) GTEST_SKIP() << "the device cannot count pipeline statistics";
-    SceneSetup s(smallFieldJson());
-    const Camera camera = s.camera();
+    SceneSetup s(smallFieldJson(), "expansion test");
+    const Camera camera = s.camera(kWidth, kHeight);
     SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_1_BIT, &s.tile, &s.atlas);
     VegetationRenderer& vegetation = *renderer.vegetation();
     RenderTarget main(*ctx, mainPassTargetDesc(camera.width, camera.height, 1));
@@ -194,7 +182,7 @@ TEST_F(GpuTest, IndexedPlantDrawsRasteriseTheTrianglesOfTheUnindexedDraw) {
 }
 
 TEST_F(GpuTest, LodShiftsFromNearToFarAsTheCameraRecedes) {
-    SceneSetup s(smallFieldJson());
+    SceneSetup s(smallFieldJson(), "expansion test");
     SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_1_BIT, &s.tile, &s.atlas);
     glm::dvec3 target(25.0, 25.0, s.terrain.height({25.0f, 25.0f}));
     double previousNearShare = 2.0, previousFarShare = -1.0;
@@ -216,10 +204,10 @@ TEST_F(GpuTest, LodShiftsFromNearToFarAsTheCameraRecedes) {
 TEST_F(GpuTest, WithoutWindTheImageIsStaticOverTime) {
     nlohmann::json json = smallFieldJson();
     json["wind"] = {{"strength", 0}, {"gust_strength", 0}, {"flutter", 0}};
-    SceneSetup s(json);
+    SceneSetup s(json, "expansion test");
     SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_4_BIT, &s.tile, &s.atlas);
-    FrameImages a = renderFrame(*ctx, renderer, s.camera(), 0.0);
-    FrameImages b = renderFrame(*ctx, renderer, s.camera(), 3.3);
+    FrameImages a = renderFrame(*ctx, renderer, s.camera(kWidth, kHeight), 0.0);
+    FrameImages b = renderFrame(*ctx, renderer, s.camera(kWidth, kHeight), 3.3);
     EXPECT_EQ(a.rgbaHalf, b.rgbaHalf);
     EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * 4));
 }
@@ -233,16 +221,19 @@ TEST_F(GpuTest, EmptyGrassMapDrawsNoGrassAndFullMapCoversTheGroundFromAbove) {
 
     // Top-down view from 6 m over the middle of the field.
     nlohmann::json json = smallFieldJson();
-    json["camera"] = {{"position", {25, 25, 0}}, {"height_above_ground", 4}, {"look_at", {25, 25.01, 0}},
-                      {"look_at_height_above_ground", 0}, {"fov_y_deg", 50}};
+    json["camera"] = {{"position", {25, 25, 0}},
+                      {"height_above_ground", 4},
+                      {"look_at", {25, 25.01, 0}},
+                      {"look_at_height_above_ground", 0},
+                      {"fov_y_deg", 50}};
     auto render = [&](const std::string& map, bool vegetation, float grassDensity) {
         nlohmann::json j = json;
         j["grass_map"] = map;
         j["vegetation"] = {{"categories", {nlohmann::json::object(), {{"density", grassDensity}}}}};
-        SceneSetup s(j);
+        SceneSetup s(j, "expansion test");
         SceneRenderer renderer(*ctx, s.scene, s.terrain, VK_SAMPLE_COUNT_1_BIT, vegetation ? &s.tile : nullptr,
                                vegetation ? &s.atlas : nullptr);
-        return renderFrame(*ctx, renderer, s.camera());
+        return renderFrame(*ctx, renderer, s.camera(kWidth, kHeight));
     };
     FrameImages bare = render(dir + "/empty.png", false, 16.0f);
     FrameImages none = render(dir + "/empty.png", true, 16.0f);

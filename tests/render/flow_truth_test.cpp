@@ -9,9 +9,9 @@
 #include "range/plant_quads.h"
 #include "scene/scene.h"
 #include "scene/scene_resources.h"
+#include "shared/gpu_layout.h"
 #include "shared/plant_blades.h"
 #include "vegetation/expansion_reference.h"
-#include "shared/gpu_layout.h"
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -49,10 +49,11 @@ std::string flowScene(const std::string& name, bool wind, bool vehicle, bool mov
     const std::string dir = tempDir("flow-scene-" + name), path = dir + "/scene.json";
     if (plate) {
         sward::test::writePlate(dir);
-        scene["objects"] = {{{"name", "plate"},
-                             {"model", "plate.gltf"},
-                             {"align_to_terrain", false},
-                             {"path", {{"points", {{48.0, 50.0}, {54.0, 53.0}}}, {"speed", 3.0}, {"height_above_ground", 1.2}}}}};
+        scene["objects"] = {
+            {{"name", "plate"},
+             {"model", "plate.gltf"},
+             {"align_to_terrain", false},
+             {"path", {{"points", {{48.0, 50.0}, {54.0, 53.0}}}, {"speed", 3.0}, {"height_above_ground", 1.2}}}}};
     }
     std::ofstream(path) << scene.dump(2);
     return path;
@@ -177,6 +178,20 @@ bool hitTriangle(const cv::Vec3d& o, const cv::Vec3d& d, const cv::Vec3d& p0, co
     return b1 >= -eps && b2 >= -eps && b1 + b2 <= 1.0 + eps && t > 0.0;
 }
 
+// Frame 1 of a flow dataset: its truth images, forward flow and pose.
+struct FrameOne {
+    cv::Mat depth, instance, semantic;
+    Flo flo;
+    Pose pose;
+};
+
+FrameOne readFrameOne(const std::string& out) {
+    return {cv::imread(out + "/depth/000001.exr", cv::IMREAD_UNCHANGED),
+            cv::imread(out + "/instance/000001.exr", cv::IMREAD_UNCHANGED),
+            cv::imread(out + "/semantic/000001.png", cv::IMREAD_UNCHANGED), readFlo(out + "/flow_forward/000001.flo"),
+            framePose(out, 1)};
+}
+
 cv::Vec3d corner(uint32_t k, const float (&a)[3][sward::PlantQuads::kTriangles]) {
     return {a[0][k], a[1][k], a[2][k]};
 }
@@ -194,11 +209,10 @@ TEST(FlowTruth, WindMovedPlantsFollowTheCpuExpansionReference) {
     const sward::SceneResources r = sward::buildSceneResources(sward::loadScene(scenePath));
     ASSERT_TRUE(r.tile && r.atlas);
     const sward::AtlasAlpha atlas(*r.atlas);
-    const cv::Mat depth = cv::imread(out + "/depth/000001.exr", cv::IMREAD_UNCHANGED);
-    const cv::Mat instance = cv::imread(out + "/instance/000001.exr", cv::IMREAD_UNCHANGED);
-    const cv::Mat semantic = cv::imread(out + "/semantic/000001.png", cv::IMREAD_UNCHANGED);
-    const Flo flo = readFlo(out + "/flow_forward/000001.flo");
-    const Pose pose = framePose(out, 1);
+    const FrameOne frame = readFrameOne(out);
+    const cv::Mat &depth = frame.depth, &instance = frame.instance, &semantic = frame.semantic;
+    const Flo& flo = frame.flo;
+    const Pose& pose = frame.pose;
     const cv::Vec3d origin(pose.worldFromCamera(0, 3), pose.worldFromCamera(1, 3), pose.worldFromCamera(2, 3));
     const double time = 1 * r.scene.sequence.timeStep, next = 2 * r.scene.sequence.timeStep;
     std::vector<double> errors;
@@ -259,11 +273,10 @@ TEST(FlowTruth, WindMovedBladesFollowTheCpuMirror) {
     const sward::SceneResources r = sward::buildSceneResources(sward::loadScene(scenePath));
     ASSERT_TRUE(r.tile && r.atlas);
     const sward::AtlasAlpha atlas(*r.atlas);
-    const cv::Mat depth = cv::imread(out + "/depth/000001.exr", cv::IMREAD_UNCHANGED);
-    const cv::Mat instance = cv::imread(out + "/instance/000001.exr", cv::IMREAD_UNCHANGED);
-    const cv::Mat semantic = cv::imread(out + "/semantic/000001.png", cv::IMREAD_UNCHANGED);
-    const Flo flo = readFlo(out + "/flow_forward/000001.flo");
-    const Pose pose = framePose(out, 1);
+    const FrameOne frame = readFrameOne(out);
+    const cv::Mat &depth = frame.depth, &instance = frame.instance, &semantic = frame.semantic;
+    const Flo& flo = frame.flo;
+    const Pose& pose = frame.pose;
     const cv::Vec3d origin(pose.worldFromCamera(0, 3), pose.worldFromCamera(1, 3), pose.worldFromCamera(2, 3));
     const double time = 1 * r.scene.sequence.timeStep, next = 2 * r.scene.sequence.timeStep;
     std::vector<double> errors;
@@ -279,8 +292,8 @@ TEST(FlowTruth, WindMovedBladesFollowTheCpuMirror) {
             const uint32_t i = plant - field->firstPlant;
             const float aspect = atlas.baseAspects[atlas.cellOf(field->staticRecords[i].attributes)].z;
             auto bladesAt = [&](double t) {
-                const sward::gpu::ExpandedPlant expanded = sward::expandWholePlant(
-                    r.scene.vegetation, r.scene.wind, *field, i, field->dynamicRecords[i], t);
+                const sward::gpu::ExpandedPlant expanded =
+                    sward::expandWholePlant(r.scene.vegetation, r.scene.wind, *field, i, field->dynamicRecords[i], t);
                 return sward::referenceBladeVertices(expanded, 8, aspect);
             };
             const std::vector<glm::vec3> now = bladesAt(time), then = bladesAt(next);
