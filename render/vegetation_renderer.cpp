@@ -375,7 +375,9 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
     static const char* const kLodNames[gpu::kLodCount] = {".near", ".mid", ".far"};
     const bool blades = scene_.lod.nearBlades > 0 && (lodMask & (1u << gpu::kLodNear)) &&
                         !(pass == PlantPass::Main && mainShading_ == MainShading::Floor);
-    for (const auto& [key, tile] : tiles_) {
+    for (const auto& entry : tiles_) {
+        // Not a structured binding: clang 14 (the sanitizer build) cannot capture one in the lambda below.
+        const auto& tile = entry.second;
         if (!tile->expanded) continue;
         auto bind = [&](const Pipeline& p) {
             bindPipeline(cmd, p);
