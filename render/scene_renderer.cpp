@@ -53,6 +53,7 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& ter
                              const VegetationTile* vegetation, const Atlas* atlas,
                              const std::vector<ObjectModel>* models, const CoverMap* cover)
     : ctx_(ctx), scene_(scene), samples_(samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1), objectGround_(&terrain) {
+    writeSkyConstants(scene_, frameTemplate_);
     terrainMinHeight_ = terrain.minHeight();
     terrainMaxHeight_ = terrain.maxHeight();
     fitShadowImage(vegetation && atlas);
@@ -68,6 +69,7 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& ter
 SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, VkSampleCountFlagBits samples, const Atlas* atlas)
     : ctx_(ctx), scene_(scene), samples_(samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1) {
     require(scene.world.enabled && scene.objects.empty(), "SceneRenderer: a world scene without objects");
+    writeSkyConstants(scene_, frameTemplate_);
     viewDistance_ = scene.world.viewDistance;
     // The procedural ground's heights lie within +-amplitude / 2 (world/heightfield.h): the same shadow depth range
     // whichever tiles are resident.
@@ -247,7 +249,7 @@ void SceneRenderer::removeTile(TileCoord coord) {
 
 void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const ShadowFit& shadow, double timeSeconds,
                                    int shadowDraw, const FlowTicks* flow, uint32_t view) {
-    gpu::FrameConstants c{};
+    gpu::FrameConstants c = frameTemplate_;
     glm::dmat4 viewProj = camera.viewProjection();
     c.viewProj = glm::mat4(viewProj);
     c.view = glm::mat4(camera.view());
@@ -255,7 +257,6 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Sh
     c.cameraPosition = glm::vec4(glm::vec3(camera.position), 1.0f);
     c.sunDirection = glm::vec4(scene_.sun.direction(), 0.0f);
     c.sunRadiance = glm::vec4(scene_.sun.radiance, 0.0f);
-    writeSkyConstants(scene_, c);
     c.viewport =
         glm::vec4(float(camera.width), float(camera.height), 1.0f / float(camera.width), 1.0f / float(camera.height));
     c.timeParams = glm::vec4(float(timeSeconds), 0.0f, 0.0f, 0.0f);

@@ -175,6 +175,9 @@ private:
 
     Context& ctx_;
     Scene scene_;
+    // Every frame's constants start from this: the sky's fields (writeSkyConstants: the physical sky's coefficients
+    // and its ambient light, a 384-direction integral), filled once from the scene, whose sun and sky never change.
+    gpu::FrameConstants frameTemplate_{};
     uint32_t samples_ = 1;
     std::map<TileKey, TerrainTile> tiles_;
     double viewDistance_ = INFINITY; // world.view_distance in a world
