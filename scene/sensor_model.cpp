@@ -128,16 +128,14 @@ void SensorModel::apply(uint64_t seed, uint32_t frame, uint32_t camera, std::spa
         }
     }
 
-    const double epu = params_.electronsPerUnit, read2 = params_.readNoise * params_.readNoise;
+    const double epu = params_.electronsPerUnit;
     for (size_t p = 0; p < size_t(w) * h; ++p) {
         for (uint32_t c = 0; c < 3; ++c) {
             float& value = rgba[p * 4 + c];
             value *= gain_[p];
-            if (epu > 0.0 && std::isfinite(value)) {
-                double electrons = double(value) * epu;
-                electrons += std::sqrt(std::max(electrons, 0.0) + read2) * gaussian(seed, frame, camera, p, c);
-                if (params_.fullWell > 0.0) electrons = std::min(electrons, params_.fullWell);
-                value = float(electrons / epu);
+            if (epu > 0.0 || !params_.electronics.isDefault()) {
+                const double normal = epu > 0.0 && std::isfinite(value) ? gaussian(seed, frame, camera, p, c) : 0.0;
+                value = float(sensorReadout(params_, value, c, normal));
             }
         }
     }
@@ -182,22 +180,25 @@ SensorParams parseSensor(const nlohmann::json& json, const std::string& source, 
     p.fullWell = r.number("full_well", 0.0, 0.0, 1e15);
     if ((p.readNoise > 0.0 || p.fullWell > 0.0) && p.electronsPerUnit <= 0.0)
         r.fail(r.name("electrons_per_unit") + " must be positive when 'read_noise' or 'full_well' is set");
+    parseSensorElectronics(r, p);
     r.finish();
     return p;
 }
 
 nlohmann::json sensorToJson(const SensorParams& p) {
-    return {{"enabled", p.enabled},
-            {"exposure", p.exposure},
-            {"vignetting", p.vignetting},
-            {"k1", p.k1},
-            {"k2", p.k2},
-            {"k3", p.k3},
-            {"p1", p.p1},
-            {"p2", p.p2},
-            {"electrons_per_unit", p.electronsPerUnit},
-            {"read_noise", p.readNoise},
-            {"full_well", p.fullWell}};
+    nlohmann::json json = {{"enabled", p.enabled},
+                           {"exposure", p.exposure},
+                           {"vignetting", p.vignetting},
+                           {"k1", p.k1},
+                           {"k2", p.k2},
+                           {"k3", p.k3},
+                           {"p1", p.p1},
+                           {"p2", p.p2},
+                           {"electrons_per_unit", p.electronsPerUnit},
+                           {"read_noise", p.readNoise},
+                           {"full_well", p.fullWell}};
+    sensorElectronicsToJson(p.electronics, json);
+    return json;
 }
 
 } // namespace sward

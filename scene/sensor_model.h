@@ -15,11 +15,14 @@
 //   e' = e + sqrt(max(e, 0) + read_noise^2) * n      Poisson shot noise as a Gaussian with variance e, plus read noise
 //   e' = min(e', full_well)                          when full_well > 0
 //   out = e' / electrons_per_unit                    back to the image's linear units
+//   then gain, white balance, black level and the ADC's clip: scene/sensor_exposure.h (sensorReadout)
 // n is a standard normal from Box-Muller on two uniforms hashed from (seed, frame, camera, pixel, channel), so
 // the result is a pure function of its inputs: bitwise repeatable, any order, any thread count. Noise is
 // zero-mean (no clamping at 0), so averages over many frames converge to the noise-free image. Alpha is
 // resampled with the colour (it is coverage, which the lens moves) but gets no exposure, vignetting or noise.
 #pragma once
+
+#include "scene/sensor_exposure.h"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -41,6 +44,7 @@ struct SensorParams {
     double electronsPerUnit = 0.0;       // photo-electrons per unit linear radiance; 0 = no noise at all
     double readNoise = 0.0;              // read noise standard deviation, electrons
     double fullWell = 0.0;               // saturation in electrons; 0 = none (HDR output)
+    SensorElectronics electronics;       // gain, black level, white balance (scene/sensor_exposure.h)
 
     bool hasDistortion() const { return k1 != 0.0 || k2 != 0.0 || k3 != 0.0 || p1 != 0.0 || p2 != 0.0; }
 };

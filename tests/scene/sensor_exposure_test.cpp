@@ -1,0 +1,221 @@
+// The sensor's electronics (scene/sensor_exposure.h): gain / ISO, read noise before and after the gain, the ADC's
+// clipping, black level and white balance, each by its exact effect on applySensor's output.
+#include "scene/sensor_exposure.h"
+#include "scene/sensor_model.h"
+
+#include "common/error.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+using namespace sward;
+
+namespace {
+
+constexpr uint32_t kWidth = 160, kHeight = 120;
+
+Intrinsics testCamera() {
+    return {100.0, 100.0, 80.0, 60.0, kWidth, kHeight};
+}
+
+std::vector<float> flatImage(float value) {
+    std::vector<float> rgba(size_t(kWidth) * kHeight * 4, value);
+    for (size_t p = 0; p < size_t(kWidth) * kHeight; ++p) rgba[p * 4 + 3] = 1.0f;
+    return rgba;
+}
+
+// Colour values 0.05 .. 2.0, all exact binary fractions (k / 64).
+std::vector<float> rampImage() {
+    std::vector<float> rgba = flatImage(0.0f);
+    for (size_t i = 0; i < rgba.size(); ++i)
+        if (i % 4 != 3) rgba[i] = float(3 + i % 126) / 64.0f;
+    return rgba;
+}
+
+SensorParams parse(const nlohmann::json& j) {
+    return parseSensor(j, "scene.json", "camera.sensor");
+}
+
+std::vector<float> sensed(const nlohmann::json& j, std::vector<float> rgba) {
+    applySensor(parse(j), testCamera(), 7, 3, 0, rgba);
+    return rgba;
+}
+
+bool bitwiseEqual(const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+struct Moments {
+    double mean = 0.0, std = 0.0;
+};
+
+// Over the colour channels `first`..`last` of every pixel.
+Moments moments(const std::vector<float>& rgba, int first = 0, int last = 2) {
+    double sum = 0.0, sum2 = 0.0;
+    size_t n = 0;
+    for (size_t i = 0; i < rgba.size(); ++i) {
+        const int c = int(i % 4);
+        if (c < first || c > last) continue;
+        sum += rgba[i];
+        sum2 += double(rgba[i]) * rgba[i];
+        ++n;
+    }
+    const double mean = sum / double(n);
+    return {mean, std::sqrt(sum2 / double(n) - mean * mean)};
+}
+
+const nlohmann::json kNoisy = {{"electrons_per_unit", 2000}, {"read_noise", 3}};
+
+} // namespace
+
+TEST(SensorExposure, NeutralValuesOfTheNewKeysLeaveTheImageBitwise) {
+    nlohmann::json neutral = kNoisy;
+    neutral["iso"] = 250;
+    neutral["base_iso"] = 250;
+    neutral["white_balance"] = {1, 1, 1};
+    nlohmann::json unity = kNoisy;
+    unity["gain"] = 1;
+    const std::vector<float> plain = sensed(kNoisy, rampImage());
+    EXPECT_FALSE(bitwiseEqual(plain, rampImage())); // the noise is there
+    EXPECT_TRUE(bitwiseEqual(sensed(neutral, rampImage()), plain));
+    EXPECT_TRUE(bitwiseEqual(sensed(unity, rampImage()), plain));
+}
+
+TEST(SensorExposure, GainScalesSignalAndNoiseExactly) {
+    nlohmann::json iso400 = kNoisy;
+    iso400["iso"] = 400; // base ISO 100: G = 4
+    const std::vector<float> base = sensed(kNoisy, rampImage()), gained = sensed(iso400, rampImage());
+    for (size_t i = 0; i < base.size(); ++i)
+        ASSERT_EQ(gained[i], i % 4 == 3 ? base[i] : 4.0f * base[i]) << i; // the same electrons, amplified
+    // Without electrons (no noise) the gain is a plain factor on the light.
+    const std::vector<float> clean = sensed({{"gain", 2.5}}, rampImage()), ramp = rampImage();
+    for (size_t i = 0; i < clean.size(); ++i) ASSERT_EQ(clean[i], i % 4 == 3 ? ramp[i] : float(2.5 * ramp[i])) << i;
+}
+
+TEST(SensorExposure, HigherGainAtShorterExposureKeepsTheMeanAndRaisesTheNoise) {
+    // Shot-noise limited: at the same mean, a quarter of the electrons have twice the relative noise.
+    const nlohmann::json bright = {{"electrons_per_unit", 400}};
+    const nlohmann::json dim = {{"electrons_per_unit", 400}, {"exposure", 0.25}, {"iso", 400}};
+    const Moments a = moments(sensed(bright, flatImage(0.5f))), b = moments(sensed(dim, flatImage(0.5f)));
+    EXPECT_NEAR(a.mean, 0.5, 0.002);
+    EXPECT_NEAR(b.mean, 0.5, 0.004);
+    EXPECT_NEAR(a.std, std::sqrt(0.5 * 400) / 400, 0.002); // 0.0354
+    EXPECT_NEAR(b.std / a.std, 2.0, 0.05);
+}
+
+TEST(SensorExposure, ReadNoiseAfterTheGainIsNotAmplified) {
+    // No light: only read noise. 5 e- before a gain of 8 is 0.4 in the output at 100 e- per unit; 5 e- after it 0.05.
+    const nlohmann::json before = {{"electrons_per_unit", 100}, {"read_noise", 5}, {"gain", 8}};
+    const nlohmann::json after = {{"electrons_per_unit", 100}, {"read_noise_after_gain", 5}, {"gain", 8}};
+    const Moments b = moments(sensed(before, flatImage(0.0f))), a = moments(sensed(after, flatImage(0.0f)));
+    EXPECT_NEAR(b.std, 0.4, 0.4 * 0.02);
+    EXPECT_NEAR(a.std, 0.05, 0.05 * 0.02);
+    EXPECT_NEAR(a.mean, 0.0, 0.002);
+}
+
+TEST(SensorExposure, AdcClipsAtTheFullWellAtUnityGain) {
+    // 100 units of light fill any well: at G = 2 the ADC clips at full_well / epu in the output, at G = 0.5 the well
+    // clips first and the output tops out at half of that.
+    const nlohmann::json high = {{"electrons_per_unit", 100}, {"full_well", 1000}, {"gain", 2}};
+    const nlohmann::json low = {{"electrons_per_unit", 100}, {"full_well", 1000}, {"gain", 0.5}};
+    for (float v : sensed(high, flatImage(100.0f))) ASSERT_TRUE(v == 10.0f || v == 1.0f) << v;
+    for (float v : sensed(low, flatImage(100.0f))) ASSERT_TRUE(v == 5.0f || v == 1.0f) << v;
+    // At G = 2, 7 units of light (700 e-, 1400 after the gain: 7.5 sigma above the clip) clip too; 4 units do not.
+    EXPECT_EQ(moments(sensed(high, flatImage(7.0f))).std, 0.0);
+    EXPECT_GT(moments(sensed(high, flatImage(4.0f))).std, 0.1);
+}
+
+TEST(SensorExposure, BlackLevelIsKeptAndTheOutputFlooredAtZero) {
+    const std::vector<float> ramp = rampImage();
+    const std::vector<float> clean = sensed({{"black_level", 0.125}}, ramp);
+    for (size_t i = 0; i < clean.size(); ++i) ASSERT_EQ(clean[i], i % 4 == 3 ? ramp[i] : ramp[i] + 0.125f) << i;
+    // Read noise on no light: without a black level the output is zero-mean, with black level 0 half of it floors
+    // at 0, with a pedestal of 10 sigma none does and the mean is the pedestal.
+    const nlohmann::json dark = {{"electrons_per_unit", 100}, {"read_noise", 2}}; // sigma 0.02
+    nlohmann::json floored = dark, pedestal = dark;
+    floored["black_level"] = 0;
+    pedestal["black_level"] = 0.2;
+    const std::vector<float> zeroMean = sensed(dark, flatImage(0.0f)), clipped = sensed(floored, flatImage(0.0f));
+    const std::vector<float> lifted = sensed(pedestal, flatImage(0.0f));
+    EXPECT_LT(*std::min_element(zeroMean.begin(), zeroMean.end()), -0.05f);
+    EXPECT_EQ(*std::min_element(clipped.begin(), clipped.end()), 0.0f);
+    const size_t zeros = size_t(std::count(clipped.begin(), clipped.end(), 0.0f));
+    EXPECT_NEAR(double(zeros) / (kWidth * kHeight * 3), 0.5, 0.02);
+    for (size_t i = 0; i < zeroMean.size(); ++i)
+        if (i % 4 != 3) {
+            ASSERT_EQ(clipped[i], std::max(zeroMean[i], 0.0f)) << i;
+        }
+    EXPECT_NEAR(moments(lifted).mean, 0.2, 0.001);
+    // The white level is the pedestal plus the well.
+    nlohmann::json full = pedestal;
+    full["full_well"] = 1000;
+    for (float v : sensed(full, flatImage(50.0f))) ASSERT_TRUE(v == 10.2f || v == 1.0f) << v;
+}
+
+TEST(SensorExposure, WhiteBalanceMultipliesEachChannelAfterTheNoise) {
+    const std::vector<float> ramp = rampImage();
+    const std::vector<float> clean = sensed({{"white_balance", {2.0, 1.0, 0.75}}}, ramp);
+    const double wb[3] = {2.0, 1.0, 0.75};
+    for (size_t i = 0; i < clean.size(); ++i)
+        ASSERT_EQ(clean[i], i % 4 == 3 ? ramp[i] : float(wb[i % 4] * ramp[i])) << i;
+    // With noise: the red channel is twice the unbalanced one, its noise included (a digital gain on the raw).
+    nlohmann::json balanced = kNoisy;
+    balanced["white_balance"] = {2.0, 1.0, 1.0};
+    const std::vector<float> plain = sensed(kNoisy, ramp), red = sensed(balanced, ramp);
+    for (size_t i = 0; i < plain.size(); ++i) ASSERT_EQ(red[i], i % 4 == 0 ? 2.0f * plain[i] : plain[i]) << i;
+}
+
+TEST(SensorExposure, ParsesEveryKeyAndWritesBackOnlyThoseSet) {
+    const SensorParams p = parse({{"electrons_per_unit", 1000},
+                                  {"iso", 800},
+                                  {"base_iso", 200},
+                                  {"read_noise_after_gain", 1.5},
+                                  {"black_level", 0.01},
+                                  {"white_balance", {1.8, 1.0, 1.4}}});
+    EXPECT_EQ(p.electronics.gain, 4.0);
+    EXPECT_EQ(p.electronics.readNoiseAfterGain, 1.5);
+    EXPECT_EQ(p.electronics.blackLevel, 0.01);
+    EXPECT_EQ(p.electronics.whiteBalance, (std::array<double, 3>{1.8, 1.0, 1.4}));
+    const nlohmann::json written = sensorToJson(p);
+    EXPECT_EQ(written.at("iso"), 800.0);
+    EXPECT_EQ(written.at("base_iso"), 200.0);
+    EXPECT_EQ(sensorToJson(parse(written)), written);
+    EXPECT_EQ(sensorToJson(parse({{"gain", 3}})).at("gain"), 3.0);
+    // A sensor without them is written with the keys it always had: frames.jsonl of older scenes is unchanged.
+    EXPECT_EQ(sensorToJson(parse(kNoisy)).size(), 11u);
+    EXPECT_TRUE(parse(kNoisy).electronics.isDefault());
+}
+
+TEST(SensorExposure, BadValuesAreRefusedNamingTheKey) {
+    auto message = [](const nlohmann::json& j) {
+        try {
+            parseSensor(j, "scene.json", "camera.sensor");
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(message({{"gain", 0}}), "scene.json: 'camera.sensor.gain' must be between 0.001 and 10000 (got 0)");
+    EXPECT_EQ(message({{"gain", 2}, {"iso", 200}}),
+              "scene.json: 'camera.sensor' must give either 'gain' or 'iso' (with 'base_iso'), not both");
+    EXPECT_EQ(message({{"iso", 0.5}}), "scene.json: 'camera.sensor.iso' must be between 1 and 1e+07 (got 0.5)");
+    EXPECT_EQ(message({{"base_iso", 100}}), "scene.json: 'camera.sensor.base_iso' needs 'iso'");
+    EXPECT_EQ(message({{"iso", 1e7}, {"base_iso", 1}}),
+              "scene.json: 'camera.sensor.iso' / 'base_iso' must give a gain between 0.001 and 10000 (got 1e+07)");
+    EXPECT_EQ(message({{"read_noise_after_gain", 2}}),
+              "scene.json: 'camera.sensor.electrons_per_unit' must be positive when 'read_noise_after_gain' is set");
+    EXPECT_EQ(message({{"electrons_per_unit", 10}, {"read_noise_after_gain", -1}}),
+              "scene.json: 'camera.sensor.read_noise_after_gain' must be between 0 and 1e+09 (got -1)");
+    EXPECT_EQ(message({{"black_level", -0.1}}),
+              "scene.json: 'camera.sensor.black_level' must be between 0 and 10000 (got -0.1)");
+    EXPECT_EQ(message({{"black_level", "low"}}), "scene.json: 'camera.sensor.black_level' must be a number");
+    EXPECT_EQ(message({{"white_balance", {1, 1}}}),
+              "scene.json: 'camera.sensor.white_balance' must be an array of 3 numbers");
+    EXPECT_EQ(message({{"white_balance", {1, 0, 1}}}),
+              "scene.json: 'camera.sensor.white_balance' must hold numbers between 0.001 and 1000");
+}
