@@ -1,5 +1,6 @@
 #include "render/sequence_frame.h"
 
+#include "render/motion_blur.h"
 #include "render/track_renderer.h"
 
 #include "common/error.h"
@@ -29,7 +30,10 @@ void overrideCamera(Scene& scene, const std::optional<glm::dvec3>& position, con
 }
 
 RigCameras sequenceRig(const SceneResources& r, uint32_t width, uint32_t height, uint32_t frame) {
-    const double time = double(frame) * r.scene.sequence.timeStep;
+    return sequenceRigAt(r, width, height, double(frame) * r.scene.sequence.timeStep);
+}
+
+RigCameras sequenceRigAt(const SceneResources& r, uint32_t width, uint32_t height, double time) {
     if (r.world) return sceneRig(r.scene, cameraGround(r.scene, time), r.models, width, height, time);
     return sceneRig(r.scene, r.terrain, r.models, width, height, time);
 }
@@ -54,44 +58,53 @@ std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, uint32_t w
 
 namespace {
 
-// renderSequenceFrame with the motion ground truth (render.flow; one tile, no world simulation). The plants' state of
-// the previous tick is kept before this frame's tick runs, and this tick's before the next tick runs between the main
-// and the truth passes (VegetationRenderer::recordKeepState).
+// The interaction tick of a frame with motion ground truth: the plants' state of the previous tick is kept before the
+// tick runs (VegetationRenderer::recordKeepState). Without a simulation the plants' records never change: the kept
+// states enableFlow() made stay right.
+void recordFlowTick(SceneGpu& gpu, VkCommandBuffer cmd, uint32_t tick) {
+    if (!gpu.simulation) return;
+    if (VegetationRenderer* plants = gpu.renderer->vegetation()) plants->recordKeepState(cmd);
+    gpu.simulation->recordNextTick(cmd, tick);
+}
+
+// The prologue of a frame with motion ground truth: this frame's tick, unless the previous frame ran it before its
+// truth passes.
+std::function<void(VkCommandBuffer)> flowPrologue(SceneGpu& gpu, uint32_t frame) {
+    if (VegetationRenderer* plants = gpu.renderer->vegetation()) plants->enableFlow();
+    if (gpu.simulation && gpu.simulation->nextTick() == uint64_t(frame) + 1) return {};
+    return [&gpu, frame](VkCommandBuffer cmd) { recordFlowTick(gpu, cmd, frame); };
+}
+
+// renderSequenceFrame with the motion ground truth (render.flow; one tile, no world simulation). This tick's plant
+// state is kept before the next tick runs between the main and the truth passes.
 FrameImages renderFlowFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t frame, double time,
-                            const RigCameras& cameras) {
+                            const RigCameras& cameras, const std::function<void(VkCommandBuffer)>& prologue,
+                            bool colour) {
     const uint32_t width = cameras.left.width, height = cameras.left.height;
     const RigCameras previous =
         sequenceRig(r, width, height, frame > 0 ? frame - 1 : 0); // frame 0 has no backward flow
     const RigCameras next = sequenceRig(r, width, height, frame + 1);
-    VegetationRenderer* plants = gpu.renderer->vegetation();
-    Simulation* simulation = gpu.simulation.get();
-    if (plants) plants->enableFlow();
-    // Without a simulation the plants' records never change: the kept states enableFlow() made stay right.
-    auto keepAndTick = [plants, simulation](VkCommandBuffer cmd, uint32_t tick) {
-        if (!simulation) return;
-        if (plants) plants->recordKeepState(cmd);
-        simulation->recordNextTick(cmd, tick);
-    };
     const bool stereo = r.scene.camera.rig.stereo();
     FlowTicks flow{.previous = {&previous.left, &previous.right},
                    .next = {&next.left, &next.right},
                    .timeStep = r.scene.sequence.timeStep,
-                   .beforeTruth = [&](VkCommandBuffer cmd) { keepAndTick(cmd, frame + 1); }};
-    // This frame's tick, unless the previous frame ran it before its truth passes.
-    const bool tickDone = simulation && simulation->nextTick() == uint64_t(frame) + 1;
-    auto prologue = [&](VkCommandBuffer cmd) {
-        if (!tickDone) keepAndTick(cmd, frame);
-    };
-    return target.render(*gpu.renderer, cameras.left, time, frame, prologue, stereo ? &cameras.right : nullptr, &flow);
+                   .beforeTruth = [&](VkCommandBuffer cmd) { recordFlowTick(gpu, cmd, frame + 1); }};
+    return target.render(*gpu.renderer, cameras.left, time, frame, prologue, stereo ? &cameras.right : nullptr, &flow,
+                         colour);
 }
 
 } // namespace
 
 FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
-                                uint32_t height, uint32_t frame, double timeOffset, const std::optional<SensorModel>& sensor, RigCameras& cameras) {
+                                uint32_t height, uint32_t frame, double timeOffset,
+                                const std::optional<SensorModel>& sensor, RigCameras& cameras) {
     const double time = double(frame) * r.scene.sequence.timeStep;
     const bool stereo = r.scene.camera.rig.stereo();
     cameras = sequenceRig(r, width, height, frame);
+    // A shutter's sub-frame times (render/motion_blur.h); none: the colour is the instant's.
+    const std::vector<double> exposure =
+        sensor ? frameExposureTimes(r, sensor->params(), width, height, frame) : std::vector<double>();
+    auto rigAt = [&](double t) { return sequenceRigAt(r, width, height, t); };
     std::function<void(VkCommandBuffer)> tick;
     if (gpu.worldSimulation) { // the tiles around the camera and the actors, generated before the frame
         gpu.worldSimulation->runTicksBefore(frame);
@@ -100,23 +113,36 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
                     std::to_string(gpu.worldSimulation->nextTick()) + " and never goes back (restore a saved state)");
         gpu.worldSimulation->prepare();
         tick = [&](VkCommandBuffer cmd) { gpu.worldSimulation->recordNextTick(cmd, frame); };
-    } else if (r.world) { // every tile within load_radius of the camera, generated before the frame: deterministic
-        const glm::dvec2 camera(cameras.left.position);
-        r.world->waitFor({&camera, 1});
+    } else if (r.world) { // every tile within load_radius of the cameras, generated before the frame: deterministic
+        std::vector<glm::dvec2> around{glm::dvec2(cameras.left.position)};
+        for (double t : exposure) around.push_back(glm::dvec2(rigAt(t).left.position));
+        r.world->waitFor(around);
         syncWorldTiles(*gpu.renderer, *r.world);
     }
     if (gpu.simulation) {
         gpu.simulation->runTicksBefore(frame); // ticks of frames skipped or rendered elsewhere (shards)
         tick = [&](VkCommandBuffer cmd) { gpu.simulation->recordNextTick(cmd, frame); };
     }
-    FrameImages images;
-    if (target.hasFlow()) {
-        images = renderFlowFrame(gpu, target, r, frame, timeOffset + time, cameras);
-    } else {
-        images = target.render(*gpu.renderer, cameras.left, timeOffset + time, frame, tick,
-                               stereo ? &cameras.right : nullptr);
+    if (target.hasFlow()) tick = flowPrologue(gpu, frame);
+    ExposureColour blurred;
+    if (!exposure.empty()) { // the frame's tick runs before the first sub-frame, and only then
+        blurred = renderExposure(*gpu.renderer, target, rigAt, stereo, exposure, timeOffset, frame, tick);
+        tick = {};
     }
-    if (sensor) {
+    const bool colour = exposure.empty(); // else the truth alone, at the exposure's middle
+    FrameImages images = target.hasFlow()
+                             ? renderFlowFrame(gpu, target, r, frame, timeOffset + time, cameras, tick, colour)
+                             : target.render(*gpu.renderer, cameras.left, timeOffset + time, frame, tick,
+                                             stereo ? &cameras.right : nullptr, nullptr, colour);
+    if (!colour) {
+        images.rgbaHalf = std::move(blurred.left);
+        images.rightRgbaHalf = std::move(blurred.right);
+    }
+    if (sensor) { // after the exposure's mean: light is integrated first, then the sensor reads it out
+        // The lens before the sensor, each view defocused by its own exact depth (the rig is rectified: one fx, cx).
+        const SensorOptics optics(sensor->params(), Intrinsics::of(cameras.left));
+        optics.applyHalf(images.depth, images.rgbaHalf);
+        if (stereo) optics.applyHalf(images.rightDepth, images.rightRgbaHalf);
         sensor->applyHalf(r.scene.seed, frame, 0, images.rgbaHalf);
         if (stereo) sensor->applyHalf(r.scene.seed, frame, 1, images.rightRgbaHalf);
     }

@@ -72,6 +72,7 @@ void undistortNormalized(const SensorParams& p, double xd, double yd, double& x,
 SensorModel::SensorModel(const SensorParams& params, const Intrinsics& in) : params_(params), intrinsics_(in) {
     if (!params_.enabled) return;
     require(in.width > 0 && in.height > 0 && in.fx > 0.0 && in.fy > 0.0, "sensor model: invalid camera intrinsics");
+    checkOptics(params_.optics, in); // the sensor is built before anything is written: refuse a bad lens here
     size_t pixels = size_t(in.width) * in.height;
     gain_.resize(pixels);
     if (params_.hasDistortion()) sourceUv_.resize(pixels * 2);
@@ -180,7 +181,16 @@ SensorParams parseSensor(const nlohmann::json& json, const std::string& source, 
     p.fullWell = r.number("full_well", 0.0, 0.0, 1e15);
     if ((p.readNoise > 0.0 || p.fullWell > 0.0) && p.electronsPerUnit <= 0.0)
         r.fail(r.name("electrons_per_unit") + " must be positive when 'read_noise' or 'full_well' is set");
+    p.shutterSeconds = r.number("shutter_s", 0.0, 0.0, kMaxShutterSeconds);
+    if (const nlohmann::json* samples = r.raw("motion_samples"); samples && *samples != "auto") {
+        const bool whole = samples->is_number_unsigned() || (samples->is_number_integer() && *samples >= 0);
+        if (!whole || *samples == 1 || samples->get<uint64_t>() > kMaxMotionSamples)
+            r.fail(r.name("motion_samples") + " must be \"auto\", 0 (auto) or an integer in [2, " +
+                   std::to_string(kMaxMotionSamples) + "] (got " + samples->dump() + ")");
+        p.motionSamples = samples->get<uint32_t>();
+    }
     parseSensorElectronics(r, p);
+    parseLensOptics(r, p.optics);
     r.finish();
     return p;
 }
@@ -198,6 +208,11 @@ nlohmann::json sensorToJson(const SensorParams& p) {
                            {"read_noise", p.readNoise},
                            {"full_well", p.fullWell}};
     sensorElectronicsToJson(p.electronics, json);
+    lensOpticsToJson(p.optics, json);
+    if (p.shutterSeconds > 0.0) { // absent from a scene without a shutter: its records stay as they were
+        json["shutter_s"] = p.shutterSeconds;
+        json["motion_samples"] = p.motionSamples == 0 ? nlohmann::json("auto") : nlohmann::json(p.motionSamples);
+    }
     return json;
 }
 

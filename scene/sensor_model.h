@@ -23,6 +23,7 @@
 #pragma once
 
 #include "scene/sensor_exposure.h"
+#include "scene/sensor_optics.h"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -44,10 +45,17 @@ struct SensorParams {
     double electronsPerUnit = 0.0;       // photo-electrons per unit linear radiance; 0 = no noise at all
     double readNoise = 0.0;              // read noise standard deviation, electrons
     double fullWell = 0.0;               // saturation in electrons; 0 = none (HDR output)
+    // Exposure and motion blur (render/motion_blur.h): the colour image is the mean over the exposure.
+    double shutterSeconds = 0.0; // exposure time; 0 = an instantaneous image (no sub-frames)
+    uint32_t motionSamples = 0;  // sub-frames per exposure, 2..kMaxMotionSamples; 0 = "auto" (from the motion)
     SensorElectronics electronics;       // gain, black level, white balance (scene/sensor_exposure.h)
+    LensOptics optics; // depth of field, MTF blur, chromatic aberration (scene/sensor_optics.h), before all else
 
     bool hasDistortion() const { return k1 != 0.0 || k2 != 0.0 || k3 != 0.0 || p1 != 0.0 || p2 != 0.0; }
 };
+
+inline constexpr double kMaxShutterSeconds = 1.0;
+inline constexpr uint32_t kMaxMotionSamples = 64;
 
 // Pinhole intrinsics in pixels (camera.h convention).
 struct Intrinsics {
@@ -88,8 +96,9 @@ void applySensorHalf(const SensorParams& params, const Intrinsics& intrinsics, u
                      uint32_t camera, std::span<uint16_t> rgbaHalf);
 
 // Reads a sensor object: {"enabled", "exposure" | "exposure_ev", "vignetting", "k1", "k2", "k3", "p1", "p2",
-// "electrons_per_unit", "read_noise", "full_well"}, all optional. A present object without "enabled" is
-// enabled. Errors name `source` and the JSON path, e.g. "scene.json: 'camera.sensor.k1' must be a number".
+// "electrons_per_unit", "read_noise", "full_well", "shutter_s", "motion_samples"}, all optional. A present object
+// without "enabled" is enabled. Errors name `source` and the JSON path, e.g.
+// "scene.json: 'camera.sensor.k1' must be a number".
 // A null `json` gives the defaults (disabled).
 SensorParams parseSensor(const nlohmann::json& json, const std::string& source, const std::string& jsonPath);
 // The parameters as JSON (the parser's keys), for frames.jsonl / manifests.
