@@ -36,6 +36,12 @@ void splitLabels(const Buffer& pairs, uint64_t pixels, bool world, std::vector<u
     for (uint64_t i = 0; i < pixels; ++i) (*tiles)[i] = pair[2 * i + 1];
 }
 
+std::vector<uint16_t> halves(const Buffer& buffer, uint64_t count) {
+    std::vector<uint16_t> out(count);
+    std::memcpy(out.data(), buffer.mapped(), count * sizeof(uint16_t));
+    return out;
+}
+
 std::vector<float> floats(const Buffer& buffer, uint64_t count) {
     std::vector<float> out(count);
     std::memcpy(out.data(), buffer.mapped(), count * sizeof(float));
@@ -59,36 +65,63 @@ OffscreenFrame::~OffscreenFrame() {
         retireBuffer(ctx_, *b);
 }
 
+void OffscreenFrame::createRightTargets() {
+    const RenderTargetDesc& desc = main_.desc();
+    const uint64_t pixels = uint64_t(desc.width) * desc.height;
+    rightMain_ = std::make_unique<RenderTarget>(ctx_, desc);
+    rightTruth_ = std::make_unique<RenderTarget>(ctx_, truth_.desc());
+    rightColor_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    rightDepth_ = createBuffer(ctx_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    rightLabels_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    rightNormals_ = createBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+    if (flow_[0])
+        for (Buffer& b : rightFlow_)
+            b = createBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
+}
+
+void OffscreenFrame::renderColour(SceneRenderer& renderer, const Camera& camera, double timeSeconds,
+                                  uint32_t frameIndex, const std::function<void(VkCommandBuffer)>& prologue,
+                                  const Camera* right, std::vector<uint16_t>& left, std::vector<uint16_t>* rightRgba) {
+    const RenderTargetDesc& desc = main_.desc();
+    require(camera.width == desc.width && camera.height == desc.height, "camera and frame sizes differ");
+    require(!right || (rightRgba && right->width == desc.width && right->height == desc.height),
+            "left and right sizes differ");
+    require(renderer.samples() == uint32_t(desc.samples), "renderer and frame sample counts differ");
+    if (right && !rightMain_) createRightTargets();
+    ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
+        if (prologue) prologue(cmd);
+        SceneRenderer::View views[2] = {{&camera, &main_, nullptr}, {right, rightMain_.get(), nullptr}};
+        renderer.recordViews(cmd, {views, right ? 2u : 1u}, timeSeconds, frameIndex);
+        main_.recordReadback(cmd, 0, color_);
+        if (right) rightMain_->recordReadback(cmd, 0, rightColor_);
+        transferToHostBarrier(cmd);
+    });
+    const uint64_t values = uint64_t(desc.width) * desc.height * 4;
+    left = halves(color_, values);
+    if (right) *rightRgba = halves(rightColor_, values);
+}
+
 FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera, double timeSeconds,
                                    uint32_t frameIndex, const std::function<void(VkCommandBuffer)>& prologue,
-                                   const Camera* right, const FlowTicks* flow) {
+                                   const Camera* right, const FlowTicks* flow, bool colour) {
     const RenderTargetDesc& desc = main_.desc();
     require(camera.width == desc.width && camera.height == desc.height, "camera and frame sizes differ");
     require(!right || (right->width == desc.width && right->height == desc.height), "left and right sizes differ");
     require(renderer.samples() == uint32_t(desc.samples), "renderer and frame sample counts differ");
     const uint64_t pixels = uint64_t(desc.width) * desc.height;
     require(!flow || flow_[0], "OffscreenFrame::render: flow needs a frame made with flow");
-    if (right && !rightMain_) {
-        rightMain_ = std::make_unique<RenderTarget>(ctx_, desc);
-        rightTruth_ = std::make_unique<RenderTarget>(ctx_, truth_.desc());
-        rightColor_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-        rightDepth_ = createBuffer(ctx_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-        rightLabels_ = createBuffer(ctx_, pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-        rightNormals_ = createBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-        if (flow_[0])
-            for (Buffer& b : rightFlow_)
-                b = createBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::Readback);
-    }
+    if (right && !rightMain_) createRightTargets();
     ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
         if (prologue) prologue(cmd);
-        SceneRenderer::View views[2] = {{&camera, &main_, &truth_}, {right, rightMain_.get(), rightTruth_.get()}};
+        SceneRenderer::View views[2] = {{&camera, colour ? &main_ : nullptr, &truth_},
+                                        {right, colour ? rightMain_.get() : nullptr, rightTruth_.get()}};
         renderer.recordViews(cmd, {views, right ? 2u : 1u}, timeSeconds, frameIndex, nullptr, true, flow);
-        main_.recordReadback(cmd, 0, color_);
+        if (colour) main_.recordReadback(cmd, 0, color_);
         truth_.recordReadback(cmd, 0, depth_);
         truth_.recordReadback(cmd, 1, labels_);
         truth_.recordReadback(cmd, 2, normals_);
         if (right) {
-            rightMain_->recordReadback(cmd, 0, rightColor_);
+            if (colour) rightMain_->recordReadback(cmd, 0, rightColor_);
             rightTruth_->recordReadback(cmd, 0, rightDepth_);
             rightTruth_->recordReadback(cmd, 1, rightLabels_);
             rightTruth_->recordReadback(cmd, 2, rightNormals_);
@@ -100,15 +133,13 @@ FrameImages OffscreenFrame::render(SceneRenderer& renderer, const Camera& camera
         transferToHostBarrier(cmd);
     });
     FrameImages images{.width = desc.width, .height = desc.height};
-    images.rgbaHalf.resize(pixels * 4);
+    if (colour) images.rgbaHalf = halves(color_, pixels * 4);
     images.depth.resize(pixels);
-    std::memcpy(images.rgbaHalf.data(), color_.mapped(), pixels * 8);
     std::memcpy(images.depth.data(), depth_.mapped(), pixels * 4); // float bit patterns written by the shader
     splitLabels(labels_, pixels, renderer.world(), images.labels, &images.tiles);
     images.normals = normalsXyz(normals_, pixels);
     if (right) {
-        images.rightRgbaHalf.resize(pixels * 4);
-        std::memcpy(images.rightRgbaHalf.data(), rightColor_.mapped(), pixels * 8);
+        if (colour) images.rightRgbaHalf = halves(rightColor_, pixels * 4);
         images.rightDepth.resize(pixels);
         std::memcpy(images.rightDepth.data(), rightDepth_.mapped(), pixels * 4);
         splitLabels(rightLabels_, pixels, false, images.rightLabels, nullptr);

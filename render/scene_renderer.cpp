@@ -558,7 +558,8 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
     recordShadowPass(cmd, reference, shadowFit, firstSlot, dataSlot, timeSeconds, timers);
 
     for (uint32_t v = 0; v < views.size(); ++v)
-        recordMainPass(cmd, *views[v].main, firstSlot + v, dataSlot, reference.position, timers, nullptr);
+        if (views[v].main) // null: the truth of a frame whose colour comes from an exposure's sub-frames
+            recordMainPass(cmd, *views[v].main, firstSlot + v, dataSlot, reference.position, timers, nullptr);
     if (flow && flow->beforeTruth) {
         flow->beforeTruth(cmd);
         computeToVertexAndCopyBarrier(cmd); // the next tick's plant states -> the truth pass's vertex shaders

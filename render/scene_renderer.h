@@ -81,7 +81,7 @@ public:
     // One view of a frame: its camera, colour target and (optional) ground-truth target.
     struct View {
         const Camera* camera;
-        RenderTarget* main;
+        RenderTarget* main; // null: no colour pass (the truth alone)
         RenderTarget* truth = nullptr;
     };
     static constexpr uint32_t kMaxViews = 2;
@@ -215,11 +215,19 @@ public:
     // With `right`, also renders the right view of a stereo rig (see SceneRenderer::recordViews), colour and
     // ground truth.
     // `flow` (an OffscreenFrame made with flow): the truth passes write the motion ground truth, read back too.
+    // `colour` false: no colour pass and no colour image (rgbaHalf empty): the truth of a frame whose colour comes
+    // from an exposure's sub-frames (render/motion_blur.h).
     FrameImages render(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
                        const std::function<void(VkCommandBuffer)>& prologue = {}, const Camera* right = nullptr,
-                       const FlowTicks* flow = nullptr);
+                       const FlowTicks* flow = nullptr, bool colour = true);
+    // The colour images alone (no truth pass) into `left` and, with `right`, `rightRgba` (half bit patterns).
+    void renderColour(SceneRenderer& renderer, const Camera& camera, double timeSeconds, uint32_t frameIndex,
+                      const std::function<void(VkCommandBuffer)>& prologue, const Camera* right,
+                      std::vector<uint16_t>& left, std::vector<uint16_t>* rightRgba);
 
 private:
+    void createRightTargets(); // on the first stereo frame
+
     Context& ctx_;
     RenderTarget main_, truth_;
     std::unique_ptr<RenderTarget> rightMain_, rightTruth_; // created on the first stereo frame

@@ -23,6 +23,8 @@ void overrideCamera(Scene& scene, const std::optional<glm::dvec3>& position, con
 
 // The rig of frame `frame` (time frame * sequence.time_step) for width x height images.
 RigCameras sequenceRig(const SceneResources& r, uint32_t width, uint32_t height, uint32_t frame);
+// The rig at any simulation time (an exposure's sub-frames, render/motion_blur.h); sequenceRig at frame * time_step.
+RigCameras sequenceRigAt(const SceneResources& r, uint32_t width, uint32_t height, double time);
 
 // The rig of `frame` (which checks a mount) and the scene's sensor model (which checks its lens is invertible over
 // the image), each error naming the scene and the key; call before anything is written.
@@ -36,7 +38,8 @@ std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, uint32_t w
 // frame's already ran it, and the next tick runs before the truth passes (FlowTicks), so the simulation ends one tick
 // ahead; frames must then come in increasing order.
 FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
-                                uint32_t height, uint32_t frame, double timeOffset, const std::optional<SensorModel>& sensor, RigCameras& cameras);
+                                uint32_t height, uint32_t frame, double timeOffset,
+                                const std::optional<SensorModel>& sensor, RigCameras& cameras);
 
 // What the range sensors (range/range_recorder.h) see of a rendered frame besides the scene: the plants' interaction
 // state (the GPU's dynamic records after the frame's tick) and the ground's rut patches as the track renderer draws

@@ -328,3 +328,41 @@ TEST(SensorModel, ParseErrorsNameTheJsonPath) {
         "scene.json: 'rigs[0].sensor.electrons_per_unit' must be positive when 'read_noise' or 'full_well' is set");
     EXPECT_EQ(message(nlohmann::json::array()), "scene.json: 'rigs[0].sensor' must be an object");
 }
+
+TEST(SensorModel, ShutterKeysParseAndRoundTrip) {
+    SensorParams p = parseSensor({{"shutter_s", 0.004}, {"motion_samples", 8}}, "s.json", "camera.sensor");
+    EXPECT_EQ(p.shutterSeconds, 0.004);
+    EXPECT_EQ(p.motionSamples, 8u);
+    EXPECT_EQ(sensorToJson(parseSensor(sensorToJson(p), "s.json", "x")), sensorToJson(p));
+    EXPECT_EQ(parseSensor({{"shutter_s", 0.01}, {"motion_samples", "auto"}}, "s", "c").motionSamples, 0u);
+    EXPECT_EQ(parseSensor({{"shutter_s", 0.01}, {"motion_samples", 0}}, "s", "c").motionSamples, 0u);
+    EXPECT_EQ(sensorToJson(parseSensor({{"shutter_s", 0.01}}, "s", "c")).at("motion_samples"), "auto");
+    EXPECT_EQ(parseSensor({{"motion_samples", 64}}, "s", "c").motionSamples, 64u);
+    // Without a shutter the records stay as they were before the keys existed.
+    const nlohmann::json noShutter = sensorToJson(parseSensor({{"k1", 0.1}}, "s", "c"));
+    EXPECT_FALSE(noShutter.contains("shutter_s"));
+    EXPECT_FALSE(noShutter.contains("motion_samples"));
+}
+
+TEST(SensorModel, ShutterKeyErrorsNameTheKey) {
+    auto message = [](const nlohmann::json& j) {
+        try {
+            parseSensor(j, "scene.json", "camera.sensor");
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(message({{"shutter_s", -0.01}}),
+              "scene.json: 'camera.sensor.shutter_s' must be between 0 and 1 (got -0.01)");
+    EXPECT_EQ(message({{"shutter_s", 2}}), "scene.json: 'camera.sensor.shutter_s' must be between 0 and 1 (got 2)");
+    EXPECT_EQ(message({{"shutter_s", "fast"}}), "scene.json: 'camera.sensor.shutter_s' must be a number");
+    const std::string samples = "scene.json: 'camera.sensor.motion_samples' must be \"auto\", 0 (auto) or an integer "
+                                "in [2, 64] (got ";
+    EXPECT_EQ(message({{"motion_samples", 1}}), samples + "1)");
+    EXPECT_EQ(message({{"motion_samples", 65}}), samples + "65)");
+    EXPECT_EQ(message({{"motion_samples", -4}}), samples + "-4)");
+    EXPECT_EQ(message({{"motion_samples", 4.5}}), samples + "4.5)");
+    EXPECT_EQ(message({{"motion_samples", "many"}}), samples + "\"many\")");
+    EXPECT_EQ(message({{"motion_samples", nullptr}}), samples + "null)");
+}
