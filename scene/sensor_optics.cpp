@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 namespace sward {
 
@@ -252,30 +253,34 @@ void SensorOptics::depthOfField(std::span<const float> depthIn, std::span<float>
 void SensorOptics::mtfBlur(std::span<float> rgba) const {
     const uint32_t w = width_, h = height_;
     const int32_t radius = int32_t(mtfKernel_.size()) - 1;
+    const size_t rowFloats = size_t(w) * 4;
     std::vector<float> rows(rgba.size());
-    // One pass along rows into `rows`, one along columns back into the image; taps summed in a fixed order
-    // (-radius .. radius) per output value.
+    // One pass along rows into `rows`, one along columns back into the image. Each output value sums its taps in one
+    // order (-radius .. radius) from 0, tap by tap over the whole row, so the compiler may vectorise across the row
+    // without reordering any value's sum; edges clamp to the border pixel.
     parallelFor(h, threads_, [&](uint32_t y, uint32_t) {
-        for (uint32_t x = 0; x < w; ++x)
-            for (int c = 0; c < 4; ++c) {
-                float sum = 0.0f;
-                for (int32_t k = -radius; k <= radius; ++k) {
-                    const uint32_t xx = uint32_t(std::clamp<int32_t>(int32_t(x) + k, 0, int32_t(w) - 1));
-                    sum += mtfKernel_[size_t(std::abs(k))] * rgba[(size_t(y) * w + xx) * 4 + c];
-                }
-                rows[(size_t(y) * w + x) * 4 + c] = sum;
-            }
+        const float* source = &rgba[size_t(y) * rowFloats];
+        float* sum = &rows[size_t(y) * rowFloats];
+        for (int32_t k = -radius; k <= radius; ++k) {
+            const float weight = mtfKernel_[size_t(std::abs(k))];
+            const int32_t lo = std::clamp(-k, 0, int32_t(w)), hi = std::clamp(int32_t(w) - k, lo, int32_t(w));
+            for (int32_t x = 0; x < lo; ++x) // left border: the first pixel
+                for (int c = 0; c < 4; ++c) sum[size_t(x) * 4 + c] += weight * source[c];
+            const ptrdiff_t shift = ptrdiff_t(4) * k;
+            for (ptrdiff_t i = ptrdiff_t(lo) * 4; i < ptrdiff_t(hi) * 4; ++i) sum[i] += weight * source[i + shift];
+            for (int32_t x = hi; x < int32_t(w); ++x) // right border: the last pixel
+                for (int c = 0; c < 4; ++c) sum[size_t(x) * 4 + c] += weight * source[rowFloats - 4 + size_t(c)];
+        }
     });
     parallelFor(h, threads_, [&](uint32_t y, uint32_t) {
-        for (uint32_t x = 0; x < w; ++x)
-            for (int c = 0; c < 4; ++c) {
-                float sum = 0.0f;
-                for (int32_t k = -radius; k <= radius; ++k) {
-                    const uint32_t yy = uint32_t(std::clamp<int32_t>(int32_t(y) + k, 0, int32_t(h) - 1));
-                    sum += mtfKernel_[size_t(std::abs(k))] * rows[(size_t(yy) * w + x) * 4 + c];
-                }
-                rgba[(size_t(y) * w + x) * 4 + c] = sum;
-            }
+        float* sum = &rgba[size_t(y) * rowFloats];
+        std::fill(sum, sum + rowFloats, 0.0f);
+        for (int32_t k = -radius; k <= radius; ++k) {
+            const float weight = mtfKernel_[size_t(std::abs(k))];
+            const size_t yy = size_t(std::clamp<int32_t>(int32_t(y) + k, 0, int32_t(h) - 1));
+            const float* source = &rows[yy * rowFloats];
+            for (size_t i = 0; i < rowFloats; ++i) sum[i] += weight * source[i];
+        }
     });
 }
 
