@@ -37,8 +37,10 @@ class JsonReader;
 struct Intrinsics;
 struct SensorParams;
 
-// COST: the depth-of-field gather visits up to (2 ceil(r + 0.5) + 1)^2 sources per pixel, r the largest circle of
-// confusion near it (16 x 16 tiles): the cap bounds a frame's worst case (about 1,100 sources a pixel).
+// COST: the depth-of-field gather visits about pi (r + 0.5)^2 sources per pixel, r the largest circle of confusion
+// near it (16 x 16 tiles): the cap bounds a frame's worst case (about 900 sources a pixel). One core, 640x480: 16 ms
+// with radii below 0.7 px (f/1.4, 3.45 um pixels, focused at 0.6 m), 120 ms with radii of 5-6 px, 0.7 s with every
+// radius at the cap; the MTF blur (sigma 0.7 px) 6.5 ms, the chromatic aberration 11 ms.
 inline constexpr double kMaxCocRadiusPx = 16.0;
 
 // The lens keys of `camera.sensor` (SensorParams::optics); every effect 0 = none.
