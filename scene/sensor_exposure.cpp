@@ -1,5 +1,7 @@
 #include "scene/sensor_exposure.h"
 
+#include "common/error.h"
+#include "common/half_float.h"
 #include "common/json_reader.h"
 #include "scene/sensor_model.h"
 
@@ -28,6 +30,94 @@ double sensorReadout(const SensorParams& p, double light, uint32_t channel, doub
     if (x.blackLevel) v = std::max(v + black, 0.0);
     if (p.fullWell > 0.0) v = std::min(v, black + p.fullWell / epu);
     return v;
+}
+
+double exactExp2(double x) {
+    // 2^x = 2^n 2^f with n = floor(x), f in [0, 1); 2^f = e^(f ln 2) by its Taylor series (terms below 1e-17 after 18).
+    const double n = std::floor(x), t = (x - n) * 0.69314718055994530942;
+    double sum = 1.0, term = 1.0;
+    for (int k = 1; k <= 18; ++k) {
+        term = term * t / double(k);
+        sum += term;
+    }
+    return std::ldexp(sum, int(n));
+}
+
+uint32_t autoExposureWindow(const AutoExposureParams& p, double timeStep) {
+    if (!(p.timeConstantSeconds > 0.0)) return 0;
+    return uint32_t(std::ceil(kAutoExposureSpan * p.timeConstantSeconds / timeStep));
+}
+
+double meterLuminance(std::span<const uint16_t> rgbaHalf) {
+    double sum = 0.0;
+    uint64_t count = 0;
+    for (size_t p = 0; p + 3 < rgbaHalf.size(); p += 4) {
+        const double y = 0.2126 * halfBitsToFloat(rgbaHalf[p]) + 0.7152 * halfBitsToFloat(rgbaHalf[p + 1]) +
+                         0.0722 * halfBitsToFloat(rgbaHalf[p + 2]);
+        if (!std::isfinite(y)) continue;
+        sum += y;
+        ++count;
+    }
+    return count ? sum / double(count) : 0.0;
+}
+
+double exactLog2(double x) {
+    // x = m 2^e with m in [sqrt(1/2), sqrt(2)); ln m = 2 atanh(z), z = (m - 1) / (m + 1), |z| < 0.172: 12 odd terms
+    // of the series leave less than 1e-19.
+    int e = 0;
+    double m = std::frexp(x, &e); // [0.5, 1)
+    if (m < 0.70710678118654752440) {
+        m *= 2.0;
+        --e;
+    }
+    const double z = (m - 1.0) / (m + 1.0), z2 = z * z;
+    double sum = 0.0, power = z;
+    for (int k = 0; k < 12; ++k) {
+        sum += power / double(2 * k + 1);
+        power *= z2;
+    }
+    return double(e) + 2.0 * sum * 1.44269504088896340736; // log2(e)
+}
+
+double autoExposureFactor(const AutoExposureParams& p, double timeStep, std::span<const double> meters) {
+    require(!meters.empty(), "autoExposureFactor: no meter");
+    const size_t n = std::min<size_t>(meters.size(), size_t(autoExposureWindow(p, timeStep)) + 1);
+    const double tau = p.timeConstantSeconds;
+    const double r = tau > 0.0 ? std::max((2.0 * tau - timeStep) / (2.0 * tau + timeStep), 0.0) : 0.0;
+    // Smoothed in stops, so a step darker and one brighter are followed at the same pace; a black view counts as
+    // kAutoExposureFloorEv.
+    double weighted = 0.0, weights = 0.0, w = 1.0;
+    for (size_t i = 0; i < n; ++i) { // newest first
+        const double m = meters[meters.size() - 1 - i];
+        weighted +=
+            w * (m > 0.0 && std::isfinite(m) ? std::max(exactLog2(m), kAutoExposureFloorEv) : kAutoExposureFloorEv);
+        weights += w;
+        w *= r;
+    }
+    const double ev = exactLog2(p.targetGrey) - weighted / weights;
+    return exactExp2(std::clamp(ev, p.minEv, p.maxEv));
+}
+
+AutoExposureParams parseAutoExposure(JsonReader& sensor) {
+    AutoExposureParams p;
+    if (!sensor.has("auto_exposure")) return p;
+    JsonReader r = sensor.child("auto_exposure");
+    p.enabled = r.boolean("enabled", true);
+    p.targetGrey = r.number("target_grey", 0.18, 1e-4, 100.0);
+    p.timeConstantSeconds = r.number("time_constant_s", 0.5, 0.0, 60.0);
+    p.minEv = r.number("min_ev", -16.0, -30.0, 30.0);
+    p.maxEv = r.number("max_ev", 16.0, -30.0, 30.0);
+    if (p.minEv > p.maxEv) r.fail(r.name("min_ev") + " must not be above 'max_ev'");
+    r.finish();
+    return p;
+}
+
+nlohmann::json autoExposureToJson(const AutoExposureParams& p) {
+    return {{"enabled", p.enabled},
+            {"target_grey", p.targetGrey},
+            {"time_constant_s", p.timeConstantSeconds},
+            {"min_ev", p.minEv},
+            {"max_ev", p.maxEv}};
 }
 
 void parseSensorElectronics(JsonReader& r, SensorParams& params) {

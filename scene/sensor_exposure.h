@@ -23,11 +23,35 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 
 namespace sward {
 
 class JsonReader;
 struct SensorParams;
+
+// Auto-exposure (JSON "auto_exposure"): the exposure of frame k is 2^clamp(log2(target_grey) - S_k, min_ev, max_ev),
+// S_k the metered luminance in stops, smoothed over the frames before it:
+//   S_k = sum_{i=0..W'} r^i log2(M_{k-i}) / sum_{i=0..W'} r^i,   W' = min(W, k),   W = ceil(5 time_constant_s / dt),
+//   r = (2 tau - dt) / (2 tau + dt)  (the (1,1) Pade form of exp(-dt / tau))
+// with log2 and 2^x by + - * /, frexp and ldexp only (exactLog2, exactExp2): the same bits on every machine. M_j is
+// the mean luminance (Rec. 709 weights) of frame j's ideal colour image (before lens and sensor), so the state has
+// no feedback and frame k's exposure is a pure function of the ideal renders of frames k - W .. k: a shard or a
+// resumed run re-meters the W frames before its first one and gets the very same value. The weights beyond W hold
+// e^-5 = 0.7 % of the filter's mass; a step in the scene's light is followed by 63 % of its stops after one time
+// constant (more at the sequence's start, where the window is normalised over fewer frames). time_constant_s 0:
+// every frame metered alone.
+// Not yet a scene key: parseSensor does not read "auto_exposure" until sward-render meters the frames before each
+// shard's first one and records the exposure per frame (parseAutoExposure is ready for it).
+struct AutoExposureParams {
+    bool enabled = false;
+    double targetGrey = 0.18;           // the exposed mean luminance aimed at
+    double timeConstantSeconds = 0.5;   // tau
+    double minEv = -16.0, maxEv = 16.0; // limits of the exposure factor, in stops
+};
+
+inline constexpr double kAutoExposureSpan = 5.0;      // the window in time constants
+inline constexpr double kAutoExposureFloorEv = -40.0; // the meter of a black view, in stops
 
 struct SensorElectronics {
     double gain = 1.0;                // analog gain G (JSON "gain", or "iso" / "base_iso")
@@ -42,6 +66,21 @@ struct SensorElectronics {
                whiteBalance == std::array<double, 3>{1.0, 1.0, 1.0};
     }
 };
+
+// Frames before frame k that its exposure depends on (W above); 0 without smoothing.
+uint32_t autoExposureWindow(const AutoExposureParams& params, double timeStep);
+// M: the mean Rec. 709 luminance of the finite pixels of a linear half RGBA image, summed in pixel order (0 if none).
+double meterLuminance(std::span<const uint16_t> rgbaHalf);
+// The exposure factor of frame k from `meters`: the meters of frames k - n + 1 .. k in order (n = min(W, k) + 1;
+// more are ignored from the front). Precondition: meters not empty.
+double autoExposureFactor(const AutoExposureParams& params, double timeStep, std::span<const double> meters);
+// 2^x by + - * / and ldexp only: the same bits on every machine (|x| <= 64; within a few ulp of std::exp2).
+double exactExp2(double x);
+// log2(x) for finite x > 0 by frexp and + - * / only (within 4e-15 of std::log2).
+double exactLog2(double x);
+// Reads the "auto_exposure" object of a sensor (errors name 'camera.sensor.auto_exposure.<key>').
+AutoExposureParams parseAutoExposure(JsonReader& sensor);
+nlohmann::json autoExposureToJson(const AutoExposureParams& params);
 
 // The output value of one colour channel `channel` (0..2) from the light `light` reaching the pixel (exposure and
 // vignetting applied), `normal` the pixel channel's standard normal (used only with electrons_per_unit > 0).

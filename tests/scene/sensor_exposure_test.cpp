@@ -4,6 +4,8 @@
 #include "scene/sensor_model.h"
 
 #include "common/error.h"
+#include "common/half_float.h"
+#include "common/json_reader.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -218,4 +220,133 @@ TEST(SensorExposure, BadValuesAreRefusedNamingTheKey) {
               "scene.json: 'camera.sensor.white_balance' must be an array of 3 numbers");
     EXPECT_EQ(message({{"white_balance", {1, 0, 1}}}),
               "scene.json: 'camera.sensor.white_balance' must hold numbers between 0.001 and 1000");
+}
+
+namespace {
+
+// The exposure of every frame of `meters`, each from the meters of the frames up to it.
+std::vector<double> exposures(const AutoExposureParams& p, double timeStep, const std::vector<double>& meters) {
+    std::vector<double> out;
+    for (size_t k = 0; k < meters.size(); ++k)
+        out.push_back(autoExposureFactor(p, timeStep, std::span(meters).first(k + 1)));
+    return out;
+}
+
+} // namespace
+
+TEST(AutoExposure, FollowsAStepInTheSceneWithinItsTimeConstant) {
+    // 30 fps, tau 0.5 s (15 frames): a bright view (mean luminance 1.0) for 40 frames, then a dark one (1/32).
+    const AutoExposureParams p{.enabled = true, .targetGrey = 0.18, .timeConstantSeconds = 0.5};
+    const double dt = 1.0 / 30.0;
+    std::vector<double> meters(40, 1.0);
+    meters.resize(200, 1.0 / 32.0);
+    const std::vector<double> e = exposures(p, dt, meters);
+    EXPECT_EQ(autoExposureWindow(p, dt), 75u);
+    EXPECT_NEAR(e[39], 0.18, 1e-15);
+    const double before = std::log2(0.18), after = std::log2(0.18 * 32.0); // 5 stops to go
+    const auto followed = [&](size_t k) { return (std::log2(e[k]) - before) / (after - before); };
+    EXPECT_LT(followed(40), 0.1);   // the step's own frame moves the exposure by one weight's share
+    EXPECT_GE(followed(55), 0.632); // one time constant later: 1 - 1/e of the way (the window's start helps a little)
+    EXPECT_LT(followed(55), 0.7);
+    for (size_t k = 41; k <= 40 + 75; ++k) ASSERT_GT(e[k], e[k - 1]) << k; // monotonic, no overshoot
+    for (size_t k = 40 + 75; k < e.size(); ++k) ASSERT_EQ(e[k], e[40 + 75]) << k;
+    EXPECT_NEAR(e[40 + 75], 0.18 * 32.0, 1e-12); // the window holds only the dark view: exactly there
+    // And back up into the light at the same pace, in stops.
+    std::vector<double> up(40, 1.0 / 32.0);
+    up.resize(120, 1.0);
+    const std::vector<double> u = exposures(p, dt, up);
+    EXPECT_NEAR((std::log2(u[55]) - after) / (before - after), followed(55), 1e-9);
+}
+
+TEST(AutoExposure, AShardOrResumedRunRecomputesEveryExposureBitwise) {
+    // A shard starting at frame f re-meters frames f - W .. f - 1 only: the exposure is the one of the whole run.
+    const AutoExposureParams p{.enabled = true, .targetGrey = 0.2, .timeConstantSeconds = 0.25};
+    const double dt = 0.05;
+    const uint32_t w = autoExposureWindow(p, dt);
+    ASSERT_EQ(w, 25u);
+    std::vector<double> meters;
+    for (int k = 0; k < 300; ++k) meters.push_back(0.05 + 0.9 * double((k * 7919) % 101) / 100.0);
+    const std::vector<double> whole = exposures(p, dt, meters);
+    for (size_t k = 0; k < meters.size(); ++k) {
+        const size_t first = k >= w ? k - w : 0;
+        const std::vector<double> window(meters.begin() + long(first), meters.begin() + long(k) + 1);
+        ASSERT_EQ(autoExposureFactor(p, dt, window), whole[k]) << k;
+    }
+    // A meter outside the window changes nothing; one inside changes the exposure.
+    std::vector<double> changed = meters;
+    changed[100 - w - 1] = 50.0;
+    EXPECT_EQ(autoExposureFactor(p, dt, std::span(changed).first(101)), whole[100]);
+    changed[100 - w] = 50.0;
+    EXPECT_NE(autoExposureFactor(p, dt, std::span(changed).first(101)), whole[100]);
+}
+
+TEST(AutoExposure, LimitsClampTheExposureInStops) {
+    const AutoExposureParams p{
+        .enabled = true, .targetGrey = 0.18, .timeConstantSeconds = 0.0, .minEv = -1.5, .maxEv = 2.0};
+    EXPECT_EQ(autoExposureFactor(p, 0.1, std::vector<double>{100.0}), exactExp2(-1.5));
+    EXPECT_EQ(autoExposureFactor(p, 0.1, std::vector<double>{1e-3}), 4.0);
+    EXPECT_EQ(autoExposureFactor(p, 0.1, std::vector<double>{0.0}), 4.0); // a black view opens up to the limit
+    EXPECT_NEAR(autoExposureFactor(p, 0.1, std::vector<double>{0.09}), 2.0, 1e-15);
+    EXPECT_EQ(autoExposureWindow(p, 0.1), 0u); // tau 0: each frame metered alone
+}
+
+TEST(AutoExposure, ExactLog2AndExp2AgreeWithLibmAndAreExactOnPowersOfTwo) {
+    for (int n = -30; n <= 30; ++n) {
+        EXPECT_EQ(exactExp2(double(n)), std::ldexp(1.0, n));
+        EXPECT_EQ(exactLog2(std::ldexp(1.0, n)), double(n));
+    }
+    for (double x = -20.0; x <= 20.0; x += 0.0137)
+        EXPECT_NEAR(exactExp2(x) / std::exp2(x), 1.0, 1e-15) << x; // a few ulp
+    for (double x = 1e-6; x < 1e6; x *= 1.37) EXPECT_NEAR(exactLog2(x), std::log2(x), 4e-15) << x;
+}
+
+TEST(AutoExposure, MeterIsTheMeanLuminanceOfTheFinitePixels) {
+    // Two pixels (1, 0, 0) and (0, 1, 0.5) and one with an infinite channel, which the meter leaves out.
+    const std::vector<uint16_t> image = {floatToHalfBits(1.0f),
+                                         0,
+                                         0,
+                                         floatToHalfBits(1.0f),
+                                         0,
+                                         floatToHalfBits(1.0f),
+                                         floatToHalfBits(0.5f),
+                                         floatToHalfBits(1.0f),
+                                         floatToHalfBits(INFINITY),
+                                         0,
+                                         0,
+                                         floatToHalfBits(1.0f)};
+    EXPECT_NEAR(meterLuminance(image), (0.2126 + 0.7152 + 0.0722 * 0.5) / 2.0, 1e-15);
+    EXPECT_EQ(meterLuminance({}), 0.0);
+}
+
+TEST(AutoExposure, ParsesItsObjectAndNamesBadKeys) {
+    auto parseAe = [](const nlohmann::json& ae) {
+        const nlohmann::json sensor = {{"auto_exposure", ae}};
+        JsonReader r(sensor, "scene.json", "camera.sensor");
+        return parseAutoExposure(r);
+    };
+    const AutoExposureParams p =
+        parseAe({{"target_grey", 0.25}, {"time_constant_s", 0.8}, {"min_ev", -4}, {"max_ev", 3.5}});
+    EXPECT_TRUE(p.enabled);
+    EXPECT_EQ(p.targetGrey, 0.25);
+    EXPECT_EQ(p.timeConstantSeconds, 0.8);
+    EXPECT_EQ(p.minEv, -4.0);
+    EXPECT_EQ(p.maxEv, 3.5);
+    const AutoExposureParams back = parseAe(autoExposureToJson(p));
+    EXPECT_EQ(autoExposureToJson(back), autoExposureToJson(p));
+    auto message = [&](const nlohmann::json& ae) {
+        try {
+            parseAe(ae);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(message({{"target_grey", 0}}),
+              "scene.json: 'camera.sensor.auto_exposure.target_grey' must be between 0.0001 and 100 (got 0)");
+    EXPECT_EQ(message({{"time_constant_s", -1}}),
+              "scene.json: 'camera.sensor.auto_exposure.time_constant_s' must be between 0 and 60 (got -1)");
+    EXPECT_EQ(message({{"min_ev", 2}, {"max_ev", 1}}),
+              "scene.json: 'camera.sensor.auto_exposure.min_ev' must not be above 'max_ev'");
+    EXPECT_EQ(message({{"speed", 1}}), "scene.json: unknown key 'camera.sensor.auto_exposure.speed'");
+    EXPECT_EQ(message(0.5), "scene.json: 'camera.sensor.auto_exposure' must be an object");
 }
