@@ -56,7 +56,7 @@ constexpr const char* kAllFolders[] = {
     kOcclusionFolder,   kOcclusionRightFolder, kNormalFolder,        kNormalRightFolder,
     kFlowForwardFolder, kFlowForwardMaskFolder, kFlowBackwardFolder, kFlowBackwardMaskFolder,
     kFlowForwardRightFolder, kFlowForwardMaskRightFolder, kFlowBackwardRightFolder, kFlowBackwardMaskRightFolder,
-    kDisparityChangeForwardFolder, kDisparityChangeBackwardFolder};
+    kDisparityChangeForwardFolder, kDisparityChangeBackwardFolder, kMotionBlurFolder};
 // clang-format on
 
 bool isSwardTemporaryName(const std::string& name) {
@@ -139,8 +139,8 @@ void refuseLinksIn(const std::string& dir, const std::function<bool(const std::s
 } // namespace
 
 DatasetWriter::DatasetWriter(std::string root, bool stereo, const std::vector<RangeSensorParams>& rangeSensors,
-                             bool flow)
-    : root_(std::move(root)), stereo_(stereo), flow_(flow) {
+                             bool flow, bool motionBlur)
+    : root_(std::move(root)), stereo_(stereo), flow_(flow), motionBlur_(motionBlur) {
     for (const RangeSensorParams& sensor : rangeSensors)
         rangeSensors_.push_back({sensor.name, sensor.type, sensor.channels() * uint64_t(sensor.columns())});
 }
@@ -155,6 +155,7 @@ std::vector<std::string> DatasetWriter::directories() const {
         for (bool forward : {true, false})
             dirs.insert(dirs.end(), {flowFolders(view == 1, forward).flow, flowFolders(view == 1, forward).mask});
     if (flow_ && stereo_) dirs.insert(dirs.end(), {kDisparityChangeForwardFolder, kDisparityChangeBackwardFolder});
+    if (motionBlur_) dirs.push_back(kMotionBlurFolder);
     if (!rangeSensors_.empty()) dirs.push_back(kRangeFolder);
     for (const RangeFiles& sensor : rangeSensors_) dirs.push_back(std::string(kRangeFolder) + "/" + sensor.name);
     return dirs;
@@ -203,6 +204,7 @@ uint64_t DatasetWriter::frameBytesUpperBound(uint32_t width, uint32_t height) co
     for (uint32_t k = 0; flow_ && k < (stereo_ ? 4u : 2u); ++k)
         bytesPerPixel.insert(bytesPerPixel.end(), {8, 6, 12, 1});
     if (flow_ && stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {4, 4});
+    if (motionBlur_) bytesPerPixel.push_back(4); // the blur length, float Y
     constexpr uint64_t kBlock = 4096;
     uint64_t total = 0;
     for (uint64_t perPixel : bytesPerPixel) {
@@ -334,6 +336,7 @@ std::vector<std::string> DatasetWriter::frameFiles(uint32_t frame) const {
                       frameFile(kDisparityRightFolder, frame, ".exr"), frameFile(kDisparityRightFolder, frame, ".pfm"),
                       frameFile(kOcclusionFolder, frame, ".png"), frameFile(kOcclusionRightFolder, frame, ".png"),
                       frameFile(kNormalRightFolder, frame, ".exr")});
+    if (motionBlur_) files.push_back(frameFile(kMotionBlurFolder, frame, ".exr"));
     for (const RangeFiles& sensor : rangeSensors_)
         for (std::string& file : rangeFrameFiles(sensor.name, sensor.type, frame)) files.push_back(std::move(file));
     for (std::string& file : flowFiles(frame)) files.push_back(std::move(file));
@@ -389,6 +392,11 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
     writePng8(path(kPreviewFolder, ".png"), w, h, 3, tonemapPreview(images.rgbaHalf, w, h));
     if (stereo_) writeStereoFiles(frame, images, truth);
     if (flow_) writeFlowFiles(frame, images, *flow, left.fx * baseline);
+    if (motionBlur_) {
+        require(images.motionBlur.size() == size_t(w) * h,
+                "DatasetWriter::writeFrame: a shutter's frame needs its blur");
+        writeExrFloatChannels(path(kMotionBlurFolder, ".exr"), w, h, {"Y"}, {images.motionBlur});
+    }
 }
 
 void DatasetWriter::writeFlowFiles(uint32_t frame, const FrameImages& images, const FlowNeighbours& neighbours,

@@ -24,6 +24,9 @@ struct FrameImages {
     // next and to the previous tick: x, y pixels (target pixel centre minus this pixel's), z the point's planar depth
     // in that tick's camera, w 1 (0 where the pixel shows sky).
     std::vector<float> flowForward, flowBackward, rightFlowForward, rightFlowBackward;
+    // With a shutter (camera.sensor.shutter_s, render/motion_blur.h), width*height: the left view's blur length in
+    // pixels over the exposure, from the camera's motion and the exact depth (static geometry).
+    std::vector<float> motionBlur;
 };
 
 } // namespace sward

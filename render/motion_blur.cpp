@@ -35,6 +35,30 @@ double cameraMotionPixels(const Camera& start, const Camera& end, double nearDep
     return largest;
 }
 
+std::vector<float> motionBlurLengths(const Camera& start, const Camera& centre, const Camera& end,
+                                     std::span<const float> depth) {
+    require(depth.size() == size_t(centre.width) * centre.height, "motionBlurLengths: depth and camera sizes differ");
+    // Where a camera sees a point (w = 1) or a direction (w = 0): pixel coordinates, nothing behind it.
+    auto seen = [](const Camera& camera, const glm::dvec3& p, double w, glm::dvec2& pixel) {
+        const glm::dvec3 c = glm::transpose(camera.worldFromCamera) * (p - w * camera.position);
+        if (c.z <= 0.0) return false;
+        pixel = {camera.fx * c.x / c.z + camera.cx, camera.fy * c.y / c.z + camera.cy};
+        return true;
+    };
+    std::vector<float> lengths(depth.size(), 0.0f);
+    for (uint32_t y = 0; y < centre.height; ++y)
+        for (uint32_t x = 0; x < centre.width; ++x) {
+            const size_t i = size_t(y) * centre.width + x;
+            const glm::dvec3 ray = centre.ray(x + 0.5, y + 0.5);
+            const bool sky = !(depth[i] < std::numeric_limits<float>::max());
+            const glm::dvec3 p = sky ? ray : centre.position + double(depth[i]) * ray;
+            glm::dvec2 a, b;
+            if (seen(start, p, sky ? 0.0 : 1.0, a) && seen(end, p, sky ? 0.0 : 1.0, b))
+                lengths[i] = float(glm::length(b - a));
+        }
+    return lengths;
+}
+
 uint32_t autoMotionSamples(double motionPixels) {
     if (!(motionPixels < double(kMaxAutoMotionSamples))) return kMaxAutoMotionSamples; // also NaN and infinity
     return std::max(kMinAutoMotionSamples, uint32_t(std::ceil(motionPixels)));

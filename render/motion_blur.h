@@ -43,6 +43,13 @@ double cameraMotionPixels(const Camera& start, const Camera& end, double nearDep
 // motion_samples "auto" for that displacement: ceil(pixels) within [kMinAutoMotionSamples, kMaxAutoMotionSamples].
 uint32_t autoMotionSamples(double motionPixels);
 
+// The motion_blur output: per pixel of `centre` (the frame's instant), the distance in pixels between where its
+// surface point (at planar depth `depth`, +inf: the sky's direction) is seen by `start` and by `end` (the rig at the
+// exposure's two ends), i.e. the blur length the camera's motion gives that pixel. The geometry is assumed static:
+// the scene objects' and the plants' own motion is not in it. 0 where the point is behind either camera.
+std::vector<float> motionBlurLengths(const Camera& start, const Camera& centre, const Camera& end,
+                                     std::span<const float> depth);
+
 // The sub-frame times of `frame` of the scene's sequence (empty when the sensor is off or has no shutter); "auto"
 // measures the left camera's motion between the rigs at the exposure's two ends.
 std::vector<double> frameExposureTimes(const SceneResources& r, const SensorParams& sensor, uint32_t width,

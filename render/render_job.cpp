@@ -12,6 +12,7 @@
 #include "engine/context.h"
 #include "io/sha256.h"
 #include "range/range_recorder.h"
+#include "render/motion_blur.h"
 #include "render/scene_gpu.h"
 #include "render/sequence_frame.h"
 #include "scene/scene_input.h"
@@ -121,10 +122,15 @@ JobPlan planJob(Scene& scene, const RenderJobOptions& options) {
 // pure function of the scene and the tick, so shards and resumed runs write the very same file.
 std::vector<nlohmann::json> sequenceRecords(const SceneResources& r, const JobPlan& plan, double timeOffset) {
     std::vector<nlohmann::json> records;
-    for (uint32_t frame = 0; frame < r.scene.sequence.frames; ++frame)
+    for (uint32_t frame = 0; frame < r.scene.sequence.frames; ++frame) {
         records.push_back(frameRecord(r.scene, r.models, r.terrain, sequenceRig(r, plan.width, plan.height, frame),
                                       frame, timeOffset,
                                       r.withVegetation() ? sceneColliders(r, frame) : std::vector<Collider>{}));
+        // A shutter's sub-frames (render/motion_blur.h): their count ("auto" follows the motion) and times.
+        const std::vector<double> exposure =
+            frameExposureTimes(r, r.scene.camera.rig.sensor, plan.width, plan.height, frame);
+        if (!exposure.empty()) records.back()["exposure"] = {{"samples", exposure.size()}, {"times", exposure}};
+    }
     return records;
 }
 
@@ -310,7 +316,9 @@ RenderJobReport runRenderJob(const RenderJobOptions& options) {
     const bool stereo = resources.scene.camera.rig.stereo();
 
     const std::vector<nlohmann::json> records = sequenceRecords(resources, plan, options.time);
-    DatasetWriter dataset(options.outDir, stereo, resources.scene.rangeSensors, resources.scene.render.flow);
+    const bool motionBlur = sensor && sensor->params().shutterSeconds > 0.0; // the sub-frames' blur lengths
+    DatasetWriter dataset(options.outDir, stereo, resources.scene.rangeSensors, resources.scene.render.flow,
+                          motionBlur);
     std::vector<uint32_t> todo; // resume: frames whose files all exist are complete
     for (uint32_t frame = plan.firstFrame; frame < plan.endFrame; ++frame)
         if (options.overwrite || !dataset.frameComplete(frame)) todo.push_back(frame);

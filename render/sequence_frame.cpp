@@ -137,6 +137,9 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
     if (!colour) {
         images.rgbaHalf = std::move(blurred.left);
         images.rightRgbaHalf = std::move(blurred.right);
+        const double half = 0.5 * sensor->params().shutterSeconds;
+        images.motionBlur =
+            motionBlurLengths(rigAt(time - half).left, cameras.left, rigAt(time + half).left, images.depth);
     }
     if (sensor) { // after the exposure's mean: light is integrated first, then the sensor reads it out
         // The lens before the sensor, each view defocused by its own exact depth (the rig is rectified: one fx, cx).

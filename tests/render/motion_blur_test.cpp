@@ -109,6 +109,33 @@ TEST(MotionBlur, AutoSamplesFollowTheCameraMotion) {
     EXPECT_EQ(autoMotionSamples(NAN), kMaxAutoMotionSamples);
 }
 
+// The motion_blur output of a sideways step and of a pan, against the pinhole's figures.
+TEST(MotionBlur, BlurLengthIsTheParallaxOfTheExactDepth) {
+    const Camera centre = Camera::lookAt({0, 0, 2}, {0, 10, 2}, {0, 0, 1}, 60.0, 64, 48);
+    Camera start = centre, end = centre;
+    start.position -= 0.05 * centre.worldFromCamera[0]; // 10 cm sideways over the exposure
+    end.position += 0.05 * centre.worldFromCamera[0];
+    std::vector<float> depth(64 * 48, 5.0f);
+    depth[7] = INFINITY; // the sky does not move under a translation
+    const std::vector<float> step = motionBlurLengths(start, centre, end, depth);
+    EXPECT_EQ(step[7], 0.0f);
+    for (size_t i : {size_t(0), size_t(100), size_t(64 * 48 - 1)})
+        EXPECT_NEAR(step[i], centre.fx * 0.1 / 5.0, 1e-5) << i; // planar depth is kept by a sideways step
+    // A pan by +-a about the camera's vertical: the sky at the image centre moves 2 fx tan(a).
+    const double a = 0.02;
+    auto panned = [&](double angle) {
+        Camera c = centre;
+        c.worldFromCamera = centre.worldFromCamera * glm::dmat3(std::cos(angle), 0, -std::sin(angle), 0, 1, 0,
+                                                                std::sin(angle), 0, std::cos(angle));
+        return c;
+    };
+    std::fill(depth.begin(), depth.end(), INFINITY);
+    const std::vector<float> pan = motionBlurLengths(panned(-a), centre, panned(a), depth);
+    // Pixel (31, 23)'s centre is half a pixel off the optical axis in x and y: within 0.01 px of the axis's figure.
+    EXPECT_NEAR(pan[23 * 64 + 31], 2.0 * centre.fx * std::tan(a), 0.01);
+    EXPECT_GT(pan[0], pan[23 * 64 + 31]); // the corners move further
+}
+
 TEST(MotionBlur, MeanIsAFloatSumRoundedOnce) {
     ExposureMean mean;
     for (float v : {1.0f, 2.0f, 2.0f}) mean.add(std::vector<uint16_t>{floatToHalfBits(v), floatToHalfBits(-v)});
@@ -143,6 +170,11 @@ TEST_F(MotionBlurTest, ColourIsTheMeanOfInstantRendersAtTheSubFrameTimes) {
     // The test can fail: the instant, and the mean over an exposure twice as long, are other images.
     EXPECT_GT(maxAbsDifference(blurred.rgbaHalf, instant.rgbaHalf), 0.01);
     EXPECT_GT(maxAbsDifference(blurred.rgbaHalf, meanOfInstants(gpu, target, r, times(2.0), frame).left), 0.01);
+    // The blur lengths: the left camera's motion between the exposure's ends at the truth depth; none without a shutter.
+    EXPECT_EQ(blurred.motionBlur, motionBlurLengths(sequenceRigAt(r, kWidth, kHeight, t - 0.05).left, cameras.left,
+                                                    sequenceRigAt(r, kWidth, kHeight, t + 0.05).left, blurred.depth));
+    EXPECT_GT(*std::max_element(blurred.motionBlur.begin(), blurred.motionBlur.end()), 0.5f);
+    EXPECT_TRUE(instant.motionBlur.empty());
     // The instant's colour comes out of the frame's own colour pass unchanged.
     EXPECT_EQ(instant.rgbaHalf, target.render(*gpu.renderer, cameras.left, t, frame, {}, &cameras.right).rgbaHalf);
 }
