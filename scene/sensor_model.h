@@ -9,6 +9,7 @@
 //   x_d = x radial + 2 p1 x y + p2 (r2 + 2 x^2),   y_d = y radial + p1 (r2 + 2 y^2) + 2 p2 x y
 // Pixel coordinates follow camera.h: the centre of pixel (i, j) is (i + 0.5, j + 0.5).
 //
+// The lens's blur (depth of field, MTF, chromatic aberration: scene/sensor_optics.h) runs before all of this.
 // Per pixel and colour channel, in this order (physically: lens, then sensor):
 //   s = exposure * vignette(p) * ideal(p)           linear radiance reaching the pixel (bilinear in the ideal image)
 //   e = s * electrons_per_unit                       expected photo-electrons
