@@ -19,6 +19,13 @@ layout(location = 15) flat in vec3 inAmbient;
 layout(location = 20) in vec3 inSheen;    // plantSunLight
 layout(location = 0) out vec4 outColor;
 
+// Whether the pixel centre lies on the card. With MSAA a pixel runs the shader when any of its samples is covered, but
+// inputs are interpolated at the centre (extrapolated off the card), where the truth pass samples, and only when it
+// covers the centre. A merged far billboard's u runs over 0..inMerge.x.
+bool centreOnCard() {
+    return inUv.x >= 0.0 && inUv.x <= max(inMerge.x, 1.0) && inUv.y >= 0.0 && inUv.y <= 1.0;
+}
+
 void main() {
     vec4 texel = plantTexel(); // before any discard: its mip level needs the whole 2x2 quad
     texel.rgb = plantColourTexel(texel.rgb); // far billboards: the colour prefiltered (truth keeps the alpha)
@@ -27,9 +34,15 @@ void main() {
     if (ALPHA_TO_COVERAGE) {
         // Near and mid plants over about two pixels: a camera's optics, not a razor edge (the meadow's ground view:
         // sharp texture 0.91 -> 0.88 of the vegetation, Laplacian level 0 0.129 -> 0.116; truth keeps the alpha
-        // test at 0.5). Far billboards over one: at the horizon a wider edge tints the sky-labelled pixels above it.
-        float edge = ((inFade >> 21) & 3u) == kLodFar ? 1.0 : 2.0;
-        alpha = (alpha - 0.5) / max(edge * fwidth(alpha), 1e-4) + 0.5;
+        // test at 0.5). Far billboards over one pixel, and only where the truth pass keeps the pixel: alpha >= 0.5
+        // at a pixel centre on the card. Against the sky their transition outside the truth's silhouette, and the
+        // card's top edge (where a coarse level's filter reaches the cell above, another plant's opaque stems),
+        // tinted pixels labelled sky above the horizon (meadow 640x480 4x: 199 -> 1 of the 3,200 sky pixels 2-6 px
+        // above it tinted by more than 8 of 255; tools/horizon-colour.py).
+        bool far = ((inFade >> 21) & 3u) == kLodFar;
+        if (far && !centreOnCard()) discard;
+        float edge = far ? 1.0 : 2.0, offset = far ? 0.0 : 0.5;
+        alpha = (alpha - 0.5) / max(edge * fwidth(alpha), 1e-4) + offset;
         if (alpha <= 0.0) discard;
     } else if (alpha < 0.5) {
         discard;
