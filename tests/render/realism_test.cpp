@@ -13,9 +13,13 @@
 #include "test_files.h"
 
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <map>
 
 using namespace sward;
@@ -129,4 +133,47 @@ TEST_F(GpuTest, VegetationOfTheMeadowAndTheRoverTrackMeasuresLikeARealMeadow) {
         EXPECT_LE(figure(far, "sharp_fraction"), 0.90) << name;
         EXPECT_LE(figure(far, "saturation_mean"), 0.35) << name;
     }
+}
+
+// Issue 47: colour and labels agree at the horizon. Sky-labelled pixels 2-6 px above the horizon of the meadow's
+// ground view (the topmost pixel in each column the semantic image does not label sky) carry no plant colour: their
+// preview equals, within 8 of 255, the same render without plants (tools/horizon-colour.py measures the same).
+// Far billboards once tinted 199 of those 3,200 pixels (alpha to coverage outside the truth's silhouette and a card's
+// top edge reading the atlas cell above); before the far cover (db5c023^) 3 were.
+TEST_F(GpuTest, FarPlantsLeaveTheSkyAboveTheHorizonOfTheMeadowUntinted) {
+    // The renderer's own image: without the example's camera model, whose optics blur any colour into its neighbours.
+    const std::filesystem::path out = test::tempDir();
+    nlohmann::json meadow = nlohmann::json::parse(test::readText(SWARD_SOURCE_DIR "/examples/meadow.json"));
+    meadow["camera"].erase("sensor");
+    const std::string scene = (out / "meadow.json").string();
+    std::ofstream(scene) << meadow.dump();
+    for (const char* variant : {"plants", "bare"}) {
+        const std::string render =
+            SWARD_RENDER_EXE " " + scene + " --frames 0:1 --resolution 640x480 --samples 4 -q --out " +
+            (out / variant).string() + (std::string(variant) == "bare" ? " --no-vegetation" : "") + " >/dev/null 2>&1";
+        ASSERT_EQ(std::system(render.c_str()), 0) << render;
+    }
+    const cv::Mat semantic = cv::imread((out / "plants/semantic/000000.png").string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat plants = cv::imread((out / "plants/preview/000000.png").string(), cv::IMREAD_COLOR);
+    const cv::Mat bare = cv::imread((out / "bare/preview/000000.png").string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(semantic.empty() || plants.empty() || bare.empty());
+    ASSERT_EQ(semantic.type(), CV_8UC1);
+    uint32_t examined = 0, tinted = 0;
+    for (int x = 0; x < semantic.cols; ++x) {
+        int horizon = 0;
+        while (horizon < semantic.rows && semantic.at<uint8_t>(horizon, x) == 0) ++horizon;
+        if (horizon == semantic.rows) continue;
+        for (int y = std::max(horizon - 6, 0); y <= horizon - 2; ++y) {
+            if (semantic.at<uint8_t>(y, x) != 0) continue;
+            ++examined;
+            const cv::Vec3b a = plants.at<cv::Vec3b>(y, x), b = bare.at<cv::Vec3b>(y, x);
+            int difference = 0;
+            for (int k = 0; k < 3; ++k) difference = std::max(difference, std::abs(int(a[k]) - int(b[k])));
+            tinted += difference > 8;
+        }
+    }
+    std::printf("%u of %u sky-labelled pixels 2-6 px above the horizon differ by more than 8 of 255\n", tinted,
+                examined);
+    ASSERT_GT(examined, 1000u) << "the view shows too little horizon to measure";
+    EXPECT_LE(tinted, 3u);
 }
