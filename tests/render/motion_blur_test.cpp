@@ -16,6 +16,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 
 using namespace sward;
@@ -299,4 +301,38 @@ TEST_F(MotionBlurTest, SunStreaksByThePannedAngle) {
     const double length = crossing(1) - crossing(-1);
     EXPECT_NEAR(length, predicted, 0.5) << "predicted " << predicted << " px";
     EXPECT_GT(predicted, 15.0); // a streak, not the 2-pixel disc
+}
+
+// sward-render with a shutter ("auto" sub-frames, noise, a rover pressing plants): a run in two shards, and a run
+// resumed after a lost colour and blur file, write the very same files as one whole run.
+TEST(MotionBlurDataset, ShardsAndResumedRunsWriteTheWholeRunsFiles) {
+    nlohmann::json scene = nlohmann::json::parse(sward::test::readFile(SWARD_TEST_DATA_DIR "/dataset_scene.json"));
+    scene["render"]["resolution"] = {64, 48};
+    scene["render"]["samples"] = 1;
+    scene["camera"]["path"] = {{"points", {{53.5, 46.0}, {51.0, 50.0}}}, {"speed", 2.0}};
+    scene["camera"]["sensor"] = {{"shutter_s", 0.05}, {"electrons_per_unit", 500}, {"read_noise", 2}};
+    const std::string dir = sward::test::tempDir("motion-blur-shards"), path = dir + "/scene.json";
+    std::ofstream(path) << scene.dump();
+    std::string err;
+    ASSERT_EQ(sward::test::runSwardRender(path + " --out " + dir + "/whole --frames 0:3", err), 0) << err;
+    for (const char* shard : {"0/2", "1/2"})
+        ASSERT_EQ(sward::test::runSwardRender(path + " --out " + dir + "/parts --frames 0:3 --shard " + shard, err), 0)
+            << err;
+    auto compare = [&] {
+        size_t files = 0;
+        for (const auto& entry : std::filesystem::recursive_directory_iterator(dir + "/whole")) {
+            const std::string relative = std::filesystem::relative(entry.path(), dir + "/whole").string();
+            if (!entry.is_regular_file() || relative.starts_with("manifest") || relative == "dataset.json") continue;
+            EXPECT_EQ(sward::test::readFile(entry.path().string()), sward::test::readFile(dir + "/parts/" + relative))
+                << relative;
+            ++files;
+        }
+        return files;
+    };
+    EXPECT_GT(compare(), 3u * 18); // every per-frame file of 3 stereo frames, motion_blur/ among them
+    EXPECT_TRUE(std::filesystem::exists(dir + "/whole/motion_blur/000002.exr"));
+    std::filesystem::remove(dir + "/parts/left/000001.exr");
+    std::filesystem::remove(dir + "/parts/motion_blur/000002.exr");
+    ASSERT_EQ(sward::test::runSwardRender(path + " --out " + dir + "/parts --frames 0:3", err), 0) << err;
+    compare();
 }
