@@ -8,9 +8,12 @@ then, in every column, takes the horizon row h (the topmost pixel the semantic i
 sky-labelled pixels in rows h - 6 .. h - 2 (--rows). A pixel carries plant colour when its 8-bit preview differs from
 the render without plants by more than T in some channel; printed for T = 4, 8, 16, 32 as counts and shares of the
 pixels examined. Nothing but the plants differs between the two renders, so this counts plant colour alone, whatever
-the sky's own gradient. Needs /usr/bin/python3's numpy and cv2 (Debian's python3-opencv).
+the sky's own gradient. The renderer's own image is measured: a scene with a camera model (`camera.sensor`, whose
+optics blur every colour into its neighbours) is rendered from a copy without it written into OUT, so such a scene
+must not read files by relative paths. Needs /usr/bin/python3's numpy and cv2 (Debian's python3-opencv).
 """
 import argparse
+import json
 import pathlib
 import subprocess
 import sys
@@ -41,6 +44,13 @@ def main():
     args = parser.parse_args()
     near, far = (int(v) for v in args.rows.split(":"))
     with_plants, without = args.out / "plants", args.out / "no-plants"
+    name = args.scene
+    scene = json.loads(args.scene.read_text())
+    if "sensor" in scene.get("camera", {}):
+        del scene["camera"]["sensor"]
+        args.out.mkdir(parents=True, exist_ok=True)
+        args.scene = args.out / "scene-without-sensor.json"
+        args.scene.write_text(json.dumps(scene))
     render(args.bin, args.scene, with_plants, args, [])
     render(args.bin, args.scene, without, args, ["--no-vegetation"])
     semantic = cv2.imread(str(with_plants / "semantic/000000.png"), cv2.IMREAD_UNCHANGED)
@@ -56,7 +66,7 @@ def main():
         examined += len(rows)
         for t in THRESHOLDS:
             carrying[t] += sum(1 for y in rows if difference[y, x] > t)
-    print(f"{args.scene}: {examined} sky-labelled pixels {near}-{far} px above the horizon")
+    print(f"{name}: {examined} sky-labelled pixels {near}-{far} px above the horizon")
     for t in THRESHOLDS:
         share = carrying[t] / examined if examined else 0.0
         print(f"  differing by more than {t:>2} of 255 from the render without plants: {carrying[t]:>5} ({share:.2%})")
