@@ -7,14 +7,17 @@
 
 #include "scene/scene.h"
 #include "scene/terrain.h"
+#include "test_files.h"
 #include "world/camera.h"
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 
 using namespace sward;
 using sward::test::GpuTest;
@@ -75,7 +78,12 @@ Bands ringBands(const std::string& out, const Camera& camera, const OldShadowBox
 } // namespace
 
 TEST_F(GpuTest, AHighViewShowsNoShadowEdgeWhereTheOldShadowMapEnded) {
-    const std::string scenePath = SWARD_SOURCE_DIR "/examples/meadow.json";
+    // The meadow without its camera model: the shadows are measured, not the sensor's noise and lens (a 0.3 px MTF
+    // blur and shot noise move the bands' means by about 0.1 % of their 3 % budget).
+    nlohmann::json meadow = nlohmann::json::parse(test::readText(SWARD_SOURCE_DIR "/examples/meadow.json"));
+    meadow["camera"].erase("sensor");
+    const std::string scenePath = tempDir("shadow-edge-scene") + "/meadow.json";
+    std::ofstream(scenePath) << meadow.dump();
     const Scene scene = loadScene(scenePath);
     const double ground = buildTerrain(scene).height(glm::vec2(245.0f, 150.0f));
     const glm::dvec3 eye(245.0, 150.0, ground + 60.0), target = eye + glm::dvec3(0.0, 60.0, -60.0);
