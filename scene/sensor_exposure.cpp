@@ -12,6 +12,12 @@
 
 namespace sward {
 
+namespace {
+
+constexpr double kLog2TenOver20 = 0.16609640474436811739; // log2(10) / 20: gain_db in stops
+
+} // namespace
+
 double sensorReadout(const SensorParams& p, double light, uint32_t channel, double normal) {
     const SensorElectronics& x = p.electronics;
     const double epu = p.electronsPerUnit;
@@ -122,9 +128,13 @@ nlohmann::json autoExposureToJson(const AutoExposureParams& p) {
 
 void parseSensorElectronics(JsonReader& r, SensorParams& params) {
     SensorElectronics& x = params.electronics;
-    if (r.has("gain") && (r.has("iso") || r.has("base_iso")))
-        r.fail("'" + r.path() + "' must give either 'gain' or 'iso' (with 'base_iso'), not both");
+    if (int(r.has("gain")) + int(r.has("gain_db")) + int(r.has("iso") || r.has("base_iso")) > 1)
+        r.fail("'" + r.path() + "' must give one of 'gain', 'gain_db' or 'iso' (with 'base_iso')");
     x.gain = r.number("gain", 1.0, 1e-3, 1e4);
+    if (r.has("gain_db")) {
+        x.gainDb = r.number("gain_db", 0.0, -60.0, 80.0);
+        x.gain = exactExp2(*x.gainDb * kLog2TenOver20); // 10^(dB / 20) without a libm call
+    }
     x.baseIso = r.number("base_iso", 100.0, 1.0, 1e7);
     x.iso = r.number("iso", 0.0, 1.0, 1e7);
     if (r.has("base_iso") && !r.has("iso")) r.fail(r.name("base_iso") + " needs 'iso'");
@@ -146,6 +156,8 @@ void sensorElectronicsToJson(const SensorElectronics& x, nlohmann::json& json) {
     if (x.iso > 0.0) {
         json["iso"] = x.iso;
         json["base_iso"] = x.baseIso;
+    } else if (x.gainDb) {
+        json["gain_db"] = *x.gainDb;
     } else if (x.gain != 1.0) {
         json["gain"] = x.gain;
     }

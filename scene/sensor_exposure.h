@@ -54,7 +54,8 @@ inline constexpr double kAutoExposureSpan = 5.0;      // the window in time cons
 inline constexpr double kAutoExposureFloorEv = -40.0; // the meter of a black view, in stops
 
 struct SensorElectronics {
-    double gain = 1.0;                // analog gain G (JSON "gain", or "iso" / "base_iso")
+    double gain = 1.0;                // analog gain G (JSON "gain", "gain_db" or "iso" / "base_iso")
+    std::optional<double> gainDb;     // the gain in dB the scene gave (written back as given)
     double iso = 0.0;                 // the ISO the scene gave (0: none; then "gain" is written back)
     double baseIso = 100.0;           // the ISO at which G = 1
     double readNoiseAfterGain = 0.0;  // read noise added after the gain, electrons as counted at G = 1
@@ -62,7 +63,7 @@ struct SensorElectronics {
     std::array<double, 3> whiteBalance{1.0, 1.0, 1.0}; // per-channel digital gains (R, G, B)
 
     bool isDefault() const {
-        return gain == 1.0 && iso == 0.0 && baseIso == 100.0 && readNoiseAfterGain == 0.0 && !blackLevel &&
+        return gain == 1.0 && !gainDb && iso == 0.0 && baseIso == 100.0 && readNoiseAfterGain == 0.0 && !blackLevel &&
                whiteBalance == std::array<double, 3>{1.0, 1.0, 1.0};
     }
 };
@@ -87,7 +88,7 @@ nlohmann::json autoExposureToJson(const AutoExposureParams& params);
 // Non-finite light gets the gains and black level but no noise and no clipping. Pure: same inputs, same bits.
 double sensorReadout(const SensorParams& params, double light, uint32_t channel, double normal);
 
-// Reads "gain" | ("iso", "base_iso"), "read_noise_after_gain", "black_level", "white_balance" from the sensor
+// Reads "gain" | "gain_db" | ("iso", "base_iso"), "read_noise_after_gain", "black_level", "white_balance" from the sensor
 // object into `params.electronics` (errors name the key: "scene.json: 'camera.sensor.iso' must be ...").
 // Call before JsonReader::finish(), after electrons_per_unit has been read.
 void parseSensorElectronics(JsonReader& reader, SensorParams& params);

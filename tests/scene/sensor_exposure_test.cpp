@@ -188,6 +188,12 @@ TEST(SensorExposure, ParsesEveryKeyAndWritesBackOnlyThoseSet) {
     EXPECT_EQ(written.at("base_iso"), 200.0);
     EXPECT_EQ(sensorToJson(parse(written)), written);
     EXPECT_EQ(sensorToJson(parse({{"gain", 3}})).at("gain"), 3.0);
+    // Decibels of amplitude: 20 dB is 10 x, 6.0206 dB about 2 x; written back as given.
+    EXPECT_NEAR(parse({{"gain_db", 20}}).electronics.gain, 10.0, 1e-14);
+    EXPECT_NEAR(parse({{"gain_db", -40}}).electronics.gain, 0.01, 1e-17);
+    EXPECT_NEAR(parse({{"gain_db", 6.0206}}).electronics.gain, 2.0, 1e-5);
+    EXPECT_EQ(sensorToJson(parse({{"gain_db", 12}})).at("gain_db"), 12.0);
+    EXPECT_FALSE(sensorToJson(parse({{"gain_db", 12}})).contains("gain"));
     // A sensor without them is written with the keys it always had: frames.jsonl of older scenes is unchanged.
     EXPECT_EQ(sensorToJson(parse(kNoisy)).size(), 11u);
     EXPECT_TRUE(parse(kNoisy).electronics.isDefault());
@@ -204,7 +210,10 @@ TEST(SensorExposure, BadValuesAreRefusedNamingTheKey) {
     };
     EXPECT_EQ(message({{"gain", 0}}), "scene.json: 'camera.sensor.gain' must be between 0.001 and 10000 (got 0)");
     EXPECT_EQ(message({{"gain", 2}, {"iso", 200}}),
-              "scene.json: 'camera.sensor' must give either 'gain' or 'iso' (with 'base_iso'), not both");
+              "scene.json: 'camera.sensor' must give one of 'gain', 'gain_db' or 'iso' (with 'base_iso')");
+    EXPECT_EQ(message({{"gain_db", 6}, {"base_iso", 200}}),
+              "scene.json: 'camera.sensor' must give one of 'gain', 'gain_db' or 'iso' (with 'base_iso')");
+    EXPECT_EQ(message({{"gain_db", 81}}), "scene.json: 'camera.sensor.gain_db' must be between -60 and 80 (got 81)");
     EXPECT_EQ(message({{"iso", 0.5}}), "scene.json: 'camera.sensor.iso' must be between 1 and 1e+07 (got 0.5)");
     EXPECT_EQ(message({{"base_iso", 100}}), "scene.json: 'camera.sensor.base_iso' needs 'iso'");
     EXPECT_EQ(message({{"iso", 1e7}, {"base_iso", 1}}),
