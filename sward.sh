@@ -6,11 +6,14 @@ cd "$(dirname "$0")"
 
 usage() {
   cat <<'USAGE'
-usage: ./sward.sh [render|test|build|help] [ARGS]
+usage: ./sward.sh [render|test|build|package|help] [ARGS]
   render [ARGS]  set up, build, then run sward-render ARGS; the scene defaults to examples/meadow.json and --out
                  to out/ when ARGS name none (e.g. ./sward.sh render my.json --out my-data --frames 0:10)
   test [ARGS]    set up, build, run the whole test suite (ARGS go to ctest)
   build          set up and build only
+  package        set up, build, then write the relocatable release archive
+                 BUILD_DIR/package/sward-<version>-linux-x86_64.tar.gz (docs/release.md; check it with
+                 tools/release-check.sh ARCHIVE)
   help           this text (also -h, --help); sets up and builds nothing
 Environment: BUILD_TYPE=Debug|Release (default Release), SANITIZE=1 (ASan + UBSan), BUILD_DIR (default build).
 USAGE
@@ -22,7 +25,7 @@ command=${1:-render}
 # Answer the cheap questions before the setup and the build (minutes on a fresh machine).
 case "$command" in
   help|-h|--help) usage; exit 0 ;;
-  render|test|build) ;;
+  render|test|build|package) ;;
   *) echo "sward.sh: error: unknown command '$command' (see ./sward.sh --help)" >&2; exit 2 ;;
 esac
 
@@ -56,6 +59,12 @@ cmake --build "$build_dir" -j "$(nproc)"
 
 case "$command" in
   build) ;;
+  package)
+    # CPack in the build folder (cmake/Package.cmake): the Runtime component, the Python module and the shared
+    # libraries they load (cmake/BundleRuntime.cmake).
+    (cd "$build_dir" && cpack)
+    ls -l "$build_dir"/package/sward-*-linux-*.tar.gz
+    ;;
   render)
     mapfile -d '' args < <(render_args "$@")
     exec "$build_dir/bin/sward-render" "${args[@]}"

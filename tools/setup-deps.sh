@@ -35,6 +35,8 @@ packages=(
   # scale-out tests (tests/scale-out): a private single-node Slurm, and the Kubernetes manifest check (YAML in
   # Python, TypeScript run by Node.js)
   slurm-wlm munge python3-yaml nodejs
+  # the release archive's check (tools/release-check.sh): a minimal Debian 12 root file system to run it in
+  debootstrap
 )
 # A Node.js from another source (e.g. NodeSource) brings its own npm; Debian's npm would conflict with it.
 command -v npm >/dev/null || packages+=(npm)
