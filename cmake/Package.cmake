@@ -8,7 +8,9 @@
 # once. Mesa's drivers link LLVM, built with the target's own (newer) GCC; a bundled Debian 12 libstdc++ would be the
 # one they get and they would fail to load ("GLIBCXX_3.4.3x not found"), leaving no device; a libstdc++ is
 # backward compatible, so the target's own serves sward too. What sward needs of it (GLIBCXX_3.4.30, GCC 12) every
-# distribution with glibc >= 2.36 has (glibc 2.36 and GCC 12 are both of 2022).
+# distribution with glibc >= 2.36 has (glibc 2.36 and GCC 12 are both of 2022). Measured in a Debian 13 root
+# (SUITE=trixie tools/release-check.sh): with Debian 12's libstdc++ in lib/, Mesa 25's lavapipe does not load
+# ("GLIBCXX_3.4.31 not found (required by libz3.so.4)") and sward-render fails; without it, it renders.
 #
 # The binaries find the bundled libraries by their rpath, $ORIGIN/../lib (the tools) or $ORIGIN/../../.. (the
 # Python module in lib/python3/dist-packages/sward/), written as DT_RPATH (--disable-new-dtags), not DT_RUNPATH:

@@ -16,9 +16,11 @@
 # Each step prints its command, PASS or FAIL and its time; the exit status is 1 when any step failed, 2 on a usage
 # error. Needs root (debootstrap, chroot, mount).
 #
-# Environment: ROOT_CACHE (default /var/cache/sward-release-check/bookworm-minbase), MIRROR (default: the first
-# Debian mirror of this machine's apt sources, else http://deb.debian.org/debian), WORK (the copy, default a
-# temporary folder; removed on exit unless KEEP=1).
+# Environment: SUITE (default bookworm; e.g. trixie checks a newer distribution: its glibc, libstdc++ and Mesa
+# against the bundled libraries; the Python module then has no CPython 3.11 to load into), ROOT_CACHE (default
+# /var/cache/sward-release-check/SUITE-minbase), MIRROR (default: the first Debian mirror of this machine's apt
+# sources, else http://deb.debian.org/debian), WORK (the copy, default a temporary folder; removed on exit unless
+# KEEP=1).
 set -euo pipefail
 
 usage() { echo "usage: tools/release-check.sh ARCHIVE (see the comment at the top of the script)" >&2; exit 2; }
@@ -31,7 +33,8 @@ for tool in debootstrap chroot mount; do
   command -v $tool >/dev/null || { echo "release-check: error: $tool missing (tools/setup-deps.sh installs it)" >&2; exit 2; }
 done
 
-cache=${ROOT_CACHE:-/var/cache/sward-release-check/bookworm-minbase}
+suite=${SUITE:-bookworm}
+cache=${ROOT_CACHE:-/var/cache/sward-release-check/$suite-minbase}
 packages="libvulkan1 mesa-vulkan-drivers python3 python3-numpy"
 if [ -z "${MIRROR:-}" ]; then
   MIRROR=$(cat /etc/apt/sources.list /etc/apt/sources.list.d/* 2>/dev/null | grep -v '^ *#' \
@@ -43,10 +46,10 @@ start=$(date +%s)
 # The cached root: debootstrap into a temporary folder, add the four packages, and only then name it the cache, so
 # an interrupted run never leaves a half-made cache behind. The package list is recorded; another list remakes it.
 if [ "$(cat "$cache/.sward-packages" 2>/dev/null || true)" != "$packages" ]; then
-  echo "release-check: making the Debian 12 minbase root in $cache (once; from $MIRROR)"
+  echo "release-check: making the Debian $suite minbase root in $cache (once; from $MIRROR)"
   rm -rf "$cache.partial"
   mkdir -p "$(dirname "$cache")"
-  debootstrap --variant=minbase bookworm "$cache.partial" "$MIRROR" > "$cache.partial.log" 2>&1 \
+  debootstrap --variant=minbase "$suite" "$cache.partial" "$MIRROR" > "$cache.partial.log" 2>&1 \
     || { tail -20 "$cache.partial.log"; echo "release-check: error: debootstrap failed" >&2; exit 1; }
   mount -t proc proc "$cache.partial/proc"
   chroot "$cache.partial" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin DEBIAN_FRONTEND=noninteractive \
