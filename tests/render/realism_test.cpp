@@ -108,8 +108,8 @@ TEST_F(GpuTest, VegetationOfTheMeadowAndTheRoverTrackMeasuresLikeARealMeadow) {
     // 0.10-0.12, 46,000-49,000 FAST per megapixel, 99 % sharp texture; far band 82-99.7 % sharp, saturation 0.67-0.73;
     // the real meadows 0.16, 0.109, 0.032, 0.096 and 0.057, 14,000, 71 %; far band 68 %, 0.13). The high band of the
     // spectrum stays within the real range, so the way there is not a blur. Not yet met, so not asserted (docs/
-    // evaluation.md, "After issue 47"): the meadow's Laplacian level 2 (0.086 against 0.085), the rover view's d/dx
-    // kurtosis (1.9 against 2.8) and sharp fraction (0.97 against 0.90): dense near cards seen from 1 m.
+    // evaluation.md, "After issue 47"): the rover view's d/dx kurtosis (2.2 against 2.8) and sharp fraction (0.95
+    // against 0.90): dense near cards seen from 1 m.
     for (const std::string name : {"meadow", "rover-track"}) {
         const nlohmann::json& vegetation = exampleLook(name).at("summary").at("vegetation");
         const nlohmann::json& far = exampleLook(name).at("summary").at("far");
@@ -123,11 +123,10 @@ TEST_F(GpuTest, VegetationOfTheMeadowAndTheRoverTrackMeasuresLikeARealMeadow) {
         EXPECT_LE(figure(vegetation, "fast_per_mp"), 30000.0) << name;
         EXPECT_GE(figure(vegetation, "spectrum_slope_high"), -2.8) << name;
         EXPECT_LE(figure(vegetation, "spectrum_slope_high"), -1.7) << name;
+        EXPECT_LE(figure(vegetation, "laplacian_rms_2"), 0.085) << name;
         if (name == "meadow") {
             EXPECT_GE(figure(vegetation, "dx_excess_kurtosis"), 2.8) << name;
             EXPECT_LE(figure(vegetation, "sharp_fraction"), 0.90) << name;
-        } else {
-            EXPECT_LE(figure(vegetation, "laplacian_rms_2"), 0.085) << name;
         }
         EXPECT_GT(figure(far, "pixels"), 5000.0) << name;
         EXPECT_LE(figure(far, "sharp_fraction"), 0.90) << name;
