@@ -12,7 +12,9 @@
 #include "engine/context.h"
 #include "io/sha256.h"
 #include "range/range_recorder.h"
+#include "render/auto_exposure.h"
 #include "render/motion_blur.h"
+#include "render/rolling_shutter.h"
 #include "render/scene_gpu.h"
 #include "render/sequence_frame.h"
 #include "scene/scene_input.h"
@@ -130,6 +132,10 @@ std::vector<nlohmann::json> sequenceRecords(const SceneResources& r, const JobPl
         const std::vector<double> exposure =
             frameExposureTimes(r, r.scene.camera.rig.sensor, plan.width, plan.height, frame);
         if (!exposure.empty()) records.back()["exposure"] = {{"samples", exposure.size()}, {"times", exposure}};
+        // A rolling shutter's readout (render/rolling_shutter.h): the first and last rows' times and poses.
+        if (nlohmann::json readout = readoutRecord(r, r.scene.camera.rig.sensor, plan.width, plan.height, frame);
+            !readout.is_null())
+            records.back()["readout"] = std::move(readout);
     }
     return records;
 }
@@ -189,18 +195,20 @@ uint64_t bytesNeeded(const DatasetWriter& dataset, const JobPlan& plan, const st
 void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, const JobPlan& plan,
                       const std::vector<uint32_t>& todo, DatasetWriter& dataset,
                       const std::optional<SensorModel>& sensor, const RenderJobOptions& options, BackgroundTask& writer,
-                      Progress& progress, JobClock& clock) {
+                      Progress& progress, JobClock& clock, AutoExposure* autoExposure) {
     if (todo.empty()) return; // a complete dataset
     const double baseline = r.scene.camera.rig.baseline;
     const std::set<uint32_t> toWrite(todo.begin(), todo.end());
     std::shared_ptr<const FrameImages> previous, current;
     std::shared_ptr<const RigCameras> currentCameras;
     uint32_t done = 0, started = 0;
-    for (uint32_t frame = todo.front() > 0 ? todo.front() - 1 : 0; frame <= todo.back() + 1; ++frame) {
+    // From the frame before the first (its truth), or the first of its auto-exposure window (its meter).
+    const uint32_t first = autoExposure ? autoExposure->framesToRender({todo.front()}).front() : todo.front();
+    for (uint32_t frame = std::min(first, todo.front() > 0 ? todo.front() - 1 : 0); frame <= todo.back() + 1; ++frame) {
         const double renderStart = clock.now();
         auto cameras = std::make_shared<RigCameras>();
-        auto images = std::make_shared<const FrameImages>(
-            renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras));
+        auto images = std::make_shared<const FrameImages>(renderSequenceFrame(
+            gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras, autoExposure));
         if (current && toWrite.contains(frame - 1)) {
             RenderJobReport::Frame& t = clock.report.frames[started++]; // the render that completed its truth
             t.renderSeconds = clock.now() - renderStart;
@@ -239,17 +247,28 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
     BackgroundTask writer;
     clock.report.setupSeconds = clock.now();
     clock.report.frames.resize(todo.size());
+    // Auto-exposure: the W frames before each frame to write render too, for their meter (render/auto_exposure.h).
+    std::optional<AutoExposure> autoExposure;
+    if (sensor && sensor->params().autoExposure.enabled)
+        autoExposure.emplace(sensor->params().autoExposure, r.scene.sequence.timeStep);
+    AutoExposure* exposure = autoExposure ? &*autoExposure : nullptr;
     if (r.scene.render.flow) {
-        renderFlowFrames(gpu, target, r, plan, todo, dataset, sensor, options, writer, progress, clock);
+        renderFlowFrames(gpu, target, r, plan, todo, dataset, sensor, options, writer, progress, clock, exposure);
         return;
     }
-    for (size_t i = 0; i < todo.size(); ++i) {
-        const uint32_t frame = todo[i];
-        RenderJobReport::Frame& t = clock.report.frames[i];
+    size_t i = 0;
+    for (const uint32_t frame : exposure ? exposure->framesToRender(todo) : todo) {
+        if (frame != todo[i]) { // rendered for its meter alone: the window of a frame to write
+            RigCameras cameras;
+            renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, cameras,
+                                exposure);
+            continue;
+        }
+        RenderJobReport::Frame& t = clock.report.frames[i++];
         const double renderStart = clock.now();
         auto cameras = std::make_shared<RigCameras>();
-        auto images = std::make_shared<const FrameImages>(
-            renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras));
+        auto images = std::make_shared<const FrameImages>(renderSequenceFrame(
+            gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras, exposure));
         auto state = std::make_shared<RangeFrameState>();
         if (range.active()) *state = rangeFrameState(gpu, r, ruts);
         const double rendered = clock.now();
@@ -317,8 +336,9 @@ RenderJobReport runRenderJob(const RenderJobOptions& options) {
 
     const std::vector<nlohmann::json> records = sequenceRecords(resources, plan, options.time);
     const bool motionBlur = sensor && sensor->params().shutterSeconds > 0.0; // the sub-frames' blur lengths
+    const bool autoExposure = sensor && sensor->params().autoExposure.enabled; // auto_exposure/ per frame
     DatasetWriter dataset(options.outDir, stereo, resources.scene.rangeSensors, resources.scene.render.flow,
-                          motionBlur);
+                          motionBlur, autoExposure);
     std::vector<uint32_t> todo; // resume: frames whose files all exist are complete
     for (uint32_t frame = plan.firstFrame; frame < plan.endFrame; ++frame)
         if (options.overwrite || !dataset.frameComplete(frame)) todo.push_back(frame);

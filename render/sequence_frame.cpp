@@ -1,6 +1,8 @@
 #include "render/sequence_frame.h"
 
+#include "render/auto_exposure.h"
 #include "render/motion_blur.h"
+#include "render/rolling_shutter.h"
 #include "render/track_renderer.h"
 
 #include "common/error.h"
@@ -76,28 +78,76 @@ std::function<void(VkCommandBuffer)> flowPrologue(SceneGpu& gpu, uint32_t frame)
 }
 
 // renderSequenceFrame with the motion ground truth (render.flow; one tile, no world simulation). This tick's plant
-// state is kept before the next tick runs between the main and the truth passes.
+// state is kept before the next tick runs between the main and the truth passes. `rowTime` (a rolling shutter's band,
+// render/rolling_shutter.h): the flow's rigs are those a step before and after that time, and the next tick is
+// recorded only with `tickNext` (the first band's truth: the later bands' find it run).
 FrameImages renderFlowFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t frame, double time,
                             const RigCameras& cameras, const std::function<void(VkCommandBuffer)>& prologue,
-                            bool colour) {
+                            bool colour, std::optional<double> rowTime = {}, bool tickNext = true) {
     const uint32_t width = cameras.left.width, height = cameras.left.height;
-    const RigCameras previous =
-        sequenceRig(r, width, height, frame > 0 ? frame - 1 : 0); // frame 0 has no backward flow
-    const RigCameras next = sequenceRig(r, width, height, frame + 1);
+    const double step = r.scene.sequence.timeStep;
+    const RigCameras previous = rowTime ? sequenceRigAt(r, width, height, frame > 0 ? *rowTime - step : *rowTime)
+                                        : sequenceRig(r, width, height, frame > 0 ? frame - 1 : 0); // frame 0: none
+    const RigCameras next =
+        rowTime ? sequenceRigAt(r, width, height, *rowTime + step) : sequenceRig(r, width, height, frame + 1);
     const bool stereo = r.scene.camera.rig.stereo();
     FlowTicks flow{.previous = {&previous.left, &previous.right},
                    .next = {&next.left, &next.right},
                    .timeStep = r.scene.sequence.timeStep,
                    .beforeTruth = [&](VkCommandBuffer cmd) { recordFlowTick(gpu, cmd, frame + 1); }};
+    if (!tickNext) flow.beforeTruth = {};
     return target.render(*gpu.renderer, cameras.left, time, frame, prologue, stereo ? &cameras.right : nullptr, &flow,
                          colour);
+}
+
+// The sensor's read-out of a frame's light: the lens, then the sensor model (noise keyed by seed, frame, camera).
+FrameImages readOutSensor(const SceneResources& r, const SensorModel& sensor, const RigCameras& cameras, uint32_t frame,
+                          FrameImages images, AutoExposure* autoExposure) {
+    double scale = 1.0; // auto-exposure meters the light before the lens (render/auto_exposure.h)
+    if (autoExposure) scale = (images.autoExposure = autoExposure->meter(frame, images.rgbaHalf))->factor;
+    // The lens before the sensor, each view defocused by its own exact depth (the rig is rectified: one fx, cx).
+    const SensorOptics optics(sensor.params(), Intrinsics::of(cameras.left));
+    optics.applyHalf(images.depth, images.rgbaHalf);
+    if (!images.rightRgbaHalf.empty()) optics.applyHalf(images.rightDepth, images.rightRgbaHalf);
+    sensor.applyHalf(r.scene.seed, frame, 0, images.rgbaHalf, scale);
+    if (!images.rightRgbaHalf.empty()) sensor.applyHalf(r.scene.seed, frame, 1, images.rightRgbaHalf, scale);
+    return images;
+}
+
+// A rolling shutter's frame (render/rolling_shutter.h): every band's colour (its exposure of `exposureSamples`
+// sub-frames, or its instant), `tick` before the first, then every band's truth at the band's time (the flow's next
+// tick with the first), the rows of each copied out. With a shutter each band's motion_blur is its exposure's.
+FrameImages renderReadout(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
+                          uint32_t height, uint32_t frame, double timeOffset, const SensorParams& sensor,
+                          size_t exposureSamples, const std::function<void(VkCommandBuffer)>& tick) {
+    const bool stereo = r.scene.camera.rig.stereo();
+    const double time = double(frame) * r.scene.sequence.timeStep, half = 0.5 * sensor.shutterSeconds;
+    auto rigAt = [&](double t) { return sequenceRigAt(r, width, height, t); };
+    auto colourAt = [&](double t, bool first) {
+        return renderBandColour(*gpu.renderer, target, rigAt, stereo, t, sensor.shutterSeconds,
+                                uint32_t(exposureSamples), timeOffset, frame,
+                                first ? tick : std::function<void(VkCommandBuffer)>());
+    };
+    auto truthAt = [&](double t, bool first) {
+        const RigCameras rig = rigAt(t);
+        FrameImages images = target.hasFlow()
+                                 ? renderFlowFrame(gpu, target, r, frame, timeOffset + t, rig, {}, false, t, first)
+                                 : target.render(*gpu.renderer, rig.left, timeOffset + t, frame, {},
+                                                 stereo ? &rig.right : nullptr, nullptr, false);
+        if (exposureSamples > 0)
+            images.motionBlur = motionBlurLengths(rigAt(t - half).left, rig.left, rigAt(t + half).left, images.depth);
+        return images;
+    };
+    return composeReadout(readoutBands(time, sensor.readoutSeconds, height, sensor.readoutBands), width, height,
+                          colourAt, truthAt);
 }
 
 } // namespace
 
 FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
                                 uint32_t height, uint32_t frame, double timeOffset,
-                                const std::optional<SensorModel>& sensor, RigCameras& cameras) {
+                                const std::optional<SensorModel>& sensor, RigCameras& cameras,
+                                AutoExposure* autoExposure) {
     const double time = double(frame) * r.scene.sequence.timeStep;
     const bool stereo = r.scene.camera.rig.stereo();
     cameras = sequenceRig(r, width, height, frame);
@@ -116,6 +166,11 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
     } else if (r.world) { // every tile within load_radius of the cameras, generated before the frame: deterministic
         std::vector<glm::dvec2> around{glm::dvec2(cameras.left.position)};
         for (double t : exposure) around.push_back(glm::dvec2(rigAt(t).left.position));
+        if (sensor && sensor->params().readoutSeconds > 0.0) // a rolling shutter's first and last rows' exposures
+            for (double t :
+                 {time - 0.5 * sensor->params().readoutSeconds, time + 0.5 * sensor->params().readoutSeconds})
+                for (double s : {-0.5, 0.5})
+                    around.push_back(glm::dvec2(rigAt(t + s * sensor->params().shutterSeconds).left.position));
         r.world->waitFor(around);
         syncWorldTiles(*gpu.renderer, *r.world);
     }
@@ -124,6 +179,11 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
         tick = [&](VkCommandBuffer cmd) { gpu.simulation->recordNextTick(cmd, frame); };
     }
     if (target.hasFlow()) tick = flowPrologue(gpu, frame);
+    if (sensor && sensor->params().readoutSeconds > 0.0) { // a rolling shutter: each band of rows at its own time
+        FrameImages images =
+            renderReadout(gpu, target, r, width, height, frame, timeOffset, sensor->params(), exposure.size(), tick);
+        return readOutSensor(r, *sensor, cameras, frame, std::move(images), autoExposure);
+    }
     ExposureColour blurred;
     if (!exposure.empty()) { // the frame's tick runs before the first sub-frame, and only then
         blurred = renderExposure(*gpu.renderer, target, rigAt, stereo, exposure, timeOffset, frame, tick);
@@ -141,15 +201,8 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
         images.motionBlur =
             motionBlurLengths(rigAt(time - half).left, cameras.left, rigAt(time + half).left, images.depth);
     }
-    if (sensor) { // after the exposure's mean: light is integrated first, then the sensor reads it out
-        // The lens before the sensor, each view defocused by its own exact depth (the rig is rectified: one fx, cx).
-        const SensorOptics optics(sensor->params(), Intrinsics::of(cameras.left));
-        optics.applyHalf(images.depth, images.rgbaHalf);
-        if (stereo) optics.applyHalf(images.rightDepth, images.rightRgbaHalf);
-        sensor->applyHalf(r.scene.seed, frame, 0, images.rgbaHalf);
-        if (stereo) sensor->applyHalf(r.scene.seed, frame, 1, images.rightRgbaHalf);
-    }
-    return images;
+    // After the exposure's mean: light is integrated first, then the sensor reads it out.
+    return sensor ? readOutSensor(r, *sensor, cameras, frame, std::move(images), autoExposure) : images;
 }
 
 RangeFrameState rangeFrameState(SceneGpu& gpu, const SceneResources& r, RutPatchCache& ruts) {

@@ -102,7 +102,8 @@ SensorModel::SensorModel(const SensorParams& params, const Intrinsics& in) : par
     }
 }
 
-void SensorModel::apply(uint64_t seed, uint32_t frame, uint32_t camera, std::span<float> rgba) const {
+void SensorModel::apply(uint64_t seed, uint32_t frame, uint32_t camera, std::span<float> rgba,
+                        double exposureScale) const {
     if (!params_.enabled) return;
     const uint32_t w = intrinsics_.width, h = intrinsics_.height;
     require(rgba.size() == size_t(w) * h * 4, "sensor model: image size does not match the camera");
@@ -134,6 +135,7 @@ void SensorModel::apply(uint64_t seed, uint32_t frame, uint32_t camera, std::spa
         for (uint32_t c = 0; c < 3; ++c) {
             float& value = rgba[p * 4 + c];
             value *= gain_[p];
+            if (exposureScale != 1.0) value = float(double(value) * exposureScale); // auto-exposure
             if (epu > 0.0 || !params_.electronics.isDefault()) {
                 const double normal = epu > 0.0 && std::isfinite(value) ? gaussian(seed, frame, camera, p, c) : 0.0;
                 value = float(sensorReadout(params_, value, c, normal));
@@ -142,11 +144,12 @@ void SensorModel::apply(uint64_t seed, uint32_t frame, uint32_t camera, std::spa
     }
 }
 
-void SensorModel::applyHalf(uint64_t seed, uint32_t frame, uint32_t camera, std::span<uint16_t> rgbaHalf) const {
+void SensorModel::applyHalf(uint64_t seed, uint32_t frame, uint32_t camera, std::span<uint16_t> rgbaHalf,
+                            double exposureScale) const {
     if (!params_.enabled) return;
     std::vector<float> rgba(rgbaHalf.size());
     std::transform(rgbaHalf.begin(), rgbaHalf.end(), rgba.begin(), halfBitsToFloat);
-    apply(seed, frame, camera, rgba);
+    apply(seed, frame, camera, rgba, exposureScale);
     std::transform(rgba.begin(), rgba.end(), rgbaHalf.begin(), floatToHalfBits);
 }
 
@@ -189,7 +192,10 @@ SensorParams parseSensor(const nlohmann::json& json, const std::string& source, 
                    std::to_string(kMaxMotionSamples) + "] (got " + samples->dump() + ")");
         p.motionSamples = samples->get<uint32_t>();
     }
+    p.readoutSeconds = r.number("readout_s", 0.0, 0.0, kMaxReadoutSeconds);
+    p.readoutBands = uint32_t(r.integer("readout_bands", 0, 1, kMaxReadoutBands));
     parseSensorElectronics(r, p);
+    p.autoExposure = parseAutoExposure(r);
     parseLensOptics(r, p.optics);
     r.finish();
     return p;
@@ -209,9 +215,14 @@ nlohmann::json sensorToJson(const SensorParams& p) {
                            {"full_well", p.fullWell}};
     sensorElectronicsToJson(p.electronics, json);
     lensOpticsToJson(p.optics, json);
+    if (p.autoExposure.enabled) json["auto_exposure"] = autoExposureToJson(p.autoExposure); // absent: as before
     if (p.shutterSeconds > 0.0) { // absent from a scene without a shutter: its records stay as they were
         json["shutter_s"] = p.shutterSeconds;
         json["motion_samples"] = p.motionSamples == 0 ? nlohmann::json("auto") : nlohmann::json(p.motionSamples);
+    }
+    if (p.readoutSeconds > 0.0) { // absent with a global shutter: its records stay as they were
+        json["readout_s"] = p.readoutSeconds;
+        if (p.readoutBands != 0) json["readout_bands"] = p.readoutBands; // absent: every row its own band
     }
     return json;
 }

@@ -49,7 +49,11 @@ struct SensorParams {
     // Exposure and motion blur (render/motion_blur.h): the colour image is the mean over the exposure.
     double shutterSeconds = 0.0; // exposure time; 0 = an instantaneous image (no sub-frames)
     uint32_t motionSamples = 0;  // sub-frames per exposure, 2..kMaxMotionSamples; 0 = "auto" (from the motion)
+    // Rolling shutter (render/rolling_shutter.h): row r read at t + readout_s ((r + 0.5) / H - 0.5).
+    double readoutSeconds = 0.0; // 0 = a global shutter (every row at the frame's time)
+    uint32_t readoutBands = 0;   // renders per frame, each a band of rows at one time; 0 (or > H) = every row
     SensorElectronics electronics;       // gain, black level, white balance (scene/sensor_exposure.h)
+    AutoExposureParams autoExposure;     // the exposure from the frames' meters (render/auto_exposure.h)
     LensOptics optics; // depth of field, MTF blur, chromatic aberration (scene/sensor_optics.h), before all else
 
     bool hasDistortion() const { return k1 != 0.0 || k2 != 0.0 || k3 != 0.0 || p1 != 0.0 || p2 != 0.0; }
@@ -57,6 +61,8 @@ struct SensorParams {
 
 inline constexpr double kMaxShutterSeconds = 1.0;
 inline constexpr uint32_t kMaxMotionSamples = 64;
+inline constexpr double kMaxReadoutSeconds = 1.0;
+inline constexpr uint32_t kMaxReadoutBands = 16384;
 
 // Pinhole intrinsics in pixels (camera.h convention).
 struct Intrinsics {
@@ -77,9 +83,12 @@ public:
     SensorModel(const SensorParams& params, const Intrinsics& intrinsics);
 
     // `rgba`: width*height*4 linear floats, top row first; replaced by the simulated image.
-    void apply(uint64_t seed, uint32_t frame, uint32_t camera, std::span<float> rgba) const;
+    // `exposureScale`: auto-exposure's factor of the frame (render/auto_exposure.h), on top of `exposure`; 1 multiplies
+    // nothing (the image of before, bit for bit).
+    void apply(uint64_t seed, uint32_t frame, uint32_t camera, std::span<float> rgba, double exposureScale = 1.0) const;
     // Same on half bit patterns (as FrameImages::rgbaHalf holds them); results rounded to nearest even.
-    void applyHalf(uint64_t seed, uint32_t frame, uint32_t camera, std::span<uint16_t> rgbaHalf) const;
+    void applyHalf(uint64_t seed, uint32_t frame, uint32_t camera, std::span<uint16_t> rgbaHalf,
+                   double exposureScale = 1.0) const;
 
     const SensorParams& params() const { return params_; }
 
