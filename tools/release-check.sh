@@ -10,9 +10,10 @@
 # 2. The archive is unpacked in the copy at /opt, and inside the chroot (only /proc and /dev bound in; unmounted on
 #    exit, whatever happens) run: the loader check (every library each binary and the Python module load resolves,
 #    and only the C library family, libstdc++ / libgcc_s and the Vulkan loader come from outside the archive),
-#    sward-render of examples/meadow.json at 320x240 (one frame, lavapipe), sward-eval (SGBM stereo) and sward-export
-#    (KITTI) on its output, `import sward` with the chroot's python3, and `sward-bench suite --quick` where the archive's
-#    sward-bench has that command.
+#    sward-render of examples/meadow.json at 320x240 (one frame, lavapipe), of the GIS example (GDAL) and of the
+#    LiDAR example (Embree) at 160x120, sward-eval (SGBM stereo) and sward-export (KITTI) on the meadow's output,
+#    `import sward` and a 64x48 Simulator render with the chroot's python3, and `sward-bench suite --quick` where
+#    the archive's sward-bench has that command.
 # Each step prints its command, PASS or FAIL and its time; the exit status is 1 when any step failed, 2 on a usage
 # error. Needs root (debootstrap, chroot, mount).
 #
@@ -120,6 +121,10 @@ run loader 'status=0; for f in bin/* $(find lib -name "_sward*.so"); do
     | sed "s|^|$f: from the system: |" | grep . && status=1
 done; exit $status' 'ldd bin/* lib/python3/dist-packages/sward/_sward*.so: nothing missing, nothing from the system but glibc, libstdc++, libgcc_s, libvulkan'
 run render 'sward-render share/sward/examples/meadow.json --resolution 320x240 --frames 0:1 --out /tmp/meadow -q && ls /tmp/meadow | tr "\n" " "; echo'
+# The optional parts' libraries at work: GDAL (the GIS example's GeoTIFF land cover and heightmap) and Embree (the
+# LiDAR's rays).
+run render-gis 'sward-render share/sward/examples/gis/gis.json --resolution 160x120 --frames 0:1 --out /tmp/gis -q'
+run render-lidar 'sward-render share/sward/examples/rover-lidar.json --resolution 160x120 --frames 0:1 --out /tmp/lidar -q && ls /tmp/lidar | tr "\n" " "; echo'
 run eval 'sward-eval /tmp/meadow --out /tmp/meadow-eval --no-pictures && ls /tmp/meadow-eval | tr "\n" " "; echo'
 run export 'sward-export /tmp/meadow --layout kitti --out /tmp/meadow-kitti && find /tmp/meadow-kitti -type f | sort | tr "\n" " "; echo'
 run python 'PYTHONPATH=$PWD/lib/python3/dist-packages python3 -c "import sward; print(sward.__version__ if hasattr(sward, \"__version__\") else \"ok\")"'
