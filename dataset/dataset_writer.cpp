@@ -15,6 +15,8 @@
 #include "scene/camera_rig.h"
 #include "shared/gpu_layout.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -139,8 +141,8 @@ void refuseLinksIn(const std::string& dir, const std::function<bool(const std::s
 } // namespace
 
 DatasetWriter::DatasetWriter(std::string root, bool stereo, const std::vector<RangeSensorParams>& rangeSensors,
-                             bool flow, bool motionBlur)
-    : root_(std::move(root)), stereo_(stereo), flow_(flow), motionBlur_(motionBlur) {
+                             bool flow, bool motionBlur, bool autoExposure)
+    : root_(std::move(root)), stereo_(stereo), flow_(flow), motionBlur_(motionBlur), autoExposure_(autoExposure) {
     for (const RangeSensorParams& sensor : rangeSensors)
         rangeSensors_.push_back({sensor.name, sensor.type, sensor.channels() * uint64_t(sensor.columns())});
 }
@@ -156,6 +158,7 @@ std::vector<std::string> DatasetWriter::directories() const {
             dirs.insert(dirs.end(), {flowFolders(view == 1, forward).flow, flowFolders(view == 1, forward).mask});
     if (flow_ && stereo_) dirs.insert(dirs.end(), {kDisparityChangeForwardFolder, kDisparityChangeBackwardFolder});
     if (motionBlur_) dirs.push_back(kMotionBlurFolder);
+    if (autoExposure_) dirs.push_back(kAutoExposureFolder);
     if (!rangeSensors_.empty()) dirs.push_back(kRangeFolder);
     for (const RangeFiles& sensor : rangeSensors_) dirs.push_back(std::string(kRangeFolder) + "/" + sensor.name);
     return dirs;
@@ -205,6 +208,7 @@ uint64_t DatasetWriter::frameBytesUpperBound(uint32_t width, uint32_t height) co
         bytesPerPixel.insert(bytesPerPixel.end(), {8, 6, 12, 1});
     if (flow_ && stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {4, 4});
     if (motionBlur_) bytesPerPixel.push_back(4); // the blur length, float Y
+    if (autoExposure_) bytesPerPixel.push_back(0); // a line of JSON: its header allowance and blocks
     constexpr uint64_t kBlock = 4096;
     uint64_t total = 0;
     for (uint64_t perPixel : bytesPerPixel) {
@@ -337,6 +341,7 @@ std::vector<std::string> DatasetWriter::frameFiles(uint32_t frame) const {
                       frameFile(kOcclusionFolder, frame, ".png"), frameFile(kOcclusionRightFolder, frame, ".png"),
                       frameFile(kNormalRightFolder, frame, ".exr")});
     if (motionBlur_) files.push_back(frameFile(kMotionBlurFolder, frame, ".exr"));
+    if (autoExposure_) files.push_back(frameFile(kAutoExposureFolder, frame, ".json"));
     for (const RangeFiles& sensor : rangeSensors_)
         for (std::string& file : rangeFrameFiles(sensor.name, sensor.type, frame)) files.push_back(std::move(file));
     for (std::string& file : flowFiles(frame)) files.push_back(std::move(file));
@@ -396,6 +401,12 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
         require(images.motionBlur.size() == size_t(w) * h,
                 "DatasetWriter::writeFrame: a shutter's frame needs its blur");
         writeExrFloatChannels(path(kMotionBlurFolder, ".exr"), w, h, {"Y"}, {images.motionBlur});
+    }
+    if (autoExposure_) { // the exposure the frame got, known only once it and its window have rendered
+        require(images.autoExposure.has_value(), "DatasetWriter::writeFrame: an auto-exposed frame needs its exposure");
+        const nlohmann::json record = {
+            {"frame", frame}, {"meter", images.autoExposure->meter}, {"factor", images.autoExposure->factor}};
+        writeTextAtomically(path(kAutoExposureFolder, ".json"), record.dump() + "\n");
     }
 }
 

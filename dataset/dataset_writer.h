@@ -48,8 +48,9 @@ public:
     // `rangeSensors`: the scene's range sensors, whose files (range/<name>/) belong to each frame. `flow`: frames have
     // the motion ground truth files too (render.flow; dataset/flow_truth.h).
     // `motionBlur`: frames have the motion_blur/ file (a shutter: FrameImages::motionBlur).
+    // `autoExposure`: frames have the auto_exposure/NNNNNN.json file (FrameImages::autoExposure).
     DatasetWriter(std::string root, bool stereo, const std::vector<RangeSensorParams>& rangeSensors = {},
-                  bool flow = false, bool motionBlur = false);
+                  bool flow = false, bool motionBlur = false, bool autoExposure = false);
 
     // Checks, writing nothing, that the run can start: the output folder (or, when missing, its nearest existing
     // parent) is a writable folder; no name the dataset uses in it is a symbolic link (sward never writes, hashes or
@@ -121,7 +122,7 @@ private:
     void removeOldDataset() const;
     void requireNoLinks() const;
     std::string root_;
-    bool stereo_, flow_, motionBlur_;
+    bool stereo_, flow_, motionBlur_, autoExposure_;
     struct RangeFiles {
         std::string name;
         RangeSensorType type;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace sward {
@@ -27,6 +28,12 @@ struct FrameImages {
     // With a shutter (camera.sensor.shutter_s, render/motion_blur.h), width*height: the left view's blur length in
     // pixels over the exposure, from the camera's motion and the exact depth (static geometry).
     std::vector<float> motionBlur;
+    // With auto-exposure (camera.sensor.auto_exposure, render/auto_exposure.h): the frame's meter (the mean luminance
+    // of the left colour before lens and sensor) and the exposure factor both views got; unset without.
+    struct Exposure {
+        double meter = 0.0, factor = 1.0;
+    };
+    std::optional<Exposure> autoExposure;
 };
 
 } // namespace sward

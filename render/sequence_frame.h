@@ -16,6 +16,8 @@
 
 namespace sward {
 
+class AutoExposure;
+
 // A fixed camera instead of the scene's (--camera, --look-at, --fov; the Python module's set_camera): a position
 // or a target given here is absolute and detaches the rig from its path and mount. Checks the field of view.
 void overrideCamera(Scene& scene, const std::optional<glm::dvec3>& position, const std::optional<glm::dvec3>& lookAt,
@@ -36,10 +38,12 @@ std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, uint32_t w
 // frame, camera) noise key. `timeOffset` is added to the wind's time (--time). Returns the rig in `cameras`.
 // A `target` made with flow (render.flow) also gets the motion ground truth: the frame's tick runs unless the previous
 // frame's already ran it, and the next tick runs before the truth passes (FlowTicks), so the simulation ends one tick
-// ahead; frames must then come in increasing order.
+// ahead; frames must then come in increasing order. `autoExposure` (camera.sensor.auto_exposure): meters the frame and
+// applies the exposure of its window (render/auto_exposure.h), recorded in FrameImages::autoExposure.
 FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
                                 uint32_t height, uint32_t frame, double timeOffset,
-                                const std::optional<SensorModel>& sensor, RigCameras& cameras);
+                                const std::optional<SensorModel>& sensor, RigCameras& cameras,
+                                AutoExposure* autoExposure = nullptr);
 
 // What the range sensors (range/range_recorder.h) see of a rendered frame besides the scene: the plants' interaction
 // state (the GPU's dynamic records after the frame's tick) and the ground's rut patches as the track renderer draws

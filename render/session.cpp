@@ -3,6 +3,7 @@
 #include "common/error.h"
 #include "render/object_renderer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -14,6 +15,8 @@ Session::Session(Scene scene, const SessionOptions& options)
     require(std::isfinite(options.time) && options.time >= 0.0, "time must be a finite, non-negative number of seconds");
     RigCameras firstRig;
     sensor_ = checkRigAndSensor(resources_, width_, height_, 0, firstRig); // before a device exists
+    if (sensor_ && sensor_->params().autoExposure.enabled)
+        autoExposure_.emplace(sensor_->params().autoExposure, resources_.scene.sequence.timeStep);
     ctx_ = std::make_unique<Context>(
         DeviceOptions{.deviceFilter = options.device, .validation = options.validation || DeviceOptions{}.validation});
     // Always a simulation: colliders placed from the program may touch plants at any tick. A tick with no contact
@@ -34,7 +37,16 @@ Session::~Session() {
 
 void Session::step(uint32_t ticks) {
     require(uint64_t(next_) + ticks <= UINT32_MAX, "step: the frame number would pass 2^32 - 1");
-    next_ += ticks;
+    const uint32_t end = next_ + ticks;
+    if (autoExposure_) { // the window's frames rendered (their own ticks) for the meter of the frame after them
+        for (uint32_t frame = std::max(next_, end > autoExposure_->window() ? end - autoExposure_->window() : 0);
+             frame < end; ++frame) {
+            RigCameras cameras;
+            renderSequenceFrame(gpu_, *target_, resources_, width_, height_, frame, options_.time, sensor_, cameras,
+                                &*autoExposure_);
+        }
+    }
+    next_ = end;
     if (gpu_.simulation) gpu_.simulation->runTicksBefore(next_);
     if (gpu_.worldSimulation) gpu_.worldSimulation->runTicksBefore(next_);
 }
@@ -43,7 +55,7 @@ SessionFrame Session::render() {
     require(next_ < UINT32_MAX, "render: the frame number would pass 2^32 - 1");
     SessionFrame out{.frame = next_};
     out.images = renderSequenceFrame(gpu_, *target_, resources_, width_, height_, next_, options_.time, sensor_,
-                                     out.cameras);
+                                     out.cameras, autoExposure_ ? &*autoExposure_ : nullptr);
     out.baseline = resources_.scene.camera.rig.baseline;
     if (range_) out.range = range_->sweep(next_, rangeFrameState(gpu_, resources_, ruts_).view(options_.time));
     ++next_;
@@ -86,6 +98,7 @@ void Session::saveState(const std::string& path) {
 }
 
 void Session::restoreState(const std::string& path) {
+    if (autoExposure_) autoExposure_->clear(); // the frames before the saved tick were never metered here
     if (gpu_.worldSimulation) {
         const uint64_t tick = gpu_.worldSimulation->restoreState(path);
         require(tick < UINT32_MAX, "restore_state: the saved tick is beyond the last frame");

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "engine/context.h"
+#include "render/auto_exposure.h"
 #include "render/sequence_frame.h"
 #include "scene/scene_resources.h"
 
@@ -42,7 +43,8 @@ public:
 
     // The next frame render() shows, = the next interaction tick.
     uint32_t frame() const { return next_; }
-    // Advances `ticks` ticks without rendering (the interaction runs each of them).
+    // Advances `ticks` ticks without rendering (the interaction runs each of them). With auto-exposure the last W of
+    // them are rendered for their meter (render/auto_exposure.h), so the next frame's exposure is sward-render's.
     void step(uint32_t ticks);
     // Renders the next frame with its own tick, as sward-render would, and advances by one.
     SessionFrame render();
@@ -57,7 +59,8 @@ public:
     void setColliders(std::vector<Collider> colliders);
 
     // The interaction state (SWARDST1, interaction/state_file.h): tick, field activity, every plant's dynamic
-    // record. restoreState continues from the saved tick; next frame = that tick.
+    // record. restoreState continues from the saved tick; next frame = that tick. Auto-exposure's window restarts
+    // there (the frames before it are not metered again): its next W frames differ from sward-render's.
     void saveState(const std::string& path);
     void restoreState(const std::string& path);
 
@@ -73,6 +76,7 @@ private:
     SessionOptions options_;
     uint32_t width_ = 0, height_ = 0;
     std::optional<SensorModel> sensor_;
+    std::optional<AutoExposure> autoExposure_; // the meters of the frames rendered (camera.sensor.auto_exposure)
     std::unique_ptr<Context> ctx_;
     SceneGpu gpu_;
     std::unique_ptr<OffscreenFrame> target_;

@@ -41,8 +41,8 @@ struct SensorParams;
 // e^-5 = 0.7 % of the filter's mass; a step in the scene's light is followed by 63 % of its stops after one time
 // constant (more at the sequence's start, where the window is normalised over fewer frames). time_constant_s 0:
 // every frame metered alone.
-// Not yet a scene key: parseSensor does not read "auto_exposure" until sward-render meters the frames before each
-// shard's first one and records the exposure per frame (parseAutoExposure is ready for it).
+// The scene key camera.sensor.auto_exposure; a run's state (the meters, the priming of a shard's or a resumed run's
+// first window, the record per frame in auto_exposure/) is render/auto_exposure.h.
 struct AutoExposureParams {
     bool enabled = false;
     double targetGrey = 0.18;           // the exposed mean luminance aimed at
