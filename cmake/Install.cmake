@@ -43,7 +43,7 @@ install(EXPORT swardTargets NAMESPACE sward:: DESTINATION ${SWARD_CMAKE_DIR} COM
 # worlds' generated ground meshes and rasters beside their scenes (examples/CMakeLists.txt). host-app is a program's
 # source (docs/integration.md), shipped as it is.
 install(DIRECTORY examples/ DESTINATION ${CMAKE_INSTALL_DATADIR}/sward/examples COMPONENT Runtime
-        PATTERN CMakeLists.txt EXCLUDE)
+        REGEX "examples/CMakeLists\\.txt$" EXCLUDE)
 install(DIRECTORY ${CMAKE_BINARY_DIR}/examples/gis ${CMAKE_BINARY_DIR}/examples/hills ${CMAKE_BINARY_DIR}/examples/tracks
         DESTINATION ${CMAKE_INSTALL_DATADIR}/sward/examples COMPONENT Runtime)
 install(FILES README.md third_party_notes.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT Runtime)
