@@ -16,8 +16,9 @@
 # Python module in lib/python3/dist-packages/sward/), written as DT_RPATH (--disable-new-dtags), not DT_RUNPATH:
 # the bundled libraries' own dependencies (GDAL's PROJ, GEOS, ...) are then found there too, since the loader
 # searches the DT_RPATH of every object on the chain that loaded a library, while a DT_RUNPATH serves only the
-# object's own direct dependencies. Debian's libraries stay unmodified (no patchelf). In `cmake --install` prefixes
-# the rpath names P/lib, which holds only the static libraries, so nothing changes there.
+# object's own direct dependencies. Debian's libraries stay unmodified (no patchelf). A DT_RPATH is searched before
+# LD_LIBRARY_PATH: to use the machine's copy of a bundled library, delete it from lib/. In `cmake --install`
+# prefixes the rpath names P/lib: sward's static libraries, and whatever else is there (/usr/local/lib).
 foreach(target ${SWARD_TOOLS})
   set_target_properties(${target} PROPERTIES INSTALL_RPATH "\$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
   target_link_options(${target} PRIVATE -Wl,--disable-new-dtags)
