@@ -51,7 +51,9 @@ double exactExp2(double x) {
 
 uint32_t autoExposureWindow(const AutoExposureParams& p, double timeStep) {
     if (!(p.timeConstantSeconds > 0.0)) return 0;
-    return uint32_t(std::ceil(kAutoExposureSpan * p.timeConstantSeconds / timeStep));
+    const double frames = std::ceil(kAutoExposureSpan * p.timeConstantSeconds / timeStep);
+    const double bound = p.maxWindowFrames > 0 ? double(p.maxWindowFrames) : double(UINT32_MAX);
+    return uint32_t(std::min(frames, bound));
 }
 
 double meterLuminance(std::span<const uint16_t> rgbaHalf) {
@@ -114,16 +116,19 @@ AutoExposureParams parseAutoExposure(JsonReader& sensor) {
     p.minEv = r.number("min_ev", -16.0, -30.0, 30.0);
     p.maxEv = r.number("max_ev", 16.0, -30.0, 30.0);
     if (p.minEv > p.maxEv) r.fail(r.name("min_ev") + " must not be above 'max_ev'");
+    p.maxWindowFrames = uint32_t(r.integer("max_window_frames", 0, 1, kMaxAutoExposureWindow));
     r.finish();
     return p;
 }
 
 nlohmann::json autoExposureToJson(const AutoExposureParams& p) {
-    return {{"enabled", p.enabled},
-            {"target_grey", p.targetGrey},
-            {"time_constant_s", p.timeConstantSeconds},
-            {"min_ev", p.minEv},
-            {"max_ev", p.maxEv}};
+    nlohmann::json json = {{"enabled", p.enabled},
+                           {"target_grey", p.targetGrey},
+                           {"time_constant_s", p.timeConstantSeconds},
+                           {"min_ev", p.minEv},
+                           {"max_ev", p.maxEv}};
+    if (p.maxWindowFrames > 0) json["max_window_frames"] = p.maxWindowFrames; // absent: the window of 5 tau
+    return json;
 }
 
 void parseSensorElectronics(JsonReader& r, SensorParams& params) {

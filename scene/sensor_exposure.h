@@ -48,10 +48,15 @@ struct AutoExposureParams {
     double targetGrey = 0.18;           // the exposed mean luminance aimed at
     double timeConstantSeconds = 0.5;   // tau
     double minEv = -16.0, maxEv = 16.0; // limits of the exposure factor, in stops
+    // The most frames before a frame its exposure depends on (JSON "max_window_frames"); 0: ceil(5 tau / dt). A
+    // smaller bound cuts the filter's tail (a step is then followed a little faster, and wholly after that many
+    // frames) and what a shard or a resumed run renders first.
+    uint32_t maxWindowFrames = 0;
 };
 
-inline constexpr double kAutoExposureSpan = 5.0;      // the window in time constants
-inline constexpr double kAutoExposureFloorEv = -40.0; // the meter of a black view, in stops
+inline constexpr double kAutoExposureSpan = 5.0;           // the window in time constants
+inline constexpr double kAutoExposureFloorEv = -40.0;      // the meter of a black view, in stops
+inline constexpr uint32_t kMaxAutoExposureWindow = 100000; // the largest max_window_frames
 
 struct SensorElectronics {
     double gain = 1.0;                // analog gain G (JSON "gain", "gain_db" or "iso" / "base_iso")
@@ -68,7 +73,7 @@ struct SensorElectronics {
     }
 };
 
-// Frames before frame k that its exposure depends on (W above); 0 without smoothing.
+// Frames before frame k that its exposure depends on (W above, at most maxWindowFrames when set); 0 without smoothing.
 uint32_t autoExposureWindow(const AutoExposureParams& params, double timeStep);
 // M: the mean Rec. 709 luminance of the finite pixels of a linear half RGBA image, summed in pixel order (0 if none).
 double meterLuminance(std::span<const uint16_t> rgbaHalf);

@@ -24,3 +24,7 @@ CASES = [
     Case("camera.sensor auto_exposure unknown key", "sward-render", auto_exposure({"speed": 1}), 1,
          r"unknown key " + KEY + r"\.speed'"),
 ]
+
+CASES.append(Case("camera.sensor auto_exposure max_window_frames 0", "sward-render",
+                  auto_exposure({"max_window_frames": 0}), 1,
+                  KEY + r"\.max_window_frames' must be an integer in \[1, 100000\] \(got 0\)"))

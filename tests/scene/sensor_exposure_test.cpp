@@ -359,3 +359,31 @@ TEST(AutoExposure, ParsesItsObjectAndNamesBadKeys) {
     EXPECT_EQ(message({{"speed", 1}}), "scene.json: unknown key 'camera.sensor.auto_exposure.speed'");
     EXPECT_EQ(message(0.5), "scene.json: 'camera.sensor.auto_exposure' must be an object");
 }
+
+TEST(AutoExposure, MaxWindowFramesBoundsTheWindowAndIsWrittenBackOnlyWhenSet) {
+    AutoExposureParams p{.enabled = true, .timeConstantSeconds = 2.0};
+    EXPECT_EQ(autoExposureWindow(p, 0.1), 100u); // ceil(5 tau / dt)
+    EXPECT_FALSE(autoExposureToJson(p).contains("max_window_frames"));
+    p.maxWindowFrames = 30;
+    EXPECT_EQ(autoExposureWindow(p, 0.1), 30u);
+    EXPECT_EQ(autoExposureWindow(p, 1.0), 10u); // a bound above 5 tau / dt changes nothing
+    // The factor of a frame depends on its 30 frames before only: a meter 31 frames back changes nothing.
+    std::vector<double> meters(40, 0.1), older = meters;
+    older[40 - 32] = 10.0;
+    EXPECT_EQ(autoExposureFactor(p, 0.1, meters), autoExposureFactor(p, 0.1, older));
+    older[40 - 31] = 10.0;
+    EXPECT_NE(autoExposureFactor(p, 0.1, meters), autoExposureFactor(p, 0.1, older));
+    const nlohmann::json sensor = {{"auto_exposure", autoExposureToJson(p)}};
+    JsonReader r(sensor, "scene.json", "camera.sensor");
+    EXPECT_EQ(parseAutoExposure(r).maxWindowFrames, 30u);
+    const nlohmann::json bad = {{"auto_exposure", {{"max_window_frames", 0}}}};
+    JsonReader b(bad, "scene.json", "camera.sensor");
+    try {
+        parseAutoExposure(b);
+        FAIL() << "max_window_frames 0 accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(
+            std::string(e.what()),
+            "scene.json: 'camera.sensor.auto_exposure.max_window_frames' must be an integer in [1, 100000] (got 0)");
+    }
+}
