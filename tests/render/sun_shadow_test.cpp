@@ -79,7 +79,7 @@ Bands ringBands(const std::string& out, const Camera& camera, const OldShadowBox
 
 TEST_F(GpuTest, AHighViewShowsNoShadowEdgeWhereTheOldShadowMapEnded) {
     // The meadow without its camera model and its patches: the shadows are measured, not the sensor's noise and lens
-    // (a 0.3 px MTF blur and shot noise move the bands' means by about 0.1 % of their 3 % budget) nor where the
+    // (an MTF blur and shot noise move the bands' means by about 0.1 % of their 3 % budget) nor where the
     // 9 m patches of denser and sparser plants happen to fall on either side of the old edge (patchiness 0.35 / 0.25:
     // steps of 2.9 / 3.3 %).
     nlohmann::json meadow = nlohmann::json::parse(test::readText(SWARD_SOURCE_DIR "/examples/meadow.json"));
