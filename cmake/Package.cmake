@@ -19,12 +19,19 @@
 # object's own direct dependencies. Debian's libraries stay unmodified (no patchelf). A DT_RPATH is searched before
 # LD_LIBRARY_PATH: to use the machine's copy of a bundled library, delete it from lib/. In `cmake --install`
 # prefixes the rpath names P/lib: sward's static libraries, and whatever else is there (/usr/local/lib).
+#
+# The build tree's binaries are linked with the same rpath (BUILD_WITH_INSTALL_RPATH): the tools' is the build's
+# lib/ (sward's static libraries only, so nothing is found there), the module's the build folder's parent. A
+# separate build rpath would end in ':' (CMake adds a separator, and pads to the install rpath's length, so that
+# `cmake --install` can rewrite it in place), and the loader reads an empty entry as the current directory: a
+# build-tree binary would load libraries from wherever it is run.
 foreach(target ${SWARD_TOOLS})
-  set_target_properties(${target} PROPERTIES INSTALL_RPATH "\$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
+  set_target_properties(${target} PROPERTIES INSTALL_RPATH "\$ORIGIN/../${CMAKE_INSTALL_LIBDIR}"
+                                             BUILD_WITH_INSTALL_RPATH ON)
   target_link_options(${target} PRIVATE -Wl,--disable-new-dtags)
 endforeach()
 if(TARGET sward_python)
-  set_target_properties(sward_python PROPERTIES INSTALL_RPATH "\$ORIGIN/../../..")
+  set_target_properties(sward_python PROPERTIES INSTALL_RPATH "\$ORIGIN/../../.." BUILD_WITH_INSTALL_RPATH ON)
   target_link_options(sward_python PRIVATE -Wl,--disable-new-dtags)
 endif()
 
