@@ -141,8 +141,9 @@ void refuseLinksIn(const std::string& dir, const std::function<bool(const std::s
 } // namespace
 
 DatasetWriter::DatasetWriter(std::string root, bool stereo, const std::vector<RangeSensorParams>& rangeSensors,
-                             bool flow, bool motionBlur, bool autoExposure)
-    : root_(std::move(root)), stereo_(stereo), flow_(flow), motionBlur_(motionBlur), autoExposure_(autoExposure) {
+                             bool flow, bool motionBlur, bool autoExposure, uint32_t rawBitDepth)
+    : root_(std::move(root)), stereo_(stereo), flow_(flow), motionBlur_(motionBlur), autoExposure_(autoExposure),
+      rawBitDepth_(rawBitDepth) {
     for (const RangeSensorParams& sensor : rangeSensors)
         rangeSensors_.push_back({sensor.name, sensor.type, sensor.channels() * uint64_t(sensor.columns())});
 }
@@ -159,6 +160,8 @@ std::vector<std::string> DatasetWriter::directories() const {
     if (flow_ && stereo_) dirs.insert(dirs.end(), {kDisparityChangeForwardFolder, kDisparityChangeBackwardFolder});
     if (motionBlur_) dirs.push_back(kMotionBlurFolder);
     if (autoExposure_) dirs.push_back(kAutoExposureFolder);
+    if (rawBitDepth_ != 0) dirs.push_back(kRawFolder);
+    if (rawBitDepth_ != 0 && stereo_) dirs.push_back(kRawRightFolder);
     if (!rangeSensors_.empty()) dirs.push_back(kRangeFolder);
     for (const RangeFiles& sensor : rangeSensors_) dirs.push_back(std::string(kRangeFolder) + "/" + sensor.name);
     return dirs;
@@ -209,6 +212,8 @@ uint64_t DatasetWriter::frameBytesUpperBound(uint32_t width, uint32_t height) co
     if (flow_ && stereo_) bytesPerPixel.insert(bytesPerPixel.end(), {4, 4});
     if (motionBlur_) bytesPerPixel.push_back(4); // the blur length, float Y
     if (autoExposure_) bytesPerPixel.push_back(0); // a line of JSON: its header allowance and blocks
+    for (uint32_t view = 0; rawBitDepth_ != 0 && view < (stereo_ ? 2u : 1u); ++view)
+        bytesPerPixel.push_back(rawBitDepth_ > 8 ? 6 : 3); // the digital numbers, RGB PNG of 8 or 16 bits
     constexpr uint64_t kBlock = 4096;
     uint64_t total = 0;
     for (uint64_t perPixel : bytesPerPixel) {
@@ -342,6 +347,8 @@ std::vector<std::string> DatasetWriter::frameFiles(uint32_t frame) const {
                       frameFile(kNormalRightFolder, frame, ".exr")});
     if (motionBlur_) files.push_back(frameFile(kMotionBlurFolder, frame, ".exr"));
     if (autoExposure_) files.push_back(frameFile(kAutoExposureFolder, frame, ".json"));
+    if (rawBitDepth_ != 0) files.push_back(frameFile(kRawFolder, frame, ".png"));
+    if (rawBitDepth_ != 0 && stereo_) files.push_back(frameFile(kRawRightFolder, frame, ".png"));
     for (const RangeFiles& sensor : rangeSensors_)
         for (std::string& file : rangeFrameFiles(sensor.name, sensor.type, frame)) files.push_back(std::move(file));
     for (std::string& file : flowFiles(frame)) files.push_back(std::move(file));
@@ -407,6 +414,15 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
         const nlohmann::json record = {
             {"frame", frame}, {"meter", images.autoExposure->meter}, {"factor", images.autoExposure->factor}};
         writeTextAtomically(path(kAutoExposureFolder, ".json"), record.dump() + "\n");
+    }
+    for (uint32_t view = 0; rawBitDepth_ != 0 && view < (stereo_ ? 2u : 1u); ++view) {
+        const std::vector<uint16_t>& dn = view == 0 ? images.raw : images.rightRaw;
+        require(dn.size() == size_t(w) * h * 3, "DatasetWriter::writeFrame: a frame with a bit depth needs its raw");
+        const std::string file = path(view == 0 ? kRawFolder : kRawRightFolder, ".png");
+        if (rawBitDepth_ > 8) // the DN in the low bits, not shifted up: a 12-bit file's values are 0..4095
+            writePng16(file, w, h, 3, dn);
+        else
+            writePng8(file, w, h, 3, std::vector<uint8_t>(dn.begin(), dn.end()));
     }
 }
 

@@ -49,8 +49,9 @@ public:
     // the motion ground truth files too (render.flow; dataset/flow_truth.h).
     // `motionBlur`: frames have the motion_blur/ file (a shutter: FrameImages::motionBlur).
     // `autoExposure`: frames have the auto_exposure/NNNNNN.json file (FrameImages::autoExposure).
+    // `rawBitDepth`: frames have raw/NNNNNN.png (and raw_right/) of that many bits (FrameImages::raw); 0: none.
     DatasetWriter(std::string root, bool stereo, const std::vector<RangeSensorParams>& rangeSensors = {},
-                  bool flow = false, bool motionBlur = false, bool autoExposure = false);
+                  bool flow = false, bool motionBlur = false, bool autoExposure = false, uint32_t rawBitDepth = 0);
 
     // Checks, writing nothing, that the run can start: the output folder (or, when missing, its nearest existing
     // parent) is a writable folder; no name the dataset uses in it is a symbolic link (sward never writes, hashes or
@@ -123,6 +124,7 @@ private:
     void requireNoLinks() const;
     std::string root_;
     bool stereo_, flow_, motionBlur_, autoExposure_;
+    uint32_t rawBitDepth_;
     struct RangeFiles {
         std::string name;
         RangeSensorType type;

@@ -34,6 +34,8 @@ struct FrameImages {
         double meter = 0.0, factor = 1.0;
     };
     std::optional<Exposure> autoExposure;
+    // With camera.sensor.bit_depth (scene/sensor_raw.h), width*height*3 each: the views' digital numbers, R, G, B.
+    std::vector<uint16_t> raw, rightRaw;
 };
 
 } // namespace sward

@@ -30,6 +30,8 @@ inline constexpr const char* kNormalRightFolder = "normal_right";       // the r
 inline constexpr const char* kRangeFolder = "range"; // range sensors: range/<sensor>/ (range/range_files.h)
 inline constexpr const char* kMotionBlurFolder = "motion_blur"; // with a shutter: left blur length, pixels, float EXR
 inline constexpr const char* kAutoExposureFolder = "auto_exposure"; // auto-exposure: meter and factor, JSON
+inline constexpr const char* kRawFolder = "raw";             // with a bit depth: left digital numbers, RGB PNG
+inline constexpr const char* kRawRightFolder = "raw_right"; // the right view's (stereo)
 // Motion ground truth (scene key render.flow; dataset/flow_truth.h): flow_forward/NNNNNN.{flo,png,exr} is the left
 // view's flow from frame NNNNNN to the next (io/flow_files.h); its mask: 255 visible in both frames, 128 occluded or
 // out of view, 0 no truth. The same towards the previous frame (flow_backward/; frame 0 has none) and for the right

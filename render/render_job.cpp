@@ -337,8 +337,9 @@ RenderJobReport runRenderJob(const RenderJobOptions& options) {
     const std::vector<nlohmann::json> records = sequenceRecords(resources, plan, options.time);
     const bool motionBlur = sensor && sensor->params().shutterSeconds > 0.0; // the sub-frames' blur lengths
     const bool autoExposure = sensor && sensor->params().autoExposure.enabled; // auto_exposure/ per frame
+    const uint32_t rawBitDepth = sensor ? sensor->params().bitDepth : 0; // raw/ per frame (scene/sensor_raw.h)
     DatasetWriter dataset(options.outDir, stereo, resources.scene.rangeSensors, resources.scene.render.flow,
-                          motionBlur, autoExposure);
+                          motionBlur, autoExposure, rawBitDepth);
     std::vector<uint32_t> todo; // resume: frames whose files all exist are complete
     for (uint32_t frame = plan.firstFrame; frame < plan.endFrame; ++frame)
         if (options.overwrite || !dataset.frameComplete(frame)) todo.push_back(frame);

@@ -116,8 +116,9 @@ FrameImages readOutSensor(const SceneResources& r, const SensorModel& sensor, co
     const SensorOptics optics(sensor.params(), Intrinsics::of(cameras.left));
     optics.applyHalf(images.depth, images.rgbaHalf);
     if (!images.rightRgbaHalf.empty()) optics.applyHalf(images.rightDepth, images.rightRgbaHalf);
-    sensor.applyHalf(r.scene.seed, frame, 0, images.rgbaHalf, scale);
-    if (!images.rightRgbaHalf.empty()) sensor.applyHalf(r.scene.seed, frame, 1, images.rightRgbaHalf, scale);
+    sensor.applyHalf(r.scene.seed, frame, 0, images.rgbaHalf, scale, &images.raw); // raw: with a bit depth
+    if (!images.rightRgbaHalf.empty())
+        sensor.applyHalf(r.scene.seed, frame, 1, images.rightRgbaHalf, scale, &images.rightRaw);
     return images;
 }
 

@@ -5,6 +5,7 @@
 #include "common/half_float.h"
 #include "common/hash.h"
 #include "common/json_reader.h"
+#include "scene/sensor_raw.h"
 
 #include <nlohmann/json.hpp>
 
@@ -145,11 +146,12 @@ void SensorModel::apply(uint64_t seed, uint32_t frame, uint32_t camera, std::spa
 }
 
 void SensorModel::applyHalf(uint64_t seed, uint32_t frame, uint32_t camera, std::span<uint16_t> rgbaHalf,
-                            double exposureScale) const {
+                            double exposureScale, std::vector<uint16_t>* digital) const {
     if (!params_.enabled) return;
     std::vector<float> rgba(rgbaHalf.size());
     std::transform(rgbaHalf.begin(), rgbaHalf.end(), rgba.begin(), halfBitsToFloat);
     apply(seed, frame, camera, rgba, exposureScale);
+    if (digital && params_.bitDepth != 0) *digital = rawDigitalImage(params_, rgba); // the ADC reads the float signal
     std::transform(rgba.begin(), rgba.end(), rgbaHalf.begin(), floatToHalfBits);
 }
 
@@ -197,6 +199,7 @@ SensorParams parseSensor(const nlohmann::json& json, const std::string& source, 
     parseSensorElectronics(r, p);
     p.autoExposure = parseAutoExposure(r);
     parseLensOptics(r, p.optics);
+    parseRawBitDepth(r, p);
     r.finish();
     return p;
 }
@@ -215,6 +218,7 @@ nlohmann::json sensorToJson(const SensorParams& p) {
                            {"full_well", p.fullWell}};
     sensorElectronicsToJson(p.electronics, json);
     lensOpticsToJson(p.optics, json);
+    if (p.bitDepth != 0) json["bit_depth"] = p.bitDepth; // absent without a digital output: records as before
     if (p.autoExposure.enabled) json["auto_exposure"] = autoExposureToJson(p.autoExposure); // absent: as before
     if (p.shutterSeconds > 0.0) { // absent from a scene without a shutter: its records stay as they were
         json["shutter_s"] = p.shutterSeconds;

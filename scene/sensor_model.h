@@ -55,6 +55,7 @@ struct SensorParams {
     SensorElectronics electronics;       // gain, black level, white balance (scene/sensor_exposure.h)
     AutoExposureParams autoExposure;     // the exposure from the frames' meters (render/auto_exposure.h)
     LensOptics optics; // depth of field, MTF blur, chromatic aberration (scene/sensor_optics.h), before all else
+    uint32_t bitDepth = 0; // the digital output raw/ (scene/sensor_raw.h): 8..16 bits; 0 = none
 
     bool hasDistortion() const { return k1 != 0.0 || k2 != 0.0 || k3 != 0.0 || p1 != 0.0 || p2 != 0.0; }
 };
@@ -87,8 +88,9 @@ public:
     // nothing (the image of before, bit for bit).
     void apply(uint64_t seed, uint32_t frame, uint32_t camera, std::span<float> rgba, double exposureScale = 1.0) const;
     // Same on half bit patterns (as FrameImages::rgbaHalf holds them); results rounded to nearest even.
+    // `digital`: with a bit depth, set to the DN of the float output before it is rounded to half (sensor_raw.h).
     void applyHalf(uint64_t seed, uint32_t frame, uint32_t camera, std::span<uint16_t> rgbaHalf,
-                   double exposureScale = 1.0) const;
+                   double exposureScale = 1.0, std::vector<uint16_t>* digital = nullptr) const;
 
     const SensorParams& params() const { return params_; }
 
