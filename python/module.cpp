@@ -103,6 +103,11 @@ py::dict frameDict(const SessionFrame& f, const std::vector<RangeSensorParams>& 
         d["normal_right"] = image(im.rightNormals, w, h, 3);
         d["preview_right"] = image(tonemapPreview(im.rightRgbaHalf, w, h), w, h, 3);
     }
+    if (im.autoExposure) { // camera.sensor.auto_exposure: as auto_exposure/NNNNNN.json records it
+        py::dict exposure;
+        exposure["meter"] = im.autoExposure->meter, exposure["factor"] = im.autoExposure->factor;
+        d["auto_exposure"] = exposure;
+    }
     if (!f.range.empty()) {
         py::dict range;
         for (size_t k = 0; k < f.range.size() && k < sensors.size(); ++k)

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <set>
 
 using namespace sward;
@@ -115,6 +116,44 @@ TEST(AutoExposure, ASkyToGroundStepIsFollowedWithinTheTimeConstant) {
     RecordProperty("exposed_mean", std::to_string(mean.back()));
     EXPECT_NEAR(mean.back(), 0.18, 0.18 * 0.1); // the exposed ground at the target grey (the wind moves plants)
     EXPECT_EQ(session.device().validationMessageCount(), 0u);
+}
+
+// The exposure machinery changes the colour by the factor alone: a factor of exactly 1 (min_ev = max_ev = 0) gives
+// bitwise the frames of a scene without the key (noise on, three frames, the Session stepping over one), and the
+// free factor does not.
+TEST(AutoExposure, AFactorOfOneLeavesEveryImageBitwise) {
+    auto session = [](const nlohmann::json& autoExposure) {
+        nlohmann::json sensor = {{"electrons_per_unit", 500}, {"read_noise", 2}};
+        if (!autoExposure.is_null()) sensor["auto_exposure"] = autoExposure;
+        return std::make_unique<Session>(
+            loadSceneInput(
+                {.path = std::string(SWARD_TEST_DATA_DIR) + "/dataset_scene.json",
+                 .overrides =
+                     nlohmann::json({{"render.resolution", {64, 48}}, {"render.samples", 1}, {"camera.sensor", sensor}})
+                         .dump()}),
+            SessionOptions{.validation = true});
+    };
+    auto frames = [](Session& s) {
+        std::vector<SessionFrame> out;
+        out.push_back(s.render());
+        s.step(1);
+        out.push_back(s.render());
+        return out;
+    };
+    const auto without = session(nullptr), one = session({{"min_ev", 0}, {"max_ev", 0}}),
+               free = session(nlohmann::json::object());
+    const std::vector<SessionFrame> a = frames(*without), b = frames(*one), c = frames(*free);
+    for (size_t k = 0; k < a.size(); ++k) {
+        EXPECT_FALSE(a[k].images.autoExposure.has_value());
+        ASSERT_TRUE(b[k].images.autoExposure.has_value());
+        EXPECT_EQ(b[k].images.autoExposure->factor, 1.0);
+        EXPECT_EQ(a[k].images.rgbaHalf, b[k].images.rgbaHalf) << k;
+        EXPECT_EQ(a[k].images.rightRgbaHalf, b[k].images.rightRgbaHalf) << k;
+        EXPECT_EQ(a[k].images.depth, b[k].images.depth) << k;
+        EXPECT_EQ(a[k].images.labels, b[k].images.labels) << k;
+        EXPECT_NE(a[k].images.rgbaHalf, c[k].images.rgbaHalf) << k; // the test can fail
+        EXPECT_EQ(a[k].images.depth, c[k].images.depth) << k;       // the truth never changes
+    }
 }
 
 // sward-render with auto-exposure (W = 2 at 0.2 s frames, tau 0.06 s) and a moving camera: two shards and a run
