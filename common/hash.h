@@ -5,10 +5,11 @@
 // Never use std:: distributions or rand(): their sequences depend on call order and on the standard library.
 #pragma once
 
+#include "common/exact_math.h"
+
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
-#include <numbers>
 
 namespace sward {
 
@@ -30,16 +31,21 @@ constexpr uint64_t hashKey(std::initializer_list<uint64_t> key) {
 }
 
 // Uniform float in [0, 1) from the top 24 bits: exactly representable, identical on every machine.
-constexpr float unitFloat(uint64_t h) { return float(uint32_t(h >> 40)) * (1.0f / 16777216.0f); }
+constexpr float unitFloat(uint64_t h) {
+    return float(uint32_t(h >> 40)) * (1.0f / 16777216.0f);
+}
 
 // Uniform double in [0, 1) from the top 53 bits.
-constexpr double unitDouble(uint64_t h) { return double(h >> 11) * (1.0 / 9007199254740992.0); }
+constexpr double unitDouble(uint64_t h) {
+    return double(h >> 11) * (1.0 / 9007199254740992.0);
+}
 
-// Standard normal from one hash: Box-Muller on two uniforms derived from it (u1 in (0, 1], so the logarithm is finite).
+// Standard normal from one hash: Box-Muller on two uniforms derived from it (u1 in (0, 1], so the logarithm is finite),
+// with the logarithm and the cosine of common/exact_math.h, not libm's: the same bits on every machine.
 inline double standardNormal(uint64_t h) {
     const double u1 = 1.0 - unitDouble(h);
     const double u2 = unitDouble(mix64(h ^ 0x2545f4914f6cdd1dull));
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+    return std::sqrt(-2.0 * 0.69314718055994530942 * exactLog2(u1)) * exactCosTwoPi(u2);
 }
 
 // A stream of independent values under one key: value i of the stream is hashKey({key, i}).

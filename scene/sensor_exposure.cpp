@@ -38,17 +38,6 @@ double sensorReadout(const SensorParams& p, double light, uint32_t channel, doub
     return v;
 }
 
-double exactExp2(double x) {
-    // 2^x = 2^n 2^f with n = floor(x), f in [0, 1); 2^f = e^(f ln 2) by its Taylor series (terms below 1e-17 after 18).
-    const double n = std::floor(x), t = (x - n) * 0.69314718055994530942;
-    double sum = 1.0, term = 1.0;
-    for (int k = 1; k <= 18; ++k) {
-        term = term * t / double(k);
-        sum += term;
-    }
-    return std::ldexp(sum, int(n));
-}
-
 uint32_t autoExposureWindow(const AutoExposureParams& p, double timeStep) {
     if (!(p.timeConstantSeconds > 0.0)) return 0;
     const double frames = std::ceil(kAutoExposureSpan * p.timeConstantSeconds / timeStep);
@@ -67,24 +56,6 @@ double meterLuminance(std::span<const uint16_t> rgbaHalf) {
         ++count;
     }
     return count ? sum / double(count) : 0.0;
-}
-
-double exactLog2(double x) {
-    // x = m 2^e with m in [sqrt(1/2), sqrt(2)); ln m = 2 atanh(z), z = (m - 1) / (m + 1), |z| < 0.172: 12 odd terms
-    // of the series leave less than 1e-19.
-    int e = 0;
-    double m = std::frexp(x, &e); // [0.5, 1)
-    if (m < 0.70710678118654752440) {
-        m *= 2.0;
-        --e;
-    }
-    const double z = (m - 1.0) / (m + 1.0), z2 = z * z;
-    double sum = 0.0, power = z;
-    for (int k = 0; k < 12; ++k) {
-        sum += power / double(2 * k + 1);
-        power *= z2;
-    }
-    return double(e) + 2.0 * sum * 1.44269504088896340736; // log2(e)
 }
 
 double autoExposureFactor(const AutoExposureParams& p, double timeStep, std::span<const double> meters) {

@@ -18,6 +18,8 @@
 // before these keys existed, bit for bit: every step they add is then an exact multiplication by 1 or a no-op.
 #pragma once
 
+#include "common/exact_math.h"
+
 #include <nlohmann/json_fwd.hpp>
 
 #include <array>
@@ -80,10 +82,6 @@ double meterLuminance(std::span<const uint16_t> rgbaHalf);
 // The exposure factor of frame k from `meters`: the meters of frames k - n + 1 .. k in order (n = min(W, k) + 1;
 // more are ignored from the front). Precondition: meters not empty.
 double autoExposureFactor(const AutoExposureParams& params, double timeStep, std::span<const double> meters);
-// 2^x by + - * / and ldexp only: the same bits on every machine (|x| <= 64; within a few ulp of std::exp2).
-double exactExp2(double x);
-// log2(x) for finite x > 0 by frexp and + - * / only (within 4e-15 of std::log2).
-double exactLog2(double x);
 // Reads the "auto_exposure" object of a sensor (errors name 'camera.sensor.auto_exposure.<key>').
 AutoExposureParams parseAutoExposure(JsonReader& sensor);
 nlohmann::json autoExposureToJson(const AutoExposureParams& params);
