@@ -318,17 +318,7 @@ TEST(MotionBlurDataset, ShardsAndResumedRunsWriteTheWholeRunsFiles) {
     for (const char* shard : {"0/2", "1/2"})
         ASSERT_EQ(sward::test::runSwardRender(path + " --out " + dir + "/parts --frames 0:3 --shard " + shard, err), 0)
             << err;
-    auto compare = [&] {
-        size_t files = 0;
-        for (const auto& entry : std::filesystem::recursive_directory_iterator(dir + "/whole")) {
-            const std::string relative = std::filesystem::relative(entry.path(), dir + "/whole").string();
-            if (!entry.is_regular_file() || relative.starts_with("manifest") || relative == "dataset.json") continue;
-            EXPECT_EQ(sward::test::readFile(entry.path().string()), sward::test::readFile(dir + "/parts/" + relative))
-                << relative;
-            ++files;
-        }
-        return files;
-    };
+    auto compare = [&] { return sward::test::expectSameRunFiles(dir + "/whole", dir + "/parts"); };
     EXPECT_GT(compare(), 3u * 18); // every per-frame file of 3 stereo frames, motion_blur/ among them
     EXPECT_TRUE(std::filesystem::exists(dir + "/whole/motion_blur/000002.exr"));
     std::filesystem::remove(dir + "/parts/left/000001.exr");

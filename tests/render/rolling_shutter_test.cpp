@@ -254,24 +254,11 @@ TEST(RollingShutterDataset, ShardsAndResumedRunsWriteTheWholeRunsFiles) {
     for (const char* shard : {"0/2", "1/2"})
         ASSERT_EQ(sward::test::runSwardRender(path + " --out " + dir + "/parts --frames 0:3 --shard " + shard, err), 0)
             << err;
-    auto compare = [&](const std::string& a, const std::string& b) {
-        size_t files = 0;
-        for (const auto& entry : std::filesystem::recursive_directory_iterator(a)) {
-            const std::string relative = std::filesystem::relative(entry.path(), a).string();
-            if (!entry.is_regular_file() || relative.starts_with("manifest") || relative == "dataset.json" ||
-                relative == "scene.json")
-                continue;
-            EXPECT_EQ(sward::test::readFile(entry.path().string()), sward::test::readFile(b + "/" + relative))
-                << relative;
-            ++files;
-        }
-        return files;
-    };
-    EXPECT_GT(compare(dir + "/whole", dir + "/parts"), 3u * 18);
+    EXPECT_GT(sward::test::expectSameRunFiles(dir + "/whole", dir + "/parts"), 3u * 18);
     std::filesystem::remove(dir + "/parts/left/000001.exr");
     std::filesystem::remove(dir + "/parts/depth/000002.exr");
     ASSERT_EQ(sward::test::runSwardRender(path + " --out " + dir + "/parts --frames 0:3", err), 0) << err;
-    compare(dir + "/whole", dir + "/parts");
+    sward::test::expectSameRunFiles(dir + "/whole", dir + "/parts");
     const std::string frames = sward::test::readFile(dir + "/whole/frames.jsonl");
     const nlohmann::json first = nlohmann::json::parse(frames.substr(0, frames.find('\n')));
     ASSERT_TRUE(first.contains("readout")) << first.dump();
@@ -284,7 +271,7 @@ TEST(RollingShutterDataset, ShardsAndResumedRunsWriteTheWholeRunsFiles) {
     const std::string none = write("none.json", {{"electrons_per_unit", 500}});
     ASSERT_EQ(sward::test::runSwardRender(zero + " --out " + dir + "/zero --frames 0:2", err), 0) << err;
     ASSERT_EQ(sward::test::runSwardRender(none + " --out " + dir + "/none --frames 0:2", err), 0) << err;
-    EXPECT_GT(compare(dir + "/zero", dir + "/none"), 2u * 10);
+    EXPECT_GT(sward::test::expectSameRunFiles(dir + "/zero", dir + "/none"), 2u * 10);
 }
 
 // The keys: parsed with their ranges, refused with one error naming the key, written back for frames.jsonl (absent

@@ -33,20 +33,6 @@ std::string writeScene(const std::string& dir, const std::string& name, const nl
     return path;
 }
 
-// The files of `a` (but manifests, dataset.json, the scene's copy and `skip`) compared bytewise with those of `b`.
-size_t compareRuns(const std::string& a, const std::string& b, const std::set<std::string>& skip = {}) {
-    size_t files = 0;
-    for (const auto& entry : std::filesystem::recursive_directory_iterator(a)) {
-        const std::string relative = std::filesystem::relative(entry.path(), a).string();
-        if (!entry.is_regular_file() || relative.starts_with("manifest") || relative == "dataset.json" ||
-            relative == "scene.json" || skip.contains(relative))
-            continue;
-        EXPECT_EQ(sward::test::readFile(entry.path().string()), sward::test::readFile(b + "/" + relative)) << relative;
-        ++files;
-    }
-    return files;
-}
-
 } // namespace
 
 // raw/000000.png holds round(left EXR / white * 4095) within 1 DN everywhere (white = black level + full well / epu =
@@ -98,11 +84,12 @@ TEST(SensorRawDataset, TheDigitalOutputChangesNoOtherFile) {
                       writeScene(dir, name, rawScene(keys)) + " --out " + dir + "/" + name + " --frames 0:1", err),
                   0)
             << err;
-    const size_t withoutKey = compareRuns(dir + "/none", dir + "/zero"); // frames.jsonl among them
+    const size_t withoutKey = sward::test::expectSameRunFiles(dir + "/none", dir + "/zero"); // frames.jsonl among them
     EXPECT_EQ(withoutKey, 20u);
     EXPECT_FALSE(std::filesystem::exists(dir + "/zero/raw"));
     // Every other file of the run without the key (all but frames.jsonl, skipped) is compared, bytewise equal.
-    EXPECT_EQ(compareRuns(dir + "/eight", dir + "/none", {"frames.jsonl", "raw/000000.png", "raw_right/000000.png"}),
+    EXPECT_EQ(sward::test::expectSameRunFiles(dir + "/eight", dir + "/none",
+                                              {"frames.jsonl", "raw/000000.png", "raw_right/000000.png"}),
               withoutKey - 1);
     const cv::Mat raw = cv::imread(dir + "/eight/raw/000000.png", cv::IMREAD_UNCHANGED);
     EXPECT_EQ(raw.type(), CV_8UC3);
@@ -121,12 +108,12 @@ TEST(SensorRawDataset, ShardsAndResumedRunsWriteTheWholeRunsFiles) {
         ASSERT_EQ(sward::test::runSwardRender(path + " --out " + dir + "/parts --frames 0:3 --shard " + shard, err), 0)
             << err;
     // 3 frames of 19 files (raw/ and raw_right/ among them), frames.jsonl, classes.json and calib.txt.
-    EXPECT_EQ(compareRuns(dir + "/whole", dir + "/parts"), 3u * 19 + 3);
+    EXPECT_EQ(sward::test::expectSameRunFiles(dir + "/whole", dir + "/parts"), 3u * 19 + 3);
     EXPECT_TRUE(std::filesystem::exists(dir + "/parts/raw/000002.png"));
     EXPECT_TRUE(std::filesystem::exists(dir + "/parts/raw_right/000001.png"));
     std::filesystem::remove(dir + "/parts/raw/000001.png");
     std::filesystem::remove(dir + "/parts/raw_right/000002.png");
     ASSERT_EQ(sward::test::runSwardRender(path + " --out " + dir + "/parts --frames 0:3", err), 0) << err;
     EXPECT_TRUE(std::filesystem::exists(dir + "/parts/raw/000001.png"));
-    compareRuns(dir + "/whole", dir + "/parts");
+    sward::test::expectSameRunFiles(dir + "/whole", dir + "/parts");
 }

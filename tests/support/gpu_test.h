@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -49,6 +50,22 @@ inline int runSwardRender(const std::string& args, std::string& err) {
     const int status = std::system(command.c_str());
     err = readFile(dir + "/err.txt");
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Every file of the dataset `a` (but its manifests, dataset.json, the scene's copy and the relative paths in `skip`)
+// compared bytewise with the same file of `b`, each difference a test failure naming the file; returns how many were
+// compared (so a test can check that the files it means were there).
+inline size_t expectSameRunFiles(const std::string& a, const std::string& b, const std::set<std::string>& skip = {}) {
+    size_t files = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(a)) {
+        const std::string relative = std::filesystem::relative(entry.path(), a).string();
+        if (!entry.is_regular_file() || relative.starts_with("manifest") || relative == "dataset.json" ||
+            relative == "scene.json" || skip.contains(relative))
+            continue;
+        EXPECT_EQ(readFile(entry.path().string()), readFile(b + "/" + relative)) << relative;
+        ++files;
+    }
+    return files;
 }
 
 } // namespace sward::test
