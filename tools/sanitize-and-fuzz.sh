@@ -64,16 +64,34 @@ export LSAN_OPTIONS="suppressions=$root/tests/sanitize/lsan.supp:print_suppressi
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export SWARD_VALIDATION=1 OPENCV_IO_ENABLE_OPENEXR=1
 start=$(date +%s)
-for suite in $cpu_suites; do
-  "$build/bin/sward_${suite}_tests" --gtest_brief=1 > "$build/sanitize-$suite.log" 2>&1 \
-    || { tail -n 60 "$build/sanitize-$suite.log"; fail "sward_${suite}_tests failed under ASan/UBSan ($build/sanitize-$suite.log)"; }
-  echo "sanitize-and-fuzz: sward_${suite}_tests passed ($(grep -o '[0-9]* tests\? from [0-9]* test suites\? ran' "$build/sanitize-$suite.log"))"
-done
 # The driver stack stays loaded to exit so that its leaks can be attributed to it (tests/sanitize/keep_loaded.c).
 clang -shared -fPIC -O1 tests/sanitize/keep_loaded.c -o "$build/libkeep_loaded.so" || fail "cannot build keep_loaded.so"
-LD_PRELOAD="$root/$build/libkeep_loaded.so" "$build/bin/sward_gpu_smoke_tests" --gtest_brief=1 --gtest_filter="$gpu_filter" > "$build/sanitize-gpu.log" 2>&1 \
-  || { tail -n 60 "$build/sanitize-gpu.log"; fail "the GPU smoke subset failed under ASan/UBSan ($build/sanitize-gpu.log)"; }
-echo "sanitize-and-fuzz: GPU smoke subset passed ($(grep -o '[0-9]* tests\? from [0-9]* test suites\? ran' "$build/sanitize-gpu.log"))"
+# One suite: its binary under the sanitizers, its log in the build folder; prints one line and returns non-zero on
+# failure. The suites are independent processes, so they run $jobs at a time (longest first: the GPU smoke subset).
+sanitize_one() {
+  local name=$1 log="$build/sanitize-$1.log"
+  shift
+  if "$@" --gtest_brief=1 > "$log" 2>&1; then
+    echo "sanitize-and-fuzz: $name passed ($(grep -o '[0-9]* tests\? from [0-9]* test suites\? ran' "$log"))"
+  else
+    tail -n 60 "$log"
+    echo "sanitize-and-fuzz: $name FAILED under ASan/UBSan ($log)"
+    return 1
+  fi
+}
+pids=() names=() failed=()
+wait_oldest() {
+  wait "${pids[0]}" || failed+=("${names[0]}")
+  pids=("${pids[@]:1}") names=("${names[@]:1}")
+}
+LD_PRELOAD="$root/$build/libkeep_loaded.so" sanitize_one gpu "$build/bin/sward_gpu_smoke_tests" \
+  --gtest_filter="$gpu_filter" & pids+=($!) names+=(gpu)
+for suite in $cpu_suites; do
+  [ ${#pids[@]} -ge "$jobs" ] && wait_oldest
+  sanitize_one "$suite" "$build/bin/sward_${suite}_tests" & pids+=($!) names+=("$suite")
+done
+while [ ${#pids[@]} -gt 0 ]; do wait_oldest; done
+[ ${#failed[@]} -eq 0 ] || fail "suites that failed under ASan/UBSan: ${failed[*]}"
 render_out="$build/sanitize-render"
 rm -rf "$render_out"
 LD_PRELOAD="$root/$build/libkeep_loaded.so" "$build/bin/sward-render" examples/meadow.json --resolution 160x120 --samples 1 --out "$render_out" \

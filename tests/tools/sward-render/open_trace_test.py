@@ -5,8 +5,8 @@ Renders the example scenes (examples/*.json and the generated build/examples/{hi
 frame, under strace (open, openat, openat2, creat), and fails naming each file opened outside the allowed places:
 the scene file's folder, the --out folder, and the system paths of ALLOWED_SYSTEM (libraries, drivers, fonts,
 GDAL's and PROJ's data, /proc, /sys, /dev), listed in docs/testing.md. Scenes that name the same asset files and
-the same kinds of input (objects, range sensors, a world, ...) open the same files: every scene is traced (16,
-about 100 s on two busy cores), --one-per-group traces one of each such group for a quick local run (9 of 16). A control run first: a grass map
+the same kinds of input (objects, range sensors, a world, ...) open the same files: --one-per-group (CTest) traces
+one of each such group (9 of 16, about 45 s on two busy cores), without it every scene is traced (about 100 s). A control run first: a grass map
 outside the scene's folder, allowed with --allow-assets, must be reported, so the harness is seen to catch an
 outside open. Exits 77 (skipped) without strace.
 
