@@ -1,9 +1,9 @@
 // Coloured, labelled point clouds: one binary little-endian PLY per frame, one point per left pixel with ground
 // truth (sky has none), in row-major pixel order. Properties: double x, y, z (metres; world frame: right-handed,
 // z up; camera frame: OpenCV axes), uchar red, green, blue (the tonemapped left preview), uchar class
-// (semantic id, classes.json), uint instance and, when the dataset has normal/ files, float nx, ny, nz (the
-// surface normal, unit, facing the camera, in the points' frame). Open3D, CloudCompare and MeshLab read it as it
-// is.
+// (semantic id, classes.json), int instance (int32: Open3D drops uint properties) and, when the dataset has
+// normal/ files, float nx, ny, nz (the surface normal, unit, facing the camera, in the points' frame). Open3D
+// (every property, o3d.t.io), CloudCompare and MeshLab read it as it is.
 #pragma once
 
 #include "export/export_source.h"

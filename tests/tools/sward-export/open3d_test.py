@@ -2,7 +2,7 @@
 """sward-export read by Open3D (Debian python3-open3d) and numpy, as a user's reconstruction script reads it.
 
 Renders one stereo frame, exports it as a world-frame PLY, a Middlebury pair and a nerfstudio transforms.json,
-then checks with nothing of sward's: Open3D reads the PLY; the nerfstudio pose and intrinsics, applied to the
+then checks with nothing of sward's: Open3D reads the PLY, every property of it; the nerfstudio pose and intrinsics, applied to the
 depth that Middlebury's disp0.pfm and calib.txt give (Z = f * B / d), reproduce every point within 1e-4 m.
 
     open3d_test.py --render sward-render --export sward-export --scene SCENE
@@ -70,6 +70,13 @@ def main():
         points = np.asarray(cloud.points)
         colours = np.asarray(cloud.colors)
         assert len(points) > 1000 and colours.shape == points.shape, (points.shape, colours.shape)
+        # Open3D's tensor reader keeps every property it can type (it skips uint ones with a warning): all of them.
+        tensor = o3d.t.io.read_point_cloud(os.path.join(tmp, "ply", "000000.ply")).point
+        read = {name: (str(tensor[name].dtype), tuple(tensor[name].shape)) for name in tensor}
+        n = len(points)
+        assert read == {"positions": ("Float64", (n, 3)), "colors": ("UInt8", (n, 3)), "class": ("UInt8", (n, 1)),
+                        "instance": ("Int32", (n, 1)), "normals": ("Float32", (n, 3))}, read
+        assert tensor["instance"].numpy().max() > 0, "no plant instance read"
 
         disparity = read_pfm(os.path.join(tmp, "middlebury", "000000", "disp0.pfm"))
         f, baseline = read_calib(os.path.join(tmp, "middlebury", "000000", "calib.txt"))

@@ -235,7 +235,7 @@ std::vector<PlyPoint> readPly(const std::string& path) {
     }
     EXPECT_EQ(properties,
               (std::vector<std::string>{"double x", "double y", "double z", "uchar red", "uchar green", "uchar blue",
-                                        "uchar class", "uint instance", "float nx", "float ny", "float nz"}));
+                                        "uchar class", "int instance", "float nx", "float ny", "float nz"}));
     const size_t stride = 3 * 8 + 3 + 1 + 4 + 3 * 4;
     EXPECT_EQ(bytes.size() - end - 11, count * stride);
     std::vector<PlyPoint> points(count);
