@@ -6,6 +6,7 @@
 #include "common/error.h"
 #include "common/half_float.h"
 #include "common/json_reader.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -200,13 +201,8 @@ TEST(SensorExposure, ParsesEveryKeyAndWritesBackOnlyThoseSet) {
 }
 
 TEST(SensorExposure, BadValuesAreRefusedNamingTheKey) {
-    auto message = [](const nlohmann::json& j) {
-        try {
-            parseSensor(j, "scene.json", "camera.sensor");
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
+    auto message = [&](const nlohmann::json& j) {
+        return test::errorOf([&] { parseSensor(j, "scene.json", "camera.sensor"); });
     };
     EXPECT_EQ(message({{"gain", 0}}), "scene.json: 'camera.sensor.gain' must be between 0.001 and 10000 (got 0)");
     EXPECT_EQ(message({{"gain", 2}, {"iso", 200}}),
@@ -342,14 +338,7 @@ TEST(AutoExposure, ParsesItsObjectAndNamesBadKeys) {
     EXPECT_EQ(p.maxEv, 3.5);
     const AutoExposureParams back = parseAe(autoExposureToJson(p));
     EXPECT_EQ(autoExposureToJson(back), autoExposureToJson(p));
-    auto message = [&](const nlohmann::json& ae) {
-        try {
-            parseAe(ae);
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
+    auto message = [&](const nlohmann::json& ae) { return test::errorOf([&] { parseAe(ae); }); };
     EXPECT_EQ(message({{"target_grey", 0}}),
               "scene.json: 'camera.sensor.auto_exposure.target_grey' must be between 0.0001 and 100 (got 0)");
     EXPECT_EQ(message({{"time_constant_s", -1}}),

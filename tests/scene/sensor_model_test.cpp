@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "common/half_float.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -306,13 +307,8 @@ TEST(SensorModel, ParsesEveryKeyAndRoundTripsThroughJson) {
 }
 
 TEST(SensorModel, ParseErrorsNameTheJsonPath) {
-    auto message = [](const nlohmann::json& j) {
-        try {
-            parseSensor(j, "scene.json", "rigs[0].sensor");
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
+    auto message = [&](const nlohmann::json& j) {
+        return test::errorOf([&] { parseSensor(j, "scene.json", "rigs[0].sensor"); });
     };
     EXPECT_EQ(message({{"k1", "strong"}}), "scene.json: 'rigs[0].sensor.k1' must be a number");
     EXPECT_EQ(message({{"vignetting", 1.5}}),
@@ -345,13 +341,8 @@ TEST(SensorModel, ShutterKeysParseAndRoundTrip) {
 }
 
 TEST(SensorModel, ShutterKeyErrorsNameTheKey) {
-    auto message = [](const nlohmann::json& j) {
-        try {
-            parseSensor(j, "scene.json", "camera.sensor");
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
+    auto message = [&](const nlohmann::json& j) {
+        return test::errorOf([&] { parseSensor(j, "scene.json", "camera.sensor"); });
     };
     EXPECT_EQ(message({{"shutter_s", -0.01}}),
               "scene.json: 'camera.sensor.shutter_s' must be between 0 and 1 (got -0.01)");

@@ -6,6 +6,7 @@
 
 #include "common/error.h"
 #include "common/half_float.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -84,12 +85,7 @@ bool bitwiseEqual(const std::vector<float>& a, const std::vector<float>& b) {
 }
 
 std::string parseError(const nlohmann::json& j) {
-    try {
-        parseSensor(j, "scene.json", "camera.sensor");
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
+    return test::errorOf([&] { parseSensor(j, "scene.json", "camera.sensor"); });
 }
 
 } // namespace
