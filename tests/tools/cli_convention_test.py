@@ -61,6 +61,15 @@ class Convention(unittest.TestCase):
                 self.assertRegex(out, r"(?i)usage")
                 self.assertEqual(err, "")
 
+    def test_eval_help_lists_every_command_and_each_usage_names_its_command(self):
+        code, out, _ = run("sward-eval", "--help")
+        self.assertEqual(code, 0)
+        for word in ("stereo", "flow", "odometry", "look"):
+            self.assertRegex(out, rf"(?m)^  {word} ")
+            code, out_word, err = run("sward-eval", word, "--help")
+            self.assertEqual(code, 0, err)
+            self.assertRegex(out_word, rf"(?m)^Usage: sward-eval \[?{word}\]? ")
+
     def test_version_exits_0_and_names_tool_version_and_revision(self):
         for tool in TOOLS:
             with self.subTest(tool=tool):

@@ -12,6 +12,7 @@
 
 int flowMain(int argc, char** argv) {
     CLI::App app{"sward-eval flow: optical-flow error of a sward dataset against its ground-truth forward flow"};
+    app.name("sward-eval flow"); // the usage line names the command, not the binary's path
     sward::FlowEvaluationOptions options;
     std::string method = "dis";
     bool noPictures = false;

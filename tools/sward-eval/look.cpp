@@ -13,6 +13,7 @@
 int lookMain(int argc, char** argv) {
     CLI::App app{"sward-eval look: realism statistics of a sward dataset's previews per region (colour, gradients, "
                  "Laplacian pyramid, spectrum, keypoints, texture), optionally against real photographs"};
+    app.name("sward-eval look"); // the usage line names the command, not the binary's path
     sward::LookOptions options;
     bool noPictures = false;
     app.add_option("dataset", options.datasetDir, "Dataset folder written by sward-render")->required();

@@ -43,6 +43,7 @@ std::vector<sward::OdometrySegment> parseSegments(const std::string& text, const
 
 int odometryMain(int argc, char** argv) {
     CLI::App app{"sward-eval odometry: stereo visual odometry of a sward dataset against its ground-truth poses"};
+    app.name("sward-eval odometry"); // the usage line names the command, not the binary's path
     sward::OdometryOptions options;
     std::string detector = "orb", matcher = "descriptors";
     bool noPictures = false;

@@ -14,6 +14,7 @@
 
 int stereoMain(int argc, char** argv) {
     CLI::App app{"sward-eval stereo: stereo matching error of a sward dataset against its ground-truth disparity"};
+    app.name("sward-eval [stereo]"); // the usage line names the command, not the binary's path
     sward::EvaluationOptions options;
     sward::SgbmOptions& sgbm = options.sgbm;
     std::string mode = "sgbm";
