@@ -165,7 +165,47 @@ py::dict readCalib(const std::string& path) {
 
 SceneInput sceneInput(const std::string& path, const std::optional<std::string>& text, const std::string& overrides,
                       std::optional<uint64_t> seed, const std::vector<std::string>& allowAssets) {
-    return SceneInput{.path = path, .text = text, .overrides = overrides, .seed = seed, .allowedAssetDirs = allowAssets};
+    return SceneInput{
+        .path = path, .text = text, .overrides = overrides, .seed = seed, .allowedAssetDirs = allowAssets};
+}
+
+// Semantic class name -> pixel value (dataset/naming.h); with a scene's category names, each vegetation category's
+// value under its name too ("grass" as well as "vegetation category 0"), as classes.json's "scene_name" gives it.
+py::dict classNames(const std::vector<std::string>& categoryNames) {
+    py::dict classes;
+    for (const SemanticClass& c : semanticClasses()) classes[py::str(c.name)] = c.id;
+    for (const SemanticClass& c : semanticClasses()) {
+        const uint32_t category = c.id - gpu::kSemanticVegetation;
+        if (c.id >= gpu::kSemanticVegetation && category < categoryNames.size() &&
+            !classes.contains(categoryNames[category]))
+            classes[py::str(categoryNames[category])] = c.id;
+    }
+    return classes;
+}
+
+std::vector<std::string> categoryNames(const Session& s) {
+    const VegetationParams& vegetation = s.resources().scene.vegetation;
+    std::vector<std::string> names;
+    for (uint32_t c = 0; c < vegetation.categoryCount; ++c) names.push_back(vegetation.categories[c].name);
+    return names;
+}
+
+// Ctrl-C (or any signal handler that raises) during a long call: the Python exception, thrown through the C++ core,
+// which unwinds as on any failure. Called with the GIL released.
+void throwIfInterrupted() {
+    py::gil_scoped_acquire acquire;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+}
+
+// Tick by tick, so that Ctrl-C stops a long step within a tick. With auto-exposure one call: it renders only the
+// last W ticks for their meter, where W calls of step(1) would render one frame each.
+void stepTicks(Session& s, uint32_t ticks) {
+    py::gil_scoped_release release;
+    if (s.autoExposed()) return s.step(ticks);
+    for (uint32_t i = 0; i < ticks; ++i) {
+        s.step(1);
+        throwIfInterrupted();
+    }
 }
 
 std::unique_ptr<Session> openSession(const std::string& path, const std::optional<std::string>& text,
@@ -180,35 +220,38 @@ void bindSession(py::module_& m) {
         .def(py::init([](const std::string& path, const std::optional<std::string>& text, const std::string& overrides,
                          std::optional<uint64_t> seed, const std::vector<std::string>& allowAssets,
                          const std::string& device, bool validation, bool vegetation, double time) {
-                 return openSession(path, text, overrides, seed, allowAssets,
-                                    SessionOptions{device, validation, vegetation, time});
-             }))
+            return openSession(path, text, overrides, seed, allowAssets,
+                               SessionOptions{device, validation, vegetation, time});
+        }))
         .def_property_readonly("frame", &Session::frame)
         .def_property_readonly("width", &Session::width)
         .def_property_readonly("height", &Session::height)
         .def_property_readonly("stereo", [](const Session& s) { return s.resources().scene.camera.rig.stereo(); })
         .def_property_readonly("object_count", [](const Session& s) { return s.resources().scene.objects.size(); })
         .def_property_readonly("device_name", [](const Session& s) { return s.device().name(); })
-        .def_property_readonly("validation_messages", [](const Session& s) { return s.device().validationMessageCount(); })
-        .def("step", &Session::step, py::call_guard<py::gil_scoped_release>())
-        .def("render", [](Session& s) {
-            SessionFrame f;
-            {
-                py::gil_scoped_release release;
-                f = s.render();
-            }
-            return frameDict(f, s.resources().scene.rangeSensors);
-        })
-        .def("set_camera", [](Session& s, const std::optional<std::vector<double>>& position,
-                              const std::optional<std::vector<double>>& lookAt, std::optional<double> fov) {
-            s.setCamera(point(position, "position"), point(lookAt, "look_at"), fov);
-        })
-        .def("set_object_pose", [](Session& s, size_t k, double x, double y, double heading) {
-            s.setObjectPose(k, glm::dvec2(x, y), heading);
-        })
-        .def("set_colliders", [](Session& s, const std::string& json) {
-            s.setColliders(parsePlacedColliders(parseJsonText(json, "colliders", "colliders"), "colliders"));
-        })
+        .def_property_readonly("validation_messages",
+                               [](const Session& s) { return s.device().validationMessageCount(); })
+        .def_property_readonly("classes", [](const Session& s) { return classNames(categoryNames(s)); })
+        .def("step", &stepTicks)
+        .def("render",
+             [](Session& s) {
+                 SessionFrame f;
+                 {
+                     py::gil_scoped_release release;
+                     f = s.render();
+                 }
+                 return frameDict(f, s.resources().scene.rangeSensors);
+             })
+        .def("set_camera",
+             [](Session& s, const std::optional<std::vector<double>>& position,
+                const std::optional<std::vector<double>>& lookAt,
+                std::optional<double> fov) { s.setCamera(point(position, "position"), point(lookAt, "look_at"), fov); })
+        .def("set_object_pose", [](Session& s, size_t k, double x, double y,
+                                   double heading) { s.setObjectPose(k, glm::dvec2(x, y), heading); })
+        .def("set_colliders",
+             [](Session& s, const std::string& json) {
+                 s.setColliders(parsePlacedColliders(parseJsonText(json, "colliders", "colliders"), "colliders"));
+             })
         .def("save_state", &Session::saveState, py::call_guard<py::gil_scoped_release>())
         .def("restore_state", &Session::restoreState, py::call_guard<py::gil_scoped_release>());
 }
@@ -232,6 +275,7 @@ void writeDataset(const std::string& path, const std::optional<std::string>& tex
     o.noVegetation = !vegetation;
     o.time = time;
     o.quiet = true;
+    o.beforeFrame = throwIfInterrupted;
     py::gil_scoped_release release;
     runRenderJob(o);
 }
@@ -240,6 +284,7 @@ void writeDataset(const std::string& path, const std::optional<std::string>& tex
 
 PYBIND11_MODULE(_sward, m) {
     m.doc() = "sward's C++ core; use the sward package (docs/python.md)";
+    m.attr("__version__") = SWARD_VERSION; // CMakeLists.txt's project() version, the package's (setup.py)
     py::register_exception<Error>(m, "Error", PyExc_RuntimeError);
     bindSession(m);
     m.def("write_dataset", &writeDataset);
@@ -259,6 +304,8 @@ PYBIND11_MODULE(_sward, m) {
                               {"semantic", kSemanticFolder},
                               {"instance", kInstanceFolder},
                               {"normal", kNormalFolder},
+                              {"depth_right", kDepthRightFolder},
+                              {"disparity_right", kDisparityRightFolder},
                               {"normal_right", kNormalRightFolder},
                               {"preview", kPreviewFolder},
                               {"preview_right", kPreviewRightFolder},
@@ -266,10 +313,9 @@ PYBIND11_MODULE(_sward, m) {
                               {"frame_log", kFrameLogFile},
                               {"manifest", kManifestFile},
                               {"dataset", kDatasetFile},
+                              {"classes", kClassesFile},
                               {"range", kRangeFolder}})
         names[key] = value;
     m.attr("NAMES") = names;
-    py::dict classes; // semantic class name -> pixel value of semantic images (dataset/naming.h)
-    for (const SemanticClass& c : semanticClasses()) classes[c.name] = c.id;
-    m.attr("SEMANTIC_CLASSES") = classes;
+    m.attr("SEMANTIC_CLASSES") = classNames({});
 }

@@ -196,6 +196,7 @@ void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, 
                       const std::vector<uint32_t>& todo, DatasetWriter& dataset,
                       const std::optional<SensorModel>& sensor, const RenderJobOptions& options, BackgroundTask& writer,
                       Progress& progress, JobClock& clock, AutoExposure* autoExposure) {
+        if (options.beforeFrame) options.beforeFrame();
     if (todo.empty()) return; // a complete dataset
     const double baseline = r.scene.camera.rig.baseline;
     const std::set<uint32_t> toWrite(todo.begin(), todo.end());
@@ -249,6 +250,7 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
     clock.report.frames.resize(todo.size());
     // Auto-exposure: the W frames before each frame to write render too, for their meter (render/auto_exposure.h).
     std::optional<AutoExposure> autoExposure;
+        if (options.beforeFrame) options.beforeFrame();
     if (sensor && sensor->params().autoExposure.enabled)
         autoExposure.emplace(sensor->params().autoExposure, r.scene.sequence.timeStep);
     AutoExposure* exposure = autoExposure ? &*autoExposure : nullptr;

@@ -54,6 +54,8 @@ public:
                    const std::optional<double>& fovYDegrees);
     // Object k stands at world xy `position`, heading `headingDegrees` (from +x towards +y), on the terrain,
     // instead of following its path: drawn there and its node colliders act there from the next tick.
+    // Whether frames are metered for auto-exposure (then step renders the last W ticks it runs).
+    bool autoExposed() const { return autoExposure_.has_value(); }
     void setObjectPose(size_t k, glm::dvec2 position, double headingDegrees);
     // Colliders of the program's own (scene/collider_params.h), acting from the next tick until replaced.
     void setColliders(std::vector<Collider> colliders);

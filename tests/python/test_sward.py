@@ -4,6 +4,7 @@ CLI's message. Run by CTest (Python.Module) with PYTHONPATH=build/python, SWARD_
 import json
 import os
 import pathlib
+import _thread
 import subprocess
 import threading
 import time
@@ -17,7 +18,7 @@ RENDER = os.environ["SWARD_RENDER"]
 # The GPU test scene, small: a stereo rig, a rover driving through the grass (tracks from tick 0).
 SMALL = {"render.resolution": [96, 64], "render.samples": 1, "sequence.frames": 3}
 KINDS = ["left", "right", "depth", "disparity", "semantic", "instance", "normal", "normal_right", "preview",
-         "preview_right"]
+         "preview_right", "depth_right", "disparity_right"]
 
 
 def scene_with(tmp, changes):
@@ -78,6 +79,28 @@ def test_dataset_reader_reads_every_file_kind(cli_dataset):
         data[3]
 
 
+def test_a_dataset_slices_takes_numpy_indices_and_names_its_classes(cli_dataset):
+    _, data = cli_dataset
+    part = data[1:]
+    assert isinstance(part, sward.Dataset) and part.frames == [1, 2] and len(data) == 3
+    assert [item["frame"] for item in part] == [1, 2] and data[::2].frames == [0, 2]
+    assert bitwise_equal(data[np.int64(2)]["left"], part[np.int32(-1)]["left"])
+    assert repr(data).endswith(": 3 of frames 0..2, stereo>")
+    # PyTorch has no uint16 / uint32 tensors: int_dtype gives int64 (or int32) arrays of the same values
+    signed = sward.Dataset(data.root, int_dtype="int64")[0]
+    assert signed["instance"].dtype == np.int64 and (signed["instance"] == data[0]["instance"]).all()
+    assert bitwise_equal(signed["left"], data[0]["left"])
+    # the scene's plant categories by name, as the simulator gives them
+    assert data.classes["grass"] == sward.SEMANTIC_CLASSES["vegetation category 1"]
+    assert data.classes["felled"] == sward.SEMANTIC_CLASSES["felled"]
+    with pytest.raises(KeyError, match="Simulator.classes and Dataset.classes"):
+        sward.SEMANTIC_CLASSES["grass"]
+    with pytest.raises(TypeError, match="integers or slices, not float"):
+        data[1.0]
+    with pytest.raises(sward.ArgumentError, match=r"int_dtype must be None, 'int32' or 'int64' \(got uint8\)"):
+        sward.Dataset(data.root, int_dtype=np.uint8)
+
+
 def test_write_dataset_from_python_equals_the_cli(cli_dataset, tmp_path):
     scene, _ = cli_dataset
     sward.write_dataset(scene, tmp_path / "py", frames="1:3")
@@ -88,10 +111,32 @@ def test_write_dataset_from_python_equals_the_cli(cli_dataset, tmp_path):
 
 def test_a_step_and_a_render_show_what_the_cli_shows(cli_dataset):
     scene, data = cli_dataset
+    with sward.Simulator(scene) as sim:
+        assert sim.classes["grass"] == data.classes["grass"] and sim.classes["felled"] == data.classes["felled"]
+        sim.step(2)
+        assert sim.frame == 2 and repr(sim).startswith(f"<sward.Simulator of {str(scene)!r}, 96x64 stereo, frame 2")
+        assert bitwise_equal(sim.render()["left"], data[2]["left"])
+    assert sim.closed and repr(sim).endswith("closed>")
+    with pytest.raises(sward.Error, match="^this Simulator is closed$"):
+        sim.render()
+    sim.close()  # again: nothing
+
+
+def test_ctrl_c_stops_a_long_step_and_write_dataset_within_a_frame(cli_dataset, tmp_path):
+    """KeyboardInterrupt within a tick of step() and a frame of write_dataset, not after the whole call."""
+    scene, _ = cli_dataset
     sim = sward.Simulator(scene)
-    sim.step(2)
-    assert sim.frame == 2
-    assert bitwise_equal(sim.render()["left"], data[2]["left"])
+    for call in (lambda: sim.step(10**6),
+                 lambda: sward.write_dataset(scene, tmp_path / "out", overrides={"sequence.frames": 1000})):
+        timer = threading.Timer(1.0, _thread.interrupt_main)
+        start = time.monotonic()
+        timer.start()
+        with pytest.raises(KeyboardInterrupt):
+            call()
+        timer.join()
+        assert time.monotonic() - start < 20
+    assert 0 < sim.frame < 10**6
+    assert not (tmp_path / "out").exists()  # an interrupted run removes what it created, as on any failure
 
 
 def test_a_collider_moved_from_python_leaves_a_track(tmp_path):
@@ -271,10 +316,19 @@ def test_a_wrong_argument_type_raises_a_type_error_naming_the_argument(tmp_path,
 
 
 def test_an_argument_out_of_range_raises_sward_error_naming_it(tmp_path):
-    with pytest.raises(sward.Error, match=r"^seed must be an integer in \[0, 18446744073709551615\] \(got -1\)$"):
+    """A sward.ArgumentError: a sward.Error and Python's ValueError. The core's messages name the arguments, not the
+    command-line options."""
+    with pytest.raises(ValueError, match=r"^seed must be an integer in \[0, 18446744073709551615\] \(got -1\)$"):
         sward.Simulator(scene_with(tmp_path, SMALL), seed=-1)
     with pytest.raises(sward.Error, match=r"^time must be a finite number \(got nan\)$"):
         sward.write_dataset(scene_with(tmp_path, SMALL), tmp_path / "out", time=float("nan"))
+    with pytest.raises(sward.Error, match=r"^frames 0:9 goes past the scene's sequence of 3 frame\(s\)") as error:
+        sward.write_dataset(scene_with(tmp_path, SMALL), tmp_path / "out", frames="0:9")
+    (tmp_path / "other" / "left").mkdir(parents=True)
+    (tmp_path / "other" / "left" / "000000.exr").write_bytes(b"")  # files of a dataset, no dataset.json
+    with pytest.raises(sward.Error, match=r"overwrite=True to start over or choose another out\b") as error:
+        sward.write_dataset(scene_with(tmp_path, SMALL), tmp_path / "other")
+    assert "--" not in str(error.value)
 
 
 def test_numpy_values_pass_and_nan_is_named(tmp_path):
@@ -293,8 +347,10 @@ def test_numpy_values_pass_and_nan_is_named(tmp_path):
 
 def test_a_wrong_argument_of_a_simulator_method_names_the_argument(tmp_path):
     sim = sward.Simulator(scene_with(tmp_path, SMALL))
-    with pytest.raises(sward.Error, match=r"^ticks must be an integer in \[0, 4294967295\] \(got -1\)$"):
+    with pytest.raises(ValueError, match=r"^ticks must be an integer in \[0, 4294967295\] \(got -1\)$"):
         sim.step(-1)
+    with pytest.raises(TypeError, match=r"^ticks must be an integer, not float$"):
+        sim.step(2.5)  # never truncated to 2
     with pytest.raises(sward.Error, match=r"^index must be an integer in"):
         sim.set_object_pose(-1, [0, 0], 0)
     with pytest.raises(TypeError, match=r"^position\[1\] must be a number, not str$"):
