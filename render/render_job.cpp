@@ -196,7 +196,6 @@ void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, 
                       const std::vector<uint32_t>& todo, DatasetWriter& dataset,
                       const std::optional<SensorModel>& sensor, const RenderJobOptions& options, BackgroundTask& writer,
                       Progress& progress, JobClock& clock, AutoExposure* autoExposure) {
-        if (options.beforeFrame) options.beforeFrame();
     if (todo.empty()) return; // a complete dataset
     const double baseline = r.scene.camera.rig.baseline;
     const std::set<uint32_t> toWrite(todo.begin(), todo.end());
@@ -206,6 +205,7 @@ void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, 
     // From the frame before the first (its truth), or the first of its auto-exposure window (its meter).
     const uint32_t first = autoExposure ? autoExposure->framesToRender({todo.front()}).front() : todo.front();
     for (uint32_t frame = std::min(first, todo.front() > 0 ? todo.front() - 1 : 0); frame <= todo.back() + 1; ++frame) {
+        if (options.beforeFrame) options.beforeFrame();
         const double renderStart = clock.now();
         auto cameras = std::make_shared<RigCameras>();
         auto images = std::make_shared<const FrameImages>(renderSequenceFrame(
@@ -250,7 +250,6 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
     clock.report.frames.resize(todo.size());
     // Auto-exposure: the W frames before each frame to write render too, for their meter (render/auto_exposure.h).
     std::optional<AutoExposure> autoExposure;
-        if (options.beforeFrame) options.beforeFrame();
     if (sensor && sensor->params().autoExposure.enabled)
         autoExposure.emplace(sensor->params().autoExposure, r.scene.sequence.timeStep);
     AutoExposure* exposure = autoExposure ? &*autoExposure : nullptr;
@@ -260,6 +259,7 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
     }
     size_t i = 0;
     for (const uint32_t frame : exposure ? exposure->framesToRender(todo) : todo) {
+        if (options.beforeFrame) options.beforeFrame();
         if (frame != todo[i]) { // rendered for its meter alone: the window of a frame to write
             RigCameras cameras;
             renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, cameras,

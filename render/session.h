@@ -46,6 +46,8 @@ public:
     // Advances `ticks` ticks without rendering (the interaction runs each of them). With auto-exposure the last W of
     // them are rendered for their meter (render/auto_exposure.h), so the next frame's exposure is sward-render's.
     void step(uint32_t ticks);
+    // Whether frames are metered for auto-exposure (then step renders the last W ticks it runs).
+    bool autoExposed() const { return autoExposure_.has_value(); }
     // Renders the next frame with its own tick, as sward-render would, and advances by one.
     SessionFrame render();
 
@@ -54,8 +56,6 @@ public:
                    const std::optional<double>& fovYDegrees);
     // Object k stands at world xy `position`, heading `headingDegrees` (from +x towards +y), on the terrain,
     // instead of following its path: drawn there and its node colliders act there from the next tick.
-    // Whether frames are metered for auto-exposure (then step renders the last W ticks it runs).
-    bool autoExposed() const { return autoExposure_.has_value(); }
     void setObjectPose(size_t k, glm::dvec2 position, double headingDegrees);
     // Colliders of the program's own (scene/collider_params.h), acting from the next tick until replaced.
     void setColliders(std::vector<Collider> colliders);

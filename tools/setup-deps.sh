@@ -27,11 +27,11 @@ packages=(
   nlohmann-json3-dev libcli11-dev libimgui-dev
   # the Python module (python/): pybind11 and numpy; its tests run under pytest
   pybind11-dev python3-dev python3-numpy python3-pytest
-  # tests and benchmarks; a virtual X server for the viewer test; strace for the open-tracing test
-  # (tests/tools/sward-render/open_trace_test.py: no file outside the scene's folder is opened)
   # `pip install .` of the checkout (pyproject.toml, setup.py: offline, --no-build-isolation) and its check under
   # Debian's mypy --strict (tests/python/pip_install.py)
   python3-setuptools python3-wheel python3-pip python3-venv mypy
+  # tests and benchmarks; a virtual X server for the viewer test; strace for the open-tracing test
+  # (tests/tools/sward-render/open_trace_test.py: no file outside the scene's folder is opened)
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth strace
   # sward-export's point clouds read back by Open3D (tests/tools/sward-export/open3d_test.py; brings numpy)
   python3-open3d
