@@ -11,9 +11,11 @@ usage: ./sward.sh [render|test|build|package|help] [ARGS]
                  to out/ when ARGS name none (e.g. ./sward.sh render my.json --out my-data --frames 0:10)
   test [ARGS]    set up, build, run the whole test suite (ARGS go to ctest)
   build          set up and build only
-  package        set up, build, then write the relocatable release archive
+  package [--lean]  set up, build, then write the relocatable release archive
                  BUILD_DIR/package/sward-<version>-linux-x86_64.tar.gz (docs/release.md; check it with
-                 tools/release-check.sh ARCHIVE)
+                 tools/release-check.sh ARCHIVE); --lean leaves out GDAL, Embree and OpenCV (SWARD_WITH_GDAL,
+                 SWARD_WITH_EMBREE, SWARD_WITH_OPENCV OFF: no GeoTIFF rasters, range sensors or sward-eval) and
+                 builds in build-lean unless BUILD_DIR is set
   help           this text (also -h, --help); sets up and builds nothing
 Environment: BUILD_TYPE=Debug|Release (default Release), SANITIZE=1 (ASan + UBSan), BUILD_DIR (default build).
 USAGE
@@ -28,6 +30,16 @@ case "$command" in
   render|test|build|package) ;;
   *) echo "sward.sh: error: unknown command '$command' (see ./sward.sh --help)" >&2; exit 2 ;;
 esac
+# package's one option, the lean build (docs/release.md, "A lean build"): the optional components OFF.
+with_optional=ON
+if [ "$command" = package ]; then
+  case "${1:-}" in
+    --lean) with_optional=OFF; shift ;;
+  esac
+  if [ $# -gt 0 ]; then
+    echo "sward.sh: error: package takes only --lean, not '$1' (see ./sward.sh --help)" >&2; exit 2
+  fi
+fi
 
 # sward-render's arguments: the user's, plus the default scene and --out only where the user gave none. Options
 # that take no value are listed; every other option is taken to be followed by its value (unless --opt=value).
@@ -49,11 +61,14 @@ render_args() {
 
 build_type=${BUILD_TYPE:-Release}
 build_dir=${BUILD_DIR:-build}
+[ $with_optional = OFF ] && build_dir=${BUILD_DIR:-build-lean}
 sanitize=OFF
 [ "${SANITIZE:-0}" = "1" ] && sanitize=ON
 
 tools/setup-deps.sh
-cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" -DSWARD_SANITIZE="$sanitize" > "$build_dir.configure.log" 2>&1 \
+cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" -DSWARD_SANITIZE="$sanitize" \
+  -DSWARD_WITH_GDAL=$with_optional -DSWARD_WITH_EMBREE=$with_optional -DSWARD_WITH_OPENCV=$with_optional \
+  > "$build_dir.configure.log" 2>&1 \
   || { cat "$build_dir.configure.log"; exit 1; }
 cmake --build "$build_dir" -j "$(nproc)"
 

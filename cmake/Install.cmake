@@ -16,6 +16,11 @@ include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(SWARD_LAYERS common io world vegetation interaction scene dataset eval range engine render)
+set(SWARD_EXPORTED_HELPERS sward_gpu_layout sward_opencv sward_options)
+if(NOT SWARD_WITH_OPENCV) # no eval/ layer; OpenCV, if found at all, serves the tests only
+  list(REMOVE_ITEM SWARD_LAYERS eval)
+  list(REMOVE_ITEM SWARD_EXPORTED_HELPERS sward_opencv)
+endif()
 set(SWARD_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/sward)
 
 foreach(layer ${SWARD_LAYERS})
@@ -28,11 +33,13 @@ install(DIRECTORY shaders/shared/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sward/
 # Interface helpers the static libraries name in their link interfaces: the GPU layout headers, OpenCV's modules
 # (cmake/OpenCVModules.cmake) and sward's warning / sanitizer options (only their link options reach a consumer).
 set_target_properties(sward_gpu_layout PROPERTIES EXPORT_NAME gpu_layout)
-set_target_properties(sward_opencv PROPERTIES EXPORT_NAME opencv)
+if(TARGET sward_opencv)
+  set_target_properties(sward_opencv PROPERTIES EXPORT_NAME opencv)
+endif()
 set_target_properties(sward_options PROPERTIES EXPORT_NAME options)
 
 list(TRANSFORM SWARD_LAYERS PREPEND sward_ OUTPUT_VARIABLE SWARD_LAYER_TARGETS)
-install(TARGETS ${SWARD_LAYER_TARGETS} sward_gpu_layout sward_opencv sward_options
+install(TARGETS ${SWARD_LAYER_TARGETS} ${SWARD_EXPORTED_HELPERS}
         EXPORT swardTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT Development)
 set(SWARD_TOOLS sward-render sward-eval sward-export sward-view sward-bench sward-atlas sward-rover)

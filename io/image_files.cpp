@@ -8,14 +8,15 @@
 #include <ImfIO.h>
 #include <ImfOutputFile.h>
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
+#include <png.h>
+#include <zlib.h>
 
 #include "common/atomic_file.h"
 #include "common/half_float.h"
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -118,8 +119,45 @@ void writeExr(const std::string& path, uint32_t width, uint32_t height, uint32_t
 
 namespace {
 
-// writePng8 / writePng16: the samples as an OpenCV image in its channel order (BGR, BGRA), encoded with OpenCV's
-// defaults. `Sample` is uint8_t or uint16_t.
+// libpng's output into memory (png_set_write_fn).
+void appendPngBytes(png_structp png, png_bytep data, size_t length) {
+    auto* bytes = static_cast<std::vector<uint8_t>*>(png_get_io_ptr(png));
+    bytes->insert(bytes->end(), data, data + length);
+}
+void flushPngBytes(png_structp) {}
+
+// Encodes `rows` (height pointers to rows of width * channels samples of `bitDepth` bits, native byte order) into
+// `bytes` with OpenCV 4's PNG encoder's settings and calls, so the files are those cv::imencode(".png") wrote before
+// sward called libpng itself (test PngFiles.SameBytesAsOpenCvsEncoder): the sub filter, zlib's fastest level with
+// its run-length strategy, 16-bit samples swapped to the file's big-endian order. False when libpng fails (it
+// reports through longjmp, so no object with a destructor lives between setjmp and the calls).
+bool encodePng(std::vector<uint8_t>& bytes, uint32_t width, uint32_t height, uint32_t channels, int bitDepth,
+               png_bytepp rows) {
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    if (!png) return false;
+    png_infop info = png_create_info_struct(png);
+    bool encoded = false;
+    if (info && setjmp(png_jmpbuf(png)) == 0) {
+        png_set_write_fn(png, &bytes, appendPngBytes, flushPngBytes);
+        png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
+        png_set_compression_level(png, Z_BEST_SPEED);
+        png_set_compression_strategy(png, Z_RLE);
+        const int colour = channels == 1   ? PNG_COLOR_TYPE_GRAY
+                           : channels == 3 ? PNG_COLOR_TYPE_RGB
+                                           : PNG_COLOR_TYPE_RGBA;
+        png_set_IHDR(png, info, width, height, bitDepth, colour, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                     PNG_FILTER_TYPE_DEFAULT);
+        png_write_info(png, info);
+        if (bitDepth == 16 && std::endian::native == std::endian::little) png_set_swap(png);
+        png_write_image(png, rows);
+        png_write_end(png, info);
+        encoded = true;
+    }
+    png_destroy_write_struct(&png, &info);
+    return encoded;
+}
+
+// writePng8 / writePng16. `Sample` is uint8_t or uint16_t.
 template <typename Sample>
 void writePngSamples(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
                      std::span<const Sample> samples) {
@@ -129,17 +167,13 @@ void writePngSamples(const std::string& path, uint32_t width, uint32_t height, u
     require(samples.size() == size_t(width) * height * channels, "PNG buffer size does not match the image");
     require(width > 0 && height > 0 && width <= uint32_t(INT32_MAX) / channels && height <= uint32_t(INT32_MAX),
             "cannot write '" + path + "': the image is empty or too large for a PNG");
-    const int depth = sizeof(Sample) == 1 ? CV_8U : CV_16U;
-    cv::Mat image(int(height), int(width), CV_MAKETYPE(depth, int(channels)));
-    for (uint32_t y = 0; y < height; ++y) {
-        Sample* row = image.ptr<Sample>(int(y));
-        const Sample* in = samples.data() + size_t(y) * width * channels;
-        std::copy_n(in, size_t(width) * channels, row);
-        if (channels >= 3)
-            for (uint32_t x = 0; x < width; ++x) std::swap(row[x * channels], row[x * channels + 2]); // RGB -> BGR
-    }
+    // libpng copies each row before its transformations (the byte swap), so the samples are only read.
+    std::vector<png_bytep> rows(height);
+    for (uint32_t y = 0; y < height; ++y)
+        rows[y] = reinterpret_cast<png_bytep>(const_cast<Sample*>(samples.data() + size_t(y) * width * channels));
     std::vector<uint8_t> bytes;
-    require(cv::imencode(".png", image, bytes), "cannot write '" + path + "': PNG encoding failed");
+    require(encodePng(bytes, width, height, channels, int(sizeof(Sample) * 8), rows.data()),
+            "cannot write '" + path + "': PNG encoding failed");
     writeBytesAtomically(path, bytes.data(), bytes.size());
 }
 

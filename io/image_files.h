@@ -34,9 +34,10 @@ void writeExr(const std::string& path, uint32_t width, uint32_t height, uint32_t
               const std::vector<float>& samples);
 
 // PNG of 8-bit (writePng8) or 16-bit (writePng16) samples, 1, 3 or 4 channels a pixel in the file's order (grey,
-// RGB, RGBA), top row first, written atomically. Every PNG sward writes goes through one encoder:
-// libpng by way of OpenCV, with OpenCV's settings (zlib's fastest level with its run-length strategy), which on
-// sward's previews and masks is about 4 times faster than stb's encoder and gives files a fifth to a third smaller.
+// RGB, RGBA), top row first, written atomically. Every PNG sward writes goes through one encoder: libpng with
+// OpenCV's settings (zlib's fastest level with its run-length strategy; the files are the bytes OpenCV wrote when
+// sward encoded through it, and a build without OpenCV writes them too), which on sward's previews and masks is
+// about 4 times faster than stb's encoder and gives files a fifth to a third smaller.
 void writePng8(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
                std::span<const uint8_t> pixels);
 void writePng16(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,

@@ -201,10 +201,6 @@ void checkBlockSize(const std::string& path, GDALRasterBandH band) {
 
 } // namespace
 
-bool RasterBand::isNodata(double value) const {
-    return nodata && (value == *nodata || (std::isnan(value) && std::isnan(*nodata)));
-}
-
 RasterBand readRasterBand(const std::string& path, const RasterReadOptions& options) {
     checkLocalFile(path);
     registerDrivers();

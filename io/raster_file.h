@@ -13,6 +13,7 @@
 #include "common/input_file.h"
 #include "io/image_io.h"
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -55,7 +56,9 @@ struct RasterBand {
 
     double at(uint32_t x, uint32_t y) const { return values[size_t(y) * width + x]; }
     // True for the band's nodata value (a NaN nodata matches every NaN).
-    bool isNodata(double value) const;
+    bool isNodata(double value) const {
+        return nodata && (value == *nodata || (std::isnan(value) && std::isnan(*nodata)));
+    }
 };
 
 struct RasterReadOptions {
@@ -66,8 +69,9 @@ struct RasterReadOptions {
     InputFolders folders;
 };
 
-// Reads one band as doubles. Throws one sward::Error naming the file for: a /vsi path, a missing file or one that is
-// not a regular file, a companion file GDAL asks for outside options.folders or not a regular file, a file no
+// Reads one band as doubles. In a build without GDAL (SWARD_WITH_GDAL=OFF, io/raster_file_absent.cpp) every call
+// throws one sward::Error naming the file, GDAL and the option. Otherwise it throws one sward::Error naming the file
+// for: a /vsi path, a missing file or one that is not a regular file, a companion file GDAL asks for outside options.folders or not a regular file, a file no
 // driver of kRasterDrivers reads, a raster without bands, a band out of range, a complex band, an edge over
 // kMaxRasterEdge or more than kMaxRasterPixels pixels, a rotated, sheared or south-up geotransform, a read error,
 // and (requireFinite) a non-finite value, naming its pixel. Safe to call from any thread: reads through GDAL's door

@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "common/json_reader.h"
+#include "common/optional_components.h"
 #include "scene/scene.h"
 
 #include <cmath>
@@ -215,6 +216,8 @@ std::vector<RangeSensorParams> parseRangeSensors(JsonReader& scene) {
     std::vector<RangeSensorParams> sensors;
     std::set<std::string> names;
     for (JsonReader& r : scene.objects("range_sensors")) {
+        // Refused before anything is read, rendered or written in a build without Embree.
+        if (sensors.empty()) requireComponent(Component::Embree, scene.source() + ": 'range_sensors'");
         RangeSensorParams p = readSensor(std::move(r), sensors.size());
         if (!names.insert(p.name).second)
             throw Error(scene.source() + ": 'range_sensors' names '" + p.name + "' twice (names must be unique)");

@@ -3,6 +3,7 @@
 
 #include "common/error.h"
 #include "common/json_reader.h"
+#include "common/optional_components.h"
 #include "common/parse_number.h"
 #include "scene/land_cover_params.h"
 #include "scene/scene_limits.h"
@@ -10,6 +11,7 @@
 #include "shared/plant_blades.h"
 #include "vegetation/placement.h"
 #include "world/ground.h"
+#include "world/heightfield.h"
 
 #include <filesystem>
 
@@ -61,6 +63,8 @@ void readProceduralTerrain(JsonReader& r, ProceduralTerrainParams& t) {
 void readHeightmap(JsonReader r, const Scene& scene, HeightmapParams& h) {
     h.path = assetPath(r, "file", scene);
     if (h.path.empty()) r.fail(r.name("file") + " is required (the heightmap raster)");
+    // Refused before anything is read, rendered or written in a build without GDAL.
+    if (heightfieldNeedsGdal(h.path)) requireComponent(Component::Gdal, r.source() + ": " + r.name("file"));
     h.metresPerPixel = r.number("metres_per_pixel", h.metresPerPixel, 0.0, 1e4);
     h.heightScale = r.number("height_scale", h.heightScale, -1e5, 1e5);
     h.heightOffset = r.number("height_offset", h.heightOffset, -1e5, 1e5);
@@ -238,6 +242,7 @@ void readLandCover(JsonReader& root, Scene& scene) {
     scene.landCover = parseLandCoverParams(r);
     r.required("file", "the raster of land-cover class codes");
     scene.landCover.file = assetPath(r, "file", scene);
+    requireComponent(Component::Gdal, r.source() + ": " + r.name("file")); // the raster of class codes
     r.finish();
 }
 

@@ -2,9 +2,9 @@
 
 #include "common/error.h"
 #include "common/hash.h"
+#include "common/noise.h"
 #include "io/image_io.h"
 #include "io/raster_file.h"
-#include "common/noise.h"
 
 #include <algorithm>
 #include <cmath>
@@ -174,22 +174,28 @@ float rasterSpacing(const RasterBand& raster, float spacing) {
     require(raster.geoTransform.has_value(),
             "heightfield '" + path + "' has no georeferencing: give its metres per pixel");
     const RasterGeoTransform& g = *raster.geoTransform;
-    require(g.metresPerUnit > 0.0, "heightfield '" + path + "' is not in a projected coordinate system (metres): "
-                                   "give its metres per pixel, or reproject it (gdalwarp -t_srs EPSG:<UTM zone>)");
+    require(g.metresPerUnit > 0.0, "heightfield '" + path +
+                                       "' is not in a projected coordinate system (metres): "
+                                       "give its metres per pixel, or reproject it (gdalwarp -t_srs EPSG:<UTM zone>)");
     require(std::abs(g.pixelWidth - g.pixelHeight) <= 1e-9 * g.pixelWidth,
-            "heightfield '" + path + "' has non-square pixels; resample it (gdalwarp -tr) or give its metres per pixel");
+            "heightfield '" + path +
+                "' has non-square pixels; resample it (gdalwarp -tr) or give its metres per pixel");
     return float(g.pixelWidth * g.metresPerUnit);
 }
 
 } // namespace
+
+bool heightfieldNeedsGdal(const std::string& path) {
+    const std::string extension = lowerExtension(path);
+    return extension != "png" && extension != "exr";
+}
 
 Heightfield loadHeightfield(const std::string& path, float verticalScale, float spacing, glm::vec2 origin,
                             float heightOffset, const InputFolders& folders) {
     require(spacing >= 0.0f && std::isfinite(spacing), "heightfield '" + path + "': spacing must not be negative");
     require(std::isfinite(verticalScale) && std::isfinite(heightOffset),
             "heightfield '" + path + "': vertical scale and offset must be finite");
-    const std::string extension = lowerExtension(path);
-    if (extension != "png" && extension != "exr") {
+    if (heightfieldNeedsGdal(path)) {
         RasterReadOptions options;
         options.folders = folders;
         const RasterBand raster = readRasterBand(path, options);
@@ -204,7 +210,8 @@ Heightfield loadHeightfield(const std::string& path, float verticalScale, float 
             verticalScale, heightOffset);
         return Heightfield(raster.width, raster.height, step, origin, std::move(heights));
     }
-    require(spacing > 0.0f, "heightfield '" + path + "' is a PNG / EXR without georeferencing: give its metres per pixel");
+    require(spacing > 0.0f,
+            "heightfield '" + path + "' is a PNG / EXR without georeferencing: give its metres per pixel");
     ImageData image = loadImage(path);
     requireHeightmapBudget(path, image.width, image.height);
     require(image.bitDepth != 8,

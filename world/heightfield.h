@@ -92,4 +92,7 @@ Heightfield loadHeightfield(const std::string& path, float verticalScale, float 
                             glm::vec2 origin = glm::vec2(0.0f), float heightOffset = 0.0f,
                             const InputFolders& folders = {});
 
+// True when loadHeightfield reads `path` through GDAL: every extension but .png and .exr (any case).
+bool heightfieldNeedsGdal(const std::string& path);
+
 } // namespace sward

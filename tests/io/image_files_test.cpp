@@ -1,5 +1,6 @@
 // Image files: EXR written by sward read back with OpenCV.
 #include "common/half_float.h"
+#include "common/hash.h"
 #include "io/image_files.h"
 #include "io/image_io.h"
 
@@ -97,8 +98,8 @@ TEST(ExrFiles, AnAttributeLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
     sward::test::expectError([&] { loadImage(path); }, {path, "an attribute claims 2147418112 bytes"});
 }
 
-// writePng8 / writePng16 take channels in the file's order (RGB, RGBA) and hand OpenCV its own (BGR, BGRA): each
-// sample must come back in its channel, through sward's reader and through OpenCV's as a user reads it.
+// writePng8 / writePng16 take channels in the file's order (RGB, RGBA): each sample must come back in its channel,
+// through sward's reader and through OpenCV's as a user reads it.
 TEST(PngFiles, EightAndSixteenBitSamplesReadBackExactlyInTheirChannels) {
     const std::string dir = sward::test::tempDir().string();
     const uint32_t w = 5, h = 3;
@@ -138,6 +139,50 @@ TEST(PngFiles, EightAndSixteenBitSamplesReadBackExactlyInTheirChannels) {
     EXPECT_FALSE(std::filesystem::exists(dir + "/short.png"));
     sward::test::expectError([&] { writePng16(dir + "/ga.png", w, h, 2, std::vector<uint16_t>(w * h * 2)); },
                              {dir + "/ga.png", "a PNG of 2 channels"});
+}
+
+// sward calls libpng itself (io/image_files.cpp), in every build, with OpenCV's encoder's settings: the files are
+// byte for byte those cv::imencode wrote when sward encoded through it, so no dataset changed when the build without
+// OpenCV came (issue 49). Flat runs, ramps and hashed noise (zlib's run-length and literal paths, the sub filter's
+// wrap-around), 8 and 16 bits, grey, RGB and RGBA, one image over several of zlib's blocks.
+TEST(PngFiles, SameBytesAsOpenCvsEncoder) {
+    const std::string dir = sward::test::tempDir().string();
+    for (const auto& [w, h] : {std::pair<uint32_t, uint32_t>{61, 37}, {320, 240}})
+        for (uint32_t bits : {8u, 16u})
+            for (uint32_t channels : {1u, 3u, 4u}) {
+                const std::string path = dir + "/p" + std::to_string(w) + "-" + std::to_string(bits) + "-" +
+                                         std::to_string(channels) + ".png";
+                const uint32_t maxValue = bits == 8 ? 255u : 65535u;
+                std::vector<uint32_t> values(size_t(w) * h * channels);
+                for (size_t i = 0; i < values.size(); ++i) {
+                    const size_t pixel = i / channels, x = pixel % w, y = pixel / w;
+                    const uint32_t noise = uint32_t(hashKey({i, bits, channels}));
+                    values[i] = y < h / 3   ? uint32_t(x * 4 + i % channels) % (maxValue + 1) // ramps
+                                : y < h / 2 ? maxValue / 3                                    // one flat run
+                                            : noise % (maxValue + 1);                         // noise
+                }
+                if (bits == 8)
+                    writePng8(path, w, h, channels, std::vector<uint8_t>(values.begin(), values.end()));
+                else
+                    writePng16(path, w, h, channels, std::vector<uint16_t>(values.begin(), values.end()));
+                cv::Mat image(int(h), int(w), CV_MAKETYPE(bits == 8 ? CV_8U : CV_16U, int(channels)));
+                for (uint32_t y = 0; y < h; ++y)
+                    for (uint32_t x = 0; x < w; ++x)
+                        for (uint32_t c = 0; c < channels; ++c) {
+                            const uint32_t cvChannel = channels >= 3 && c < 3 ? 2 - c : c; // B, G, R (then alpha)
+                            const uint32_t value = values[(size_t(y) * w + x) * channels + c];
+                            if (bits == 8)
+                                image.ptr<uint8_t>(int(y))[x * channels + cvChannel] = uint8_t(value);
+                            else
+                                image.ptr<uint16_t>(int(y))[x * channels + cvChannel] = uint16_t(value);
+                        }
+                std::vector<uint8_t> expected;
+                ASSERT_TRUE(cv::imencode(".png", image, expected));
+                std::ifstream file(path, std::ios::binary);
+                const std::vector<uint8_t> written{std::istreambuf_iterator<char>(file), {}};
+                EXPECT_EQ(written.size(), expected.size()) << path;
+                EXPECT_TRUE(written == expected) << path;
+            }
 }
 
 TEST(PngFiles, AHeaderClaimingMorePixelsThanTheFileCanHoldIsRefused) {

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """./sward.sh: --help / -h / help answer at once without setup or build, an unknown command exits 2 before setup,
-and `render ARGS` passes ARGS to sward-render with the default scene and --out added only where ARGS give none.
+`render ARGS` passes ARGS to sward-render with the default scene and --out added only where ARGS give none, and
+`package [--lean]` configures build (every optional component) or build-lean (none) and runs cpack there.
 
     sward_sh_test.py SWARD_SH
 
@@ -93,6 +94,40 @@ class SwardSh(unittest.TestCase):
     def test_option_values_are_not_mistaken_for_a_scene(self):
         self.assertEqual(self.render("--resolution", "64x48", "--device", "llvmpipe"),
                          ["examples/meadow.json", "--out", "out", "--resolution", "64x48", "--device", "llvmpipe"])
+
+    def package(self, *args):
+        # cpack runs in the build folder and leaves the archive in its package/ folder.
+        write_executable(os.path.join(self.root, "stubs", "cpack"),
+                         f'#!/bin/sh\necho "cpack in $(basename "$PWD")" >> "{self.log}"\n'
+                         'mkdir -p package && touch package/sward-0.1.0-linux-x86_64.tar.gz\n')
+        return self.sward("package", *args)[0]
+
+    def test_package_builds_every_component(self):
+        result = self.package()
+        self.assertEqual(result.returncode, 0, result.stderr)
+        log = self.stub_log()
+        self.assertIn("-B build -G Ninja", log)
+        for option in ("SWARD_WITH_GDAL", "SWARD_WITH_EMBREE", "SWARD_WITH_OPENCV"):
+            self.assertIn(f"-D{option}=ON", log)
+        self.assertIn("cpack in build\n", log)
+
+    def test_package_lean_leaves_out_the_optional_components_in_build_lean(self):
+        os.makedirs(os.path.join(self.root, "build-lean")) # as the (stubbed) configure would make it
+        result = self.package("--lean")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        log = self.stub_log()
+        self.assertIn("-B build-lean -G Ninja", log)
+        for option in ("SWARD_WITH_GDAL", "SWARD_WITH_EMBREE", "SWARD_WITH_OPENCV"):
+            self.assertIn(f"-D{option}=OFF", log)
+        self.assertIn("cmake --build build-lean", log)
+        self.assertIn("cpack in build-lean\n", log)
+
+    def test_package_refuses_other_arguments_before_setup(self):
+        result = self.package("--small")
+        self.assertEqual(result.returncode, 2)
+        self.assertEqual(result.stderr.splitlines(),
+                         ["sward.sh: error: package takes only --lean, not '--small' (see ./sward.sh --help)"])
+        self.assertEqual(self.stub_log(), "")
 
 
 if __name__ == "__main__":
