@@ -3,6 +3,7 @@
 #include "common/atomic_file.h"
 #include "common/staged_folder.h"
 #include "dataset/naming.h"
+#include "export/colmap_database.h"
 
 #include <nlohmann/json.hpp>
 
@@ -72,24 +73,31 @@ void exportColmap(const ExportDataset& dataset, const std::string& out) {
     const std::string model = out + "/sparse/0";
     makeDirectory(model, "output folder");
     // The sensor model's lens distortion is OpenCV's: COLMAP's FULL_OPENCV (k4..k6 = 0) holds it exactly.
-    std::string params = number(c.fx) + " " + number(c.fy) + " " + number(c.cx + 0.5) + " " + number(c.cy + 0.5);
+    ColmapCameraRow camera{.model = c.distorted() ? 6 : 1,
+                           .width = c.width,
+                           .height = c.height,
+                           .params = {c.fx, c.fy, c.cx + 0.5, c.cy + 0.5}};
     if (c.distorted())
-        for (double k : {c.distortion[0], c.distortion[1], c.distortion[2], c.distortion[3], c.distortion[4], 0.0, 0.0, 0.0})
-            params += " " + number(k);
+        camera.params.insert(camera.params.end(), {c.distortion[0], c.distortion[1], c.distortion[2], c.distortion[3],
+                                                   c.distortion[4], 0.0, 0.0, 0.0});
+    std::string params;
+    for (double p : camera.params) params += " " + number(p);
     writeTextAtomically(model + "/cameras.txt",
                         "# Camera list with one line of data per camera:\n"
                         "#   CAMERA_ID, MODEL, WIDTH, HEIGHT, PARAMS[]\n# Number of cameras: 1\n1 " +
                             std::string(c.distorted() ? "FULL_OPENCV " : "PINHOLE ") + std::to_string(c.width) + " " +
-                            std::to_string(c.height) + " " + params + "\n");
+                            std::to_string(c.height) + params + "\n");
     std::string images = "# Image list with two lines of data per image:\n"
                          "#   IMAGE_ID, QW, QX, QY, QZ, TX, TY, TZ, CAMERA_ID, NAME\n"
                          "#   POINTS2D[] as (X, Y, POINT3D_ID)\n# Number of images: " +
                          std::to_string(views.size()) + ", mean observations per image: 0\n";
+    std::vector<ColmapImageRow> rows;
     for (size_t i = 0; i < views.size(); ++i) {
         // COLMAP stores world-to-camera: R = R_wc^T, t = -R * C.
         const glm::dmat3 rotation = glm::transpose(glm::dmat3(views[i].pose));
         const glm::dvec3 t = -(rotation * glm::dvec3(views[i].pose[3]));
         const glm::dvec4 q = rotationQuaternion(rotation);
+        rows.push_back({.id = uint32_t(i + 1), .name = views[i].name, .rotation = q, .translation = t});
         images += std::to_string(i + 1) + " " + number(q.x) + " " + number(q.y) + " " + number(q.z) + " " +
                   number(q.w) + " " + number(t.x) + " " + number(t.y) + " " + number(t.z) + " 1 " + views[i].name +
                   "\n\n";
@@ -99,13 +107,18 @@ void exportColmap(const ExportDataset& dataset, const std::string& out) {
                         "# 3D point list with one line of data per point:\n"
                         "#   POINT3D_ID, X, Y, Z, R, G, B, ERROR, TRACK[] as (IMAGE_ID, POINT2D_IDX)\n"
                         "# Number of points: 0, mean track length: 0\n");
+    // The same ids in COLMAP's database: feature_extractor keeps them, so point_triangulator finds the model's
+    // images under the database's ids.
+    const std::vector<char> database = colmapDatabaseBytes({camera}, rows);
+    writeBytesAtomically(out + "/database.db", database.data(), database.size());
 }
 
 void exportNerfstudio(const ExportDataset& dataset, const std::string& out) {
     const std::vector<View> views = copyViews(dataset, out + "/images");
     const ExportCamera& c = dataset.camera;
     // OpenCV camera axes (x right, y down, z forward) -> OpenGL (x right, y up, z back): negate y and z columns.
-    const glm::dmat4 flip(glm::dvec4(1, 0, 0, 0), glm::dvec4(0, -1, 0, 0), glm::dvec4(0, 0, -1, 0), glm::dvec4(0, 0, 0, 1));
+    const glm::dmat4 flip(glm::dvec4(1, 0, 0, 0), glm::dvec4(0, -1, 0, 0), glm::dvec4(0, 0, -1, 0),
+                          glm::dvec4(0, 0, 0, 1));
     nlohmann::json frames = nlohmann::json::array();
     for (const View& view : views) {
         const glm::dmat4 m = view.pose * flip;
@@ -113,10 +126,11 @@ void exportNerfstudio(const ExportDataset& dataset, const std::string& out) {
         for (int r = 0; r < 4; ++r) rows.push_back({m[0][r], m[1][r], m[2][r], m[3][r]});
         frames.push_back({{"file_path", "images/" + view.name}, {"transform_matrix", rows}});
     }
-    const nlohmann::json transforms = {{"camera_model", "OPENCV"}, {"fl_x", c.fx}, {"fl_y", c.fy},
-                                       {"cx", c.cx + 0.5}, {"cy", c.cy + 0.5}, {"w", c.width}, {"h", c.height},
-                                       {"k1", c.distortion[0]}, {"k2", c.distortion[1]}, {"p1", c.distortion[2]},
-                                       {"p2", c.distortion[3]}, {"k3", c.distortion[4]}, {"frames", frames}};
+    const nlohmann::json transforms = {
+        {"camera_model", "OPENCV"}, {"fl_x", c.fx},          {"fl_y", c.fy},          {"cx", c.cx + 0.5},
+        {"cy", c.cy + 0.5},         {"w", c.width},          {"h", c.height},         {"k1", c.distortion[0]},
+        {"k2", c.distortion[1]},    {"p1", c.distortion[2]}, {"p2", c.distortion[3]}, {"k3", c.distortion[4]},
+        {"frames", frames}};
     writeTextAtomically(out + "/transforms.json", transforms.dump(2) + "\n");
 }
 

@@ -12,7 +12,8 @@ namespace sward {
 
 // sparse/0/cameras.txt (one PINHOLE camera: the rig is rectified; FULL_OPENCV with the sensor model's lens
 // distortion), images.txt (world-to-camera quaternion and
-// translation per view, left then right per frame, no 2D points), points3D.txt (empty), and the images.
+// translation per view, left then right per frame, no 2D points), points3D.txt (empty), the images, and
+// database.db: COLMAP's database with the same camera and image ids (export/colmap_database.h).
 void exportColmap(const ExportDataset& dataset, const std::string& out);
 
 // transforms.json (camera_model OPENCV with the sensor model's k1, k2, k3, p1, p2, zero without; transform_matrix camera-to-world in OpenGL axes: x right,

@@ -13,6 +13,8 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools vulkan-tools
   # maths, windowing, assets, image formats
   libglm-dev libglfw3-dev libtinygltf-dev libstb-dev libopenexr-dev libpng-dev
+  # SQLite: sward-export's COLMAP database.db; COLMAP itself runs the export's test (tests/tools/sward-export)
+  libsqlite3-dev colmap
   # GIS rasters: GDAL reads land-cover maps and heightmaps (io/raster_file); the build writes the example worlds'
   # GeoTIFFs with gdal-bin's gdal_translate (tools/make-example-data.py)
   libgdal-dev gdal-bin
