@@ -3,6 +3,7 @@
 #include "common/error.h"
 #include "common/staged_folder.h"
 #include "export/camera_models.h"
+#include "export/ros2_bag.h"
 #include "export/stereo_layouts.h"
 
 namespace sward {
@@ -15,7 +16,8 @@ struct LayoutName {
 };
 constexpr LayoutName kLayouts[] = {{"middlebury", ExportLayout::Middlebury}, {"eth3d", ExportLayout::Eth3d},
                                    {"kitti", ExportLayout::Kitti},           {"ply", ExportLayout::Ply},
-                                   {"colmap", ExportLayout::Colmap},         {"nerfstudio", ExportLayout::Nerfstudio}};
+                                   {"colmap", ExportLayout::Colmap},         {"nerfstudio", ExportLayout::Nerfstudio},
+                                   {"ros2", ExportLayout::Ros2}};
 
 } // namespace
 
@@ -46,6 +48,7 @@ uint32_t runExport(const ExportOptions& options) {
     case ExportLayout::Ply: exportPointClouds(dataset, staged.path(), options.pointFrame); break;
     case ExportLayout::Colmap: exportColmap(dataset, staged.path()); break;
     case ExportLayout::Nerfstudio: exportNerfstudio(dataset, staged.path()); break;
+    case ExportLayout::Ros2: exportRos2Bag(dataset, staged.path()); break;
     }
     staged.commit();
     return uint32_t(dataset.frames.size());

@@ -12,10 +12,10 @@
 
 namespace sward {
 
-enum class ExportLayout { Middlebury, Eth3d, Kitti, Ply, Colmap, Nerfstudio };
+enum class ExportLayout { Middlebury, Eth3d, Kitti, Ply, Colmap, Nerfstudio, Ros2 };
 
-// "middlebury", "eth3d", "kitti", "ply", "colmap", "nerfstudio"; throws a clear error naming `what` (the flag)
-// and the choices.
+// "middlebury", "eth3d", "kitti", "ply", "colmap", "nerfstudio", "ros2"; throws a clear error naming `what` (the
+// flag) and the choices.
 ExportLayout parseExportLayout(const std::string& text, const std::string& what);
 // "world" or "camera".
 PointFrame parsePointFrame(const std::string& text, const std::string& what);

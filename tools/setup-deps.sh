@@ -42,6 +42,8 @@ packages=(
   slurm-wlm munge python3-yaml nodejs
   # the release archive's check (tools/release-check.sh): a minimal Debian 12 root file system to run it in
   debootstrap
+  # sward-bench suite's test: suite.json validated against docs/suite.schema.json (tests/tools/sward-bench)
+  python3-jsonschema
 )
 # A Node.js from another source (e.g. NodeSource) brings its own npm; Debian's npm would conflict with it.
 command -v npm >/dev/null || packages+=(npm)
@@ -69,4 +71,13 @@ if ! cmp -s "$k8s/package-lock.json" "$k8s/node_modules/.sward-installed-lock.js
   echo "setup: npm ci in $k8s"
   npm ci --prefix "$k8s" --no-audit --no-fund --loglevel=error
   cp "$k8s/package-lock.json" "$k8s/node_modules/.sward-installed-lock.json"
+fi
+
+# npm packages of the ROS 2 bag check (tests/tools/sward-export/ros2_bag_test.cpp: Foxglove's MCAP reader and ROS 2
+# message decoders read sward-export --layout ros2), pinned and installed the same way.
+mcap="$(cd "$(dirname "$0")/.." && pwd)/tests/tools/sward-export/mcap"
+if ! cmp -s "$mcap/package-lock.json" "$mcap/node_modules/.sward-installed-lock.json"; then
+  echo "setup: npm ci in $mcap"
+  npm ci --prefix "$mcap" --no-audit --no-fund --loglevel=error
+  cp "$mcap/package-lock.json" "$mcap/node_modules/.sward-installed-lock.json"
 fi

@@ -10,11 +10,11 @@
 
 int main(int argc, char** argv) {
     CLI::App app{"sward-export: rewrite a sward dataset as Middlebury / ETH3D / KITTI stereo pairs, PLY point clouds, "
-                 "a COLMAP model or a nerfstudio transforms.json"};
+                 "a COLMAP model, a nerfstudio transforms.json or a ROS 2 bag (MCAP)"};
     sward::ExportOptions options;
     app.add_option("dataset", options.datasetDir, "Dataset folder written by sward-render")->required();
     app.add_option("--out,-o", options.outDir, "Output folder (created if missing)")->required();
-    sward::addParsed(app, "--layout", options.layout, "middlebury, eth3d, kitti, ply, colmap or nerfstudio", "LAYOUT",
+    sward::addParsed(app, "--layout", options.layout, "middlebury, eth3d, kitti, ply, colmap, nerfstudio or ros2", "LAYOUT",
                      [](const std::string& text, const std::string& flag) { return sward::parseExportLayout(text, flag); })
         ->required();
     sward::addFrameRange(app, options.frames, "Frame range A:B (frames A .. B-1); default: all rendered");
