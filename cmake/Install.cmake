@@ -6,6 +6,7 @@
 #   P/bin/sward-*                   the tools (rpath $ORIGIN/../lib: the release archive's bundled libraries)
 #   P/lib/python3/dist-packages/sward  the Python module (python/CMakeLists.txt)
 #   P/share/sward/examples/         the example scenes, with the example worlds' generated data (examples/)
+#   P/share/sward/bench/reference/  sward-bench suite's cross-check reference (bench/reference/)
 #   P/share/doc/sward/              README.md, docs/, third_party_notes.md
 # Two components: Runtime (tools, examples, docs; with the Python module, which python/ installs, the release archive
 # of cmake/Package.cmake) and Development (headers, static libraries, the CMake package), which the archive leaves out.
@@ -53,6 +54,9 @@ install(DIRECTORY examples/ DESTINATION ${CMAKE_INSTALL_DATADIR}/sward/examples 
         REGEX "examples/CMakeLists\\.txt$" EXCLUDE)
 install(DIRECTORY ${CMAKE_BINARY_DIR}/examples/gis ${CMAKE_BINARY_DIR}/examples/hills ${CMAKE_BINARY_DIR}/examples/tracks
         DESTINATION ${CMAKE_INSTALL_DATADIR}/sward/examples COMPONENT Runtime)
+# The reference images of sward-bench suite's cross-check (bench/reference/README.md), where the installed
+# sward-bench looks for them: P/share/sward/bench/reference/.
+install(DIRECTORY bench/reference/ DESTINATION ${CMAKE_INSTALL_DATADIR}/sward/bench/reference COMPONENT Runtime)
 install(FILES README.md third_party_notes.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT Runtime)
 install(DIRECTORY docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs COMPONENT Runtime)
 

@@ -1,6 +1,8 @@
 // sward-bench: prints benchmark figures (and writes them as JSON with --json). Thin: parsing and printing only.
 #include "common/atomic_file.h"
+#include "engine/device_choice.h"
 #include "range/range_benchmark.h"
+#include "render/bench_suite.h"
 #include "render/benchmarks.h"
 #include "scene/scene.h"
 
@@ -54,7 +56,7 @@ CLI::App* addDatasetCommand(CLI::App& app, sward::DatasetBenchOptions& options, 
     sward::addSamples(*dst, options.samples, "MSAA samples: 1 or 4 (default: the scene's)");
     sward::addUnsigned(*dst, "--frames", options.frames, 2, 10000,
                        "Frames 0 .. N-1; the figures are over all but the first");
-    dst->add_option("--device", options.device, "Vulkan device name substring");
+    dst->add_option("--device", options.device, sward::kDeviceOptionHelp);
     dst->add_option("--json", json, "Also write the figures as a JSON object to this file");
     return dst;
 }
@@ -72,10 +74,50 @@ CLI::App* addWorldCommand(CLI::App& app, sward::WorldBenchOptions& options, std:
                        "Threads per tile generation (0 = all cores)");
     sward::addUnsigned(*wld, "--tiles", options.tiles, 1, 256, "Tiles generated one by one for the generation figures");
     wld->add_flag("--no-gpu", options.noGpu, "CPU figures only (no upload and frame times)");
-    wld->add_option("--device", options.device, "Vulkan device name filter for the GPU figures");
+    wld->add_option("--device", options.device, sward::kDeviceOptionHelp);
     sward::addUnsigned(*wld, "--frames", options.frames, 1, 1000, "Timed frames per resident-tile count");
     wld->add_option("--json", json, "Also write the figures as a JSON object to this file");
     return wld;
+}
+
+struct SuiteCommand {
+    sward::SuiteOptions options;
+    std::string writeReference; // --write-reference DIR: only the cross-check's reference, into DIR
+};
+
+CLI::App* addSuiteCommand(CLI::App& app, SuiteCommand& suite) {
+    CLI::App* cmd = app.add_subcommand(
+        "suite", "Every headline figure in one bounded run, with a correctness cross-check against lavapipe's "
+                 "reference: writes suite.json and suite.md into --out (docs/suite.md)");
+    cmd->add_option("--out", suite.options.outDir, "Folder for suite.json and suite.md (refused when not empty)");
+    cmd->add_flag("--overwrite", suite.options.overwrite, "Replace suite.json / suite.md (or the reference) there");
+    cmd->add_flag("--quick", suite.options.quick, "Smaller sizes and fewer frames (< 3 minutes on lavapipe)");
+    cmd->add_option("--device", suite.options.device, sward::kDeviceOptionHelp);
+    cmd->add_option("--data", suite.options.dataRoot,
+                    "Folder holding examples/ and bench/reference/ (default: the installed share/sward, else the "
+                    "source tree)");
+    cmd->add_option("--only", suite.options.only,
+                    "Run only these figures (comma-separated or repeated; the others are "
+                    "recorded as skipped)")
+        ->delimiter(',')
+        ->check(CLI::IsMember(sward::suiteFigureNames()));
+    cmd->add_option("--write-reference", suite.writeReference,
+                    "Render the cross-check frame and write it as the reference into this folder, nothing else");
+    return cmd;
+}
+
+int runSuite(const SuiteCommand& suite) {
+    if (!suite.writeReference.empty()) {
+        const std::string root = suite.options.dataRoot.empty() ? sward::suiteDataRoot() : suite.options.dataRoot;
+        std::printf("%s\n", sward::writeSuiteReference(suite.writeReference, suite.options.overwrite, root,
+                                                       suite.options.device)
+                                .dump(2)
+                                .c_str());
+        return 0;
+    }
+    const nlohmann::json result = sward::runBenchSuite(suite.options);
+    std::fputs(sward::suiteTable(result).c_str(), stdout);
+    return sward::suitePassed(result) ? 0 : 1;
 }
 
 } // namespace
@@ -94,7 +136,7 @@ int main(int argc, char** argv) {
     sward::addUnsigned(*gen, "--threads", generate.threads, 0, sward::kMaxThreadsOption,
                        "Worker threads (0 = all cores)");
     sward::addUnsigned(*gen, "--repeats", generate.repeats, 1, 1000, "Generation runs (median reported)");
-    gen->add_option("--device", generate.device, "Vulkan device name substring");
+    gen->add_option("--device", generate.device, sward::kDeviceOptionHelp);
     gen->add_flag("!--no-upload", generate.upload, "Skip the GPU upload");
     gen->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
@@ -125,7 +167,7 @@ int main(int argc, char** argv) {
     frm->add_flag(
         "!--no-floor", frame.floor,
         "Skip the floor variants (the main pass with plants drawn by a constant-colour shader, and without plants)");
-    frm->add_option("--device", frame.device, "Vulkan device name substring");
+    frm->add_option("--device", frame.device, sward::kDeviceOptionHelp);
     frm->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
     sward::CollideBenchOptions collide;
@@ -150,7 +192,7 @@ int main(int argc, char** argv) {
     sward::addReal(*col, "--radius", collide.radius, 0.001, 2.0, "Collider sphere radius, metres");
     sward::addReal(*col, "--tick-rate", collide.tickRate, 0.0, 1000.0,
                    "Ticks per second, paced like a real-time loop (threads idle between ticks); 0 = back to back");
-    col->add_option("--device", collide.device, "Vulkan device name substring");
+    col->add_option("--device", collide.device, sward::kDeviceOptionHelp);
     col->add_flag("!--no-gpu", collide.gpu, "CPU collision only: no Vulkan device, no upload or GPU figures");
     col->add_option("--json", json, "Also write the figures as a JSON object to this file");
 
@@ -163,7 +205,11 @@ int main(int argc, char** argv) {
     sward::DatasetBenchOptions dataset;
     CLI::App* dst = addDatasetCommand(app, dataset, json);
 
+    SuiteCommand suite;
+    CLI::App* ste = addSuiteCommand(app, suite);
+
     return sward::runTool(app, argc, argv, "sward-bench", [&] {
+        if (ste->parsed()) return runSuite(suite);
         if (ldr->parsed()) emit(sward::benchLidar(lidar), json);
         if (dst->parsed()) emit(sward::benchDataset(dataset), json);
         if (gen->parsed()) emit(sward::benchGenerate(generate), json);
