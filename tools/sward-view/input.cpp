@@ -8,22 +8,57 @@ namespace sward {
 
 void applyKey(int key, PanelState& panel, bool& uiVisible, GLFWwindow* window) {
     switch (key) {
-    case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window, GLFW_TRUE); break;
-    case GLFW_KEY_F: panel.toggleDrive = true; break;
-    case GLFW_KEY_SPACE: panel.paused = !panel.paused; break;
-    case GLFW_KEY_N: panel.step = true; break;
+    case GLFW_KEY_ESCAPE:
+        glfwSetWindowShouldClose(window, GLFW_TRUE);
+        break;
+    case GLFW_KEY_F:
+        panel.toggleDrive = true;
+        break;
+    case GLFW_KEY_SPACE:
+        panel.paused = !panel.paused;
+        break;
+    case GLFW_KEY_N:
+        panel.step = true;
+        break;
     case GLFW_KEY_F12:
-    case GLFW_KEY_P: panel.screenshot = true; break;
-    case GLFW_KEY_R: panel.reload = true; break;
-    case GLFW_KEY_H: uiVisible = !uiVisible; break;
-    case GLFW_KEY_M: panel.msaa = !panel.msaa; break;
-    case GLFW_KEY_1: panel.lodColors = !panel.lodColors; break;
-    case GLFW_KEY_2: panel.activeFields = !panel.activeFields; break;
-    case GLFW_KEY_3: panel.updatedPlants = !panel.updatedPlants; break;
-    case GLFW_KEY_4: panel.clusterBounds = !panel.clusterBounds; break;
-    case GLFW_KEY_5: panel.colliders = !panel.colliders; break;
-    default: break;
+    case GLFW_KEY_P:
+        panel.screenshot = true;
+        break;
+    case GLFW_KEY_R:
+        panel.reload = true;
+        break;
+    case GLFW_KEY_H:
+        uiVisible = !uiVisible;
+        break;
+    case GLFW_KEY_F1:
+        toggleKeysHelp(panel, uiVisible);
+        break;
+    case GLFW_KEY_M:
+        panel.msaa = !panel.msaa;
+        break;
+    case GLFW_KEY_1:
+        panel.lodColors = !panel.lodColors;
+        break;
+    case GLFW_KEY_2:
+        panel.activeFields = !panel.activeFields;
+        break;
+    case GLFW_KEY_3:
+        panel.updatedPlants = !panel.updatedPlants;
+        break;
+    case GLFW_KEY_4:
+        panel.clusterBounds = !panel.clusterBounds;
+        break;
+    case GLFW_KEY_5:
+        panel.colliders = !panel.colliders;
+        break;
+    default:
+        break;
     }
+}
+
+void toggleKeysHelp(PanelState& panel, bool& uiVisible) {
+    panel.keysHelp = !panel.keysHelp;
+    uiVisible = uiVisible || panel.keysHelp; // the list is drawn with the panel
 }
 
 void enableOverlays(PanelState& panel, const std::string& overlays) {
@@ -32,11 +67,16 @@ void enableOverlays(PanelState& panel, const std::string& overlays) {
             item += c;
             continue;
         }
-        if (item == "lod") panel.lodColors = true;
-        else if (item == "active-fields") panel.activeFields = true;
-        else if (item == "updated-plants") panel.updatedPlants = true;
-        else if (item == "clusters") panel.clusterBounds = true;
-        else if (item == "colliders") panel.colliders = true;
+        if (item == "lod")
+            panel.lodColors = true;
+        else if (item == "active-fields")
+            panel.activeFields = true;
+        else if (item == "updated-plants")
+            panel.updatedPlants = true;
+        else if (item == "clusters")
+            panel.clusterBounds = true;
+        else if (item == "colliders")
+            panel.colliders = true;
         else if (!item.empty())
             throw Error("unknown overlay '" + item + "' (use lod, active-fields, updated-plants, clusters, colliders)");
         item.clear();

@@ -16,6 +16,8 @@ namespace sward {
 
 // One key press (GLFW key code): Esc closes `window`, H toggles `uiVisible`, the others edit `panel`.
 void applyKey(int key, PanelState& panel, bool& uiVisible, GLFWwindow* window);
+// F1 or a typed '?': shows or hides the keys window (and shows the panel with it).
+void toggleKeysHelp(PanelState& panel, bool& uiVisible);
 // --overlay "lod,active-fields,...": switches those overlays on in `panel`; throws sward::Error for an unknown one.
 void enableOverlays(PanelState& panel, const std::string& overlays);
 

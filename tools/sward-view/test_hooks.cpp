@@ -17,13 +17,20 @@ std::vector<std::pair<uint64_t, int>> parsePresses(const std::string& text) {
         size_t colon = item.find(':');
         std::string frame = item.substr(0, colon), key = colon == std::string::npos ? "" : item.substr(colon + 1);
         int code = GLFW_KEY_UNKNOWN;
-        if (key.size() == 1 && key[0] >= 'a' && key[0] <= 'z') code = GLFW_KEY_A + (key[0] - 'a');
-        else if (key.size() == 1 && key[0] >= '0' && key[0] <= '9') code = GLFW_KEY_0 + (key[0] - '0');
-        else if (key == "space") code = GLFW_KEY_SPACE;
-        else if (key == "f12") code = GLFW_KEY_F12;
-        else if (key == "esc") code = GLFW_KEY_ESCAPE;
+        if (key.size() == 1 && key[0] >= 'a' && key[0] <= 'z')
+            code = GLFW_KEY_A + (key[0] - 'a');
+        else if (key.size() == 1 && key[0] >= '0' && key[0] <= '9')
+            code = GLFW_KEY_0 + (key[0] - '0');
+        else if (key == "space")
+            code = GLFW_KEY_SPACE;
+        else if (key == "f12")
+            code = GLFW_KEY_F12;
+        else if (key == "f1")
+            code = GLFW_KEY_F1;
+        else if (key == "esc")
+            code = GLFW_KEY_ESCAPE;
         const std::string what = "bad --press item '" + item + "'";
-        require(code != GLFW_KEY_UNKNOWN, what + ": expected FRAME:KEY with KEY a-z, 0-9, space, f12 or esc");
+        require(code != GLFW_KEY_UNKNOWN, what + ": expected FRAME:KEY with KEY a-z, 0-9, space, f1, f12 or esc");
         presses.emplace_back(parseUnsigned(frame, 0, UINT32_MAX, what + ": FRAME"), code);
     }
     return presses;

@@ -18,6 +18,46 @@ void checkImguiVk(VkResult result) {
     if (result < 0) throw Error(std::string("Dear ImGui's Vulkan backend failed: ") + resultName(result));
 }
 
+// Every input of the viewer (README.md's table says the same; input.cpp and rover_control.cpp act on them).
+constexpr std::pair<const char*, const char*> kKeys[] = {
+    {"F1 or ?", "show / hide this list"},
+    {"mouse, right button held", "look around (or left button outside the panel)"},
+    {"W A S D, Q / E", "fly forward / left / back / right, down / up"},
+    {"Shift", "fly 4x faster"},
+    {"mouse wheel", "fly speed (x1.25 per notch)"},
+    {"F", "drive the rover / back to flying"},
+    {"arrow keys", "drive: Up forward, Down brake and reverse, Left / Right steer"},
+    {"Space, N", "pause the simulation tick, advance one tick"},
+    {"1 ... 5", "overlays: LOD colours, active fields, updated plants, cluster bounds, colliders"},
+    {"M", "4x MSAA on / off"},
+    {"F12 or P", "screenshot (EXR colour, EXR depth, PNG)"},
+    {"R", "reload the scene"},
+    {"H", "hide / show the panel"},
+    {"Esc", "quit"},
+};
+
+// The keys window, centred over the view and at most as large as it (it scrolls in a small window).
+void keysWindow(bool& open) {
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(display.x - 16.0f, display.y - 16.0f));
+    ImGui::SetNextWindowBgAlpha(1.0f);
+    ImGui::PushStyleVar(ImGuiStyleVar_Alpha, 1.0f); // opaque over the panel: the list must read clearly
+    if (ImGui::Begin("keys (F1 or ?)", &open, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse) &&
+        ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
+        for (const auto& [keys, action] : kKeys) {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(keys);
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(action);
+        }
+        ImGui::EndTable();
+    }
+    ImGui::End();
+    ImGui::PopStyleVar();
+}
+
 } // namespace
 
 Ui::Ui(Context& ctx, GLFWwindow* window, const Swapchain& swapchain) : ctx_(ctx), format_(swapchain.format()) {
@@ -104,8 +144,12 @@ Ui::~Ui() {
     vkDestroyDescriptorPool(ctx_.vk(), pool_, nullptr);
 }
 
-bool Ui::wantsMouse() const { return ImGui::GetIO().WantCaptureMouse; }
-bool Ui::wantsKeyboard() const { return ImGui::GetIO().WantCaptureKeyboard; }
+bool Ui::wantsMouse() const {
+    return ImGui::GetIO().WantCaptureMouse;
+}
+bool Ui::wantsKeyboard() const {
+    return ImGui::GetIO().WantCaptureKeyboard;
+}
 
 void Ui::destroyFramebuffers() {
     for (VkFramebuffer f : framebuffers_) vkDestroyFramebuffer(ctx_.vk(), f, nullptr);
@@ -170,7 +214,8 @@ void Ui::panel(PanelState& s) {
                     (unsigned long long)s.worldEvicted);
     }
     if (ImGui::CollapsingHeader("Simulation", ImGuiTreeNodeFlags_DefaultOpen)) {
-        ImGui::Text("tick %llu  (%.2f s)%s", (unsigned long long)s.tick, s.simulationSeconds, s.paused ? "  paused" : "");
+        ImGui::Text("tick %llu  (%.2f s)%s", (unsigned long long)s.tick, s.simulationSeconds,
+                    s.paused ? "  paused" : "");
         ImGui::Text("active fields %zu / %zu, contacts %zu", s.activeFieldCount, s.fieldCount, s.contacts);
         ImGui::Text("collision pass %.2f ms", s.collisionMs);
         ImGui::Checkbox("pause (Space)", &s.paused);
@@ -210,7 +255,9 @@ void Ui::panel(PanelState& s) {
         s.reload |= ImGui::Button("reload scene (R)");
     }
     if (!s.message.empty()) ImGui::TextWrapped("%s", s.message.c_str());
+    s.keysHelp ^= ImGui::Button("keys (F1)");
     ImGui::End();
+    if (s.keysHelp) keysWindow(s.keysHelp);
     ImGui::Render();
 }
 

@@ -23,11 +23,12 @@ struct PanelState {
     // Live settings.
     WindParams wind;
     LodParams lod;
-    float density = 1.0f;        // vegetation density multiplier; applied (regenerates the tile) by applyDensity
-    bool msaa = true;            // 4x MSAA; a change rebuilds the renderer
+    float density = 1.0f; // vegetation density multiplier; applied (regenerates the tile) by applyDensity
+    bool msaa = true;     // 4x MSAA; a change rebuilds the renderer
     float exposure = 0.5f;
     bool lodColors = false, activeFields = false, updatedPlants = false, clusterBounds = false, colliders = false;
     bool paused = false;
+    bool keysHelp = false; // the window listing every key and mouse action (F1 or ?)
     // One-shot requests from buttons.
     bool applyDensity = false, step = false, screenshot = false, reload = false, toggleDrive = false;
     // Read-only information.

@@ -135,6 +135,12 @@ Viewer::Viewer(const ViewerOptions& options, Window& window, Context& ctx)
     glfwSetKeyCallback(window_.handle, [](GLFWwindow* w, int key, int, int action, int mods) {
         static_cast<Viewer*>(glfwGetWindowUserPointer(w))->onKey(key, action, mods);
     });
+    // '?' is a character, not a key: where it is depends on the keyboard layout.
+    glfwSetCharCallback(window_.handle, [](GLFWwindow* w, unsigned int codepoint) {
+        auto* viewer = static_cast<Viewer*>(glfwGetWindowUserPointer(w));
+        if (codepoint == '?' && !(viewer->ui_ && viewer->ui_->wantsKeyboard()))
+            toggleKeysHelp(viewer->panel_, viewer->uiVisible_);
+    });
     glfwSetScrollCallback(window_.handle, [](GLFWwindow* w, double, double y) {
         static_cast<Viewer*>(glfwGetWindowUserPointer(w))->flyControls_.addScroll(y);
     });
@@ -165,7 +171,8 @@ void Viewer::rebuild(const Scene& sceneIn, bool keepInteraction) {
     // Interaction state survives an MSAA change (same plants): read it back, rebuild, upload it again.
     std::string stateFile;
     if (keepInteraction && state_ && state_->gpu.simulation) {
-        stateFile = (std::filesystem::temp_directory_path() / ("sward-view-" + std::to_string(getpid()) + ".state")).string();
+        stateFile =
+            (std::filesystem::temp_directory_path() / ("sward-view-" + std::to_string(getpid()) + ".state")).string();
         state_->gpu.simulation->saveState(stateFile);
     }
     ctx_.submitter.waitIdle();
@@ -184,7 +191,8 @@ void Viewer::rebuild(const Scene& sceneIn, bool keepInteraction) {
     });
     panel_.scene = state_->resources.scene.name + " (" + scenePath_ + ")";
     panel_.fieldCount = state_->resources.tile ? state_->resources.tile->fields.size() : 0;
-    rover_.setVehicle(state_->resources.scene.actors.vehicles.empty() ? VehicleParams{} : state_->resources.scene.actors.vehicles[0]);
+    rover_.setVehicle(state_->resources.scene.actors.vehicles.empty() ? VehicleParams{}
+                                                                      : state_->resources.scene.actors.vehicles[0]);
 }
 
 void Viewer::spawnRover() {
@@ -301,7 +309,7 @@ void Viewer::applyPanel() {
     state_->resources.scene.lod = panel_.lod;
     if (VegetationRenderer* v = state_->gpu.renderer->vegetation()) v->setWindAndLod(panel_.wind, panel_.lod);
     state_->gpu.renderer->setDebugFlags((panel_.lodColors ? gpu::kDebugLodColors : 0u) |
-                                    (panel_.updatedPlants ? gpu::kDebugUpdatedPlants : 0u));
+                                        (panel_.updatedPlants ? gpu::kDebugUpdatedPlants : 0u));
 }
 
 void Viewer::applyDensity() {
@@ -402,15 +410,20 @@ void Viewer::tickSimulation(VkCommandBuffer cmd, GpuTimers& timers) {
     Simulation* sim = state_->gpu.simulation.get();
     const double step = state_->resources.scene.sequence.timeStep;
     bool run = false;
-    if (stepPending_) run = true;
-    else if (!panel_.paused) run = options_.frames > 0 || tickClock_ >= step; // --frames: one tick per frame
+    if (stepPending_)
+        run = true;
+    else if (!panel_.paused)
+        run = options_.frames > 0 || tickClock_ >= step; // --frames: one tick per frame
     stepPending_ = false;
     if (!run) return;
     tickClock_ = std::max(tickClock_ - step, 0.0);
-    if (rover_.active()) rover_.step(window_.handle, driving_ && !(ui_ && ui_->wantsKeyboard()), options_.autodrive, step);
+    if (rover_.active())
+        rover_.step(window_.handle, driving_ && !(ui_ && ui_->wantsKeyboard()), options_.autodrive, step);
     if (!sim) return;
-    if (rover_.active()) sim->setExternalColliders(rover_.wheelColliders(state_->resources.terrain, roverIndex()));
-    else sim->setExternalColliders({});
+    if (rover_.active())
+        sim->setExternalColliders(rover_.wheelColliders(state_->resources.terrain, roverIndex()));
+    else
+        sim->setExternalColliders({});
     timers.begin(cmd, "interaction");
     sim->recordNextTick(cmd, uint32_t(sim->nextTick() % gpu::kFrameDataSlots));
     timers.end(cmd);
@@ -440,7 +453,8 @@ void Viewer::buildOverlay(const Camera& camera) {
     if (sim && (panel_.colliders || wheelsOnly)) {
         for (const Collider& c : sim->lastColliders())
             if (panel_.colliders || RoverControl::isWheel(c, roverIndex()))
-                overlay.collider(c, c.kind == ColliderKind::Gust ? glm::vec3(0.5f, 1.5f, 3.0f) : glm::vec3(4.0f, 4.0f, 0.5f));
+                overlay.collider(c, c.kind == ColliderKind::Gust ? glm::vec3(0.5f, 1.5f, 3.0f)
+                                                                 : glm::vec3(4.0f, 4.0f, 0.5f));
     }
     rover_.show(state_->gpu.renderer->objects(), state_->roverObject, state_->resources.terrain, overlay);
     overlay.upload(uint32_t(frame_));
@@ -477,8 +491,10 @@ uint64_t Viewer::recordFrame(const SwapchainImage& image, const Camera& camera, 
         ui_->record(cmd, swapchain_, image.index);
         timers.end(cmd);
     }
-    if (capture && swapchain_.supportsTransferSrc()) screenshots_.recordSwapchainCapture(cmd, image, swapchain_.extent());
-    else PresentPass::recordToPresent(cmd, image.image);
+    if (capture && swapchain_.supportsTransferSrc())
+        screenshots_.recordSwapchainCapture(cmd, image, swapchain_.extent());
+    else
+        PresentPass::recordToPresent(cmd, image.image);
     if (keyShot || capture) transferToHostBarrier(cmd);
     return ctx_.submitter.submit(cmd, image.acquired, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, image.finished);
 }
@@ -493,8 +509,10 @@ void Viewer::writeCaptures(uint64_t serial, bool keyShot, bool capture) {
     }
     if (capture) {
         ctx_.submitter.wait(serial);
-        if (swapchain_.supportsTransferSrc()) screenshots_.writeSwapchainPng(options_.screenshot, extent, swapchain_.format());
-        else Screenshots::writeTonemappedPng(options_.screenshot, *main_, extent, panel_.exposure);
+        if (swapchain_.supportsTransferSrc())
+            screenshots_.writeSwapchainPng(options_.screenshot, extent, swapchain_.format());
+        else
+            Screenshots::writeTonemappedPng(options_.screenshot, *main_, extent, panel_.exposure);
     }
 }
 
@@ -507,9 +525,8 @@ void Viewer::printSummary() const {
                 (unsigned long long)(state_->gpu.simulation ? state_->gpu.simulation->nextTick() : 0));
     if (world())
         std::printf("sward-view: world: %u tile(s) resident, %u pending, %llu generated, %llu evicted, %.0f MiB\n",
-                    world()->residentCount(), world()->pendingTiles(),
-                    (unsigned long long)world()->stats().generated, (unsigned long long)world()->stats().evicted,
-                    double(world()->residentBytes()) / 1048576.0);
+                    world()->residentCount(), world()->pendingTiles(), (unsigned long long)world()->stats().generated,
+                    (unsigned long long)world()->stats().evicted, double(world()->residentBytes()) / 1048576.0);
 }
 
 } // namespace

@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -59,7 +60,8 @@ TEST(SwardView, RendersGrassThroughTheSwapchainWhileResizedAndMinimised) {
     RunResult r = run(underXvfb(std::string(SWARD_VIEW_TEST_SCENE) +
                                 " --validation --size 320x240 --samples 1 --frames 30 --resize-at 8 256x192"
                                 " --minimize-at 16 --autodrive 2 --overlay active-fields,updated-plants"
-                                " --screenshot " + png));
+                                " --screenshot " +
+                                png));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(countLines(r.output, "sward: validation"), 0) << r.output;
     EXPECT_EQ(countLines(r.output, "validation on"), 1) << "validation must have been enabled:\n" << r.output;
@@ -93,7 +95,8 @@ TEST(SwardView, KeysToggleMsaaWriteScreenshotsAndReloadWithoutValidationMessages
     // 2 and 1: overlays off / LOD colours on, f: stop driving, n + space: single-step while paused.
     RunResult r = run(underXvfb(std::string(SWARD_VIEW_TEST_SCENE) +
                                 " --validation --size 240x180 --samples 1 --frames 16 --autodrive 2"
-                                " --press 3:m,6:f12,8:r,10:2,10:1,11:f,12:space,13:n,14:m --screenshot-dir " + dir));
+                                " --press 3:m,6:f12,8:r,10:2,10:1,11:f,12:space,13:n,14:m --screenshot-dir " +
+                                dir));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(countLines(r.output, "sward: validation"), 0) << r.output;
     EXPECT_NE(r.output.find("reloaded"), std::string::npos) << r.output;
@@ -106,6 +109,37 @@ TEST(SwardView, KeysToggleMsaaWriteScreenshotsAndReloadWithoutValidationMessages
     float centre = depth.at<float>(depth.rows / 2, depth.cols / 2);
     EXPECT_GT(centre, 0.5f);
     EXPECT_LT(centre, 100.0f);
+}
+
+namespace {
+
+// Share of pixels in the middle half of `png` that are neutral grey (channels within 6 levels): the keys window.
+double middleGreyShare(const std::string& png) {
+    cv::Mat image = cv::imread(png, cv::IMREAD_COLOR);
+    if (image.empty()) return -1.0;
+    cv::Mat middle = image(cv::Rect(image.cols / 4, image.rows / 4, image.cols / 2, image.rows / 2));
+    int grey = 0;
+    for (int y = 0; y < middle.rows; ++y)
+        for (int x = 0; x < middle.cols; ++x) {
+            cv::Vec3b p = middle.at<cv::Vec3b>(y, x);
+            grey += std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}) < 6;
+        }
+    return double(grey) / double(middle.total());
+}
+
+} // namespace
+
+// F1 opens the keys window over the middle of the view (opaque grey: 100 % of the middle measured at 320x240); the
+// same frames without it show the meadow there (21 % grey: soil).
+TEST(SwardView, F1ShowsTheKeysOverTheView) {
+    std::string with = tempPath("keys.png"), without = tempPath("no-keys.png");
+    const std::string args = std::string(SWARD_VIEW_TEST_SCENE) + " --validation --size 320x240 --samples 1 --frames 4";
+    RunResult r = run(underXvfb(args + " --press 2:f1 --screenshot " + with));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(countLines(r.output, "sward: validation"), 0) << r.output;
+    ASSERT_EQ(run(underXvfb(args + " --screenshot " + without)).exitCode, 0);
+    EXPECT_GT(middleGreyShare(with), 0.95);
+    EXPECT_LT(middleGreyShare(without), 0.5);
 }
 
 // A world of several tiles: tiles are requested around the camera, generated on the worker thread and drawn when
