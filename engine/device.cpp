@@ -1,19 +1,17 @@
 #include "engine/device.h"
 
+#include "engine/device_choice.h"
+
 #include <algorithm>
-#include <cctype>
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 
 namespace sward {
 
 namespace {
-
-std::string lowercase(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return s;
-}
 
 bool hasExtension(const std::vector<VkExtensionProperties>& list, const char* name) {
     return std::any_of(list.begin(), list.end(), [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
@@ -27,53 +25,69 @@ std::vector<VkExtensionProperties> deviceExtensions(VkPhysicalDevice physical) {
     return list;
 }
 
-int typeRank(VkPhysicalDeviceType type) {
-    switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
-    default: return 0;
-    }
-}
-
-const char* typeName(VkPhysicalDeviceType type) {
-    switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
-    default: return "other";
-    }
-}
-
 std::string versionString(uint32_t v) {
     return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
            std::to_string(VK_API_VERSION_PATCH(v));
 }
 
-// A device is usable when it has Vulkan 1.3, one queue family with graphics + compute, and push descriptors;
-// with a surface, that family must also present to it.
-bool usable(VkPhysicalDevice physical, VkSurfaceKHR surface, uint32_t* family) {
+// A device is usable when it has Vulkan 1.3, one queue family with graphics + compute, and push descriptors; with
+// a surface, that family must also present to it. A family with timestamps is preferred (only the benchmarks and
+// the viewer's pass times need them: GpuTimers). Returns why not, or "" and the family.
+std::string unusableReason(VkPhysicalDevice physical, VkSurfaceKHR surface, uint32_t* family) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(physical, &props);
-    if (props.apiVersion < VK_API_VERSION_1_3) return false;
-    if (!hasExtension(deviceExtensions(physical), VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) return false;
-    if (surface && !hasExtension(deviceExtensions(physical), VK_KHR_SWAPCHAIN_EXTENSION_NAME)) return false;
+    if (props.apiVersion < VK_API_VERSION_1_3) return "Vulkan " + versionString(props.apiVersion) + ", not 1.3";
+    if (!hasExtension(deviceExtensions(physical), VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
+        return "no VK_KHR_push_descriptor";
+    if (surface && !hasExtension(deviceExtensions(physical), VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+        return "no VK_KHR_swapchain";
     uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, nullptr);
     std::vector<VkQueueFamilyProperties> families(count);
     vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, families.data());
-    for (uint32_t i = 0; i < count; ++i) {
-        VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-        VkBool32 present = VK_TRUE;
-        if (surface) vkGetPhysicalDeviceSurfaceSupportKHR(physical, i, surface, &present);
-        if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0 && present) {
-            *family = i;
-            return true;
+    for (bool timestamps : {true, false})
+        for (uint32_t i = 0; i < count; ++i) {
+            VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+            VkBool32 present = VK_TRUE;
+            if (surface) vkGetPhysicalDeviceSurfaceSupportKHR(physical, i, surface, &present);
+            if ((families[i].queueFlags & need) == need && (families[i].timestampValidBits > 0 || !timestamps) &&
+                present) {
+                *family = i;
+                return "";
+            }
         }
-    }
-    return false;
+    return surface ? "no graphics + compute queue that presents to the window" : "no graphics + compute queue";
+}
+
+bool usable(VkPhysicalDevice physical, VkSurfaceKHR surface, uint32_t* family) {
+    return unusableReason(physical, surface, family).empty();
+}
+
+// The plain description device_choice.h chooses from.
+DeviceCandidate describe(VkPhysicalDevice physical, uint32_t index, VkSurfaceKHR surface) {
+    VkPhysicalDeviceDriverProperties driverProps{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceIDProperties id{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES, .pNext = &driverProps};
+    VkPhysicalDeviceProperties2 props2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &id};
+    vkGetPhysicalDeviceProperties2(physical, &props2);
+    DeviceCandidate c{
+        .index = index,
+        .name = props2.properties.deviceName,
+        .kind = DeviceKind(props2.properties.deviceType),
+        .driver = std::string(driverProps.driverName) + " " + driverProps.driverInfo,
+        .apiVersion = versionString(props2.properties.apiVersion),
+    };
+    std::copy(std::begin(id.deviceUUID), std::end(id.deviceUUID), c.uuid.begin());
+    uint32_t family = 0;
+    c.unusable = unusableReason(physical, surface, &family);
+    return c;
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
+    uint32_t count = 0;
+    VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
+    std::vector<VkPhysicalDevice> devices(count);
+    VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
+    return devices;
 }
 
 } // namespace
@@ -109,17 +123,16 @@ Device::Device(const HostVulkan& host)
     std::vector<VkQueueFamilyProperties> families(count);
     vkGetPhysicalDeviceQueueFamilyProperties(physical_, &count, families.data());
     const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-    require(queueFamily_ < count && (families[queueFamily_].queueFlags & need) == need &&
-                families[queueFamily_].timestampValidBits > 0,
-            "host Vulkan: queue family " + std::to_string(queueFamily_) + " lacks graphics, compute or timestamps");
+    require(queueFamily_ < count && (families[queueFamily_].queueFlags & need) == need,
+            "host Vulkan: queue family " + std::to_string(queueFamily_) + " lacks graphics or compute");
     readProperties();
     loadDeviceFunctions();
     if (!host.quiet) logDevice();
 }
 
 void Device::logDevice() const {
-    logInfo("device: " + name_ + " (" + typeName(properties_.deviceType) + "), driver " + driver_ + ", Vulkan " +
-            versionString(properties_.apiVersion) + (validation_ ? ", validation on" : "") +
+    logInfo("device: " + name_ + " (" + deviceKindName(DeviceKind(properties_.deviceType)) + "), driver " + driver_ +
+            ", Vulkan " + versionString(properties_.apiVersion) + (validation_ ? ", validation on" : "") +
             (owned_ ? "" : ", the host's"));
 }
 
@@ -204,44 +217,73 @@ void Device::createInstance(const DeviceOptions& options) {
 }
 
 void Device::pickPhysicalDevice(const std::string& filter) {
-    uint32_t count = 0;
-    VK_CHECK(vkEnumeratePhysicalDevices(instance_, &count, nullptr));
-    std::vector<VkPhysicalDevice> devices(count);
-    VK_CHECK(vkEnumeratePhysicalDevices(instance_, &count, devices.data()));
-
-    std::string names;
-    int bestRank = -1;
-    for (VkPhysicalDevice physical : devices) {
-        VkPhysicalDeviceProperties props;
-        vkGetPhysicalDeviceProperties(physical, &props);
-        uint32_t family = 0;
-        bool ok = usable(physical, surface_, &family);
-        names += (names.empty() ? "" : ", ") + std::string("'") + props.deviceName + "'" + (ok ? "" : " (unsuitable)");
-        if (!ok) continue;
-        if (!filter.empty() && lowercase(props.deviceName).find(lowercase(filter)) == std::string::npos) continue;
-        if (typeRank(props.deviceType) > bestRank) {
-            bestRank = typeRank(props.deviceType);
-            physical_ = physical;
-            queueFamily_ = family;
-        }
-    }
-    if (!physical_) {
-        if (!filter.empty())
-            throw Error("no Vulkan device matches '" + filter + "' (available: " + (names.empty() ? "none" : names) + ")");
-        throw Error("no Vulkan 1.3 device with graphics, compute and push descriptors found (available: " +
-                    (names.empty() ? "none" : names) + ")");
-    }
+    std::vector<VkPhysicalDevice> devices = physicalDevices(instance_);
+    std::vector<DeviceCandidate> candidates;
+    for (uint32_t i = 0; i < devices.size(); ++i) candidates.push_back(describe(devices[i], i, surface_));
+    physical_ = devices[chooseDevice(candidates, filter)]; // throws, listing the devices, when none is chosen
+    require(usable(physical_, surface_, &queueFamily_), "the chosen Vulkan device became unusable");
     readProperties();
+}
+
+std::vector<DeviceCandidate> listDevices() {
+    VkApplicationInfo app{.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO, .apiVersion = VK_API_VERSION_1_3};
+    VkInstanceCreateInfo info{.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pApplicationInfo = &app};
+    VkInstance instance = VK_NULL_HANDLE;
+    VkResult result = vkCreateInstance(&info, nullptr, &instance);
+    require(result != VK_ERROR_INCOMPATIBLE_DRIVER,
+            "no Vulkan driver found (install mesa-vulkan-drivers for lavapipe, or a GPU driver)");
+    VK_CHECK_RESULT(result, "vkCreateInstance");
+    std::vector<DeviceCandidate> candidates;
+    try {
+        std::vector<VkPhysicalDevice> devices = physicalDevices(instance);
+        for (uint32_t i = 0; i < devices.size(); ++i) candidates.push_back(describe(devices[i], i, VK_NULL_HANDLE));
+    } catch (...) {
+        vkDestroyInstance(instance, nullptr);
+        throw;
+    }
+    vkDestroyInstance(instance, nullptr);
+    return candidates;
 }
 
 void Device::readProperties() {
     VkPhysicalDeviceDriverProperties driverProps{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
-    VkPhysicalDeviceProperties2 props2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &driverProps};
+    VkPhysicalDevicePushDescriptorPropertiesKHR push{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR, .pNext = &driverProps};
+    VkPhysicalDeviceIDProperties id{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES, .pNext = &push};
+    VkPhysicalDeviceProperties2 props2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &id};
     vkGetPhysicalDeviceProperties2(physical_, &props2);
     properties_ = props2.properties;
+    maxPushDescriptors_ = push.maxPushDescriptors;
+    uint32_t familyCount = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &familyCount, nullptr);
+    std::vector<VkQueueFamilyProperties> families(familyCount);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &familyCount, families.data());
+    timestampValidBits_ = queueFamily_ < familyCount ? families[queueFamily_].timestampValidBits : 0;
+    std::array<uint8_t, 16> uuid{};
+    std::copy(std::begin(id.deviceUUID), std::end(id.deviceUUID), uuid.begin());
+    uuid_ = formatDeviceUuid(uuid);
     name_ = properties_.deviceName;
     driver_ = std::string(driverProps.driverName) + " " + driverProps.driverInfo;
     vkGetPhysicalDeviceMemoryProperties(physical_, &memoryProperties_);
+}
+
+uint64_t Device::deviceLocalBytes() const {
+    uint64_t largest = 0;
+    for (uint32_t i = 0; i < memoryProperties_.memoryHeapCount; ++i)
+        if (memoryProperties_.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+            largest = std::max(largest, uint64_t(memoryProperties_.memoryHeaps[i].size));
+    return largest;
+}
+
+void Device::requireComputeWorkgroup(const char* shader, uint32_t invocations, uint32_t sharedBytes) const {
+    const VkPhysicalDeviceLimits& limits = properties_.limits;
+    require(invocations <= limits.maxComputeWorkGroupInvocations && invocations <= limits.maxComputeWorkGroupSize[0] &&
+                sharedBytes <= limits.maxComputeSharedMemorySize,
+            std::string(shader) + " needs workgroups of " + std::to_string(invocations) + " invocations and " +
+                std::to_string(sharedBytes) + " bytes of shared memory; the GPU '" + name_ +
+                "' allows maxComputeWorkGroupInvocations " + std::to_string(limits.maxComputeWorkGroupInvocations) +
+                ", maxComputeWorkGroupSize.x " + std::to_string(limits.maxComputeWorkGroupSize[0]) +
+                ", maxComputeSharedMemorySize " + std::to_string(limits.maxComputeSharedMemorySize));
 }
 
 void Device::createDevice(const DeviceOptions& options) {

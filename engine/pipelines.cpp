@@ -31,6 +31,17 @@ struct Specialization {
 };
 
 void createLayout(Device& device, const PipelineLayoutDesc& desc, Pipeline& pipeline) {
+    // Vulkan guarantees 32 push descriptors and 128 bytes of push constants; sward's layouts stay within both, but
+    // a layout that grows past a device's limit is refused by name rather than left to undefined behaviour.
+    uint32_t descriptors = 0;
+    for (const VkDescriptorSetLayoutBinding& b : desc.bindings) descriptors += b.descriptorCount;
+    require(descriptors <= device.maxPushDescriptors(),
+            "a pipeline layout of " + std::to_string(descriptors) + " descriptors: the GPU '" + device.name() +
+                "' pushes at most " + std::to_string(device.maxPushDescriptors()) + " (maxPushDescriptors)");
+    require(desc.pushConstantSize <= device.properties().limits.maxPushConstantsSize,
+            "a pipeline layout of " + std::to_string(desc.pushConstantSize) + " bytes of push constants: the GPU '" +
+                device.name() + "' allows " + std::to_string(device.properties().limits.maxPushConstantsSize) +
+                " (maxPushConstantsSize)");
     VkDescriptorSetLayoutCreateInfo setInfo{
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
         .flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR,

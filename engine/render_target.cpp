@@ -19,6 +19,11 @@ bool isIntegerFormat(VkFormat format) {
 RenderTarget::RenderTarget(Context& ctx, const RenderTargetDesc& desc) : ctx_(ctx), desc_(desc) {
     require(desc.samples == VK_SAMPLE_COUNT_1_BIT || desc.samples == VK_SAMPLE_COUNT_4_BIT,
             "MSAA sample count must be 1 or 4");
+    // Vulkan guarantees 4 colour attachments; the truth pass with motion flow has 5 (every desktop GPU has 8).
+    const uint32_t maxColors = ctx.device.properties().limits.maxColorAttachments;
+    require(desc.colors.size() <= maxColors, "a pass of " + std::to_string(desc.colors.size()) +
+                                                 " colour attachments: the GPU '" + ctx.device.name() + "' allows " +
+                                                 std::to_string(maxColors) + " (maxColorAttachments)");
     const bool msaa = desc.samples != VK_SAMPLE_COUNT_1_BIT;
     const VkImageUsageFlags outputUsage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     for (const ColorAttachmentDesc& color : desc.colors) {

@@ -48,9 +48,53 @@ static VkImageAspectFlags aspectOf(VkFormat format) {
     }
 }
 
+// The formats sward makes images of, by name for error messages.
+static std::string formatName(VkFormat format) {
+    switch (format) {
+    case VK_FORMAT_R8G8B8A8_UNORM: return "RGBA8";
+    case VK_FORMAT_R8G8B8A8_SRGB: return "RGBA8 sRGB";
+    case VK_FORMAT_B8G8R8A8_UNORM: return "BGRA8";
+    case VK_FORMAT_B8G8R8A8_SRGB: return "BGRA8 sRGB";
+    case VK_FORMAT_R16G16B16A16_SFLOAT: return "RGBA16F";
+    case VK_FORMAT_R32_SFLOAT: return "R32F";
+    case VK_FORMAT_R32G32B32A32_SFLOAT: return "RGBA32F";
+    case VK_FORMAT_R8_UINT: return "R8UI";
+    case VK_FORMAT_R16_UINT: return "R16UI";
+    case VK_FORMAT_R32_UINT: return "R32UI";
+    case VK_FORMAT_R32G32_UINT: return "RG32UI";
+    case VK_FORMAT_R32G32B32A32_UINT: return "RGBA32UI";
+    case VK_FORMAT_D32_SFLOAT: return "D32F";
+    default: return "VkFormat " + std::to_string(int(format));
+    }
+}
+
+// The device's own limits for this format, usage and sample count (vkGetPhysicalDeviceImageFormatProperties: it
+// includes maxImageDimension2D and framebuffer*SampleCounts), so a request no device could meet or one beyond this
+// device is one error naming the device and its limit, not a Vulkan error or a lost device.
+static void requireImageSupported(const Device& device, const ImageDesc& desc) {
+    const std::string what = "a " + std::to_string(desc.width) + "x" + std::to_string(desc.height) + " " +
+                             formatName(desc.format) + " image";
+    require(desc.width > 0 && desc.height > 0, what + " is empty");
+    VkImageFormatProperties props{};
+    VkResult result = vkGetPhysicalDeviceImageFormatProperties(device.physical(), desc.format, VK_IMAGE_TYPE_2D,
+                                                               VK_IMAGE_TILING_OPTIMAL, desc.usage, 0, &props);
+    require(result == VK_SUCCESS, "the GPU '" + device.name() + "' cannot make " + what + " with this usage");
+    require(desc.width <= props.maxExtent.width && desc.height <= props.maxExtent.height,
+            what + " is larger than the GPU '" + device.name() + "' allows (" + std::to_string(props.maxExtent.width) +
+                "x" + std::to_string(props.maxExtent.height) + ", maxImageDimension2D " +
+                std::to_string(device.properties().limits.maxImageDimension2D) + ")");
+    require((props.sampleCounts & desc.samples) != 0,
+            what + " with " + std::to_string(uint32_t(desc.samples)) + " samples: the GPU '" + device.name() +
+                "' does not support that sample count for it (sampleCounts mask " +
+                std::to_string(props.sampleCounts) + ")");
+    require(std::max(desc.layers, 1u) <= props.maxArrayLayers && desc.mipLevels <= props.maxMipLevels,
+            what + " of " + std::to_string(desc.layers) + " layers and " + std::to_string(desc.mipLevels) +
+                " levels: the GPU '" + device.name() + "' allows " + std::to_string(props.maxArrayLayers) +
+                " layers and " + std::to_string(props.maxMipLevels) + " levels");
+}
+
 Image createImage(Context& ctx, const ImageDesc& desc) {
-    require(desc.width > 0 && desc.height > 0 && desc.width <= 16384 && desc.height <= 16384,
-            "image size " + std::to_string(desc.width) + "x" + std::to_string(desc.height) + " is out of range");
+    requireImageSupported(ctx.device, desc);
     VkImageCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
         .imageType = VK_IMAGE_TYPE_2D,

@@ -5,7 +5,12 @@
 namespace sward {
 
 GpuTimers::GpuTimers(Device& device, uint32_t maxPasses) : device_(device), maxPasses_(maxPasses) {
-    require(device.properties().limits.timestampComputeAndGraphics, "the device cannot time GPU passes");
+    // The queue's own timestampValidBits, not timestampComputeAndGraphics (which speaks for every queue family).
+    require(device.timestampValidBits() > 0, "the GPU '" + device.name() +
+                                                 "' cannot time GPU passes: its queue has no timestamps "
+                                                 "(timestampValidBits 0)");
+    require(device.properties().limits.timestampPeriod > 0.0f,
+            "the GPU '" + device.name() + "' reports a timestampPeriod of 0");
     VkQueryPoolCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
         .queryType = VK_QUERY_TYPE_TIMESTAMP,
@@ -44,8 +49,12 @@ std::vector<std::pair<std::string, double>> GpuTimers::read() {
     VK_CHECK(vkGetQueryPoolResults(device_.handle(), pool_, 0, uint32_t(ticks.size()), ticks.size() * 8, ticks.data(),
                                    8, VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     double period = device_.properties().limits.timestampPeriod; // nanoseconds per tick
+    // Only the low timestampValidBits bits count (36 to 64 on current GPUs): masking the difference keeps a pass
+    // that spans the counter's wrap-around right.
+    const uint32_t bits = device_.timestampValidBits();
+    const uint64_t mask = bits >= 64 ? ~uint64_t(0) : (uint64_t(1) << bits) - 1;
     for (size_t i = 0; i < passes_.size(); ++i)
-        result.emplace_back(passes_[i], double(ticks[2 * i + 1] - ticks[2 * i]) * period * 1e-6);
+        result.emplace_back(passes_[i], double((ticks[2 * i + 1] - ticks[2 * i]) & mask) * period * 1e-6);
     return result;
 }
 

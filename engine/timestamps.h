@@ -34,4 +34,21 @@ private:
     bool open_ = false;
 };
 
+// Times the commands recorded during its lifetime as one pass of `timers`; nothing when `timers` is null.
+class ScopedGpuTimer {
+public:
+    ScopedGpuTimer(GpuTimers* timers, VkCommandBuffer cmd, const std::string& pass) : timers_(timers), cmd_(cmd) {
+        if (timers_) timers_->begin(cmd_, pass);
+    }
+    ~ScopedGpuTimer() {
+        if (timers_) timers_->end(cmd_);
+    }
+    ScopedGpuTimer(const ScopedGpuTimer&) = delete;
+    ScopedGpuTimer& operator=(const ScopedGpuTimer&) = delete;
+
+private:
+    GpuTimers* timers_;
+    VkCommandBuffer cmd_;
+};
+
 } // namespace sward

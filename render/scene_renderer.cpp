@@ -548,10 +548,12 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
     const std::array<double, 2> flowTimes{timeSeconds - (flow ? flow->timeStep : 0.0),
                                           timeSeconds + (flow ? flow->timeStep : 0.0)};
     if (objects_) objects_->update(timeSeconds, dataSlot, flow ? &flowTimes : nullptr);
-    if (tracks_)
+    if (tracks_) {
+        ScopedGpuTimer timed(timers, cmd, "tracks"); // the ruts' uploads: every pass is timed (docs/release.md)
         tracks_->update(
             cmd, reference,
             views.size() == 2 ? stereoFrustumPlanes(reference, *views[1].camera) : reference.frustumPlanes(), dataSlot);
+    }
 
     if (expand) recordExpansion(cmd, views, timeSeconds, frameIndex, timers);
 
@@ -561,6 +563,7 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
         if (views[v].main) // null: the truth of a frame whose colour comes from an exposure's sub-frames
             recordMainPass(cmd, *views[v].main, firstSlot + v, dataSlot, reference.position, timers, nullptr);
     if (flow && flow->beforeTruth) {
+        ScopedGpuTimer timed(timers, cmd, "flow");
         flow->beforeTruth(cmd);
         computeToVertexAndCopyBarrier(cmd); // the next tick's plant states -> the truth pass's vertex shaders
     }

@@ -116,6 +116,10 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const A
                      ssbo(gpu::kExpandBindingInstances, cs), ssbo(gpu::kExpandBindingInstancePlants, cs)}};
     countPipeline_ = createComputePipeline(ctx.device, "vegetation_expand.comp", expandLayout, {/* WRITE_PASS= */ 0});
     writePipeline_ = createComputePipeline(ctx.device, "vegetation_expand.comp", expandLayout, {/* WRITE_PASS= */ 1});
+    // The scan is one workgroup of kScanGroupSize lanes sharing a uvec4 per lane and a counter: more than the 128
+    // invocations and 16384 bytes Vulkan guarantees (every desktop GPU has 1024 and 32 KiB).
+    ctx.device.requireComputeWorkgroup("vegetation_scan.comp", gpu::kScanGroupSize,
+                                       gpu::kScanGroupSize * 4 * sizeof(uint32_t) + sizeof(uint32_t));
     scanPipeline_ =
         createComputePipeline(ctx.device, "vegetation_scan.comp",
                               {.bindings = {ssbo(gpu::kScanBindingClusterCounts, cs), ssbo(gpu::kScanBindingDraws, cs),

@@ -333,6 +333,12 @@ CASES = [
     Case("--camera with two numbers", "sward-render", render("--camera", "1,2"), 2, r"--camera '1,2'"),
     Case("unknown option", "sward-render", render("--bogus"), 2, r"unknown option '--bogus'"),
     Case("--device bogus", "sward-render", render("--device", "no-such-gpu"), 1, r"no-such-gpu"),
+    Case("--device index past the last", "sward-render", render("--device", "#99"), 1,
+         r"no Vulkan device matches '#99' \(available: #0 '"),
+    Case("--device # without an index", "sward-render", render("--device", "#gpu"), 1,
+         r"'#' must be followed by a device index"),
+    Case("--device unknown UUID", "sward-render", render("--device", "00000000-0000-0000-0000-000000000000"), 1,
+         r"no Vulkan device matches '00000000-0000-0000-0000-000000000000'"),
     Case("--out under a regular file", "sward-render", out_under_a_file, 1, r"a-file"),
     Case("--out is a regular file", "sward-render", out_is_a_file, 1, r"out-file"),
     # Scene files.

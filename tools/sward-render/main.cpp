@@ -1,5 +1,6 @@
 // sward-render: offline renderer. Parses the command line and runs the render job; nothing else.
 #include "dataset/dataset_writer.h"
+#include "engine/device.h"
 #include "render/render_job.h"
 #include "scene/scene.h"
 
@@ -22,7 +23,9 @@ int main(int argc, char** argv) {
                           sward::parseResolution(text, width, height);
                       });
     sward::addSamples(app, options.samples, "MSAA samples: 1 or 4");
-    app.add_option("--device", options.device, "Vulkan device name substring (also SWARD_DEVICE)");
+    app.add_option("--device", options.device, sward::kDeviceOptionHelp);
+    bool listOnly = false;
+    app.add_flag("--list-devices", listOnly, "List the Vulkan devices (index, UUID, type, name, driver) and exit");
     sward::addPoint(app, "--camera", options.cameraPosition, "Camera position X,Y,Z in world metres");
     sward::addPoint(app, "--look-at", options.cameraLookAt, "Camera target X,Y,Z in world metres");
     sward::addReal(app, "--fov", options.fovYDegrees, 1.0, 170.0, "Vertical field of view in degrees");
@@ -49,6 +52,10 @@ int main(int argc, char** argv) {
                  "Remove the dataset already in --out (sward's files only) and start over, e.g. after changing an option");
     app.add_flag("--validation", options.validation, "Enable Vulkan validation; any message fails the run");
     return sward::runTool(app, argc, argv, "sward-render", [&] {
+        if (listOnly) {
+            std::printf("%s", sward::describeDevices(sward::listDevices()).c_str());
+            return 0;
+        }
         std::printf("sward-render: %s\n", sward::runRenderJob(options).summary.c_str());
         return 0;
     });

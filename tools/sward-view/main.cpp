@@ -2,6 +2,7 @@
 // runs the viewer; nothing else.
 #include "common/error.h"
 #include "common/parse_number.h"
+#include "engine/device_choice.h"
 #include "scene/scene.h"
 #include "test_hooks.h"
 #include "viewer.h"
@@ -51,7 +52,7 @@ int main(int argc, char** argv) {
                           sward::parseResolution(text, width, height);
                       });
     sward::addSamples(app, options.samples, "MSAA samples: 1 or 4 (default: the scene's)");
-    app.add_option("--device", options.device, "Vulkan device name substring (also SWARD_DEVICE)");
+    app.add_option("--device", options.device, sward::kDeviceOptionHelp);
     app.add_flag("--validation", options.validation, "Enable Vulkan validation; any message fails the run");
     app.add_flag("!--no-vsync", options.vsync, "Present as fast as possible (mailbox / immediate)");
     app.add_flag("!--no-ui", options.showUi, "Start with the panel hidden (H toggles it)");
