@@ -256,10 +256,23 @@ void bindSession(py::module_& m) {
         .def("restore_state", &Session::restoreState, py::call_guard<py::gil_scoped_release>());
 }
 
+// `progress(rendered, total)` (Python, may be None) and Ctrl-C, before each frame and at the end of a run; called
+// with the GIL released. A handle, not an object: copying the hook then touches no reference count (the caller's
+// argument keeps the callable alive for the run).
+std::function<void(uint32_t, uint32_t)> progressHook(py::handle progress) {
+    return [progress](uint32_t rendered, uint32_t total) {
+        throwIfInterrupted();
+        if (progress.is_none()) return;
+        py::gil_scoped_acquire acquire;
+        progress(rendered, total);
+    };
+}
+
 void writeDataset(const std::string& path, const std::optional<std::string>& text, const std::string& overrides,
                   std::optional<uint64_t> seed, const std::vector<std::string>& allowAssets, const std::string& out,
                   const std::optional<std::string>& frames, const std::optional<std::string>& shard, bool overwrite,
-                  const std::string& device, bool validation, bool vegetation, double time) {
+                  const std::string& device, bool validation, bool vegetation, double time,
+                  const py::object& progress) {
     RenderJobOptions o;
     o.scenePath = path;
     o.sceneText = text;
@@ -275,7 +288,7 @@ void writeDataset(const std::string& path, const std::optional<std::string>& tex
     o.noVegetation = !vegetation;
     o.time = time;
     o.quiet = true;
-    o.beforeFrame = throwIfInterrupted;
+    o.onProgress = progressHook(progress);
     py::gil_scoped_release release;
     runRenderJob(o);
 }

@@ -204,8 +204,9 @@ void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, 
     uint32_t done = 0, started = 0;
     // From the frame before the first (its truth), or the first of its auto-exposure window (its meter).
     const uint32_t first = autoExposure ? autoExposure->framesToRender({todo.front()}).front() : todo.front();
+    const uint32_t total = uint32_t(todo.size());
     for (uint32_t frame = std::min(first, todo.front() > 0 ? todo.front() - 1 : 0); frame <= todo.back() + 1; ++frame) {
-        if (options.beforeFrame) options.beforeFrame();
+        if (options.onProgress) options.onProgress(started, total);
         const double renderStart = clock.now();
         auto cameras = std::make_shared<RigCameras>();
         auto images = std::make_shared<const FrameImages>(renderSequenceFrame(
@@ -228,6 +229,7 @@ void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, 
         currentCameras = cameras;
     }
     writer.wait();
+    if (options.onProgress) options.onProgress(total, total);
 }
 
 // Renders and writes the frames of `todo` (in order). The simulation runs every tick from 0, so skipped frames
@@ -259,7 +261,7 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
     }
     size_t i = 0;
     for (const uint32_t frame : exposure ? exposure->framesToRender(todo) : todo) {
-        if (options.beforeFrame) options.beforeFrame();
+        if (options.onProgress) options.onProgress(uint32_t(i), uint32_t(todo.size()));
         if (frame != todo[i]) { // rendered for its meter alone: the window of a frame to write
             RigCameras cameras;
             renderSequenceFrame(gpu, target, r, plan.width, plan.height, frame, options.time, sensor, cameras,
@@ -285,6 +287,7 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
         t.waitSeconds = clock.now() - rendered;
     }
     writer.wait();
+    if (options.onProgress) options.onProgress(uint32_t(todo.size()), uint32_t(todo.size()));
 }
 
 // The manifest: everything needed to reproduce and verify the files, and nothing that changes between two runs of

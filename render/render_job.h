@@ -30,9 +30,11 @@ struct RenderJobOptions {
     std::vector<std::string> allowAssets;   // --allow-assets: folders outside the scene's the scene may read from
     bool quiet = false;                     // no progress line even on a terminal
     bool overwrite = false;                 // --overwrite: remove the dataset already in outDir and start over
-    // Called on the caller's thread before each frame renders (the Python module checks for Ctrl-C there); if it
-    // throws, the run stops as on any failure (removing what it created) and the exception reaches the caller.
-    std::function<void()> beforeFrame;
+    // Called on the caller's thread before each frame renders, with how many of the run's frames to write have
+    // rendered and their count, and once all are written with (total, total): the Python module's progress callback
+    // and Ctrl-C check. If it throws, the run stops as on any failure (removing what it created) and the exception
+    // reaches the caller.
+    std::function<void(uint32_t rendered, uint32_t total)> onProgress;
 };
 
 // Parses "A:B" (0 <= A < B <= kFrameLimit, digits only): frames A .. B-1. Throws a clear error otherwise.

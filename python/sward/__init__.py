@@ -16,6 +16,7 @@ import operator
 import os
 import pathlib
 import re
+import sys
 
 import numpy as np
 
@@ -36,8 +37,9 @@ class _Classes(dict):
     """SEMANTIC_CLASSES: a dict whose missing key names where a scene's own class names are."""
 
     def __missing__(self, key):
-        raise KeyError(f"{key!r} is not one of sward's class names ({', '.join(map(repr, self))}); a scene's plant "
-                       f"categories by their names ('grass', 'ferns', ...) are in Simulator.classes and Dataset.classes")
+        raise KeyError(f"{key!r} is not one of sward's class names ({', '.join(map(repr, self))}); a scene's "
+                       f"plant categories by their names ('grass', 'ferns', ...) are in Simulator.classes and "
+                       f"Dataset.classes")
 
 
 SEMANTIC_CLASSES = _Classes(_sward.SEMANTIC_CLASSES)  # class name -> pixel value of the semantic images
@@ -150,18 +152,29 @@ def _run_options(device, validation, vegetation, time):
 
 
 def write_dataset(scene, out, *, overrides=None, frames=None, shard=None, seed=None, overwrite=False, device="",
-                  validation=False, vegetation=True, time=0.0, allow_assets=()):
+                  validation=False, vegetation=True, time=0.0, allow_assets=(), progress=None):
     """Writes the dataset sward-render writes (docs/dataset-format.md): frames "A:B", shard "I/N", resume, etc.
+    progress: True for a line on stderr, or a callable(rendered, total) called before each frame and at the end.
     Ctrl-C stops it within a frame (KeyboardInterrupt; the run removes the files it created, as on any failure)."""
     _write(_scene_input(scene, overrides, seed, allow_assets), _run_options(device, validation, vegetation, time),
-           out, frames, shard, overwrite)
+           out, frames, shard, overwrite, progress)
 
 
-def _write(scene_input, run_options, out, frames, shard, overwrite):
+def _progress_line(rendered, total):
+    """progress=True: one line on stderr, rewritten in place, ended when the run is."""
+    sys.stderr.write(f"\rsward: {rendered} of {total} frames rendered" + ("\n" if rendered == total else ""))
+    sys.stderr.flush()
+
+
+def _write(scene_input, run_options, out, frames, shard, overwrite, progress):
     arguments = (_path("out", out), _text("frames", frames, 'a str "A:B"', optional=True),
                  _text("shard", shard, 'a str "I/N"', optional=True), _flag("overwrite", overwrite))
+    if progress is True:
+        progress = _progress_line
+    elif progress is not None and (progress is False or not callable(progress)):
+        raise _type_error("progress", "None, True or a callable(rendered, total)", progress)
     with _python_words():
-        _sward.write_dataset(*scene_input, *arguments, *run_options)
+        _sward.write_dataset(*scene_input, *arguments, *run_options, progress)
 
 
 def _scene_name(scene):
@@ -258,9 +271,9 @@ class Simulator:
         """Continues from a state save_state wrote; `frame` becomes its tick."""
         self._live().restore_state(_path("path", path))
 
-    def write_dataset(self, out, *, frames=None, shard=None, overwrite=False):
+    def write_dataset(self, out, *, frames=None, shard=None, overwrite=False, progress=None):
         """The dataset of this simulator's scene and options, as sward-render writes it (a separate run)."""
-        _write(self._input, self._options, out, frames, shard, overwrite)
+        _write(self._input, self._options, out, frames, shard, overwrite, progress)
 
 
 _PLY_TYPES = {"float": "<f4", "double": "<f8", "uchar": "u1", "ushort": "<u2", "uint": "<u4"}

@@ -3,7 +3,7 @@
 import os
 import pathlib
 from types import TracebackType
-from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Sequence, Union, overload
+from typing import Any, Callable, Dict, Iterable, Iterator, List, Mapping, Optional, Sequence, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -16,6 +16,8 @@ __all__ = ["__version__", "Error", "ArgumentError", "Simulator", "Dataset", "wri
 _Scene = Union[str, "os.PathLike[str]", Mapping[str, Any], None]
 _Path = Union[str, "os.PathLike[str]"]
 _Point = Sequence[float]
+# write_dataset's progress: True (a line on stderr) or a callable(rendered, total).
+_Progress = Union[None, bool, Callable[[int, int], object]]
 # A frame: render()'s dict, and a Dataset item (its keys plus disparity_pfm, disparity_kitti, record). Values are
 # numpy arrays but "frame" (int), "auto_exposure" (dict of floats), "range" (sensor name -> dict of arrays) and
 # "record" (frames.jsonl's line).
@@ -43,6 +45,7 @@ def write_dataset(
     vegetation: bool = True,
     time: float = 0.0,
     allow_assets: Iterable[_Path] = (),
+    progress: _Progress = None,
 ) -> None: ...
 
 class Simulator:
@@ -94,7 +97,13 @@ class Simulator:
     def save_state(self, path: _Path) -> None: ...
     def restore_state(self, path: _Path) -> None: ...
     def write_dataset(
-        self, out: _Path, *, frames: Optional[str] = None, shard: Optional[str] = None, overwrite: bool = False
+        self,
+        out: _Path,
+        *,
+        frames: Optional[str] = None,
+        shard: Optional[str] = None,
+        overwrite: bool = False,
+        progress: _Progress = None,
     ) -> None: ...
 
 class Dataset:

@@ -7,6 +7,8 @@ refusing one with a type error; the accepted script then runs on the installed p
 The extension is not compiled again: SWARD_BUILD_DIR (setup.py) points pip at the CMake build folder that built it,
 so the test takes seconds; the default path of setup.py (its own CMake build) compiles the same target.
 
+A SWARD_BUILD_DIR that is no CMake build folder is refused first, naming it.
+
 usage: pip_install.py SOURCE_DIR BUILD_DIR VERSION   (run by CTest as Python.PipInstall, with /usr/bin/python3)
 """
 import os
@@ -37,7 +39,7 @@ with sward.Simulator(None, overrides={"render.resolution": [64, 48]}, seed=7) as
     sim.set_camera(position=[0.0, 0.0, 2.0], look_at=[1.0, 0.0, 0.0], fov=60)
     print(felled_pixels(sim), sim.classes["grass"], repr(sim))
 try:
-    sward.write_dataset("scene.json", "out", frames="0:2", overwrite=True)
+    sward.write_dataset("scene.json", "out", frames="0:2", overwrite=True, progress=lambda done, total: None)
 except sward.Error as e:
     print(e)
 version: str = sward.__version__
@@ -65,6 +67,11 @@ def main():
         tmp = pathlib.Path(tmp)
         check(run([sys.executable, "-m", "venv", "--system-site-packages", "--without-pip", tmp / "venv"]), "venv")
         python = str(tmp / "venv" / "bin" / "python")
+        nowhere = run([python, "-m", "pip", "install", "--no-build-isolation", "--no-index", "--quiet", source],
+                      env={**env, "SWARD_BUILD_DIR": str(tmp / "nowhere")}, cwd=tmp)
+        said = nowhere.stdout + nowhere.stderr
+        if nowhere.returncode == 0 or "is not a CMake build folder (no CMakeCache.txt)" not in said:
+            sys.exit(f"FAIL: SWARD_BUILD_DIR of no build was not refused by name:\n{nowhere.stdout}{nowhere.stderr}")
         check(run([python, "-m", "pip", "install", "--no-build-isolation", "--no-index", "--quiet",
                    source], env=env, cwd=tmp), "pip install --no-build-isolation .")
         shown = run([python, "-c", "import importlib.metadata as m, sward, sys; "

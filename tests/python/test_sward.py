@@ -103,7 +103,9 @@ def test_a_dataset_slices_takes_numpy_indices_and_names_its_classes(cli_dataset)
 
 def test_write_dataset_from_python_equals_the_cli(cli_dataset, tmp_path):
     scene, _ = cli_dataset
-    sward.write_dataset(scene, tmp_path / "py", frames="1:3")
+    calls = []
+    sward.write_dataset(scene, tmp_path / "py", frames="1:3", progress=lambda *done: calls.append(done))
+    assert calls == [(0, 2), (1, 2), (2, 2)]  # before each frame renders, then when all are written
     cli = json.loads((scene.parent / "out" / "manifest.json").read_text())["files"]
     ours = json.loads((tmp_path / "py" / "manifest.json").read_text())["files"]
     assert ours and all(cli[name] == digest for name, digest in ours.items())
@@ -306,6 +308,7 @@ def test_a_broken_range_file_raises_sward_error_naming_it(tmp_path):
     (lambda scene: sward.Simulator(scene, allow_assets="assets"), r"^allow_assets must be a list of folders"),
     (lambda scene: sward.write_dataset(scene, "out", frames=5), r'^frames must be a str "A:B", not int$'),
     (lambda scene: sward.write_dataset(scene, 7), r"^out must be a file or folder path"),
+    (lambda scene: sward.write_dataset(scene, "out", progress=1), r"^progress must be None, True or a callable"),
     (lambda scene: sward.Dataset(None), r"^path must be a file or folder path"),
 ])
 def test_a_wrong_argument_type_raises_a_type_error_naming_the_argument(tmp_path, call, message):
