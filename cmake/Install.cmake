@@ -45,6 +45,8 @@ install(TARGETS ${SWARD_LAYER_TARGETS} ${SWARD_EXPORTED_HELPERS}
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT Development)
 set(SWARD_TOOLS sward-render sward-eval sward-export sward-view sward-bench sward-atlas sward-rover)
 install(TARGETS ${SWARD_TOOLS} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT Runtime)
+# The shard-manifest merge (docs/scale-out.md), beside the tools under its own name: P/bin/merge-manifests.py.
+install(PROGRAMS tools/merge-manifests.py DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT Runtime)
 install(EXPORT swardTargets NAMESPACE sward:: DESTINATION ${SWARD_CMAKE_DIR} COMPONENT Development)
 
 # The examples as the build leaves them in <build>/examples: the scene files of the source tree, and the example

@@ -3,6 +3,7 @@
 package must be relocatable and must not reach back into the build tree), then build two programs against it with
 find_package(sward) + sward::render and run them on SCENE: tests/package/consumer (one frame rendered headless) and
 examples/host-app (the host's own Vulkan device, its object and sward's meadow in one image, validation clean).
+Every tool of the build (bin/sward-*) and tools/merge-manifests.py must be installed and answer --version.
 
 usage: package_test.py BUILD_DIR CONSUMER_SOURCE HOST_APP_SOURCE SCENE
 """
@@ -40,7 +41,12 @@ def main() -> int:
                 f"-DCMAKE_PREFIX_PATH={prefix}")
             run("cmake", "--build", str(out))
             print(run(str(out / program), str(scene)).strip())
-        print(run(str(prefix / "bin/sward-render"), "--version").strip())
+        # Every tool the build makes (bin/sward-*) and the shard merge the docs call is installed and runs.
+        tools = sorted(p.name for p in (build / "bin").glob("sward-*") if os.access(p, os.X_OK))
+        for tool in tools + ["merge-manifests.py"]:
+            if not (prefix / "bin" / tool).is_file():
+                sys.exit(f"FAIL: bin/{tool} not installed")
+            print(run(str(prefix / "bin" / tool), "--version").strip())
         # The Python module from the prefix (its numpy is Debian's, as for the build tree's).
         site = prefix / "lib/python3/dist-packages"
         print(run("env", f"PYTHONPATH={site}", sys.executable, "-c",
