@@ -10,7 +10,9 @@ import numpy.typing as npt
 
 __version__: str
 
-__all__ = ["__version__", "Error", "ArgumentError", "Simulator", "Dataset", "write_dataset", "SEMANTIC_CLASSES"]
+__all__ = [
+    "__version__", "Error", "ArgumentError", "Simulator", "Recorder", "Dataset", "write_dataset", "SEMANTIC_CLASSES",
+]
 
 # A scene: a file path, a dict in the scene format, or None (the built-in scene).
 _Scene = Union[str, "os.PathLike[str]", Mapping[str, Any], None]
@@ -105,6 +107,27 @@ class Simulator:
         overwrite: bool = False,
         progress: _Progress = None,
     ) -> None: ...
+    # Drive, then record (python/sward/_recorder.py)
+    def record(self, out: _Path, *, overwrite: bool = False) -> "Recorder": ...
+    def drive(
+        self, vehicle: int = 0, *, throttle: float = 0.0, steer: float = 0.0, brake: float = 0.0
+    ) -> Dict[str, Any]: ...
+
+class Recorder:
+    out: str
+    def __init__(self, sim: Simulator, out: _Path, *, overwrite: bool = False) -> None: ...
+    @property
+    def frames(self) -> List[int]: ...
+    @property
+    def closed(self) -> bool: ...
+    def close(self) -> None: ...
+    def __enter__(self) -> "Recorder": ...
+    def __exit__(
+        self,
+        exc_type: Optional[type],
+        exc: Optional[BaseException],
+        traceback: Optional[TracebackType],
+    ) -> bool: ...
 
 class Dataset:
     root: pathlib.Path

@@ -5,6 +5,7 @@ import json
 import os
 import pathlib
 import _thread
+import ast
 import subprocess
 import threading
 import time
@@ -77,6 +78,38 @@ def test_dataset_reader_reads_every_file_kind(cli_dataset):
     assert set(data.manifest["files"]) >= {"left/000002.exr", "disparity/000002.pfm", "frames.jsonl", "calib.txt"}
     with pytest.raises(IndexError):
         data[3]
+
+
+def stub_names(tree):
+    """The names a stub module (ast) defines: {name: set of member names} for classes, None for the rest."""
+    names = {}
+    for node in tree.body:
+        if isinstance(node, ast.ClassDef):
+            names[node.name] = {n.name for n in node.body if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef))}
+            names[node.name] |= {n.target.id for n in node.body if isinstance(n, ast.AnnAssign)}
+        elif isinstance(node, ast.FunctionDef):
+            names[node.name] = None
+        elif isinstance(node, (ast.AnnAssign, ast.Assign)):
+            for target in [node.target] if isinstance(node, ast.AnnAssign) else node.targets:
+                names[target.id] = None
+    return names
+
+
+def test_the_type_stubs_name_every_public_name():
+    """python/sward/__init__.pyi (what mypy and editors read instead of the code) has every name of __all__ and every
+    public member of the public classes: an API added without its stub fails here, naming it."""
+    tree = ast.parse((pathlib.Path(sward.__file__).parent / "__init__.pyi").read_text())
+    stubs = stub_names(tree)
+    stub_all = next(ast.literal_eval(n.value) for n in tree.body if isinstance(n, ast.Assign)
+                    and n.targets[0].id == "__all__")
+    assert sorted(stub_all) == sorted(sward.__all__)  # `from sward import *` the same with and without the stubs
+    for name in sward.__all__:
+        assert name in stubs, f"sward.{name} has no stub in python/sward/__init__.pyi"
+        value = getattr(sward, name)
+        if isinstance(value, type) and not issubclass(value, BaseException):
+            public = {m for m in dir(value) if not m.startswith("_")} | {"__init__"}
+            missing = public - stubs[name]
+            assert not missing, f"sward.{name}'s {sorted(missing)} have no stub in python/sward/__init__.pyi"
 
 
 def test_a_dataset_slices_takes_numpy_indices_and_names_its_classes(cli_dataset):
