@@ -80,6 +80,17 @@ def test_dataset_reader_reads_every_file_kind(cli_dataset):
         data[3]
 
 
+def test_torch_data_loader_batches_a_dataset_with_int_dtype(cli_dataset):
+    """Debian's torch 1.13 (python3-torch; skipped without it) refuses uint32 arrays: int_dtype="int64" batches."""
+    torch = pytest.importorskip("torch")
+    _, data = cli_dataset
+    with pytest.raises(TypeError, match="uint32"):
+        next(iter(torch.utils.data.DataLoader(data, batch_size=3)))
+    batch = next(iter(torch.utils.data.DataLoader(sward.Dataset(data.root, int_dtype="int64"), batch_size=3)))
+    assert batch["instance"].dtype == torch.int64 and tuple(batch["instance"].shape) == (3, 64, 96)
+    assert (batch["instance"][2].numpy() == data[2]["instance"]).all() and batch["frame"].tolist() == [0, 1, 2]
+
+
 def stub_names(tree):
     """The names a stub module (ast) defines: {name: set of member names} for classes, None for the rest."""
     names = {}
