@@ -50,7 +50,10 @@ def main() -> int:
         # The Python module from the prefix (its numpy is Debian's, as for the build tree's).
         site = prefix / "lib/python3/dist-packages"
         print(run("env", f"PYTHONPATH={site}", sys.executable, "-c",
-                  "import sward; print('python: sward from', sward.__file__)").strip())
+                  "import sward; print('python: sward', sward.__version__, 'from', sward.__file__)").strip())
+        for typing_file in ("__init__.pyi", "py.typed"):  # the stubs type checkers read (docs/python.md)
+            if not (site / "sward" / typing_file).is_file():
+                sys.exit(f"FAIL: lib/python3/dist-packages/sward/{typing_file} not installed")
     print("PASS")
     return 0
 
