@@ -1,8 +1,9 @@
 """`pip install .` of the checkout as a user does it (docs/python.md, "Installing with pip"), offline: a fresh venv of
 Debian's Python with its site packages (numpy, pip, setuptools, mypy), `pip install --no-build-isolation --no-index
-.`, then from another folder `import sward` has the project's version as __version__ and as its package metadata,
-the stubs and py.typed are installed, and Debian's mypy --strict accepts a user script typed against them while
-refusing one with a type error; the accepted script then runs on the installed package (a 64x48 frame).
+.` (and `pip wheel .`: one wheel of the version, the stubs in it), then from another folder `import sward` has the
+project's version as __version__ and as its package metadata, the stubs and py.typed are installed, and Debian's
+mypy --strict accepts a user script typed against them while refusing one with a type error; the accepted script
+then runs on the installed package (a 64x48 frame).
 
 The extension is not compiled again: SWARD_BUILD_DIR (setup.py) points pip at the CMake build folder that built it,
 so the test takes seconds; the default path of setup.py (its own CMake build) compiles the same target.
@@ -17,6 +18,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import zipfile
 
 GOOD = """\
 import numpy as np
@@ -74,6 +76,12 @@ def main():
             sys.exit(f"FAIL: SWARD_BUILD_DIR of no build was not refused by name:\n{nowhere.stdout}{nowhere.stderr}")
         check(run([python, "-m", "pip", "install", "--no-build-isolation", "--no-index", "--quiet",
                    source], env=env, cwd=tmp), "pip install --no-build-isolation .")
+        check(run([python, "-m", "pip", "wheel", "--no-build-isolation", "--no-index", "--no-deps", "--quiet",
+                   "--wheel-dir", tmp / "wheels", source], env=env, cwd=tmp), "pip wheel --no-build-isolation .")
+        wheels = list((tmp / "wheels").glob(f"sward-{version}-*.whl"))
+        stubs = {"sward/__init__.pyi", "sward/py.typed"}
+        if len(wheels) != 1 or not stubs <= set(zipfile.ZipFile(wheels[0]).namelist()):
+            sys.exit(f"FAIL: pip wheel made {[w.name for w in wheels]}, not one sward-{version} wheel with the stubs")
         shown = run([python, "-c", "import importlib.metadata as m, sward, sys; "
                      "print(sward.__version__, m.version('sward'), sward.__file__.startswith(sys.prefix))"],
                     env=env, cwd=tmp)
