@@ -28,6 +28,7 @@ std::string describe(const std::string& key, const nlohmann::json& value) {
         if (key == "camera") return "the scene's camera position";
         if (key == "look_at") return "the scene's camera target";
         if (key == "fov_y_deg") return "the scene's field of view";
+        if (key == "episode") return "the scene's own sequence";
         return "no " + key;
     }
     if (key == "resolution") return "--resolution " + value.get<std::string>();
@@ -44,6 +45,7 @@ std::string describe(const std::string& key, const nlohmann::json& value) {
     if (key == "sward_revision") return "sward revision " + value.get<std::string>();
     if (key == "device") return "device '" + value.get<std::string>() + "'";
     if (key == "driver") return "driver '" + value.get<std::string>() + "'";
+    if (key == "episode") return "frames a program drove (an episode Simulator.record wrote)";
     return key + " " + value.dump();
 }
 
@@ -129,8 +131,11 @@ std::string fingerprintDifference(const nlohmann::json& recorded, const nlohmann
         auto it = old.find(key);
         if (it == old.end() || it->second != value) return differs(key, it == old.end() ? nullptr : it->second, value);
     }
-    for (const auto& [key, value] : old) // an asset the old dataset had and this scene has not
-        if (!now.contains(key) && key.find('.') != std::string::npos && wanted.contains(key.substr(0, key.find('.'))))
+    // An asset the old dataset had and this scene has not; an episode a program recorded (render/episode_recorder.h),
+    // which no sward-render run continues.
+    for (const auto& [key, value] : old)
+        if (!now.contains(key) &&
+            ((key.find('.') != std::string::npos && wanted.contains(key.substr(0, key.find('.')))) || key == "episode"))
             return differs(key, value, nullptr);
     return "";
 }

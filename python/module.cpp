@@ -10,6 +10,7 @@
 #include "io/image_files.h"
 #include "io/image_io.h"
 #include "range/range_files.h"
+#include "recorder_bindings.h"
 #include "render/render_job.h"
 #include "render/session.h"
 #include "scene/collider_params.h"
@@ -88,6 +89,7 @@ py::dict frameDict(const SessionFrame& f, const std::vector<RangeSensorParams>& 
     for (size_t i = 0; i < instance.size(); ++i) instance[i] = uint32_t(truth.instance[i]);
     py::dict d;
     d["frame"] = f.frame;
+    addFrameRecord(d, f); // tick, time, poses, intrinsics, baseline, record
     d["left"] = colour(im.rgbaHalf, w, h);
     d["depth"] = image(im.depth, w, h);
     d["semantic"] = image(truth.semantic, w, h);
@@ -300,6 +302,7 @@ PYBIND11_MODULE(_sward, m) {
     m.attr("__version__") = SWARD_VERSION; // CMakeLists.txt's project() version, the package's (setup.py)
     py::register_exception<Error>(m, "Error", PyExc_RuntimeError);
     bindSession(m);
+    bindRecorder(m);
     m.def("write_dataset", &writeDataset);
     m.def("read_image", &readImage, py::arg("path"), py::arg("channel") = "");
     m.def("image_channels", &exrChannelNames);

@@ -124,19 +124,10 @@ JobPlan planJob(Scene& scene, const RenderJobOptions& options) {
 // pure function of the scene and the tick, so shards and resumed runs write the very same file.
 std::vector<nlohmann::json> sequenceRecords(const SceneResources& r, const JobPlan& plan, double timeOffset) {
     std::vector<nlohmann::json> records;
-    for (uint32_t frame = 0; frame < r.scene.sequence.frames; ++frame) {
-        records.push_back(frameRecord(r.scene, r.models, r.terrain, sequenceRig(r, plan.width, plan.height, frame),
-                                      frame, timeOffset,
-                                      r.withVegetation() ? sceneColliders(r, frame) : std::vector<Collider>{}));
-        // A shutter's sub-frames (render/motion_blur.h): their count ("auto" follows the motion) and times.
-        const std::vector<double> exposure =
-            frameExposureTimes(r, r.scene.camera.rig.sensor, plan.width, plan.height, frame);
-        if (!exposure.empty()) records.back()["exposure"] = {{"samples", exposure.size()}, {"times", exposure}};
-        // A rolling shutter's readout (render/rolling_shutter.h): the first and last rows' times and poses.
-        if (nlohmann::json readout = readoutRecord(r, r.scene.camera.rig.sensor, plan.width, plan.height, frame);
-            !readout.is_null())
-            records.back()["readout"] = std::move(readout);
-    }
+    for (uint32_t frame = 0; frame < r.scene.sequence.frames; ++frame)
+        records.push_back(sequenceFrameRecord(r, sequenceRig(r, plan.width, plan.height, frame), plan.width,
+                                              plan.height, frame, timeOffset,
+                                              r.withVegetation() ? sceneColliders(r, frame) : std::vector<Collider>{}));
     return records;
 }
 
@@ -391,6 +382,22 @@ RenderJobReport runRenderJob(const RenderJobOptions& options) {
                            std::to_string(plan.height) + ", " + std::to_string(plan.samples) + "x MSAA, " +
                            (stereo ? "stereo" : "mono") + " -> " + options.outDir + " in " + seconds;
     return std::move(clock.report);
+}
+
+std::string datasetSceneText(const RenderJobOptions& options) {
+    return sceneCopyText(options);
+}
+
+std::string datasetSceneHash(const RenderJobOptions& options) {
+    return sceneHash(options);
+}
+
+std::string datasetClassesText(const Scene& scene) {
+    return classesText(scene);
+}
+
+std::string datasetRevision() {
+    return SWARD_REVISION;
 }
 
 void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end) {

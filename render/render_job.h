@@ -11,6 +11,8 @@
 
 namespace sward {
 
+struct Scene;
+
 struct RenderJobOptions {
     std::string scenePath;  // empty = built-in default scene
     std::optional<std::string> sceneText;   // the scene as JSON text instead of a file (the Python module)
@@ -36,6 +38,14 @@ struct RenderJobOptions {
     // reaches the caller.
     std::function<void(uint32_t rendered, uint32_t total)> onProgress;
 };
+
+// What a dataset of the scene `options` names carries about it, for the episode recorder (render/episode_recorder.h) to
+// write what sward-render writes: scene.json's text, the fingerprint's scene hash, classes.json's text and the source
+// revision the manifest records.
+std::string datasetSceneText(const RenderJobOptions& options);
+std::string datasetSceneHash(const RenderJobOptions& options);
+std::string datasetClassesText(const Scene& scene);
+std::string datasetRevision();
 
 // Parses "A:B" (0 <= A < B <= kFrameLimit, digits only): frames A .. B-1. Throws a clear error otherwise.
 void parseFrameRange(const std::string& text, uint32_t& first, uint32_t& end);

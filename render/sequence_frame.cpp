@@ -6,6 +6,7 @@
 #include "render/track_renderer.h"
 
 #include "common/error.h"
+#include "dataset/frame_record.h"
 
 #include <functional>
 
@@ -38,6 +39,19 @@ RigCameras sequenceRig(const SceneResources& r, uint32_t width, uint32_t height,
 RigCameras sequenceRigAt(const SceneResources& r, uint32_t width, uint32_t height, double time) {
     if (r.world) return sceneRig(r.scene, cameraGround(r.scene, time), r.models, width, height, time);
     return sceneRig(r.scene, r.terrain, r.models, width, height, time);
+}
+
+nlohmann::json sequenceFrameRecord(const SceneResources& r, const RigCameras& rig, uint32_t width, uint32_t height,
+                                   uint32_t frame, double timeOffset, std::span<const Collider> acting) {
+    nlohmann::json record = frameRecord(r.scene, r.models, r.terrain, rig, frame, timeOffset, acting);
+    // A shutter's sub-frames (render/motion_blur.h): their count ("auto" follows the motion) and times.
+    const SensorParams& sensor = r.scene.camera.rig.sensor;
+    const std::vector<double> exposure = frameExposureTimes(r, sensor, width, height, frame);
+    if (!exposure.empty()) record["exposure"] = {{"samples", exposure.size()}, {"times", exposure}};
+    // A rolling shutter's readout (render/rolling_shutter.h): the first and last rows' times and poses.
+    if (nlohmann::json readout = readoutRecord(r, sensor, width, height, frame); !readout.is_null())
+        record["readout"] = std::move(readout);
+    return record;
 }
 
 std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, uint32_t width, uint32_t height, uint32_t frame,

@@ -10,9 +10,11 @@
 #include "scene/sensor_model.h"
 
 #include <glm/glm.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <cstdint>
 #include <optional>
+#include <span>
 
 namespace sward {
 
@@ -32,6 +34,12 @@ RigCameras sequenceRigAt(const SceneResources& r, uint32_t width, uint32_t heigh
 // the image), each error naming the scene and the key; call before anything is written.
 std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, uint32_t width, uint32_t height, uint32_t frame,
                                              RigCameras& rig);
+
+// Frame `frame`'s frames.jsonl record (dataset/frame_record.h) for the rig `rig` and the colliders `acting` during its
+// tick, with a shutter's sub-frame times ("exposure") and a rolling shutter's readout: what sward-render writes for a
+// sequence and the episode recorder (render/episode_recorder.h) for a frame a program drove.
+nlohmann::json sequenceFrameRecord(const SceneResources& r, const RigCameras& rig, uint32_t width, uint32_t height,
+                                   uint32_t frame, double timeOffset, std::span<const Collider> acting);
 
 // Renders `frame` (width x height: `target`'s size): first simulates the ticks before it that have not run (each its own submission), then records
 // the frame's own tick, the views and the readbacks in one submission; applies the sensor model with the (seed,

@@ -58,7 +58,10 @@ SessionFrame Session::render() {
                                      out.cameras, autoExposure_ ? &*autoExposure_ : nullptr);
     out.baseline = resources_.scene.camera.rig.baseline;
     if (range_) out.range = range_->sweep(next_, rangeFrameState(gpu_, resources_, ruts_).view(options_.time));
+    out.record =
+        sequenceFrameRecord(resources_, out.cameras, width_, height_, next_, options_.time, lastTickColliders());
     ++next_;
+    if (observer_) observer_(out);
     return out;
 }
 
@@ -83,6 +86,7 @@ void Session::setObjectPose(size_t k, glm::dvec2 position, double headingDegrees
     require(std::isfinite(position.x) && std::isfinite(position.y) && std::isfinite(headingDegrees),
             "set_object_pose: the pose must be finite");
     objects->place(k, position, headingDegrees * std::numbers::pi / 180.0);
+    vehicles_.erase(k); // drive() starts again from this pose
     // The same one-point path for the node colliders (sceneColliders reads the scene's objects).
     resources_.scene.objects[k].path.points = {position};
     resources_.scene.objects[k].yawDegrees = headingDegrees;
@@ -90,6 +94,31 @@ void Session::setObjectPose(size_t k, glm::dvec2 position, double headingDegrees
 
 void Session::setColliders(std::vector<Collider> colliders) {
     simulation("set_colliders").setExternalColliders(std::move(colliders));
+}
+
+VehicleState Session::drive(size_t k, const VehicleCommand& command) {
+    const std::vector<ObjectParams>& objects = resources_.scene.objects;
+    require(k < objects.size() && k < resources_.models.size(),
+            "drive: no object " + std::to_string(k) + " to drive (the scene has " + std::to_string(objects.size()) +
+                " object(s), its 'objects')");
+    checkVehicleCommand(command);
+    auto it = vehicles_.find(k);
+    if (it == vehicles_.end()) { // from where the object stands at the next frame, facing where its model faces
+        const double time = double(next_) * resources_.scene.sequence.timeStep;
+        const ObjectPose pose = objectPose(objects[k], resources_.models[k], resources_.terrain, time);
+        const double heading = headingDegreesOf(glm::dvec2(pose.forward)) + objects[k].yawDegrees;
+        it = vehicles_.emplace(k, VehicleState{.position = glm::dvec2(pose.position), .headingDegrees = heading}).first;
+    }
+    const VehicleState next = stepVehicle(it->second, command, VehicleLimits{}, resources_.scene.sequence.timeStep);
+    setObjectPose(k, next.position, next.headingDegrees); // which forgets the state: a pose set from outside resets it
+    vehicles_[k] = next;
+    return next;
+}
+
+std::vector<Collider> Session::lastTickColliders() const {
+    if (!resources_.withVegetation()) return {}; // as sward-render records bare ground: no plant to act on
+    if (gpu_.simulation) return gpu_.simulation->lastColliders(); // the scene's and the program's
+    return sceneColliders(resources_, next_);
 }
 
 void Session::saveState(const std::string& path) {

@@ -6,10 +6,15 @@
 #pragma once
 
 #include "engine/context.h"
+#include "interaction/vehicle_controller.h"
 #include "render/auto_exposure.h"
 #include "render/sequence_frame.h"
 #include "scene/scene_resources.h"
 
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -30,6 +35,9 @@ struct SessionFrame {
     RigCameras cameras;
     double baseline = 0.0; // metres; 0 for a mono rig
     std::vector<RangeScan> range; // the scene's range sensors' sweeps of the frame, in scene order (range/)
+    // The frame's frames.jsonl line (sequenceFrameRecord): tick, time, poses, intrinsics, wind, the colliders that
+    // acted during its tick (the program's too) and the objects' poses, as the episode recorder writes it.
+    nlohmann::json record;
 };
 
 class Session {
@@ -59,6 +67,15 @@ public:
     void setObjectPose(size_t k, glm::dvec2 position, double headingDegrees);
     // Colliders of the program's own (scene/collider_params.h), acting from the next tick until replaced.
     void setColliders(std::vector<Collider> colliders);
+    // Drives object k as a vehicle (interaction/vehicle_controller.h) by one tick of sequence.time_step: from its pose
+    // at the next frame's time on the first call (path or set pose), then from the state the last call left; its
+    // model, node colliders and a rig mounted on it follow from the next tick (setObjectPose). Returns the new state.
+    VehicleState drive(size_t k, const VehicleCommand& command);
+
+    // Called with every frame render() returns, before it returns (the episode recorder, render/episode_recorder.h);
+    // an empty function removes it. What it throws reaches render()'s caller.
+    void setFrameObserver(std::function<void(const SessionFrame&)> observer) { observer_ = std::move(observer); }
+    bool observed() const { return bool(observer_); }
 
     // The interaction state (SWARDST1, interaction/state_file.h): tick, field activity, every plant's dynamic
     // record. restoreState continues from the saved tick; next frame = that tick. Auto-exposure's window restarts
@@ -73,6 +90,8 @@ public:
 
 private:
     Simulation& simulation(const char* what);
+    // The colliders that acted during the latest tick, as frames.jsonl records them (none on bare ground).
+    std::vector<Collider> lastTickColliders() const;
 
     SceneResources resources_;
     SessionOptions options_;
@@ -85,6 +104,8 @@ private:
     std::unique_ptr<RangeRecorder> range_; // the scene's range sensors, if any
     RutPatchCache ruts_;
     uint32_t next_ = 0;
+    std::map<size_t, VehicleState> vehicles_; // the objects drive() moves, by index
+    std::function<void(const SessionFrame&)> observer_;
 };
 
 } // namespace sward

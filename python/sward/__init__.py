@@ -22,8 +22,10 @@ import numpy as np
 
 from . import _sward
 from ._sward import Error
+from ._recorder import DriveAndRecord, Recorder
 
-__all__ = ["__version__", "Error", "ArgumentError", "Simulator", "Dataset", "write_dataset", "SEMANTIC_CLASSES"]
+__all__ = ["__version__", "Error", "ArgumentError", "Simulator", "Recorder", "Dataset", "write_dataset",
+           "SEMANTIC_CLASSES"]
 
 __version__ = _sward.__version__  # CMakeLists.txt's project() version, as importlib.metadata.version("sward")
 
@@ -183,7 +185,7 @@ def _scene_name(scene):
     return "a scene dict" if isinstance(scene, dict) else repr(os.fspath(scene))
 
 
-class Simulator:
+class Simulator(DriveAndRecord):
     """A scene on the GPU, driven tick by tick. Frame f shows the interaction after tick f, at f * time_step.
     close() (or a with block) releases the device at once; a closed Simulator raises sward.Error."""
 

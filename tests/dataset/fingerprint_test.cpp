@@ -7,6 +7,8 @@
 #include "scene/scene.h"
 #include "world/gltf_mesh.h"
 
+#include "test_files.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -55,6 +57,15 @@ TEST(Fingerprint, AChangedOrRemovedAssetIsADifference) {
     EXPECT_NE(fingerprintDifference(sample(), other).find("asset 'grass_map'"), std::string::npos);
     other["assets"] = nlohmann::json::object();
     EXPECT_NE(fingerprintDifference(sample(), other).find("asset 'grass_map'"), std::string::npos);
+}
+
+TEST(Fingerprint, AnEpisodeIsNeverContinuedBySwardRender) {
+    nlohmann::json episode = sample();
+    episode["episode"] = true; // render/episode_recorder.h
+    EXPECT_EQ(fingerprintDifference(episode, sample()),
+              "was rendered with frames a program drove (an episode Simulator.record wrote), this run asks for the "
+              "scene's own sequence");
+    EXPECT_EQ(fingerprintDifference(episode, episode), "");
 }
 
 TEST(Fingerprint, KeysLeftOutOfTheWantedFingerprintAreNotCompared) {
@@ -136,6 +147,7 @@ TEST(Fingerprint, SceneAssetsListTheFilesTheLoadersOpenedRelativeToTheScene) {
 // A companion file GDAL opened beside a raster (PAM's .aux.xml) is part of the fingerprint, so one added between
 // two runs changes it and a resume refuses.
 TEST(Fingerprint, ARastersCompanionFileGdalOpenedIsHashed) {
+    SWARD_SKIP_WITHOUT(Gdal);
     const std::filesystem::path dir = std::filesystem::canonical(std::filesystem::temp_directory_path()) /
                                       ("sward-raster-assets-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
