@@ -97,6 +97,8 @@ nlohmann::json sameRadiusFigures(const Scene& base, uint32_t threads) {
 // shows what a resident tile out of sight costs. Upload: wall time of addTile per tile (terrain, plants, cover).
 nlohmann::json gpuFigures(const Scene& base, const WorldBenchOptions& options, uint32_t threads) {
     Scene scene = sizedWorld(base, 4);
+    // The GPU refuses a budget beyond its memory (render/scene_gpu.cpp): the scene's own, which 16 tiles fit.
+    scene.world.memoryBudgetBytes = base.world.memoryBudgetBytes;
     scene.world.viewDistance = double(scene.lod.farLimit) + 0.5 * scene.lod.band;
     scene.world.loadRadius = scene.world.viewDistance; // each point makes its own tile resident, no neighbour
     scene.world.evictRadius = scene.world.loadRadius + 100.0;
