@@ -14,6 +14,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace sward {
@@ -300,14 +301,22 @@ void publishRangeSensors(BagWriter& bag, const ExportDataset& dataset, uint32_t 
     }
 }
 
-// /tf: the cameras and objects at the frame's time, each range sensor where its sweep starts.
-void publishTransforms(BagWriter& bag, const ExportDataset& dataset, const BagFrame& record, uint64_t t) {
+// /tf: the cameras and objects at the frame's time, each range sensor where its sweep starts. `where` names the
+// frame's record for the error of two bodies under one frame id (TF could not tell them apart).
+void publishTransforms(BagWriter& bag, const ExportDataset& dataset, const BagFrame& record, uint64_t t,
+                       const std::string& where) {
     std::vector<RosTransform> transforms{{{t, kWorldFrame}, kLeftFrame, record.left}};
     if (dataset.stereo) transforms.push_back({{t, kWorldFrame}, kRightFrame, record.right});
     for (const ObjectRecord& object : record.objects)
         transforms.push_back({{t, kWorldFrame}, object.name, object.pose});
     for (const RangeRecord& sensor : record.sensors)
         transforms.push_back({{sensor.sweepStartNs, kWorldFrame}, rosName(sensor.name), sensor.startPose});
+    std::set<std::string> ids{kWorldFrame};
+    for (const RosTransform& transform : transforms)
+        require(ids.insert(transform.childFrameId).second,
+                where + ": two frames of the ROS 2 bag would be called '" + transform.childFrameId +
+                    "' (objects and range sensors are named by their names, cameras left_camera_optical and "
+                    "right_camera_optical, the root world); rename one in the scene");
     bag.publish("/tf", RosType::TFMessage, t, encodeTfMessage(transforms));
 }
 
@@ -356,7 +365,8 @@ void exportRos2Bag(const ExportDataset& dataset, const std::string& out) {
         require(f.frame < frames.size(),
                 dataset.dir + "/" + kFrameLogFile + " has no record of frame " + std::to_string(f.frame));
         const BagFrame& record = frames[f.frame];
-        publishTransforms(bag, dataset, record, record.timeNs);
+        publishTransforms(bag, dataset, record, record.timeNs,
+                          dataset.dir + "/" + kFrameLogFile + " frame " + std::to_string(f.frame));
         publishCameras(bag, dataset, f.frame, record.timeNs);
         publishRangeSensors(bag, dataset, f.frame, record, record.timeNs);
         publishAllOdometry(bag, frames, f.frame);

@@ -50,3 +50,14 @@ CASES = [
     export_case("sward-export ros2 negative frame time", with_records(set_time),
                 r"frames\.jsonl line 1: time -1\.000000 s does not fit a ROS 2 stamp", "--layout", "ros2"),
 ]
+
+
+def object_named_like_the_sensor(record):
+    record["objects"] = [{"name": "lidar", "instance": 16000000, "pose": IDENTITY}]
+
+
+CASES.append(export_case("sward-export ros2 object and range sensor of one name",
+                         lambda d, e: (with_range_sensor("lidar", "lidar", SHORT_PLY)(d, e),
+                                       with_records(object_named_like_the_sensor)(d, e)),
+                         r"frames\.jsonl frame 0: two frames of the ROS 2 bag would be called 'lidar'",
+                         "--layout", "ros2"))
