@@ -4,6 +4,7 @@
 
 #include "engine/barriers.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace sward {
@@ -20,6 +21,14 @@ VegetationBuffers::VegetationBuffers(Context& ctx, const VegetationTile& tile) :
 
     // Zero-plant tiles still get valid (minimum-size) buffers so descriptors never point at nothing.
     auto sized = [](uint64_t bytes) { return std::max<uint64_t>(bytes, 16); };
+    // Each is bound whole as one storage buffer: within maxStorageBufferRange (128 MiB guaranteed = the 16-byte
+    // records of 8 Mi plants; lavapipe reports exactly that, GPUs 1-4 GiB), or one error instead of a bad binding.
+    const uint64_t range = ctx.device.properties().limits.maxStorageBufferRange,
+                   largest = std::max({stats.staticBytes, stats.dynamicBytes, stats.clusterBytes});
+    require(largest <= range, "a vegetation tile of " + std::to_string(stats.plants) + " plants needs " +
+                                  std::to_string(largest >> 20) + " MiB of plant records in one buffer; the GPU '" +
+                                  ctx.device.name() + "' binds at most " + std::to_string(range >> 20) +
+                                  " MiB (maxStorageBufferRange)");
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
     statics = createBuffer(ctx, sized(stats.staticBytes), usage, MemoryIntent::DeviceLocal);
