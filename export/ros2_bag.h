@@ -8,7 +8,7 @@
 // /sward/right/image_raw (the previews, rgb8) with their camera_info, /sward/left/depth/image_rect (32FC1, metres,
 // +inf for sky) with its camera_info, /sward/range/<name>/points (LiDAR PointCloud2: the PLY's points and
 // properties as they are, its `class` named `label`), /sward/range/<name>/scan (scanner LaserScan) and
-// /sward/odom/<frame> (nav_msgs/Odometry of the left camera and of each object).
+// /sward/odom/left_camera and /sward/odom/<object> (nav_msgs/Odometry). The same dataset gives the same bytes.
 #pragma once
 
 #include "export/export_source.h"
@@ -20,7 +20,8 @@ namespace sward {
 inline constexpr const char* kRos2BagFile = "sward_0.mcap";
 inline constexpr const char* kRos2MetadataFile = "metadata.yaml";
 
-// Writes the bag of every frame of `dataset` into the folder `out`.
+// Writes the bag of every frame of `dataset` into the folder `out`. Throws one sward::Error naming the file for a
+// frame record, LiDAR PLY or scan it cannot carry, or for two bodies that would share a TF frame name.
 void exportRos2Bag(const ExportDataset& dataset, const std::string& out);
 
 } // namespace sward
