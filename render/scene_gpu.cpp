@@ -12,9 +12,10 @@ SceneGpu createSceneGpu(Context& ctx, SceneResources& resources, uint32_t sample
         // The budget is the scene's (never derived from the machine: what a scene renders must not depend on it), so
         // a budget the GPU cannot hold is refused here, as parseWorldParams refuses one over the machine's memory.
         const uint64_t budget = resources.scene.world.memoryBudgetBytes, local = ctx.device.deviceLocalBytes();
-        require(budget <= local, "'world.memory_budget_mib' (" + std::to_string(budget >> 20) +
-                                     " MiB) is more than the GPU '" + ctx.device.name() + "' has (" +
-                                     std::to_string(local >> 20) + " MiB of device-local memory)");
+        require(budget <= local, resources.scene.source + ": 'world.memory_budget_mib' (" +
+                                     std::to_string(budget >> 20) + " MiB) is more than the GPU '" +
+                                     ctx.device.name() + "' has (" + std::to_string(local >> 20) +
+                                     " MiB of device-local memory)");
         gpu.renderer = std::make_unique<SceneRenderer>(ctx, resources.scene,
                                                        samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
                                                        resources.atlas ? &*resources.atlas : nullptr);
