@@ -11,9 +11,9 @@ Policy (docs/testing.md, "Doc tests"):
 - Where: a temporary folder set up like a user's checkout, which is the working folder of every block: a symbolic
   link to each top-level entry of the source tree that git tracks, `build/` a real folder of symbolic links to the
   build folder's entries (so `build/bin/...`, `build/python`, `build/examples/...` are this build's, and what a
-  block creates under `build/`, e.g. pip's `build/pip` (not linked), stays in the temporary folder), and a copy of setup.py
-  (it finds its folder through its own resolved path). Outputs (`out/`, `study/`, `~/sward-venv`, ...) land in
-  the temporary folder: HOME is a folder in it. Nothing is written into the source tree.
+  block creates under `build/`, e.g. pip's `build/pip` (not linked), stays in the temporary folder), and a copy
+  of setup.py (it finds its folder through its own resolved path). Outputs (`out/`, `study/`, `~/sward-venv`,
+  ...) land in the temporary folder: HOME is a folder in it. Nothing is written into the source or build tree.
 - Environment: the one of a user who has run `./sward.sh build` on an offline machine: SWARD_BUILD_DIR=build (pip
   takes this build's extension instead of compiling its own: docs/python.md), PIP_NO_INDEX=1 and no pip version
   check; no PYTHONPATH or VIRTUAL_ENV of the caller's. Shell blocks run under bash with `set -eo pipefail`, one
@@ -275,7 +275,7 @@ def make_checkout(source, build, tmp):
     return checkout, home
 
 
-def environment(home, build):
+def environment(home):
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV")}
     env.update(HOME=str(home), SWARD_BUILD_DIR="build", PIP_NO_INDEX="1", PIP_DISABLE_PIP_VERSION_CHECK="1")
     return env
@@ -343,7 +343,7 @@ def main():
         blocks = [b for doc, langs in DOCS.items() for b in read_blocks(doc, source / doc, langs)]
         with tempfile.TemporaryDirectory(prefix="sward-doc-test-") as tmp:
             cwd, home = make_checkout(source, build, pathlib.Path(tmp))
-            env = environment(home, build)
+            env = environment(home)
             rewriter, sessions = Rewriter(cwd), {}
             try:
                 for block in blocks:
