@@ -13,7 +13,8 @@
 #    sward-render of examples/meadow.json at 320x240 (one frame, lavapipe), of the GIS example (GDAL) and of the
 #    LiDAR example (Embree) at 160x120, sward-eval (SGBM stereo) and sward-export (KITTI) on the meadow's output,
 #    `import sward` and a 64x48 Simulator render with the chroot's python3, and `sward-bench suite --quick` where
-#    the archive's sward-bench has that command.
+#    the archive's sward-bench has that command. The archive of a lean build (./sward.sh package --lean) must
+#    instead refuse the GIS and LiDAR renders and sward-eval, each with its one error, writing nothing.
 # Each step prints its command, PASS or FAIL and its time; the exit status is 1 when any step failed, 2 on a usage
 # error. Needs root (debootstrap, chroot, mount).
 #
@@ -122,10 +123,25 @@ run loader 'status=0; for f in bin/* $(find lib -name "_sward*.so"); do
 done; exit $status' 'ldd bin/* lib/python3/dist-packages/sward/_sward*.so: nothing missing, nothing from the system but glibc, libstdc++, libgcc_s, libvulkan'
 run render 'sward-render share/sward/examples/meadow.json --resolution 320x240 --frames 0:1 --out /tmp/meadow -q && ls /tmp/meadow | tr "\n" " "; echo'
 # The optional parts' libraries at work: GDAL (the GIS example's GeoTIFF land cover and heightmap) and Embree (the
-# LiDAR's rays).
-run render-gis 'sward-render share/sward/examples/gis/gis.json --resolution 160x120 --frames 0:1 --out /tmp/gis -q'
-run render-lidar 'sward-render share/sward/examples/rover-lidar.json --resolution 160x120 --frames 0:1 --out /tmp/lidar -q && ls /tmp/lidar | tr "\n" " "; echo'
-run eval 'sward-eval /tmp/meadow --out /tmp/meadow-eval --no-pictures && ls /tmp/meadow-eval | tr "\n" " "; echo'
+# LiDAR's rays). An archive of a lean build (docs/release.md, "A lean build": its bundled-libraries.txt has no GDAL,
+# Embree or OpenCV) must instead refuse each with its one error, writing nothing.
+bundled="$root$release/share/doc/sward/bundled-libraries.txt"
+# optional NAME LIBRARY COMPONENT OPTION OUT COMMAND [THEN]: "COMMAND && THEN" as a step, or where LIBRARY is not
+# bundled the step NAME-refused: COMMAND fails with the one error naming COMPONENT and OPTION, and OUT is not made.
+optional() {
+  if grep -q "^$2" "$bundled"; then
+    run "$1" "$6${7:+ && $7}"
+  else
+    run "$1-refused" "! $6 2> /tmp/$1.err; cat /tmp/$1.err; grep -q 'needs $3, which this build of sward leaves out ($4=OFF)' /tmp/$1.err && [ ! -e $5 ]"
+  fi
+}
+optional render-gis libgdal GDAL SWARD_WITH_GDAL /tmp/gis \
+  'sward-render share/sward/examples/gis/gis.json --resolution 160x120 --frames 0:1 --out /tmp/gis -q'
+optional render-lidar libembree Embree SWARD_WITH_EMBREE /tmp/lidar \
+  'sward-render share/sward/examples/rover-lidar.json --resolution 160x120 --frames 0:1 --out /tmp/lidar -q' \
+  'ls /tmp/lidar | tr "\n" " "; echo'
+optional eval libopencv_core OpenCV SWARD_WITH_OPENCV /tmp/meadow-eval \
+  'sward-eval /tmp/meadow --out /tmp/meadow-eval --no-pictures' 'ls /tmp/meadow-eval | tr "\n" " "; echo'
 run export 'sward-export /tmp/meadow --layout kitti --out /tmp/meadow-kitti && find /tmp/meadow-kitti -type f | sort | tr "\n" " "; echo'
 run python 'PYTHONPATH=$PWD/lib/python3/dist-packages python3 -c "import sward; print(sward.__version__ if hasattr(sward, \"__version__\") else \"ok\")"'
 run python-render 'PYTHONPATH=$PWD/lib/python3/dist-packages python3 -c "import sward; f = sward.Simulator(\"share/sward/examples/meadow.json\", overrides={\"render.resolution\": [64, 48]}).render(); print({k: v.shape for k, v in sorted(f.items()) if hasattr(v, \"shape\")})"'

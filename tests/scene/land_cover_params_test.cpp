@@ -96,6 +96,7 @@ TEST(LandCoverScene, FileIsRequiredAndGrassMapExcludesIt) {
 }
 
 TEST(LandCoverScene, BuildsTheGrassMapFromTheRasterOverTheTile) {
+    SWARD_SKIP_WITHOUT(Gdal); // a land-cover raster
     const auto dir = tempDir();
     writePng(dir / "cover.png", 2, 1, 1, 8, {30.0f / 255.0f, 80.0f / 255.0f});
     std::ofstream(dir / "s.json") << R"({"terrain": {"size": 100}, "land_cover": {"file": "cover.png",
@@ -110,10 +111,12 @@ TEST(LandCoverScene, BuildsTheGrassMapFromTheRasterOverTheTile) {
 }
 
 TEST(LandCoverScene, CodeMissingFromTheTableNamesTheSceneKey) {
+    SWARD_SKIP_WITHOUT(Gdal); // a land-cover raster
     const auto dir = tempDir();
     writePng(dir / "cover.png", 2, 1, 1, 8, {30.0f / 255.0f, 7.0f / 255.0f});
     std::ofstream(dir / "s.json") << R"({"land_cover": {"file": "cover.png", "preset": "esa_worldcover"}})";
     const Scene scene = loadScene((dir / "s.json").string());
-    expectError([&] { buildGrassMap(scene, scene.vegetation.tileSize); }, {(dir / "s.json").string() + ": 'land_cover': class code 7 of raster '" +
-                                                (dir / "cover.png").string() + "' (first at pixel (1, 0))"});
+    expectError([&] { buildGrassMap(scene, scene.vegetation.tileSize); },
+                {(dir / "s.json").string() + ": 'land_cover': class code 7 of raster '" + (dir / "cover.png").string() +
+                 "' (first at pixel (1, 0))"});
 }

@@ -200,6 +200,7 @@ TEST(SceneAssets, PathsLeavingTheSceneFolderAreRefusedWithoutAllowAssets) {
 }
 
 TEST(SceneAssets, AllowAssetsAcceptsTheSameFiles) {
+    SWARD_SKIP_WITHOUT(Gdal); // a land-cover raster
     AssetFolders f;
     const std::vector<std::string> allow = {f.outside.string()};
     for (const std::string& path : f.waysOut("m.gltf")) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "common/error.h"
+#include "common/optional_components.h"
 
 #include <gtest/gtest.h>
 
@@ -20,6 +21,12 @@
 #include <vector>
 
 namespace sward::test {
+
+// Skips the test in a build without the optional component (docs/release.md, "A lean build"), for the few tests that
+// need it in files whose other tests do not (whole files are left out in tests/CMakeLists.txt).
+#define SWARD_SKIP_WITHOUT(component)                                                                                  \
+    if (!::sward::hasComponent(::sward::Component::component))                                                         \
+    GTEST_SKIP() << "this build of sward leaves out " #component
 
 // A fresh folder per test, named after it.
 inline std::filesystem::path tempDir() {

@@ -174,6 +174,7 @@ TEST(LandCover, AClassFeedingAlphaMakesAFourChannelMap) {
 }
 
 TEST(LandCover, LoadsAPngOfClassCodesOverTheTile) {
+    SWARD_SKIP_WITHOUT(Gdal); // land-cover rasters are read through GDAL, PNG too
     const auto path = tempDir() / "cover.png";
     writePng(path, 2, 1, 1, 8, {float(kTree) / 255.0f, float(kWater) / 255.0f});
     LandCoverParams params = worldCover(5.0);
