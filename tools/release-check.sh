@@ -113,8 +113,9 @@ run() {
   fi
 }
 
-# Every ELF file of the archive: no library missing, and none but the allowed ones from the system.
+# Every ELF file of the archive (the tools, the Python module): no library missing, and none but the allowed ones from the system.
 run loader 'status=0; for f in bin/* $(find lib -name "_sward*.so"); do
+  [ "$(head -c 4 "$f" | tail -c 3)" = ELF ] || continue # bin/merge-manifests.py is a Python script
   out=$(ldd "$f") || { echo "$f: ldd failed"; status=1; continue; }
   if echo "$out" | grep -q "not found"; then echo "$f:"; echo "$out" | grep "not found"; status=1; fi
   echo "$out" | awk "/=> \\// {print \$3}" | grep -v "^$PWD/" \
