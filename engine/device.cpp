@@ -132,8 +132,8 @@ Device::Device(const HostVulkan& host)
 
 void Device::logDevice() const {
     logInfo("device: " + name_ + " (" + deviceKindName(DeviceKind(properties_.deviceType)) + "), driver " + driver_ +
-            ", Vulkan " + versionString(properties_.apiVersion) + (validation_ ? ", validation on" : "") +
-            (owned_ ? "" : ", the host's"));
+            ", Vulkan " + versionString(properties_.apiVersion) + ", UUID " + uuid_ +
+            (validation_ ? ", validation on" : "") + (owned_ ? "" : ", the host's"));
 }
 
 Device::~Device() {
