@@ -9,7 +9,7 @@
 namespace sward {
 
 std::string pointCloudPly(const FrameTruth& truth, const ExportCamera& camera, const glm::dmat4& pose,
-                          const std::string& comment) {
+                          const std::string& comment, LabelOntology labels) {
     std::string body;
     size_t count = 0;
     const bool normals = !truth.normal.empty();
@@ -25,7 +25,7 @@ std::string pointCloudPly(const FrameTruth& truth, const ExportCamera& camera, c
             appendLittleEndian(body, p.y);
             appendLittleEndian(body, p.z);
             body.append(reinterpret_cast<const char*>(&truth.rgb[i * 3]), 3);
-            appendLittleEndian(body, truth.semantic[i]);
+            appendLittleEndian(body, uint8_t(mapLabel(labels, truth.semantic[i]))); // every ontology's ids are < 256
             // int32, not uint32: Open3D (0.16) drops a uint property; ids are below 2^24 (export_source.cpp).
             appendLittleEndian(body, int32_t(truth.instance[i]));
             if (normals) {
@@ -44,7 +44,7 @@ std::string pointCloudPly(const FrameTruth& truth, const ExportCamera& camera, c
     return header + body;
 }
 
-void exportPointClouds(const ExportDataset& dataset, const std::string& out, PointFrame frame) {
+void exportPointClouds(const ExportDataset& dataset, const std::string& out, PointFrame frame, LabelOntology labels) {
     requireUndistorted(dataset, "ply"); // a point's colour is its pixel's
     for (const ExportFrame& f : dataset.frames) {
         const FrameTruth truth = readFrameTruth(dataset, f.frame);
@@ -53,7 +53,7 @@ void exportPointClouds(const ExportDataset& dataset, const std::string& out, Poi
                                                                 : ", left camera frame (OpenCV axes, metres)");
         const glm::dmat4 pose = frame == PointFrame::World ? f.leftPose : glm::dmat4(1.0);
         writeTextAtomically(out + "/" + frameName(f.frame) + ".ply",
-                            pointCloudPly(truth, dataset.camera, pose, comment));
+                            pointCloudPly(truth, dataset.camera, pose, comment, labels));
     }
 }
 
