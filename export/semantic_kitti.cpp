@@ -156,7 +156,8 @@ std::string semanticKittiConfig(LabelOntology labels, uint32_t sequences) {
         ": the label config of semantic-kitti.yaml's form. labels: the raw ids of the .label files; "
         "learning_map: raw id -> training id (" +
         (sward ? "SemanticKITTI's 20 classes, named in the comments" : "the ontology's classes in order") +
-        ").\nname: \"sward-" + ontologyName(labels) + "\"\nlabels:\n";
+        ").\nname: \"" + (sward ? std::string("sward") : std::string("sward in ") + ontologyName(labels)) +
+        "\"\nlabels:\n";
     for (const OntologyClass& c : classes) yaml += "  " + std::to_string(c.id) + ": \"" + c.name + "\"\n";
     yaml += "color_map: # bgr; sward's class colours (classes.json), grey for classes sward never writes\n";
     const uint8_t grey[3] = {128, 128, 128};
