@@ -71,7 +71,7 @@ size_t bestOf(const std::vector<DeviceCandidate>& candidates, const std::vector<
     if (tied.size() == 1 || (firstOfEquals && !tied.empty())) return tied.front();
     if (tied.empty()) {
         std::string why = text.empty() ? "no usable Vulkan device (sward needs Vulkan 1.3, a graphics + compute queue "
-                                         "with timestamps and VK_KHR_push_descriptor)"
+                                         "and VK_KHR_push_descriptor)"
                                        : "every Vulkan device matching '" + text + "' is unusable";
         if (!text.empty() && matches.empty()) why = "no Vulkan device matches '" + text + "'";
         throw Error(why + " (" + listing(candidates) + ")");
