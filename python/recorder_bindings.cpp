@@ -1,6 +1,7 @@
 #include "recorder_bindings.h"
 
 #include "render/episode_recorder.h"
+#include "scene/scene_input.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -70,6 +71,17 @@ void bindRecorder(py::module_& m) {
         .def_property_readonly("closed", &EpisodeRecorder::closed)
         .def_property_readonly("frames", &EpisodeRecorder::frames)
         .def_property_readonly("out", &EpisodeRecorder::outDir);
+    m.def("reset",
+          [](Session& session, bool restart, const std::string& path, const std::optional<std::string>& text,
+             const std::string& overrides, std::optional<uint64_t> seed, const std::vector<std::string>& allowAssets) {
+              py::gil_scoped_release release;
+              if (restart) return session.reset();
+              session.reset(loadSceneInput(SceneInput{
+                  .path = path, .text = text, .overrides = overrides, .seed = seed, .allowedAssetDirs = allowAssets}));
+          });
+    m.def("set_weather", [](Session& session, const std::string& key, const std::string& json) {
+        session.setWeather(key, nlohmann::json::parse(json));
+    });
     m.def("drive", [](Session& session, size_t vehicle, double throttle, double steer, double brake) {
         return vehicleDict(
             session.drive(vehicle, VehicleCommand{.throttle = throttle, .steer = steer, .brake = brake}));

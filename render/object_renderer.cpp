@@ -119,6 +119,12 @@ void ObjectRenderer::place(size_t k, glm::dvec2 position, double headingRadians)
     objects_[k].yawDegrees = headingRadians * 180.0 / 3.14159265358979323846;
 }
 
+void ObjectRenderer::resetObjects(const std::vector<ObjectParams>& objects) {
+    require(objects.size() == objects_.size(), "ObjectRenderer::resetObjects: another scene's objects");
+    objects_ = objects;
+    hidden_.clear();
+}
+
 void ObjectRenderer::setVisible(size_t k, bool visible) {
     require(k < objects_.size(), "ObjectRenderer::setVisible: no object " + std::to_string(k));
     hidden_.resize(objects_.size(), 0);

@@ -37,6 +37,8 @@ public:
     // instead of following its path (e.g. the rover driven from the keyboard in sward-view); hidden objects
     // collapse to a point and draw nothing. Applies from the next update().
     void place(size_t k, glm::dvec2 position, double headingRadians);
+    // Every object's parameters (path, yaw) as given, all visible: a session's restart (render/session.h).
+    void resetObjects(const std::vector<ObjectParams>& objects);
     void setVisible(size_t k, bool visible);
 
     // Writes the node transforms at simulation time `time` into slot `slot` (< gpu::kFrameDataSlots). The slot must not be

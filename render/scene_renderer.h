@@ -15,6 +15,7 @@
 #include "engine/context.h"
 #include "engine/pipelines.h"
 #include "engine/render_target.h"
+#include "render/sky_constants.h"
 #include "render/vegetation_renderer.h"
 #include "scene/scene.h"
 #include "vegetation/atlas.h"
@@ -128,6 +129,13 @@ public:
     void setGroundTracks(const GroundTracks* tracks, const Ground* ground);
 
     VegetationRenderer* vegetation() { return vegetation_.get(); }
+    // The wind, sun and sky of the next frames (a program's change between frames, render/session.h): the sky's
+    // constants are computed again.
+    void setWeather(const WindParams& wind, const SunParams& sun, const SkyParams& sky) {
+        scene_.wind = wind, scene_.sun = sun, scene_.sky = sky;
+        writeSkyConstants(scene_, frameTemplate_);
+        if (vegetation_) vegetation_->setWind(wind);
+    }
     ObjectRenderer* objects() { return objects_.get(); } // null when the scene has no objects
     uint32_t samples() const { return samples_; }
     bool world() const { return std::isfinite(viewDistance_); } // a world of several tiles

@@ -19,11 +19,65 @@ Session::Session(Scene scene, const SessionOptions& options)
         autoExposure_.emplace(sensor_->params().autoExposure, resources_.scene.sequence.timeStep);
     ctx_ = std::make_unique<Context>(
         DeviceOptions{.deviceFilter = options.device, .validation = options.validation || DeviceOptions{}.validation});
+    createGpu();
+}
+
+void Session::createGpu() {
     // Always a simulation: colliders placed from the program may touch plants at any tick. A tick with no contact
     // and no active field records nothing, so frames are the same as sward-render's.
+    initial_ = resources_.scene;
     if (!resources_.scene.rangeSensors.empty()) range_ = std::make_unique<RangeRecorder>(resources_); // needs the atlas
     gpu_ = createSceneGpu(*ctx_, resources_, resources_.scene.render.samples, SimulationMode::Always);
-    target_ = std::make_unique<OffscreenFrame>(*ctx_, width_, height_, resources_.scene.render.samples);
+    const glm::uvec3 size(width_, height_, resources_.scene.render.samples);
+    if (!target_ || size != targetSize_) {
+        target_.reset();
+        target_ = std::make_unique<OffscreenFrame>(*ctx_, width_, height_, size.z);
+        targetSize_ = size;
+    }
+    next_ = 0;
+    vehicles_.clear();
+    ruts_ = RutPatchCache{};
+}
+
+void Session::reset(std::optional<Scene> scene) {
+    if (!scene) return restart();
+    // Built and checked before the old scene is let go, so a bad scene leaves the session as it was.
+    SceneResources resources = buildSceneResources(std::move(*scene), options_.vegetation);
+    const uint32_t width = resources.scene.render.width, height = resources.scene.render.height;
+    RigCameras firstRig;
+    std::optional<SensorModel> sensor = checkRigAndSensor(resources, width, height, 0, firstRig);
+    range_.reset(); // the GPU objects read the old resources: gone before them
+    gpu_.worldSimulation.reset();
+    gpu_.simulation.reset();
+    gpu_.renderer.reset();
+    resources_ = std::move(resources);
+    width_ = width, height_ = height;
+    sensor_ = std::move(sensor);
+    autoExposure_.reset();
+    if (sensor_ && sensor_->params().autoExposure.enabled)
+        autoExposure_.emplace(sensor_->params().autoExposure, resources_.scene.sequence.timeStep);
+    createGpu();
+}
+
+void Session::restart() {
+    if (resources_.world) return reset(initial_); // a world's resident tiles and their kept states: built again
+    resources_.scene = initial_;
+    if (ObjectRenderer* objects = gpu_.renderer->objects()) objects->resetObjects(initial_.objects);
+    gpu_.renderer->setWeather(initial_.wind, initial_.sun, initial_.sky);
+    if (gpu_.simulation) { // a new interaction: tick 0, no ruts, the plants' records as generated
+        const bool plants = gpu_.simulation->hasPlants();
+        gpu_.simulation.reset();
+        gpu_.simulation = std::make_unique<Simulation>(*ctx_, resources_.scene, resources_.terrain,
+                                                       plants ? &*resources_.tile : nullptr,
+                                                       plants ? &gpu_.renderer->vegetation()->buffers() : nullptr);
+        gpu_.simulation->setObjectModels(&resources_.models);
+        if (plants) gpu_.simulation->gpu().writeDynamics(gpu_.simulation->world().initialDynamics());
+        gpu_.renderer->setGroundTracks(&gpu_.simulation->tracks(), &resources_.terrain);
+    }
+    if (autoExposure_) autoExposure_->clear();
+    next_ = 0;
+    vehicles_.clear();
+    ruts_ = RutPatchCache{};
 }
 
 Session::~Session() {
@@ -113,6 +167,12 @@ VehicleState Session::drive(size_t k, const VehicleCommand& command) {
     setObjectPose(k, next.position, next.headingDegrees); // which forgets the state: a pose set from outside resets it
     vehicles_[k] = next;
     return next;
+}
+
+void Session::setWeather(const std::string& key, const nlohmann::json& value) {
+    Scene& scene = resources_.scene;
+    updateSceneSection(scene, key, value, "set_" + key);
+    gpu_.renderer->setWeather(scene.wind, scene.sun, scene.sky);
 }
 
 std::vector<Collider> Session::lastTickColliders() const {

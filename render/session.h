@@ -54,6 +54,13 @@ public:
     // Advances `ticks` ticks without rendering (the interaction runs each of them). With auto-exposure the last W of
     // them are rendered for their meter (render/auto_exposure.h), so the next frame's exposure is sward-render's.
     void step(uint32_t ticks);
+    // A new episode on the same device (the Python module's reset). With `scene` (another seed or overrides) that
+    // scene, built and checked as the constructor builds it (on failure the session is as it was), on the device
+    // (and output image, when size and samples agree) already open. Without, the scene as it was built — camera,
+    // objects, wind, sun and sky as loaded, no program colliders, no driven vehicle — and a new interaction at rest
+    // (frame 0, no ruts, every plant as generated), keeping every buffer. Either way the frames that follow are those
+    // of a new Session of that scene, bitwise.
+    void reset(std::optional<Scene> scene = std::nullopt);
     // Whether frames are metered for auto-exposure (then step renders the last W ticks it runs).
     bool autoExposed() const { return autoExposure_.has_value(); }
     // Renders the next frame with its own tick, as sward-render would, and advances by one.
@@ -71,6 +78,9 @@ public:
     // at the next frame's time on the first call (path or set pose), then from the state the last call left; its
     // model, node colliders and a rig mounted on it follow from the next tick (setObjectPose). Returns the new state.
     VehicleState drive(size_t k, const VehicleCommand& command);
+    // The scene's "wind", "sun" or "sky" (`key`) from the next frame on: the keys of `value` over the current values
+    // (updateSceneSection), drawn and recorded in frames.jsonl's records.
+    void setWeather(const std::string& key, const nlohmann::json& value);
 
     // Called with every frame render() returns, before it returns (the episode recorder, render/episode_recorder.h);
     // an empty function removes it. What it throws reaches render()'s caller.
@@ -90,6 +100,10 @@ public:
 
 private:
     Simulation& simulation(const char* what);
+    // The GPU side of resources_ on ctx_ (the renderer, the simulation, the range sensors, the output image when its
+    // size or samples changed) and the episode's start: frame 0, the scene as built remembered for reset().
+    void createGpu();
+    void restart(); // reset() without a scene
     // The colliders that acted during the latest tick, as frames.jsonl records them (none on bare ground).
     std::vector<Collider> lastTickColliders() const;
 
@@ -106,6 +120,8 @@ private:
     uint32_t next_ = 0;
     std::map<size_t, VehicleState> vehicles_; // the objects drive() moves, by index
     std::function<void(const SessionFrame&)> observer_;
+    Scene initial_;           // the scene as built, for reset()
+    glm::uvec3 targetSize_{}; // target_'s width, height and samples
 };
 
 } // namespace sward

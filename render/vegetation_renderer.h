@@ -69,6 +69,8 @@ public:
     void addTile(const VegetationTile& tile);
     // Drops a resident tile; its buffers are destroyed once the frames in flight are done with them.
     void removeTile(TileCoord coord);
+    // The wind from the next expand on (a program's change between frames, render/session.h).
+    void setWind(const WindParams& wind) { scene_.wind = wind; }
     bool hasTile(TileCoord coord) const;
     uint32_t tileCount() const { return uint32_t(tiles_.size()); }
     ~VegetationRenderer();

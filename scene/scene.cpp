@@ -278,6 +278,24 @@ glm::vec3 SunParams::direction() const {
     return glm::vec3(float(std::sin(az) * std::cos(el)), float(std::cos(az) * std::cos(el)), float(std::sin(el)));
 }
 
+void updateSceneSection(Scene& scene, const std::string& key, const nlohmann::json& value, const std::string& source) {
+    nlohmann::json section = value;
+    if (key == "sky" && section.is_object() && !section.contains("model") && !section.contains("zenith") &&
+        !section.contains("horizon"))
+        section["model"] = scene.sky.model == SkyParams::Model::Gradient ? "gradient" : "physical";
+    const nlohmann::json root = {{key, section}};
+    JsonReader reader(root, source);
+    // Read into copies, so that an error changes nothing.
+    WindParams wind = scene.wind;
+    SunParams sun = scene.sun;
+    SkyParams sky = scene.sky;
+    require(key == "wind" || key == "sun" || key == "sky", source + ": no section '" + key + "' (wind, sun or sky)");
+    if (key == "wind") readWind(reader.child("wind"), wind);
+    if (key == "sun") readSun(reader.child("sun"), sun);
+    if (key == "sky") readSky(reader.child("sky"), sky);
+    scene.wind = wind, scene.sun = sun, scene.sky = sky;
+}
+
 Scene parseScene(const nlohmann::json& json, const std::string& source, const AssetPolicy& assets) {
     Scene scene;
     scene.source = source;

@@ -134,6 +134,11 @@ struct Scene {
 // its folder. Every file the scene names (objects' models and their buffers, grass_map, land_cover.file, atlas) must
 // pass `assets` (default: unconfined); the check runs here, so a refused path fails before anything is loaded.
 Scene parseScene(const nlohmann::json& json, const std::string& source, const AssetPolicy& assets = {});
+// A program's change of the scene's "wind", "sun" or "sky" (`key`) between frames (the Python module's set_wind,
+// set_sun, set_sky): the keys of `value` as a scene file holds them, read over the current values with a scene
+// file's checks and messages ('source' names the call); the sky keeps its model unless `value` names one or gives
+// colours. Throws sward::Error leaving the scene as it was.
+void updateSceneSection(Scene& scene, const std::string& key, const nlohmann::json& value, const std::string& source);
 // Reads and parses a scene file ("" = the built-in default scene); throws sward::Error naming the file for missing
 // files and bad JSON. `seed`, when set, replaces the scene's seed before parsing, so every seed derived from it
 // (terrain, plants, gusts, sensor noise) follows. A scene file's assets must resolve (symlinks followed) inside its

@@ -1,5 +1,6 @@
 """Drive, then record (docs/python.md, "Drive and record"): Simulator.record writes what the Python loop renders, tick
 by tick, as a sward dataset; Simulator.drive steers a scene object as a vehicle (throttle, steer, brake)."""
+import json
 import numbers
 import os
 
@@ -78,3 +79,40 @@ class DriveAndRecord:
             raise _argument_error(f"vehicle must be a scene object's index, 0 or more (got {vehicle})")
         return _sward.drive(self._live(), int(vehicle), _control("throttle", throttle, -1),
                             _control("steer", steer, -1), _control("brake", brake, 0))
+
+    def set_wind(self, **keys):
+        """The scene's wind from the next frame on: keys as in a scene file's "wind" (direction_deg, strength,
+        gust_strength, gust_frequency, gust_wavelength, flutter); those not given keep their values."""
+        self._set_weather("wind", keys)
+
+    def set_sun(self, **keys):
+        """The sun from the next frame on: azimuth_deg, elevation_deg, radiance [r, g, b] (a scene file's "sun")."""
+        self._set_weather("sun", keys)
+
+    def set_sky(self, **keys):
+        """The sky from the next frame on: a scene file's "sky" keys (model, turbidity, clouds, visibility_m, zenith,
+        horizon, ground); the model stays unless given (or implied by zenith / horizon)."""
+        self._set_weather("sky", keys)
+
+    def _set_weather(self, section, keys):
+        from . import _json  # the package's checked JSON encoding (NaN and non-JSON values named)
+        _sward.set_weather(self._live(), section, _json(f"set_{section}", keys))
+
+    def reset(self, *, seed=None, overrides=None):
+        """A new episode on the same device and buffers. Without arguments: the scene as built (camera, objects, wind,
+        sun and sky as loaded, no colliders of yours, no driven vehicle) with the interaction at rest, frame 0. With
+        `seed` and / or `overrides` (dotted keys added to the constructor's): that scene, built anew on the device
+        already open. Either way the frames that follow are a new Simulator's, bitwise."""
+        from . import _scene_input  # the package's argument checks
+        session = self._live()
+        if seed is None and overrides is None:
+            _sward.reset(session, True, *self._input)
+            return
+        path, text, old_overrides, old_seed, folders = self._input
+        if overrides is not None and not isinstance(overrides, dict):
+            raise TypeError('overrides must be a dict of dotted keys, e.g. {"render.samples": 1}')
+        merged = {**json.loads(old_overrides), **(overrides or {})}
+        _, _, merged_text, seed, _ = _scene_input(None, merged, old_seed if seed is None else seed, ())
+        new_input = (path, text, merged_text, seed, folders)
+        _sward.reset(session, False, *new_input)
+        self._input = new_input

@@ -142,3 +142,53 @@ def test_drive_and_record_refuse_bad_arguments(tmp_path):
             sim.render()
     assert sward.Dataset(tmp_path / "a").frames == [1]
     assert "files verified, frames [1, 2)" in verify_manifest(tmp_path / "a")
+
+
+def test_reset_starts_a_new_episode_bitwise_on_the_same_device(tmp_path):
+    scene = rover_scene(tmp_path)
+    options = {"overrides": TINY, "allow_assets": [str(ROOT / "examples/assets")]}
+    with sward.Simulator(scene, **options) as sim, sward.Simulator(scene, **options) as fresh:
+        first = [fresh.render() for _ in range(2)]
+        for _ in range(4):  # an episode: driven, a collider of our own, other weather
+            sim.drive(0, throttle=1, steer=0.5)
+            sim.render()
+        sim.set_colliders([{"centre": [50, 47, 0.2], "radius": 0.5}])
+        sim.set_wind(strength=0.6)
+        sim.set_sun(elevation_deg=5)
+        sim.set_sky(turbidity=6)
+        sim.render()
+        sim.reset()  # the scene as built, the interaction at rest
+        assert sim.frame == 0
+        for expected in first:
+            frame = sim.render()
+            assert frame["record"] == expected["record"]
+            for kind in FILE_KINDS:
+                assert frame[kind].tobytes() == expected[kind].tobytes(), kind
+        sim.reset(seed=9)  # another scene, built on the device already open
+        reseeded = sim.render()
+    with sward.Simulator(scene, seed=9, **options) as other:
+        expected = other.render()
+    assert reseeded["record"] == expected["record"] and reseeded["depth"].tobytes() == expected["depth"].tobytes()
+    assert reseeded["left"].tobytes() != first[0]["left"].tobytes()
+
+
+def test_wind_sun_and_sky_change_between_frames():
+    with sward.Simulator(os.environ["SWARD_TEST_SCENE"], overrides=TINY) as sim:
+        before = sim.render()
+        sim.set_wind(strength=0.5, direction_deg=10)
+        windy = sim.render()
+        assert windy["record"]["wind"]["strength"] == 0.5 and windy["record"]["wind"]["direction_deg"] == 10
+        assert windy["record"]["wind"]["gust_strength"] == before["record"]["wind"]["gust_strength"]  # kept
+        sim.set_sun(elevation_deg=10, azimuth_deg=200)
+        low_sun = sim.render()
+        assert low_sun["left"].tobytes() != windy["left"].tobytes()
+        sim.set_sky(turbidity=6)
+        hazy = sim.render()
+        assert hazy["left"].tobytes() != low_sun["left"].tobytes()
+        with pytest.raises(sward.Error, match=r"set_wind: 'wind.strength' must be between 0 and 0.9 \(got 2\)"):
+            sim.set_wind(strength=2)
+        with pytest.raises(sward.Error, match="unknown key 'sun.colour'"):
+            sim.set_sun(colour=[1, 1, 1])
+        with pytest.raises(sward.Error, match="not finite"):
+            sim.set_sky(turbidity=float("nan"))
+        assert sim.render()["record"]["wind"]["strength"] == 0.5  # a refused change changes nothing
