@@ -40,6 +40,8 @@ void Session::createGpu() {
 }
 
 void Session::reset(std::optional<Scene> scene) {
+    // A recorder's dataset is one episode of one scene: its frames would start again at 0, or come from another scene.
+    require(!observed(), "reset: this simulator is recording; close the recorder first (one episode, one dataset)");
     if (!scene) return restart();
     // Built and checked before the old scene is let go, so a bad scene leaves the session as it was.
     SceneResources resources = buildSceneResources(std::move(*scene), options_.vegetation);

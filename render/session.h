@@ -59,7 +59,7 @@ public:
     // (and output image, when size and samples agree) already open. Without, the scene as it was built — camera,
     // objects, wind, sun and sky as loaded, no program colliders, no driven vehicle — and a new interaction at rest
     // (frame 0, no ruts, every plant as generated), keeping every buffer. Either way the frames that follow are those
-    // of a new Session of that scene, bitwise.
+    // of a new Session of that scene, bitwise. Refused while a frame observer (a recorder) is attached.
     void reset(std::optional<Scene> scene = std::nullopt);
     // Whether frames are metered for auto-exposure (then step renders the last W ticks it runs).
     bool autoExposed() const { return autoExposure_.has_value(); }

@@ -133,6 +133,8 @@ def test_drive_and_record_refuse_bad_arguments(tmp_path):
         recorder = sim.record(tmp_path / "a")
         with pytest.raises(sward.Error, match="already recording"):
             sim.record(tmp_path / "b")
+        with pytest.raises(sward.Error, match="reset: this simulator is recording; close the recorder first"):
+            sim.reset()
         sim.render()
         recorder.close()
         assert recorder.closed and recorder.frames == [0]
