@@ -66,9 +66,17 @@ sanitize=OFF
 [ "${SANITIZE:-0}" = "1" ] && sanitize=ON
 
 tools/setup-deps.sh
+# ccache (installed by setup-deps): a build of sources compiled before, in this checkout or another one (a CI clone),
+# takes the objects from the cache. Paths are hashed relative to the checkout (CCACHE_BASEDIR), so a checkout in
+# another folder hits too; the cache only ever returns what the compiler would have made of the same input.
+launcher=()
+if command -v ccache >/dev/null; then
+  launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
+fi
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" -DSWARD_SANITIZE="$sanitize" \
   -DSWARD_WITH_GDAL=$with_optional -DSWARD_WITH_EMBREE=$with_optional -DSWARD_WITH_OPENCV=$with_optional \
-  > "$build_dir.configure.log" 2>&1 \
+  "${launcher[@]}" > "$build_dir.configure.log" 2>&1 \
   || { cat "$build_dir.configure.log"; exit 1; }
 cmake --build "$build_dir" -j "$(nproc)"
 

@@ -45,7 +45,10 @@ command -v llvm-symbolizer >/dev/null || fail "llvm-symbolizer is missing: sanit
 # --- build -----------------------------------------------------------------------------------------------------
 start=$(date +%s)
 launcher=()
-command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+if command -v ccache >/dev/null; then # as sward.sh: paths hashed relative to the checkout, so other checkouts hit
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1
+fi
 # -O1 keeps ASan fast enough for lavapipe-driven tests; Debug keeps assertions on; line tables give reports lines.
 # Warnings are errors in the GCC build (sward.sh); clang's own extra warnings are not made fatal here.
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \

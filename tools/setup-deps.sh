@@ -32,6 +32,8 @@ packages=(
   # `pip install .` of the checkout (pyproject.toml, setup.py: offline, --no-build-isolation) and its check under
   # Debian's mypy --strict (tests/python/pip_install.py)
   python3-setuptools python3-wheel python3-pip python3-venv mypy
+  # a compiler cache (sward.sh and the sanitizer build use it when present)
+  ccache
   # tests and benchmarks; a virtual X server for the viewer test; strace for the open-tracing test
   # (tests/tools/sward-render/open_trace_test.py: no file outside the scene's folder is opened)
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth strace
