@@ -260,3 +260,25 @@ TEST(Scene, SkyIsPhysicalByDefaultAndAGradientWhereColoursAreGiven) {
     EXPECT_NE(errorOf(R"({"sky": {"model": "hosek"}})").find("sky.model"), std::string::npos);
     EXPECT_NE(errorOf(R"({"sky": {"turbidity": 1}})").find("sky.turbidity"), std::string::npos);
 }
+
+// A program's change of wind, sun or sky between frames (updateSceneSection, the Python module's set_wind etc.).
+TEST(SceneSection, KeysNotGivenKeepTheirValuesAndAnErrorChangesNothing) {
+    Scene scene = parseScene(nlohmann::json::parse(R"({"wind": {"strength": 0.2, "flutter": 0.05},
+                                                       "sky": {"zenith": [0.2, 0.3, 0.9]}})"),
+                             "scene.json");
+    updateSceneSection(scene, "wind", {{"direction_deg", 90}}, "set_wind");
+    EXPECT_EQ(scene.wind.directionDegrees, 90.0);
+    EXPECT_FLOAT_EQ(scene.wind.strength, 0.2f);
+    EXPECT_FLOAT_EQ(scene.wind.flutter, 0.05f);
+    EXPECT_EQ(test::errorOf([&] {
+                  updateSceneSection(scene, "wind", {{"strength", 0.1}, {"flutter", 2}}, "set_wind");
+              }),
+              "set_wind: 'wind.flutter' must be between 0 and 0.5 (got 2)");
+    EXPECT_FLOAT_EQ(scene.wind.strength, 0.2f); // the valid key of the refused change was not applied either
+    updateSceneSection(scene, "sky", {{"ground", {0.1, 0.1, 0.1}}}, "set_sky");
+    EXPECT_EQ(scene.sky.model, SkyParams::Model::Gradient); // kept: no model and no colours given
+    updateSceneSection(scene, "sun", {{"elevation_deg", 12}}, "set_sun");
+    EXPECT_EQ(scene.sun.elevationDegrees, 12.0);
+    EXPECT_EQ(test::errorOf([&] { updateSceneSection(scene, "lod", nlohmann::json::object(), "set_lod"); }),
+              "set_lod: no section 'lod' (wind, sun or sky)");
+}
