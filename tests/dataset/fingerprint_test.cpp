@@ -9,8 +9,6 @@
 
 #include "test_files.h"
 
-#include "test_files.h"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -149,7 +147,6 @@ TEST(Fingerprint, SceneAssetsListTheFilesTheLoadersOpenedRelativeToTheScene) {
 // A companion file GDAL opened beside a raster (PAM's .aux.xml) is part of the fingerprint, so one added between
 // two runs changes it and a resume refuses.
 TEST(Fingerprint, ARastersCompanionFileGdalOpenedIsHashed) {
-    SWARD_SKIP_WITHOUT(Gdal);
     SWARD_SKIP_WITHOUT(Gdal);
     const std::filesystem::path dir = std::filesystem::canonical(std::filesystem::temp_directory_path()) /
                                       ("sward-raster-assets-" + std::to_string(::getpid()));
