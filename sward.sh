@@ -72,7 +72,8 @@ tools/setup-deps.sh
 launcher=()
 if command -v ccache >/dev/null; then
   launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
+  # The test suites build with a precompiled header, which ccache caches only with this sloppiness.
+  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1 CCACHE_SLOPPINESS=pch_defines,time_macros
 fi
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type" -DSWARD_SANITIZE="$sanitize" \
   -DSWARD_WITH_GDAL=$with_optional -DSWARD_WITH_EMBREE=$with_optional -DSWARD_WITH_OPENCV=$with_optional \

@@ -47,7 +47,7 @@ start=$(date +%s)
 launcher=()
 if command -v ccache >/dev/null; then # as sward.sh: paths hashed relative to the checkout, so other checkouts hit
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
-  export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1
+  export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1 CCACHE_SLOPPINESS=pch_defines,time_macros
 fi
 # -O1 keeps ASan fast enough for lavapipe-driven tests; Debug keeps assertions on; line tables give reports lines.
 # Warnings are errors in the GCC build (sward.sh); clang's own extra warnings are not made fatal here.
