@@ -1,9 +1,9 @@
 """sward-bench suite (render/bench_suite.h): suite.json validates against docs/suite.schema.json, the cross-check of
 lavapipe against lavapipe's own reference is exact, suite.md has a row per figure, and a used --out is refused.
 
-The whole `--quick` suite takes 1-3 minutes on 2 cores, too long for a CI test: this runs the cross-check and the tile
-generation (--only), the other figures are recorded as skipped, which the schema covers too. The full quick run is
-measured in docs/suite.md.
+The whole `--quick` suite runs, as the release issue asks of CI: every figure must be measured (80 s of CPU on
+lavapipe, 1.5-2.5 minutes of wall time on 2 busy cores; docs/suite.md). `--only` leaves figures skipped, which the
+schema covers too (docs/suite.md).
 
 Usage: suite_test.py SWARD_BENCH SCHEMA"""
 import json
@@ -16,7 +16,6 @@ import jsonschema
 
 FIGURES = ["crosscheck", "generate", "frame_720p", "frame_1080p", "bench_patch", "dataset", "collide", "world",
            "lidar"]
-RUN = ["crosscheck", "generate"]
 
 
 def main() -> int:
@@ -26,8 +25,7 @@ def main() -> int:
     jsonschema.Draft202012Validator.check_schema(schema)
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "suite")
-        run = subprocess.run([bench, "suite", "--quick", "--only", ",".join(RUN), "--out", out],
-                             capture_output=True, text=True, timeout=240)
+        run = subprocess.run([bench, "suite", "--quick", "--out", out], capture_output=True, text=True, timeout=420)
         assert run.returncode == 0, run.stdout + run.stderr
         assert sorted(os.listdir(out)) == ["suite.json", "suite.md"], os.listdir(out)
         with open(os.path.join(out, "suite.json")) as f:
@@ -36,7 +34,7 @@ def main() -> int:
         assert suite["mode"] == "quick" and suite["passed"] is True, suite
         for name in FIGURES:
             status = suite["figures"][name]["status"]
-            assert status == ("measured" if name in RUN else "skipped"), (name, status)
+            assert status == "measured", (name, status, suite["figures"][name])
 
         check = suite["figures"]["crosscheck"]["result"]
         assert check["reference"]["device"].startswith("llvmpipe"), check["reference"]
@@ -67,7 +65,7 @@ def main() -> int:
         again = subprocess.run([bench, "suite", "--quick", "--out", out], capture_output=True, text=True, timeout=60)
         assert again.returncode == 1 and "--overwrite" in again.stderr, again.stderr
         assert {n: os.path.getmtime(os.path.join(out, n)) for n in os.listdir(out)} == before
-    print(f"suite of {', '.join(RUN)}: {suite['seconds']:.1f} s; cross-check depth equal "
+    print(f"quick suite: {suite['seconds']:.1f} s; cross-check depth equal "
           f"{check['depth']['equal_fraction']}, labels equal {check['labels']['equal_fraction']}")
     return 0
 
