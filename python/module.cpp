@@ -275,20 +275,13 @@ void writeDataset(const std::string& path, const std::optional<std::string>& tex
                   const std::optional<std::string>& frames, const std::optional<std::string>& shard, bool overwrite,
                   const std::string& device, bool validation, bool vegetation, double time,
                   const py::object& progress) {
-    RenderJobOptions o;
-    o.scenePath = path;
-    o.sceneText = text;
-    o.overrides = overrides;
-    o.seed = seed;
-    o.allowAssets = allowAssets;
+    RenderJobOptions o = sceneJobOptions(path, text, overrides, seed, allowAssets, vegetation, time);
     o.outDir = out;
     o.frames = frames;
     o.shard = shard;
     o.overwrite = overwrite;
     o.device = device;
     o.validation = validation;
-    o.noVegetation = !vegetation;
-    o.time = time;
     o.quiet = true;
     o.onProgress = progressHook(progress);
     py::gil_scoped_release release;

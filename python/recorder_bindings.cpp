@@ -29,14 +29,7 @@ std::unique_ptr<EpisodeRecorder> openRecorder(Session& session, const std::strin
                                               const std::optional<std::string>& text, const std::string& overrides,
                                               std::optional<uint64_t> seed, const std::vector<std::string>& allowAssets,
                                               bool vegetation, double time, const std::string& out, bool overwrite) {
-    RenderJobOptions source;
-    source.scenePath = path;
-    source.sceneText = text;
-    source.overrides = overrides;
-    source.seed = seed;
-    source.allowAssets = allowAssets;
-    source.noVegetation = !vegetation;
-    source.time = time;
+    const RenderJobOptions source = sceneJobOptions(path, text, overrides, seed, allowAssets, vegetation, time);
     py::gil_scoped_release release;
     return std::make_unique<EpisodeRecorder>(session, source, out, overwrite);
 }
@@ -50,6 +43,20 @@ py::dict vehicleDict(const VehicleState& state) {
 }
 
 } // namespace
+
+RenderJobOptions sceneJobOptions(const std::string& path, const std::optional<std::string>& text,
+                                 const std::string& overrides, std::optional<uint64_t> seed,
+                                 const std::vector<std::string>& allowAssets, bool vegetation, double time) {
+    RenderJobOptions o;
+    o.scenePath = path;
+    o.sceneText = text;
+    o.overrides = overrides;
+    o.seed = seed;
+    o.allowAssets = allowAssets;
+    o.noVegetation = !vegetation;
+    o.time = time;
+    return o;
+}
 
 void addFrameRecord(py::dict& d, const SessionFrame& frame) {
     const nlohmann::json& record = frame.record;
