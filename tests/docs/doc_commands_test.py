@@ -333,6 +333,12 @@ class PythonSession:
         self.process.wait()
 
 
+def source_status(source):
+    """The checkout's `git status --porcelain` (untracked and changed files; ignored ones, such as build/, left out)."""
+    return subprocess.run(["git", "-C", str(source), "status", "--porcelain"], capture_output=True, text=True,
+                          check=True).stdout
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__.split("usage: ")[1])
@@ -341,6 +347,7 @@ def main():
     counts = {}
     try:
         blocks = [b for doc, langs in DOCS.items() for b in read_blocks(doc, source / doc, langs)]
+        before = source_status(source)
         with tempfile.TemporaryDirectory(prefix="sward-doc-test-") as tmp:
             cwd, home = make_checkout(source, build, pathlib.Path(tmp))
             env = environment(home)
@@ -365,6 +372,11 @@ def main():
             finally:
                 for session in sessions.values():
                     session.close()
+        # The working folder links the checkout's top-level entries: an --out that names one of its folders (the
+        # source's world/ once) would write into the source tree. Nothing may appear or change there.
+        if source_status(source) != before:
+            raise DocError("the blocks wrote into the source tree (git status changed): an --out names a folder "
+                           "of the checkout")
         for doc in DOCS:
             if counts.get(doc, (0, 0))[0] == 0:
                 raise DocError(f"{doc}: no block ran (is the extraction broken?)")
