@@ -18,7 +18,6 @@ import os
 import shutil
 import sqlite3
 import struct
-import subprocess
 import sys
 import tempfile
 
@@ -28,23 +27,8 @@ except ImportError as error:
     print(f"skipped: {error} (Debian: apt-get install python3-numpy)")
     sys.exit(77)
 
+from dataset_reading import read_pfm, run  # shared with the other export tests, numpy present
 
-def read_pfm(path):
-    """Middlebury PFM: 'Pf', width height, negative scale = little endian, bottom row first."""
-    with open(path, "rb") as file:
-        data = file.read()
-    fields, offset = [], 0
-    while len(fields) < 4:
-        end = offset
-        while data[end:end + 1] not in (b" ", b"\n"):
-            end += 1
-        if end > offset:
-            fields.append(data[offset:end].decode())
-        offset = end + 1
-    assert fields[0] == "Pf" and float(fields[3]) < 0, fields
-    width, height = int(fields[1]), int(fields[2])
-    values = np.frombuffer(data, dtype="<f4", count=width * height, offset=offset).reshape(height, width)
-    return values[::-1]
 
 
 def read_calib(path):
@@ -81,11 +65,6 @@ def read_points3d_bin(path):
             points.append((np.array(fields[1:4]), sorted(set(track[0::2]))))
     return points
 
-
-def run(*command, cwd=None):
-    result = subprocess.run(command, capture_output=True, text=True, cwd=cwd)
-    if result.returncode != 0:
-        sys.exit(f"{' '.join(command)} failed ({result.returncode}): {result.stdout[-2000:]} {result.stderr[-2000:]}")
 
 
 def triangulate(colmap, model_dir):

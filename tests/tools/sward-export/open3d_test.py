@@ -12,7 +12,6 @@ Exit 77 (skipped) where Open3D or numpy is missing.
 import argparse
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -23,23 +22,8 @@ except ImportError as error:
     print(f"skipped: {error} (Debian: apt-get install python3-open3d)")
     sys.exit(77)
 
+from dataset_reading import read_pfm, run  # shared with the other export tests, numpy present
 
-def read_pfm(path):
-    """Middlebury PFM: 'Pf', width height, negative scale = little endian, bottom row first."""
-    with open(path, "rb") as file:
-        data = file.read()
-    fields, offset = [], 0
-    while len(fields) < 4:
-        end = offset
-        while data[end:end + 1] not in (b" ", b"\n"):
-            end += 1
-        if end > offset:
-            fields.append(data[offset:end].decode())
-        offset = end + 1
-    assert fields[0] == "Pf" and float(fields[3]) < 0, fields
-    width, height = int(fields[1]), int(fields[2])
-    values = np.frombuffer(data, dtype="<f4", count=width * height, offset=offset).reshape(height, width)
-    return values[::-1]
 
 
 def read_calib(path):
@@ -47,11 +31,6 @@ def read_calib(path):
     cam0 = calib["cam0"].strip("[]").replace(";", " ").split()
     return float(cam0[0]), float(calib["baseline"]) * 1e-3
 
-
-def run(*command):
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit(f"{' '.join(command)} failed: {result.stderr}")
 
 
 def main():

@@ -15,7 +15,6 @@ Exit 77 (skipped) where numpy or PyYAML is missing.
 
 import argparse
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -25,6 +24,8 @@ try:
 except ImportError as error:
     print(f"skipped: {error} (Debian: apt-get install python3-numpy python3-yaml)")
     sys.exit(77)
+
+from dataset_reading import read_pfm, run  # shared with the other export tests, numpy present
 
 # SemanticKITTI's training classes (semantic-kitti.yaml's learning_map targets), in their order.
 KITTI_TRAINING = ["unlabeled", "car", "bicycle", "motorcycle", "truck", "other-vehicle", "person", "bicyclist",
@@ -41,11 +42,6 @@ SWARD_NAMES = {0: "sky", 1: "ground", 2: "vegetation category 0", 3: "vegetation
                11: "turf", 12: "track"}
 
 
-def run(*command):
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit(f"{' '.join(command)} failed: {result.stderr}")
-
 
 def read_ply_classes(path):
     """The class property of a binary little-endian PLY, by its header."""
@@ -61,13 +57,6 @@ def read_ply_classes(path):
             fields.append((words[2], types[words[1]]))
     return np.frombuffer(data, dtype=np.dtype(fields), count=count, offset=end)["class"]
 
-
-def read_pfm(path):
-    data = open(path, "rb").read()
-    header = data.split(b"\n", 3)
-    width, height = (int(v) for v in header[1].split())
-    values = np.frombuffer(header[3], dtype="<f4", count=width * height).reshape(height, width)
-    return values[::-1]
 
 
 def read_calib(path):
