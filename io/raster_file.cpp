@@ -174,8 +174,9 @@ void checkFinite(const RasterBand& raster, uint32_t band) {
 
 // GDAL reads a raster a block (a TIFF strip or tile) at a time and allocates the block whole: a small raster whose
 // header claims a huge block would have GDAL allocate gigabytes before reading a pixel (fuzz_raster's finding, a
-// 320-byte GeoTIFF). A block may be as large as the largest raster sward reads, no larger.
-void checkBlockSize(const std::string& path, GDALRasterBandH band) {
+// 320-byte GeoTIFF). A block may be as large as the largest raster sward reads, no larger. Only the blocks holding
+// columns [x0, x1) and rows [y0, y1) are read, so only theirs are checked (all of them for a whole raster).
+void checkBlockSize(const std::string& path, GDALRasterBandH band, int x0, int y0, int x1, int y1) {
     int blockWidth = 0, blockHeight = 0;
     GDALGetBlockSize(band, &blockWidth, &blockHeight);
     const uint64_t bytes = uint64_t(std::max(blockWidth, 0)) * uint64_t(std::max(blockHeight, 0)) *
@@ -186,10 +187,9 @@ void checkBlockSize(const std::string& path, GDALRasterBandH band) {
                                                std::to_string(kMaxRasterBlockBytes) + " bytes (corrupt file?)");
     // A TIFF block's stored size is read into a buffer of that size: none can be larger than the file.
     const uint64_t fileBytes = std::filesystem::file_size(path);
-    const int64_t across = (GDALGetRasterBandXSize(band) + blockWidth - 1) / std::max(blockWidth, 1);
-    const int64_t down = (GDALGetRasterBandYSize(band) + blockHeight - 1) / std::max(blockHeight, 1);
-    for (int64_t y = 0; y < down; ++y)
-        for (int64_t x = 0; x < across; ++x) {
+    blockWidth = std::max(blockWidth, 1), blockHeight = std::max(blockHeight, 1);
+    for (int64_t y = y0 / blockHeight; y <= (y1 - 1) / blockHeight; ++y)
+        for (int64_t x = x0 / blockWidth; x <= (x1 - 1) / blockWidth; ++x) {
             const std::string key = "BLOCK_SIZE_" + std::to_string(x) + "_" + std::to_string(y);
             const char* stored = GDALGetMetadataItem(band, key.c_str(), "TIFF");
             if (!stored) return; // not a TIFF
@@ -199,32 +199,125 @@ void checkBlockSize(const std::string& path, GDALRasterBandH band) {
         }
 }
 
+// One band of a raster open through the door: the door outlives the dataset (GDAL reads through it until it is
+// closed) and GDAL's messages are collected until then.
+class OpenBand {
+public:
+    OpenBand(const std::string& path, const RasterReadOptions& options)
+        : path_(path), door_(checked(path), options.folders) {
+        dataset_ = openDataset(path, door_, messages_);
+        width_ = GDALGetRasterXSize(dataset_.get());
+        height_ = GDALGetRasterYSize(dataset_.get());
+        band_ = selectBand(dataset_.get(), path, options.band);
+    }
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    GDALRasterBandH band() const { return band_; }
+
+    RasterInfo info() const {
+        return RasterInfo{.width = uint32_t(width_),
+                          .height = uint32_t(height_),
+                          .nodata = readNodata(band_),
+                          .geoTransform = readGeoTransform(dataset_.get(), path_),
+                          .source = path_};
+    }
+
+    // Columns [x, x + w) of rows [y, y + h) into `out` (w * h doubles, row-major).
+    void read(int x, int y, int w, int h, double* out, const std::string& what) const {
+        const CPLErr result = GDALRasterIO(band_, GF_Read, x, y, w, h, out, w, h, GDT_Float64, 0, 0);
+        require(door_.refusal().empty(), door_.refusal()); // a companion opened only for the pixels (an HFA .ige)
+        require(result == CE_None,
+                "cannot read raster '" + path_ + "' " + what + " (corrupt or truncated file)" + messages_.suffix());
+    }
+
+private:
+    // Only a local regular file reaches the door and GDAL.
+    static const std::string& checked(const std::string& path) {
+        checkLocalFile(path);
+        registerDrivers();
+        return path;
+    }
+
+    std::string path_;
+    RasterDoor door_;
+    GdalMessages messages_;
+    Dataset dataset_;
+    int width_ = 0, height_ = 0;
+    GDALRasterBandH band_ = nullptr;
+};
+
+std::string windowText(const RasterWindow& w) {
+    return "window of " + std::to_string(w.width) + "x" + std::to_string(w.height) + " samples at column " +
+           std::to_string(w.column) + ", row " + std::to_string(w.row) +
+           (w.step > 1 ? " every " + std::to_string(w.step) + " samples" : "");
+}
+
+// The window's samples, a row at a time for step > 1: GDAL's own decimation (a smaller buffer) would choose its
+// samples by its resampling rule, not every step-th exactly.
+void readWindowSamples(const OpenBand& open, const RasterWindow& w, uint64_t spanX, RasterBand& raster,
+                       const std::string& what) {
+    raster.values.resize(size_t(w.width) * size_t(w.height));
+    if (w.step == 1) {
+        open.read(int(w.column), int(w.row), int(w.width), int(w.height), raster.values.data(), what);
+        return;
+    }
+    std::vector<double> row(spanX);
+    for (uint32_t j = 0; j < w.height; ++j) {
+        open.read(int(w.column), int(w.row + uint64_t(j) * w.step), int(spanX), 1, row.data(), what);
+        for (uint32_t i = 0; i < w.width; ++i) raster.values[size_t(j) * w.width + i] = row[size_t(i) * w.step];
+    }
+}
+
 } // namespace
 
 RasterBand readRasterBand(const std::string& path, const RasterReadOptions& options) {
-    checkLocalFile(path);
-    registerDrivers();
-    const RasterDoor door(path, options.folders); // outlives the dataset: GDAL reads through it until closed
-    GdalMessages messages;                        // everything GDAL says until the dataset is closed
-    Dataset dataset = openDataset(path, door, messages);
-    GDALDatasetH ds = dataset.get();
-    const int width = GDALGetRasterXSize(ds), height = GDALGetRasterYSize(ds);
-    checkSize(path, width, height);
-    GDALRasterBandH band = selectBand(ds, path, options.band);
-    checkBlockSize(path, band);
+    const OpenBand open(path, options);
+    checkSize(path, open.width(), open.height());
+    checkBlockSize(path, open.band(), 0, 0, open.width(), open.height());
+    const RasterInfo info = open.info();
+    RasterBand raster{.width = info.width,
+                      .height = info.height,
+                      .nodata = info.nodata,
+                      .geoTransform = info.geoTransform,
+                      .source = path};
+    raster.values.resize(size_t(raster.width) * size_t(raster.height));
+    open.read(0, 0, open.width(), open.height(), raster.values.data(), "band " + std::to_string(options.band));
+    if (options.requireFinite) checkFinite(raster, options.band);
+    return raster;
+}
 
-    RasterBand raster;
-    raster.width = uint32_t(width);
-    raster.height = uint32_t(height);
-    raster.source = path;
-    raster.geoTransform = readGeoTransform(ds, path);
-    raster.nodata = readNodata(band);
-    raster.values.resize(size_t(width) * size_t(height));
-    const CPLErr read =
-        GDALRasterIO(band, GF_Read, 0, 0, width, height, raster.values.data(), width, height, GDT_Float64, 0, 0);
-    require(door.refusal().empty(), door.refusal()); // a companion opened only for the pixels (an HFA .ige)
-    require(read == CE_None, "cannot read raster '" + path + "' band " + std::to_string(options.band) +
-                                 " (corrupt or truncated file)" + messages.suffix());
+RasterInfo readRasterInfo(const std::string& path, const RasterReadOptions& options) {
+    const OpenBand open(path, options);
+    require(open.width() >= 1 && open.height() >= 1, "raster '" + path + "' has no pixels");
+    return open.info();
+}
+
+RasterBand readRasterWindow(const std::string& path, const RasterWindow& w, const RasterReadOptions& options) {
+    const OpenBand open(path, options);
+    const std::string window = windowText(w);
+    require(w.width >= 1 && w.height >= 1 && w.step >= 1,
+            "raster '" + path + "': the " + window + " is empty (width, height and step must be at least 1)");
+    const uint64_t spanX = uint64_t(w.width - 1) * w.step + 1, spanY = uint64_t(w.height - 1) * w.step + 1;
+    require(w.column + spanX <= uint64_t(open.width()) && w.row + spanY <= uint64_t(open.height()),
+            "raster '" + path + "': the " + window + " reaches beyond its " + std::to_string(open.width()) + "x" +
+                std::to_string(open.height()) + " samples");
+    require(w.width <= kMaxRasterEdge && w.height <= kMaxRasterEdge && uint64_t(w.width) * w.height <= kMaxRasterPixels,
+            "raster '" + path + "': the " + window + " is over the limit of " + std::to_string(kMaxRasterEdge) +
+                " samples an edge and " + std::to_string(kMaxRasterPixels) + " in all (8192x8192)");
+    checkBlockSize(path, open.band(), int(w.column), int(w.row), int(w.column + spanX), int(w.row + spanY));
+    const RasterInfo info = open.info();
+    RasterBand raster{
+        .width = w.width, .height = w.height, .nodata = info.nodata, .geoTransform = info.geoTransform, .source = path};
+    if (raster.geoTransform) {
+        // Sample (i, j) of the window has its centre where the file's sample (column + i step, row + j step) has.
+        RasterGeoTransform& g = *raster.geoTransform;
+        g.originX += (double(w.column) + 0.5 - 0.5 * w.step) * g.pixelWidth;
+        g.originY -= (double(w.row) + 0.5 - 0.5 * w.step) * g.pixelHeight;
+        g.pixelWidth *= w.step;
+        g.pixelHeight *= w.step;
+    }
+    readWindowSamples(open, w, spanX, raster, "band " + std::to_string(options.band) + " " + window);
     if (options.requireFinite) checkFinite(raster, options.band);
     return raster;
 }

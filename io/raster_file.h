@@ -69,6 +69,14 @@ struct RasterReadOptions {
     InputFolders folders;
 };
 
+// What a raster's header says, without its pixels: enough to plan window reads of a raster far larger than memory.
+struct RasterInfo {
+    uint32_t width = 0, height = 0; // the whole raster; any size GDAL opens (edge and pixel limits apply to windows)
+    std::optional<double> nodata;   // the band's nodata value, if it has one
+    std::optional<RasterGeoTransform> geoTransform; // absent when the file has no georeferencing
+    std::string source;                             // the file name, for messages
+};
+
 // Reads one band as doubles. In a build without GDAL (SWARD_WITH_GDAL=OFF, io/raster_file_absent.cpp) every call
 // throws one sward::Error naming the file, GDAL and the option. Otherwise it throws one sward::Error naming the file
 // for: a /vsi path, a missing file or one that is not a regular file, a companion file GDAL asks for outside options.folders or not a regular file, a file no
@@ -77,5 +85,27 @@ struct RasterReadOptions {
 // and (requireFinite) a non-finite value, naming its pixel. Safe to call from any thread: reads through GDAL's door
 // take turns (io/raster_door.h).
 RasterBand readRasterBand(const std::string& path, const RasterReadOptions& options = {});
+
+// The header of `path` and of band options.band: size, georeferencing and nodata, no pixels. The same door, drivers
+// and refusals as readRasterBand, but for the size: a raster of any size is described (a world's DEM may be
+// 20,000 x 20,000 samples and more). Throws sward::Error naming the file.
+RasterInfo readRasterInfo(const std::string& path, const RasterReadOptions& options = {});
+
+// A window of samples: columns column + i * step for i < width, rows row + j * step for j < height, rows counted from
+// the top (north) as in the file. step > 1 picks every step-th sample exactly (no resampling): a coarse view of a far
+// terrain whose samples are bitwise those of the full-resolution reads.
+struct RasterWindow {
+    uint32_t column = 0, row = 0;
+    uint32_t width = 0, height = 0; // samples read, >= 1 each
+    uint32_t step = 1;              // >= 1
+};
+
+// Reads one window of one band as doubles, through GDAL RasterIO: the same door, drivers and checks as
+// readRasterBand, with kMaxRasterEdge and kMaxRasterPixels applied to the window (width x height samples) while the
+// whole raster may be far larger; the storage blocks the window touches are checked as readRasterBand checks every
+// block. The band's geoTransform is that of the window: its origin at the window's top-left sample's corner, its
+// pixel size step times the file's. Also throws sward::Error naming the file and the window for a window that
+// reaches beyond the raster, an empty window or step 0.
+RasterBand readRasterWindow(const std::string& path, const RasterWindow& window, const RasterReadOptions& options = {});
 
 } // namespace sward

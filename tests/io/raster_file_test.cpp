@@ -223,3 +223,86 @@ TEST(RasterFileErrors, NonFiniteValueNamesThePixelWhenFiniteIsRequired) {
     EXPECT_TRUE(std::isinf(readRasterBand(path).at(1, 1)));
     expectError([&] { readRasterBand(path, {.requireFinite = true}); }, {path, "inf", "pixel (1, 1)"});
 }
+
+// Windows: readRasterInfo describes the raster, readRasterWindow reads part of it, sample for sample.
+namespace {
+
+// A 7x5 raster whose value names its pixel: 10 * column + row.
+std::string writeNumbered(const std::string& name) {
+    const std::string path = (tempDir() / name).string();
+    std::vector<double> values;
+    for (uint32_t row = 0; row < 5; ++row)
+        for (uint32_t column = 0; column < 7; ++column) values.push_back(10.0 * column + row);
+    writeTiff(path, {.width = 7, .height = 5, .values = values, .geoTransform = kUtm, .nodata = -1.0});
+    return path;
+}
+
+} // namespace
+
+TEST(RasterWindow, InfoIsTheHeaderWithoutPixels) {
+    const std::string path = writeNumbered("info.tif");
+    const RasterInfo info = readRasterInfo(path);
+    EXPECT_EQ(info.width, 7u);
+    EXPECT_EQ(info.height, 5u);
+    EXPECT_EQ(info.nodata, -1.0);
+    ASSERT_TRUE(info.geoTransform);
+    EXPECT_EQ(info.geoTransform->originX, 500000.0);
+    EXPECT_EQ(info.source, path);
+}
+
+TEST(RasterWindow, WindowHoldsTheSamplesOfTheWholeBand) {
+    const std::string path = writeNumbered("window.tif");
+    const RasterBand whole = readRasterBand(path);
+    const RasterBand w = readRasterWindow(path, {.column = 2, .row = 1, .width = 4, .height = 3});
+    ASSERT_EQ(w.width, 4u);
+    ASSERT_EQ(w.height, 3u);
+    for (uint32_t j = 0; j < 3; ++j)
+        for (uint32_t i = 0; i < 4; ++i) EXPECT_EQ(w.at(i, j), whole.at(2 + i, 1 + j)) << i << ", " << j;
+    EXPECT_EQ(w.nodata, -1.0);
+    ASSERT_TRUE(w.geoTransform);
+    EXPECT_EQ(w.geoTransform->originX, 500020.0); // the window's top-left corner
+    EXPECT_EQ(w.geoTransform->originY, 4099990.0);
+    EXPECT_EQ(w.geoTransform->pixelWidth, 10.0);
+}
+
+TEST(RasterWindow, StepPicksEveryStepthSampleExactly) {
+    const std::string path = writeNumbered("step.tif");
+    const RasterBand w = readRasterWindow(path, {.column = 0, .row = 1, .width = 3, .height = 2, .step = 3});
+    EXPECT_EQ(w.values, (std::vector<double>{1, 31, 61, 4, 34, 64})); // columns 0, 3, 6; rows 1, 4
+    ASSERT_TRUE(w.geoTransform);
+    // Sample (1, 1) is the file's (3, 4): its centre at 500000 + 3.5 * 10 east, 4100000 - 4.5 * 10 north.
+    EXPECT_EQ(w.geoTransform->originX + 1.5 * w.geoTransform->pixelWidth, 500035.0);
+    EXPECT_EQ(w.geoTransform->originY - 1.5 * w.geoTransform->pixelHeight, 4099955.0);
+}
+
+TEST(RasterWindow, WindowOfARasterFarLargerThanTheReadLimit) {
+    // 20,000 x 20,000 Float32 (1.6 GB as doubles), sparse: only the block at (256..511, 512..767) is written.
+    const std::string path = (tempDir() / "sparse-dem.tif").string();
+    writeTiff(path, {.width = 20000, .height = 20000, .options = {"SPARSE_OK=TRUE", "TILED=YES"}});
+    GDALDatasetH ds = GDALOpen(path.c_str(), GA_Update);
+    ASSERT_NE(ds, nullptr);
+    std::vector<double> block(256 * 256, 7.5);
+    ASSERT_EQ(
+        GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 256, 512, 256, 256, block.data(), 256, 256, GDT_Float64, 0, 0),
+        CE_None);
+    GDALClose(ds);
+    EXPECT_LT(std::filesystem::file_size(path), 4u << 20);
+    EXPECT_EQ(readRasterInfo(path).width, 20000u);
+    const RasterBand w = readRasterWindow(path, {.column = 250, .row = 510, .width = 10, .height = 4});
+    EXPECT_EQ(w.at(0, 0), 0.0); // an unwritten block reads as zeros
+    EXPECT_EQ(w.at(6, 2), 7.5);
+    const RasterBand far = readRasterWindow(path, {.column = 0, .row = 0, .width = 200, .height = 200, .step = 100});
+    EXPECT_EQ(far.at(3, 6), 7.5); // the file's (300, 600)
+    expectError([&] { readRasterBand(path); }, {path, "20000x20000", "over the limit"});
+    expectError([&] { readRasterWindow(path, {.width = 9000, .height = 9000}); },
+                {path, "window of 9000x9000 samples", "over the limit"});
+}
+
+TEST(RasterWindowErrors, WindowBeyondTheRasterOrEmptyNamesTheWindow) {
+    const std::string path = writeNumbered("beyond.tif");
+    expectError([&] { readRasterWindow(path, {.column = 5, .row = 0, .width = 3, .height = 1}); },
+                {path, "window of 3x1 samples at column 5, row 0", "reaches beyond its 7x5 samples"});
+    expectError([&] { readRasterWindow(path, {.column = 0, .row = 0, .width = 3, .height = 3, .step = 3}); },
+                {path, "every 3 samples", "reaches beyond"});
+    expectError([&] { readRasterWindow(path, {.width = 0, .height = 1}); }, {path, "is empty"});
+}
