@@ -1,4 +1,5 @@
 #include "scene/scene.h"
+#include "scene/world_ground.h"
 #include "scene/scene_input.h"
 
 #include "common/error.h"
@@ -316,6 +317,7 @@ Scene parseScene(const nlohmann::json& json, const std::string& source, const As
     readAtlas(root.child("atlas"), scene);
     readVegetation(root, scene);
     if (root.has("world")) scene.world = parseWorldParams(root.child("world"));
+    if (demWorld(scene)) fitWorldToDem(scene, root.raw("world")->contains("tiles")); // the DEM's lattice and extent
     scene.rangeSensors = parseRangeSensors(root);
     root.finish();
     checkSceneLimits(scene);
@@ -341,6 +343,7 @@ Atlas buildAtlas(const Scene& scene) {
 
 GrassMap buildGrassMap(const Scene& scene, float tileSize, glm::dvec2 origin) {
     if (!scene.grassMapPath.empty()) return loadGrassMap(scene.grassMapPath);
+    if (!scene.landCover.file.empty() && scene.world.enabled) return worldLandCoverGrassMap(scene, origin);
     if (!scene.landCover.file.empty())
         return loadLandCoverGrassMap(scene.landCover, tileSize, scene.source + ": 'land_cover'", 0,
                                      scene.assets.folders());

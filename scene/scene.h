@@ -38,6 +38,10 @@ struct HeightmapParams {
     double heightScale = 1.0;  // PNG: metres at the full-scale value 65535; other formats: metres per unit
     double heightOffset = 0.0; // metres added to every height
     glm::dvec2 origin{0.0};    // world xy of the south-west sample
+    // A world's DEM (scene/world_ground.h fitWorldToDem, from the raster's header): its samples and their spacing in
+    // metres, the world's lattice. 0 outside a world.
+    uint32_t columns = 0, rows = 0;
+    double spacing = 0.0;
 };
 
 // "terrain": the ground plants stand on — the procedural heightfield (default), a heightmap or a glTF mesh.
@@ -147,8 +151,9 @@ Scene loadScene(const std::string& path, std::optional<uint64_t> seed = {},
                 const std::vector<std::string>& allowedAssetDirs = {});
 // The scene's atlas with its coverage-preserving mip chain: the files it names, or the built-in procedural one.
 Atlas buildAtlas(const Scene& scene);
-// The scene's grass map over a tile of `tileSize` metres: the file it names, the one made from its land cover, or
-// the procedural meadow (seeded by the scene seed) over the tile whose south-west corner is `origin`.
+// The scene's grass map over a tile of `tileSize` metres: the file it names, the one made from its land cover (in a
+// world, the land cover's window over the world tile whose south-west corner is `origin`), or the procedural meadow
+// (seeded by the scene seed) over the tile whose south-west corner is `origin`.
 GrassMap buildGrassMap(const Scene& scene, float tileSize, glm::dvec2 origin = glm::dvec2(0.0));
 // Places the scene's vegetation on its terrain (buildTerrain, vegetationOn; threads: 0 = all cores). Checks the
 // memory budget first.

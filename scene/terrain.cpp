@@ -3,6 +3,7 @@
 #include "common/error.h"
 #include "common/json_reader.h"
 #include "scene/scene.h"
+#include "scene/world_ground.h"
 #include "world/gltf_mesh.h"
 
 #include <cmath>
@@ -44,17 +45,25 @@ Ground meshGround(const Scene& scene) {
 } // namespace
 
 Ground buildTerrain(const Scene& scene) {
+    // A world of one tile on a DEM: that tile's window of it, never the whole raster (it may be far larger).
+    if (demWorld(scene)) {
+        const glm::dvec2 origin(scene.vegetation.worldOrigin);
+        return Ground(worldHeights(scene, origin, origin + double(scene.vegetation.tileSize)), scene.terrain.selection);
+    }
     switch (scene.terrain.source) {
-    case TerrainParams::Source::Heightmap: return Ground(loadHeightmap(scene), scene.terrain.selection);
-    case TerrainParams::Source::Mesh: return meshGround(scene);
-    case TerrainParams::Source::Procedural: break;
+    case TerrainParams::Source::Heightmap:
+        return Ground(loadHeightmap(scene), scene.terrain.selection);
+    case TerrainParams::Source::Mesh:
+        return meshGround(scene);
+    case TerrainParams::Source::Procedural:
+        break;
     }
     return Ground(makeProceduralTerrain(scene.terrain.procedural), scene.terrain.selection);
 }
 
 VegetationParams vegetationOn(const Scene& scene, const Ground& terrain) {
     VegetationParams params = scene.vegetation;
-    if (scene.terrain.source == TerrainParams::Source::Procedural) return params;
+    if (scene.terrain.source == TerrainParams::Source::Procedural || demWorld(scene)) return params;
     if (!scene.vegetationOriginSet) params.worldOrigin = terrain.boundsMin();
     if (!scene.vegetationTileSet) {
         const glm::vec2 extent = terrain.boundsMax() - params.worldOrigin;

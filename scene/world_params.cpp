@@ -2,7 +2,9 @@
 
 #include "common/error.h"
 #include "common/json_reader.h"
+#include "scene/land_cover_params.h"
 #include "scene/scene.h"
+#include "scene/world_ground.h"
 #include "vegetation/placement.h"
 
 #include <algorithm>
@@ -53,6 +55,15 @@ WorldParams parseWorldParams(JsonReader r) {
     if (w.viewDistance > w.loadRadius)
         r.fail(r.name("view_distance") + " (" + formatNumber(w.viewDistance) + " m) must not exceed " +
                r.name("load_radius") + " (" + formatNumber(w.loadRadius) + " m): only resident tiles can be drawn");
+    if (const nlohmann::json* horizon = r.raw("horizon"); horizon && horizon->is_boolean())
+        w.horizon = horizon->get<bool>();
+    else if (horizon && horizon->is_object()) {
+        JsonReader h(*horizon, r.source(), r.childPath("horizon"));
+        w.horizonSpacing = h.number("spacing", 0.0, 0.0, kMaxWorldExtent);
+        if (h.has("spacing") && !(w.horizonSpacing > 0.0)) h.fail(h.name("spacing") + " must be positive");
+        h.finish();
+    } else if (horizon)
+        r.fail(r.name("horizon") + " must be false, true or an object with 'spacing'");
     if (r.has("memory_budget_mib"))
         w.memoryBudgetBytes = uint64_t(r.number("memory_budget_mib", 0.0, 1.0, 1048576.0) * 1048576.0);
     // A budget the machine cannot hold bounds nothing: a 1 TiB world kept generating tiles (50 MB/s, no frame)
@@ -65,37 +76,55 @@ WorldParams parseWorldParams(JsonReader r) {
     return w;
 }
 
+double horizonSpacing(const Scene& scene) {
+    const WorldParams& w = scene.world;
+    if (w.horizonSpacing > 0.0) return w.horizonSpacing;
+    const double spacing = scene.terrain.procedural.spacing;
+    const double cells = double(std::max(w.tilesX, w.tilesY)) * scene.vegetation.tileSize / spacing;
+    return spacing * std::max(1.0, std::ceil(cells / kDefaultHorizonCells - 1e-9));
+}
+
 void checkWorldScene(const Scene& scene) {
     const std::string& source = scene.source;
     auto fail = [&](const std::string& message) { throw Error(source + ": " + message); };
-    if (scene.terrain.source != TerrainParams::Source::Procedural)
-        fail(std::string("'world' needs the procedural terrain: a world of 'terrain.") +
-             (scene.terrain.source == TerrainParams::Source::Mesh ? "mesh'" : "heightmap'") + " is not supported yet");
-    if (!scene.grassMapPath.empty() || !scene.landCover.file.empty())
-        fail(std::string("'world' grows the procedural meadow on every tile: '") +
-             (scene.grassMapPath.empty() ? "land_cover" : "grass_map") +
-             "' (one tile's map) is not supported in a world");
+    if (scene.terrain.source == TerrainParams::Source::Mesh)
+        fail("'world' needs the procedural terrain or a DEM ('terrain.heightmap'): a world of 'terrain.mesh' is not "
+             "supported yet");
+    if (!scene.grassMapPath.empty())
+        fail("'grass_map' (one tile's map) is not supported in a world: give the world's vegetation as a "
+             "'land_cover' raster covering the world, or none for the procedural meadow on every tile");
+    if (!scene.landCover.file.empty()) worldLandCoverGrid(scene); // it covers the world in whole pixels per tile
     const ProceduralTerrainParams& t = scene.terrain.procedural;
     const VegetationParams& v = scene.vegetation;
-    if (std::abs(double(v.tileSize) - t.size) > 1e-3)
+    if (demWorld(scene))
+        checkDemWorld(scene); // the DEM's lattice instead of the procedural terrain's
+    else if (std::abs(double(v.tileSize) - t.size) > 1e-3)
         fail("in a world every tile has its own terrain: 'vegetation.tile_size' (" + formatNumber(v.tileSize) +
              " m) must equal 'terrain.size' (" + formatNumber(t.size) + " m)");
-    if (!wholeMultiple(t.size, t.spacing))
+    if (!demWorld(scene) && !wholeMultiple(t.size, t.spacing))
         fail("in a world 'terrain.size' (" + formatNumber(t.size) +
              " m) must be a whole number of 'terrain.spacing' (" + formatNumber(t.spacing) +
              " m), so the tiles' terrain grids meet");
-    if (!wholeMultiple(v.worldOrigin.x, t.spacing) || !wholeMultiple(v.worldOrigin.y, t.spacing))
+    if (!demWorld(scene) && (!wholeMultiple(v.worldOrigin.x, t.spacing) || !wholeMultiple(v.worldOrigin.y, t.spacing)))
         fail("in a world 'vegetation.world_origin' must be a whole multiple of 'terrain.spacing' (" +
              formatNumber(t.spacing) + " m), so the tiles' terrain grids lie on one lattice");
-    if (sceneMakesRuts(scene))
-        fail("ruts ('rut_depth') in a world are not supported yet: ground tracks are drawn on a one-tile scene's "
-             "ground");
     const WorldParams& w = scene.world;
     const double extent = double(std::max(w.tilesX, w.tilesY)) * v.tileSize;
     if (extent > kMaxWorldExtent)
         fail("'world.tiles' times 'vegetation.tile_size' is " + formatNumber(extent) + " m, over the " +
              formatNumber(kMaxWorldExtent) + " m a world may span (plant positions are floats)");
     checkWorldBudget(scene);
+    // The ring's vertices are the fine lattice's samples at every k-th vertex, so it meets the tiles' ground there.
+    if (w.horizon && w.horizonSpacing > 0.0 && scene.terrain.source == TerrainParams::Source::Procedural) {
+        if (!wholeMultiple(w.horizonSpacing, t.spacing))
+            fail("'world.horizon.spacing' (" + formatNumber(w.horizonSpacing) +
+                 " m) must be a whole multiple of 'terrain.spacing' (" + formatNumber(t.spacing) +
+                 " m): the horizon ring samples the terrain's lattice");
+        if (extent / w.horizonSpacing > kMaxHeightfieldCells)
+            fail("'world.horizon.spacing' (" + formatNumber(w.horizonSpacing) + " m) gives " +
+                 formatNumber(std::ceil(extent / w.horizonSpacing)) + " horizon cells along the world, over " +
+                 std::to_string(kMaxHeightfieldCells) + "; raise it");
+    }
 }
 
 void checkWorldDrawable(const Scene& scene) {
@@ -107,32 +136,42 @@ void checkWorldDrawable(const Scene& scene) {
         fail("in a world 'lod.far' + half 'lod.band' (" + formatNumber(scene.lod.farLimit + 0.5f * scene.lod.band) +
              " m) must not exceed 'world.view_distance' (" + formatNumber(w.viewDistance) +
              " m, default 'world.load_radius'): plants are drawn only from resident tiles");
-    // Vehicles and free colliders follow paths over the world's lattice ground; objects stand on one tile's ground
-    // and gusts drift over one tile's box.
-    if (w.tilesX * w.tilesY > 1 && !scene.objects.empty())
-        fail("'objects' in a world of several tiles are not supported yet (an object stands on one tile's ground)");
-    if (w.tilesX * w.tilesY > 1 && scene.actors.gusts.count > 0)
-        fail("'gusts' in a world of several tiles are not supported yet (gusts drift over one tile)");
-    if (!scene.rangeSensors.empty())
-        fail("'range_sensors' in a world are not supported yet: their rays are cast against one tile's ground and "
-             "plants");
-    if (scene.render.flow)
-        fail("'render.flow' in a world is not supported yet: the motion ground truth keeps the plant states of one "
-             "tile");
+    // Vehicles, free colliders and objects follow paths over the world's lattice ground; gusts blow within
+    // view_distance of the camera (scene/world_objects.h).
+    // A range sensor's rays meet the tiles within its range (+ kPlantLean: plants lean out of their tile) of its origin,
+    // which must be resident: within load_radius of its sweep's start, an interest point (range/range_recorder.h).
+    for (size_t k = 0; k < scene.rangeSensors.size(); ++k) {
+        const RangeSensorParams& s = scene.rangeSensors[k];
+        const std::string name = "'range_sensors[" + std::to_string(k) + "]' ('" + s.name + "')";
+        if (s.mount.kind == RangeMount::Kind::Object)
+            fail(name + ": 'mount.object' in a world is not supported yet (mount it on a path or a fixed position)");
+        if (s.maxRange + kPlantLean > w.loadRadius)
+            fail(name + ": its 'range' (" + formatNumber(s.maxRange) + " m) plus " + formatNumber(kPlantLean) +
+                 " m must not exceed " +
+                 "'world.load_radius' (" + formatNumber(w.loadRadius) + " m): its rays meet only resident tiles");
+    }
 }
 
 uint64_t predictedTileBytes(const Scene& scene, bool farCover) {
     const VegetationParams& v = scene.vegetation;
-    const ProceduralTerrainParams& t = scene.terrain.procedural;
-    const double vertices = std::pow(std::round(double(v.tileSize) / t.spacing) + 1.0, 2.0);
+    // The world's lattice: a DEM's samples, or the procedural terrain's.
+    const double spacing = worldLattice(scene).spacing;
+    const double vertices = std::pow(std::round(double(v.tileSize) / spacing) + 1.0, 2.0);
     const double fields = double(v.fieldsPerTile()) * v.fieldsPerTile();
     const double clusters = fields * v.clustersPerField() * v.clustersPerField();
     double plants = 0.0, coverTexels = 0.0;
     if (scene.vegetationEnabled) {
-        // The meadow's intensities never exceed 1, and rounding adds at most one plant per cluster and category.
+        // The meadow's intensities never exceed 1, a land cover's its table's largest (up to kMaxLandCoverIntensity);
+        // rounding adds at most one plant per cluster and category.
         static const GrassMap full(1, 1, 3, {1.0f, 1.0f, 1.0f}, "full intensity");
-        plants = predictPlantCount(full, v) + clusters * v.categoryCount;
+        const bool landCover = !scene.landCover.file.empty();
+        plants = predictPlantCount(landCover ? landCoverIntensityBound(scene.landCover) : full, v) +
+                 clusters * v.categoryCount;
         if (farCover) coverTexels = std::pow(double(MeadowMapParams{}.resolution), 2.0); // one per meadow texel
+        if (farCover && landCover) { // one per land-cover pixel, in blocks beyond kMaxCoverMapEdge
+            const glm::dvec2 edges = glm::min(glm::dvec2(worldLandCoverGrid(scene).pixelsPerTile), double(kMaxCoverMapEdge));
+            coverTexels = edges.x * edges.y;
+        }
     }
     const double bytes = vertices * sizeof(float) + coverTexels * sizeof(glm::vec4) +
                          plants * double(sizeof(gpu::PlantStatic) + sizeof(gpu::PlantDynamic)) +

@@ -27,23 +27,34 @@ struct WorldParams {
     uint64_t memoryBudgetBytes = uint64_t(2048) << 20; // "memory_budget_mib": resident tiles at most
     double viewDistance = 300.0;                       // metres, <= loadRadius (default loadRadius): ground and
                                                        // plants are drawn out to it from the camera
+    bool horizon = true;       // "horizon": beyond view_distance a coarse ring of the world's terrain is drawn
+    double horizonSpacing = 0; // "horizon.spacing", metres (a whole multiple of terrain.spacing); 0: the default
 };
+
+// The horizon ring's lattice by default: the least whole multiple of terrain.spacing that gives at most this many
+// cells along the world's longer side (a 8 km world of 2 m spacing: 32 m, 250 x 250 cells, 125,000 triangles).
+inline constexpr uint32_t kDefaultHorizonCells = 256;
 
 // The machine's physical memory in bytes (0 when the system cannot tell).
 uint64_t physicalMemoryBytes();
 
-// Reads "tiles", "load_radius", "evict_radius", "view_distance" and "memory_budget_mib"; errors name the file and
+// Reads "tiles", "load_radius", "evict_radius", "view_distance", "memory_budget_mib" and "horizon" (false, or an
+// object with "spacing"); errors name the file and
 // the JSON path. A budget above physicalMemoryBytes() is refused (never lowered: output never depends on the machine).
 WorldParams parseWorldParams(JsonReader r);
 
+// The horizon ring's lattice spacing in metres: world.horizon.spacing, else the kDefaultHorizonCells default.
+double horizonSpacing(const Scene& scene);
+
 // The world's requirements on the rest of the scene, checked once terrain and vegetation are parsed: the procedural
-// terrain (not 'terrain.heightmap' / 'terrain.mesh'), the procedural meadow (not 'grass_map' / 'land_cover'),
+// terrain or a DEM (not 'terrain.mesh'), the procedural meadow (not 'grass_map' / 'land_cover'); procedural:
 // 'vegetation.tile_size' = 'terrain.size', a whole number of 'terrain.spacing' per tile and in
-// 'vegetation.world_origin', the extent, and checkWorldBudget. Throws sward::Error naming the keys.
+// 'vegetation.world_origin'; a DEM: checkDemWorld (scene/world_ground.h); the extent, and checkWorldBudget. Throws
+// sward::Error naming the keys.
 void checkWorldScene(const Scene& scene);
 
 // What drawing a world of several tiles needs besides (renderers, not the tile streaming itself): lod.far + half
-// lod.band within view_distance, no objects or actors (they run on one tile). Throws sward::Error naming the keys.
+// lod.band within view_distance; the features still refused there. Throws sward::Error naming the keys.
 void checkWorldDrawable(const Scene& scene);
 
 // Upper bound of one tile's resident bytes, the same parts WorldTile::bytes counts: terrain heights, plant records

@@ -4,6 +4,7 @@
 #include "common/json_reader.h"
 #include "common/stopwatch.h"
 #include "interaction/state_file.h"
+#include "scene/world_ground.h"
 #include "vegetation/placement.h"
 
 #include <algorithm>
@@ -40,6 +41,17 @@ std::string mib(uint64_t bytes) {
     return formatNumber(std::ceil(double(bytes) / 1048576.0)) + " MiB";
 }
 
+// The tile's heights: the world's ground over its square, its edge samples shared with its neighbours. A DEM's
+// errors (a nodata sample) name the tile too.
+Heightfield tileHeights(const Scene& scene, TileCoord coord, glm::dvec2 origin) {
+    try {
+        return worldHeights(scene, origin, origin + double(scene.vegetation.tileSize));
+    } catch (const Error& e) {
+        if (!demWorld(scene)) throw;
+        throw Error(std::string(e.what()) + " (in " + tileName(coord.x, coord.y) + ")");
+    }
+}
+
 } // namespace
 
 // A tile with an active field stays resident until its plants have sprung back: recovery runs only on resident tiles,
@@ -49,15 +61,13 @@ bool recovering(const WorldTile& tile) {
                        [](const FieldVegetation& f) { return f.active; });
 }
 
-WorldTile generateWorldTile(const Scene& scene, TileCoord coord, uint32_t threads, std::span<const CategoryLook> looks) {
+WorldTile generateWorldTile(const Scene& scene, TileCoord coord, uint32_t threads,
+                            std::span<const CategoryLook> looks) {
     const WorldParams& w = scene.world;
     require(w.enabled && coord.x >= 0 && coord.y >= 0 && uint32_t(coord.x) < w.tilesX && uint32_t(coord.y) < w.tilesY,
             "generateWorldTile: " + tileName(coord.x, coord.y) + " is not a tile of the scene's world");
     const glm::dvec2 origin = tileOrigin(scene, coord.x, coord.y);
-    ProceduralTerrainParams terrain = scene.terrain.procedural;
-    terrain.size = scene.vegetation.tileSize;
-    terrain.origin = origin;
-    WorldTile tile{.coord = coord, .ground = Ground(makeProceduralTerrain(terrain), scene.terrain.selection)};
+    WorldTile tile{.coord = coord, .ground = Ground(tileHeights(scene, coord, origin), scene.terrain.selection)};
     tile.vegetation.coord = coord;
     if (scene.vegetationEnabled) {
         const GrassMap map = buildGrassMap(scene, scene.vegetation.tileSize, origin);
@@ -73,13 +83,21 @@ WorldTile generateWorldTile(const Scene& scene, TileCoord coord, uint32_t thread
 }
 
 Ground latticeGround(const Scene& scene, glm::dvec2 a, glm::dvec2 b, double margin) {
-    ProceduralTerrainParams window = scene.terrain.procedural;
-    const double step = window.spacing;
-    const glm::dvec2 lo = glm::floor((glm::min(a, b) - margin) / step) * step - 2.0 * step;
-    const glm::dvec2 hi = glm::ceil((glm::max(a, b) + margin) / step) * step + 2.0 * step;
-    window.origin = lo;
-    window.size = float(std::max(hi.x - lo.x, hi.y - lo.y));
-    return Ground(makeProceduralTerrain(window), scene.terrain.selection);
+    const WorldLattice lattice = worldLattice(scene);
+    const double step = lattice.spacing;
+    const glm::dvec2 o = lattice.origin;
+    glm::dvec2 lo = glm::floor((glm::min(a, b) - margin - o) / step) * step + o - 2.0 * step;
+    glm::dvec2 hi = glm::ceil((glm::max(a, b) + margin - o) / step) * step + o + 2.0 * step;
+    if (!lattice.bounded()) {
+        // The procedural terrain's window is square (as it always was: the same heightfield, bitwise).
+        hi = lo + std::max(hi.x - lo.x, hi.y - lo.y);
+    } else {
+        // A DEM ends: the window is clamped to it (height() clamps to the grid's edge beyond).
+        const glm::dvec2 last = lattice.last();
+        lo = glm::clamp(lo, o, last - step);
+        hi = glm::clamp(hi, lo + step, last);
+    }
+    return Ground(worldHeights(scene, lo, hi), scene.terrain.selection);
 }
 
 Ground cameraGround(const Scene& scene, double time) {
@@ -93,12 +111,12 @@ std::vector<glm::dvec2> actorPoints(const Scene& scene, double time) {
     std::vector<glm::dvec2> points;
     for (const VehicleParams& v : scene.actors.vehicles) points.push_back(pathPoseXY(v.path, time));
     for (const MovingColliderParams& m : scene.actors.colliders) points.push_back(pathPoseXY(m.path, time));
+    for (const ObjectParams& object : scene.objects) points.push_back(pathPoseXY(object.path, time));
     return points;
 }
 
 std::vector<Collider> worldActorColliders(const Scene& scene, double time) {
     const ActorParams& actors = scene.actors;
-    require(actors.gusts.count == 0, "worldActorColliders: gusts are not supported in a world");
     std::vector<Collider> colliders;
     for (size_t v = 0; v < actors.vehicles.size(); ++v) {
         const VehicleParams& vehicle = actors.vehicles[v];
@@ -109,8 +127,8 @@ std::vector<Collider> worldActorColliders(const Scene& scene, double time) {
     }
     for (size_t i = 0; i < actors.colliders.size(); ++i) {
         const glm::dvec2 centre = pathPoseXY(actors.colliders[i].path, time);
-        colliders.push_back(movingCollider(actors.colliders[i], uint32_t(i), latticeGround(scene, centre, centre, 0.0),
-                                           time));
+        colliders.push_back(
+            movingCollider(actors.colliders[i], uint32_t(i), latticeGround(scene, centre, centre, 0.0), time));
     }
     return colliders;
 }
@@ -126,6 +144,16 @@ std::vector<TileCoord> tilesReached(const Scene& scene, const Collider& collider
     for (double y = std::max(lo.y, 0.0); y <= std::min(hi.y, double(w.tilesY) - 1.0); ++y)
         for (double x = std::max(lo.x, 0.0); x <= std::min(hi.x, double(w.tilesX) - 1.0); ++x)
             tiles.push_back(TileCoord{int32_t(x), int32_t(y)});
+    return tiles;
+}
+
+std::vector<TileCoord> tilesWithin(const Scene& scene, glm::dvec2 point, double radius) {
+    const WorldParams& w = scene.world;
+    std::vector<TileCoord> tiles;
+    for (uint32_t y = 0; y < w.tilesY; ++y)
+        for (uint32_t x = 0; x < w.tilesX; ++x)
+            if (distanceToTile(scene, int32_t(x), int32_t(y), point) <= radius)
+                tiles.push_back(TileCoord{int32_t(x), int32_t(y)});
     return tiles;
 }
 
@@ -387,18 +415,21 @@ uint32_t WorldTiles::pendingTiles() const {
     return uint32_t(queue_.size() + finished_.size() + (inFlight_ ? 1 : 0));
 }
 
-void WorldTiles::saveState(const std::string& path, uint64_t tick) const {
+void WorldTiles::saveState(const std::string& path, uint64_t tick, const TrackBlocks& tracks) const {
     std::map<Key, TileInteractionState> tiles(kept_.begin(), kept_.end());
     for (const auto& [key, tile] : resident_)
         if (TileInteractionState state = captureTouchedFields(tile.vegetation); !state.fields.empty())
             tiles.emplace(key, std::move(state));
-    WorldInteractionState world{
-        .tick = tick, .tilesX = scene_.world.tilesX, .tilesY = scene_.world.tilesY, .seed = scene_.seed};
+    WorldInteractionState world{.tick = tick,
+                                .tilesX = scene_.world.tilesX,
+                                .tilesY = scene_.world.tilesY,
+                                .seed = scene_.seed,
+                                .tracks = tracks};
     for (auto& [key, state] : tiles) world.tiles.push_back(std::move(state));
     saveWorldState(path, world);
 }
 
-uint64_t WorldTiles::restoreState(const std::string& path) {
+uint64_t WorldTiles::restoreState(const std::string& path, TrackBlocks* tracks) {
     WorldInteractionState world = loadWorldState(path, scene_.seed);
     const WorldParams& w = scene_.world;
     require(world.tilesX == w.tilesX && world.tilesY == w.tilesY,
@@ -419,6 +450,7 @@ uint64_t WorldTiles::restoreState(const std::string& path) {
     kept_.clear();
     for (auto& [key, state] : tiles)
         if (!resident_.contains(key)) kept_.emplace(key, std::move(state));
+    if (tracks) *tracks = std::move(world.tracks);
     return world.tick;
 }
 

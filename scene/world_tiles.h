@@ -15,6 +15,7 @@
 #pragma once
 
 #include "interaction/colliders.h"
+#include "interaction/ground_tracks.h"
 #include "interaction/tile_state.h"
 #include "scene/scene.h"
 #include "vegetation/cover_map.h"
@@ -61,16 +62,22 @@ Ground cameraGround(const Scene& scene, double time);
 // two lattice cells: bitwise the tiles' heights there, without generating any tile.
 Ground latticeGround(const Scene& scene, glm::dvec2 a, glm::dvec2 b, double margin);
 
-// The xy of every vehicle and free collider of a world scene at `time`: interest points, like the cameras.
+// The xy of every vehicle, free collider and object (on its path) of a world scene at `time`: interest points, like
+// the cameras.
 std::vector<glm::dvec2> actorPoints(const Scene& scene, double time);
 
 // actorColliders for a world scene: each actor stands on the lattice ground around itself (latticeGround), so its
-// colliders are the same whichever tiles are resident. Same ids. Gusts are not supported in a world.
+// colliders are the same whichever tiles are resident. Same ids. Without the gusts and the objects' colliders:
+// worldColliders (scene/world_objects.h) adds them.
 std::vector<Collider> worldActorColliders(const Scene& scene, double time);
 
 // The tiles of the world whose plants `collider` may touch, ascending (y, x): those whose square its bounds overlap,
 // widened by a metre (the collision pass tests plants by their roots, which lie inside their tile).
 std::vector<TileCoord> tilesReached(const Scene& scene, const Collider& collider);
+
+// The tiles of the world whose square lies within `radius` metres of `point` (xy; the distance WorldTiles makes
+// tiles resident by), ascending (y, x).
+std::vector<TileCoord> tilesWithin(const Scene& scene, glm::dvec2 point, double radius);
 
 // Whether a tile has an active field: its plants are still springing back from a contact.
 bool recovering(const WorldTile& tile);
@@ -119,10 +126,11 @@ public:
 
     // The whole world's interaction state — touched fields of resident and evicted tiles — and the tick, written as a
     // SWARDWS1 file (interaction/state_file.h). Throws sward::Error naming the file.
-    void saveState(const std::string& path, uint64_t tick) const;
+    void saveState(const std::string& path, uint64_t tick, const TrackBlocks& tracks = {}) const;
     // Reads a state saved for this world (same tile counts): resident tiles take it at once, the others when they are
     // generated. Returns its tick. Throws sward::Error naming the file; the world is unchanged then.
-    uint64_t restoreState(const std::string& path);
+    // `tracks` (optional) gets the world's ruts saved with it.
+    uint64_t restoreState(const std::string& path, TrackBlocks* tracks = nullptr);
 
 private:
     using Key = std::pair<int32_t, int32_t>; // (y, x): maps iterate in (y, x) order

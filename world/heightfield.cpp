@@ -167,13 +167,12 @@ void requireHeightmapBudget(const std::string& path, uint32_t width, uint32_t he
                 std::to_string(kMaxHeightfieldSamples) + " samples (4097x4097); resample it (gdalwarp -tr)");
 }
 
-// The sample spacing of a GDAL raster: `spacing` when given, else its square pixels in metres.
-float rasterSpacing(const RasterBand& raster, float spacing) {
+} // namespace
+
+float rasterSpacing(const std::optional<RasterGeoTransform>& geoTransform, const std::string& path, float spacing) {
     if (spacing > 0.0f) return spacing;
-    const std::string& path = raster.source;
-    require(raster.geoTransform.has_value(),
-            "heightfield '" + path + "' has no georeferencing: give its metres per pixel");
-    const RasterGeoTransform& g = *raster.geoTransform;
+    require(geoTransform.has_value(), "heightfield '" + path + "' has no georeferencing: give its metres per pixel");
+    const RasterGeoTransform& g = *geoTransform;
     require(g.metresPerUnit > 0.0, "heightfield '" + path +
                                        "' is not in a projected coordinate system (metres): "
                                        "give its metres per pixel, or reproject it (gdalwarp -t_srs EPSG:<UTM zone>)");
@@ -182,8 +181,6 @@ float rasterSpacing(const RasterBand& raster, float spacing) {
                 "' has non-square pixels; resample it (gdalwarp -tr) or give its metres per pixel");
     return float(g.pixelWidth * g.metresPerUnit);
 }
-
-} // namespace
 
 bool heightfieldNeedsGdal(const std::string& path) {
     const std::string extension = lowerExtension(path);
@@ -200,7 +197,7 @@ Heightfield loadHeightfield(const std::string& path, float verticalScale, float 
         options.folders = folders;
         const RasterBand raster = readRasterBand(path, options);
         requireHeightmapBudget(path, raster.width, raster.height);
-        const float step = rasterSpacing(raster, spacing);
+        const float step = rasterSpacing(raster.geoTransform, path, spacing);
         std::vector<float> heights = gridHeights(
             path, raster.width, raster.height,
             [&](uint32_t i, uint32_t row) {

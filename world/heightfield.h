@@ -7,6 +7,7 @@
 #pragma once
 
 #include "common/input_file.h"
+#include "io/raster_file.h"
 
 #include <glm/glm.hpp>
 
@@ -91,6 +92,11 @@ Heightfield makeProceduralTerrain(const ProceduralTerrainParams& params);
 Heightfield loadHeightfield(const std::string& path, float verticalScale, float spacing,
                             glm::vec2 origin = glm::vec2(0.0f), float heightOffset = 0.0f,
                             const InputFolders& folders = {});
+
+// The sample spacing of the GDAL raster `path` in metres: `spacing` when positive, else its square pixels in a
+// projected coordinate system. Throws sward::Error naming the file for no georeferencing, one in degrees (a
+// geographic system) and non-square pixels.
+float rasterSpacing(const std::optional<RasterGeoTransform>& geoTransform, const std::string& path, float spacing);
 
 // True when loadHeightfield reads `path` through GDAL: every extension but .png and .exr (any case).
 bool heightfieldNeedsGdal(const std::string& path);

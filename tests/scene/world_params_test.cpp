@@ -58,7 +58,7 @@ TEST(WorldParams, BadWorldsAreErrorsNamingTheKey) {
     EXPECT_NE(parseError(with({{"world", {{"radius", 4}}}})).find("unknown key 'world.radius'"), std::string::npos);
     EXPECT_NE(parseError(with({{"terrain",
                                 {{"size", nullptr}, {"heightmap", {{"file", "dem.png"}, {"metres_per_pixel", 1}}}}}}))
-                  .find("'world' needs the procedural terrain: a world of 'terrain.heightmap'"),
+                  .find("a world reads its DEM window by window through GDAL"),
               std::string::npos);
     EXPECT_NE(parseError(with({{"grass_map", "map.png"}})).find("'grass_map'"), std::string::npos);
     EXPECT_NE(parseError(with({{"vegetation", {{"tile_size", 250}}}}))
