@@ -8,6 +8,10 @@
   gis/dem.tif         a GeoTIFF heightmap (UTM 33N, 2 m pixels, float32 metres) of a known analytic surface
   gis/landcover.tif   a GeoTIFF of ESA WorldCover class codes over the scene's 500 m vegetation tile, whose
                       south-west corner is the DEM's south-west sample (4 m pixels, byte)
+  gis-world/dem.tif   a 4 x 4 km GeoTIFF DEM (UTM 33N, 4 m pixels, float32 metres) of a valley landscape: a winding
+                      river valley with a tributary, ridges between them, hillside undulation
+  gis-world/landcover.tif  ESA WorldCover codes over the same 4 x 4 km at 10 m pixels (as WorldCover's own):
+                      meadow (grassland), cropland fields, bare ground, the river (water) and tree cover
   tracks/grass.png    the grass map of examples/tracks: meadow west of a wandering edge near x = 40 m, bare soil east
 
 The surfaces are closed-form functions below; tests compare what sward builds from these files with them. The
@@ -197,6 +201,77 @@ def write_gis(folder):
         translate(os.path.join(tmp, "landcover.asc"), os.path.join(folder, "landcover.tif"), "Byte")
 
 
+# --- gis-world/dem.tif and gis-world/landcover.tif: the GIS world example (examples/gis-world) ------------------
+# Synthetic, made here (no third-party data): a 4 x 4 km landscape the rover of examples/gis-world crosses.
+GISW_SIZE = 4000.0        # metres per side
+GISW_DEM_SPACING = 4.0    # metres between DEM samples (1001 x 1001 samples: the sample grid covers [0, 4000]^2)
+GISW_LC_PIXEL = 10.0      # metres per land-cover pixel (400 x 400 pixels, each an area)
+GISW_WEST, GISW_SOUTH = 620000.0, 5180000.0  # projected south-west corner (EPSG:32633)
+
+
+def gisw_river_y(x):
+    """North coordinate of the main river's centre line at x (metres from the south-west corner)."""
+    return 1900.0 + 520.0 * math.sin(2 * math.pi * x / 3100.0) + 140.0 * math.sin(2 * math.pi * x / 900.0 + 1.0)
+
+
+def gisw_tributary_x(y):
+    """East coordinate of the tributary's centre line at y; it joins the main valley from the north."""
+    return 2700.0 + 260.0 * math.sin(2 * math.pi * y / 1700.0 + 0.4)
+
+
+def gisw_valley_distance(x, y):
+    main = abs(y - gisw_river_y(x))
+    tributary = abs(x - gisw_tributary_x(y)) if y > gisw_river_y(x) else 1e9
+    return min(main, tributary)
+
+
+def gisw_height(x, y):
+    """Height in metres at (x, y) metres east / north of the DEM's south-west sample."""
+    d = gisw_valley_distance(x, y)
+    valley = 55.0 * (1.0 - math.exp(-(d / 420.0) ** 2))          # a trough 55 m deep, 400 m wide shoulders
+    ridges = 18.0 * math.sin(2 * math.pi * x / 1300.0) * math.cos(2 * math.pi * y / 1700.0)
+    undulation = 3.0 * math.sin(x / 61.0 + 0.7 * math.sin(y / 97.0)) * math.cos(y / 73.0)
+    return 210.0 + 0.012 * (x + y) + valley + ridges + undulation
+
+
+def gisw_hash(i, j, salt):
+    h = (i * 73856093 ^ j * 19349663 ^ salt * 83492791) & 0xffffffff
+    h = (h ^ (h >> 13)) * 0x5bd1e995 & 0xffffffff
+    return ((h ^ (h >> 15)) & 0xffff) / 65535.0
+
+
+def gisw_landcover(x, y):
+    """ESA WorldCover class at (x, y) metres east / north of the south-west corner."""
+    d = gisw_valley_distance(x, y)
+    if d < 18.0:
+        return 80   # permanent water: the river and its tributary
+    field_i, field_j = int(x // 320.0), int(y // 240.0)
+    if d < 60.0 and gisw_hash(int(x // 50.0), int(y // 50.0), 3) < 0.5:
+        return 60   # bare / sparse vegetation: gravel banks along the water
+    if gisw_height(x, y) > 330.0 and gisw_hash(int(x // 150.0), int(y // 150.0), 1) < 0.7:
+        return 10   # tree cover on the high ridges
+    if d > 250.0 and gisw_hash(field_i, field_j, 2) < 0.35:
+        return 40   # cropland: rectangular fields on the valley shoulders
+    if gisw_hash(int(x // 90.0), int(y // 90.0), 4) < 0.04:
+        return 60   # bare patches
+    return 30       # grassland: the meadow
+
+
+def write_gis_world(folder):
+    with tempfile.TemporaryDirectory() as tmp:
+        n = int(GISW_SIZE / GISW_DEM_SPACING) + 1
+        rows = [[f"{gisw_height(i * GISW_DEM_SPACING, (n - 1 - r) * GISW_DEM_SPACING):.4f}" for i in range(n)]
+                for r in range(n)]
+        write_ascii_grid(os.path.join(tmp, "dem.asc"), rows, GISW_DEM_SPACING, GISW_WEST - GISW_DEM_SPACING / 2,
+                         GISW_SOUTH - GISW_DEM_SPACING / 2)
+        translate(os.path.join(tmp, "dem.asc"), os.path.join(folder, "dem.tif"), "Float32")
+        m = int(GISW_SIZE / GISW_LC_PIXEL)
+        rows = [[str(gisw_landcover((i + 0.5) * GISW_LC_PIXEL, (m - 1 - r + 0.5) * GISW_LC_PIXEL)) for i in range(m)]
+                for r in range(m)]
+        write_ascii_grid(os.path.join(tmp, "landcover.asc"), rows, GISW_LC_PIXEL, GISW_WEST, GISW_SOUTH)
+        translate(os.path.join(tmp, "landcover.asc"), os.path.join(folder, "landcover.tif"), "Byte")
+
+
 # tracks: a 75 m meadow whose eastern part is bare soil, 0.5 m per texel; channels ferns, grass, flowers.
 TRACKS_SIZE, TRACKS_TEXELS, TRACKS_BARE_FROM = 75.0, 150, 40.0
 
@@ -215,10 +290,11 @@ def main():
     if len(sys.argv) != 2:
         sys.exit("usage: make-example-data.py OUT_DIR")
     out = sys.argv[1]
-    for sub in ("hills", "gis", "tracks"):
+    for sub in ("hills", "gis", "gis-world", "tracks"):
         os.makedirs(os.path.join(out, sub), exist_ok=True)
     write_hills(os.path.join(out, "hills", "hills.gltf"))
     write_gis(os.path.join(out, "gis"))
+    write_gis_world(os.path.join(out, "gis-world"))
     write_png_rgb(os.path.join(out, "tracks", "grass.png"), TRACKS_TEXELS, TRACKS_TEXELS, tracks_pixel)
 
 
