@@ -7,6 +7,7 @@
 
 #include "common/error.h"
 #include "dataset/frame_record.h"
+#include "scene/world_objects.h"
 
 #include <functional>
 
@@ -37,7 +38,7 @@ RigCameras sequenceRig(const SceneResources& r, uint32_t width, uint32_t height,
 }
 
 RigCameras sequenceRigAt(const SceneResources& r, uint32_t width, uint32_t height, double time) {
-    if (r.world) return sceneRig(r.scene, cameraGround(r.scene, time), r.models, width, height, time);
+    if (r.world) return worldRig(r.scene, r.models, width, height, time);
     return sceneRig(r.scene, r.terrain, r.models, width, height, time);
 }
 
@@ -85,20 +86,45 @@ namespace {
 // tick runs (VegetationRenderer::recordKeepState). Without a simulation the plants' records never change: the kept
 // states enableFlow() made stay right.
 void recordFlowTick(SceneGpu& gpu, VkCommandBuffer cmd, uint32_t tick) {
-    if (!gpu.simulation) return;
+    if (!gpu.simulation && !gpu.worldSimulation) return;
     if (VegetationRenderer* plants = gpu.renderer->vegetation()) plants->recordKeepState(cmd);
-    gpu.simulation->recordNextTick(cmd, tick);
+    if (gpu.worldSimulation)
+        gpu.worldSimulation->recordNextTick(cmd, tick); // prepared by prepareWorldFlowTicks
+    else
+        gpu.simulation->recordNextTick(cmd, tick);
 }
 
 // The prologue of a frame with motion ground truth: this frame's tick, unless the previous frame ran it before its
-// truth passes.
+// truth passes (or prepareWorldFlowTicks before the frame).
 std::function<void(VkCommandBuffer)> flowPrologue(SceneGpu& gpu, uint32_t frame) {
     if (VegetationRenderer* plants = gpu.renderer->vegetation()) plants->enableFlow();
-    if (gpu.simulation && gpu.simulation->nextTick() == uint64_t(frame) + 1) return {};
+    if (gpu.worldSimulation || (gpu.simulation && gpu.simulation->nextTick() == uint64_t(frame) + 1)) return {};
     return [&gpu, frame](VkCommandBuffer cmd) { recordFlowTick(gpu, cmd, frame); };
 }
 
-// renderSequenceFrame with the motion ground truth (render.flow; one tile, no world simulation). This tick's plant
+// A world's simulation with motion ground truth. As on one tile, the next tick (f + 1) runs between the frame's main
+// and truth passes, its state kept first; but a world's tick is prepared outside any command buffer, and preparing
+// tick f + 1 changes what is resident, so tick f runs before the frame, in a submission of its own (the state before
+// it kept first), unless the previous frame's truth ran it; then tick f + 1 is prepared. Residency at t - 1, t, t + 1:
+// that prepare keeps every tile within load_radius of this frame's cameras (`around`) resident, so every tile the
+// frame draws has its kept state of tick f - 1 and gets tick f + 1; a tile it makes resident lies beyond them and was
+// not resident at tick f, which left it unchanged: its kept states, its live records, are its state at f - 1 and f.
+// An evicted tile's plants have recovered (WorldTiles), so tick f + 1 would not move them.
+void prepareWorldFlowTicks(SceneGpu& gpu, uint32_t frame, std::span<const glm::dvec2> around) {
+    WorldSimulation& sim = *gpu.worldSimulation;
+    VegetationRenderer& plants = *gpu.renderer->vegetation(); // a world simulation needs drawn plants
+    plants.enableFlow();
+    if (sim.nextTick() != uint64_t(frame) + 1) {
+        sim.runTicksBefore(frame);
+        require(sim.nextTick() == frame,
+                "frame " + std::to_string(frame) + " cannot be rendered: the world's simulation is at tick " +
+                    std::to_string(sim.nextTick()) + " and never goes back (restore a saved state)");
+        sim.runNextTick(around, [&](VkCommandBuffer cmd) { plants.recordKeepState(cmd); });
+    }
+    sim.prepare(around);
+}
+
+// renderSequenceFrame with the motion ground truth (render.flow). This tick's plant
 // state is kept before the next tick runs between the main and the truth passes. `rowTime` (a rolling shutter's band,
 // render/rolling_shutter.h): the flow's rigs are those a step before and after that time, and the next tick is
 // recorded only with `tickNext` (the first band's truth: the later bands' find it run).
@@ -178,21 +204,28 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
         sensor ? frameExposureTimes(r, sensor->params(), width, height, frame) : std::vector<double>();
     auto rigAt = [&](double t) { return sequenceRigAt(r, width, height, t); };
     std::function<void(VkCommandBuffer)> tick;
-    if (gpu.worldSimulation) { // the tiles around the camera and the actors, generated before the frame
-        gpu.worldSimulation->runTicksBefore(frame);
-        require(gpu.worldSimulation->nextTick() == frame,
-                "frame " + std::to_string(frame) + " cannot be rendered: the world's simulation is at tick " +
-                    std::to_string(gpu.worldSimulation->nextTick()) + " and never goes back (restore a saved state)");
-        gpu.worldSimulation->prepare();
-        tick = [&](VkCommandBuffer cmd) { gpu.worldSimulation->recordNextTick(cmd, frame); };
-    } else if (r.world) { // every tile within load_radius of the cameras, generated before the frame: deterministic
-        std::vector<glm::dvec2> around{glm::dvec2(cameras.left.position)};
+    std::vector<glm::dvec2> around; // a world's cameras: every tile within load_radius of them is drawn
+    if (r.world) {
+        around.push_back(glm::dvec2(cameras.left.position));
         for (double t : exposure) around.push_back(glm::dvec2(rigAt(t).left.position));
         if (sensor && sensor->params().readoutSeconds > 0.0) // a rolling shutter's first and last rows' exposures
             for (double t :
                  {time - 0.5 * sensor->params().readoutSeconds, time + 0.5 * sensor->params().readoutSeconds})
                 for (double s : {-0.5, 0.5})
                     around.push_back(glm::dvec2(rigAt(t + s * sensor->params().shutterSeconds).left.position));
+        // The range sensors' sweeps start within load_radius of the tiles their rays meet (range/range_recorder.h).
+        for (const glm::dvec2& start : rangeSensorStarts(r.scene, time)) around.push_back(start);
+    }
+    if (gpu.worldSimulation && target.hasFlow()) {
+        prepareWorldFlowTicks(gpu, frame, around);
+    } else if (gpu.worldSimulation) { // the tiles around the cameras and the actors, generated before the frame
+        gpu.worldSimulation->runTicksBefore(frame);
+        require(gpu.worldSimulation->nextTick() == frame,
+                "frame " + std::to_string(frame) + " cannot be rendered: the world's simulation is at tick " +
+                    std::to_string(gpu.worldSimulation->nextTick()) + " and never goes back (restore a saved state)");
+        gpu.worldSimulation->prepare(around);
+        tick = [&](VkCommandBuffer cmd) { gpu.worldSimulation->recordNextTick(cmd, frame); };
+    } else if (r.world) { // generated before the frame: deterministic
         r.world->waitFor(around);
         syncWorldTiles(*gpu.renderer, *r.world);
     }
@@ -229,15 +262,19 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
 
 RangeFrameState rangeFrameState(SceneGpu& gpu, const SceneResources& r, RutPatchCache& ruts) {
     RangeFrameState state;
-    if (!gpu.simulation) return state;
-    if (gpu.simulation->hasPlants()) state.dynamics = gpu.simulation->gpu().readDynamics();
-    const GroundTracks& tracks = gpu.simulation->tracks();
+    if (!gpu.simulation && !gpu.worldSimulation) return state;
+    // A world's CPU tiles hold the plants' state the range sensors see, once read back; its ruts lie on the world's
+    // lattice ground (worldTrackPatchVertices).
+    if (gpu.worldSimulation) gpu.worldSimulation->readBackTiles();
+    if (gpu.simulation && gpu.simulation->hasPlants()) state.dynamics = gpu.simulation->gpu().readDynamics();
+    const GroundTracks& tracks = gpu.worldSimulation ? gpu.worldSimulation->tracks() : gpu.simulation->tracks();
     if (tracks.revision() != ruts.revision) {
-        if (!ruts.mesh && !tracks.blocks().empty()) ruts.mesh = groundDrawMesh(r.terrain);
+        if (!r.world && !ruts.mesh && !tracks.blocks().empty()) ruts.mesh = groundDrawMesh(r.terrain);
         auto patches = std::make_shared<std::vector<GroundPatch>>();
         for (const auto& [key, depths] : tracks.blocks()) {
             GroundPatch patch{key.x, key.y, {}};
-            for (const gpu::TerrainVertex& v : trackPatchVertices(tracks, r.terrain, *ruts.mesh, key))
+            for (const gpu::TerrainVertex& v : r.world ? worldTrackPatchVertices(tracks, r.scene, key)
+                                                       : trackPatchVertices(tracks, r.terrain, *ruts.mesh, key))
                 patch.points.push_back(v.positionHeight);
             patches->push_back(std::move(patch));
         }

@@ -2,6 +2,8 @@
 
 #include "common/error.h"
 #include "render/object_renderer.h"
+#include "scene/world_tiles.h"
+#include "world/path.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,6 +30,10 @@ void Session::createGpu() {
     initial_ = resources_.scene;
     if (!resources_.scene.rangeSensors.empty()) range_ = std::make_unique<RangeRecorder>(resources_); // needs the atlas
     gpu_ = createSceneGpu(*ctx_, resources_, resources_.scene.render.samples, SimulationMode::Always);
+    // A world's interaction likewise, with or without actors of the scene. With none acting it simulates no tile and
+    // loads around the cameras as a world without one does, so frames stay sward-render's.
+    if (resources_.world && !gpu_.worldSimulation && resources_.withVegetation() && gpu_.renderer->vegetation())
+        gpu_.worldSimulation = std::make_unique<WorldSimulation>(*ctx_, resources_, *gpu_.renderer);
     const glm::uvec3 size(width_, height_, resources_.scene.render.samples);
     if (!target_ || size != targetSize_) {
         target_.reset();
@@ -62,7 +68,8 @@ void Session::reset(std::optional<Scene> scene) {
 }
 
 void Session::restart() {
-    if (resources_.world) return reset(initial_); // a world's resident tiles and their kept states: built again
+    // A world: its tiles, resident and evicted, with every touched field and kept state, dropped and built again.
+    if (resources_.world) return reset(initial_);
     resources_.scene = initial_;
     if (ObjectRenderer* objects = gpu_.renderer->objects()) objects->resetObjects(initial_.objects);
     gpu_.renderer->setWeather(initial_.wind, initial_.sun, initial_.sky);
@@ -149,6 +156,11 @@ void Session::setObjectPose(size_t k, glm::dvec2 position, double headingDegrees
 }
 
 void Session::setColliders(std::vector<Collider> colliders) {
+    if (resources_.world) {
+        require(gpu_.worldSimulation != nullptr,
+                "set_colliders: the scene has no vegetation to interact with (vegetation off or empty)");
+        return gpu_.worldSimulation->setExternalColliders(std::move(colliders));
+    }
     simulation("set_colliders").setExternalColliders(std::move(colliders));
 }
 
@@ -161,7 +173,11 @@ VehicleState Session::drive(size_t k, const VehicleCommand& command) {
     auto it = vehicles_.find(k);
     if (it == vehicles_.end()) { // from where the object stands at the next frame, facing where its model faces
         const double time = double(next_) * resources_.scene.sequence.timeStep;
-        const ObjectPose pose = objectPose(objects[k], resources_.models[k], resources_.terrain, time);
+        // In a world, the lattice ground at the object (the xy and heading taken here do not depend on the heights).
+        const glm::dvec2 xy = pathPoseXY(objects[k].path, time);
+        const Ground world = resources_.world ? latticeGround(resources_.scene, xy, xy, 0.0) : Ground();
+        const ObjectPose pose =
+            objectPose(objects[k], resources_.models[k], resources_.world ? world : resources_.terrain, time);
         const double heading = headingDegreesOf(glm::dvec2(pose.forward)) + objects[k].yawDegrees;
         it = vehicles_.emplace(k, VehicleState{.position = glm::dvec2(pose.position), .headingDegrees = heading}).first;
     }
@@ -180,6 +196,7 @@ void Session::setWeather(const std::string& key, const nlohmann::json& value) {
 std::vector<Collider> Session::lastTickColliders() const {
     if (!resources_.withVegetation()) return {}; // as sward-render records bare ground: no plant to act on
     if (gpu_.simulation) return gpu_.simulation->lastColliders(); // the scene's and the program's
+    if (gpu_.worldSimulation) return gpu_.worldSimulation->lastColliders();
     return sceneColliders(resources_, next_);
 }
 
@@ -202,8 +219,7 @@ void Session::restoreState(const std::string& path) {
     next_ = uint32_t(sim.nextTick());
 }
 
-Simulation& Session::simulation(const char* what) {
-    require(!resources_.world, std::string(what) + ": not supported in a world of several tiles yet");
+Simulation& Session::simulation(const char* what) { // one tile's (a world's callers use gpu_.worldSimulation)
     require(gpu_.simulation != nullptr,
             std::string(what) + ": the scene has no vegetation to interact with (vegetation off or empty)");
     return *gpu_.simulation;

@@ -5,6 +5,7 @@
 #include "render/scene_gpu.h"
 #include "render/sequence_frame.h"
 #include "render/vegetation_renderer.h"
+#include "scene/world_objects.h"
 
 #include <algorithm>
 
@@ -18,6 +19,7 @@ WorldSimulation::WorldSimulation(Context& ctx, SceneResources& resources, SceneR
     : ctx_(ctx), resources_(resources), renderer_(renderer), threads_(resolveThreadCount(threads)) {
     require(resources.world != nullptr && renderer.vegetation() != nullptr,
             "WorldSimulation: needs a world whose vegetation is drawn");
+    if (sceneMakesRuts(resources.scene)) renderer.setWorldGroundTracks(&tracks_);
     resources.world->setBeforeEvict([this](WorldTile& tile) {
         readBack(tile);
         tiles_.erase(Key(tile.coord.y, tile.coord.x));
@@ -47,20 +49,25 @@ std::vector<glm::dvec2> WorldSimulation::interestPoints(uint64_t tick) const {
     const std::vector<glm::dvec2> actors =
         actorPoints(resources_.scene, double(tick) * resources_.scene.sequence.timeStep);
     points.insert(points.end(), actors.begin(), actors.end());
+    for (const Collider& collider : external_) points.push_back(glm::dvec2(collider.centre));
     return points;
 }
 
-void WorldSimulation::prepare() {
+void WorldSimulation::prepare(std::span<const glm::dvec2> around) {
     const Scene& scene = resources_.scene;
     WorldTiles& world = *resources_.world;
-    world.waitFor(interestPoints(tick_));
+    std::vector<glm::dvec2> points = interestPoints(tick_);
+    points.insert(points.end(), around.begin(), around.end());
+    if (waitForTiles_) world.waitFor(points);
     syncWorldTiles(renderer_, world);
     // Each tile collides only the colliders that reach it, in the scene's order: its contacts do not depend on which
     // other tiles are resident.
-    lastColliders_ = worldActorColliders(scene, double(tick_) * scene.sequence.timeStep);
+    lastColliders_ = worldColliders(scene, resources_.models, tick_);
+    lastColliders_.insert(lastColliders_.end(), external_.begin(), external_.end());
     reaching_.clear();
     for (const Collider& collider : lastColliders_)
         for (TileCoord coord : tilesReached(scene, collider)) {
+            if (!waitForTiles_ && world.find(coord) == nullptr) continue; // sward-view: no pass on a missing tile
             require(world.find(coord) != nullptr,
                     scene.source + ": at tick " + std::to_string(tick_) + " collider " + std::to_string(collider.id) +
                         " reaches tile (" + std::to_string(coord.x) + ", " + std::to_string(coord.y) +
@@ -96,6 +103,16 @@ void WorldSimulation::runTicksBefore(uint64_t tick) {
     }
 }
 
+void WorldSimulation::runNextTick(std::span<const glm::dvec2> around,
+                                  const std::function<void(VkCommandBuffer)>& before) {
+    prepare(around);
+    const uint32_t slot = uint32_t(tick_);
+    ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
+        if (before) before(cmd);
+        recordNextTick(cmd, slot);
+    });
+}
+
 void WorldSimulation::recordNextTick(VkCommandBuffer cmd, uint32_t slot) {
     require(prepared_ == tick_, "WorldSimulation: tick " + std::to_string(tick_) + " was not prepared");
     WorldTiles& world = *resources_.world;
@@ -107,18 +124,47 @@ void WorldSimulation::recordNextTick(VkCommandBuffer cmd, uint32_t slot) {
         contacts_ += result.contacts.size();
         sim->gpu.record(cmd, result.contacts, result.activeFields, resources_.scene.interaction.recovery, slot);
     }
+    pressRuts();
     prepared_.reset();
     ++tick_;
+}
+
+// Each collider pressing ruts is swept from its previous pose (recomputed after a restore) over the lattice ground
+// around both (latticeGround: the tiles' heights bitwise, whichever tiles are resident). GroundTracks keeps the
+// deepest press of each vertex, so pressing the colliders one by one equals pressing them together.
+void WorldSimulation::pressRuts() {
+    const Scene& scene = resources_.scene;
+    std::vector<Collider> recomputed;
+    if (tick_ > 0 && pressedColliders_.empty()) {
+        recomputed = worldColliders(scene, resources_.models, tick_ - 1);
+        recomputed.insert(recomputed.end(), external_.begin(), external_.end());
+    }
+    const std::vector<Collider>& previous = pressedColliders_.empty() ? recomputed : pressedColliders_;
+    for (const Collider& collider : lastColliders_) {
+        if (collider.kind != ColliderKind::Push || !(collider.rut.depth > 0.0f)) continue;
+        const Aabb bounds = worldBounds(collider);
+        const double reach = double(GroundTracks::kMaxSweep) + collider.rut.depth + gpu::kTrackCell;
+        const Ground ground = latticeGround(scene, glm::dvec2(bounds.min), glm::dvec2(bounds.max), reach);
+        tracks_.press(previous, {&collider, 1}, ground);
+    }
+    pressedColliders_ = lastColliders_;
+}
+
+void WorldSimulation::readBackTiles() {
+    for (auto& [key, sim] : tiles_) readBack(*resources_.world->find(TileCoord{key.second, key.first}));
 }
 
 void WorldSimulation::saveState(const std::string& path) {
     WorldTiles& world = *resources_.world;
     for (auto& [key, sim] : tiles_) readBack(*world.find(TileCoord{key.second, key.first}));
-    world.saveState(path, tick_);
+    world.saveState(path, tick_, tracks_.blocks());
 }
 
 uint64_t WorldSimulation::restoreState(const std::string& path) {
-    const uint64_t tick = resources_.world->restoreState(path);
+    TrackBlocks tracks;
+    const uint64_t tick = resources_.world->restoreState(path, &tracks);
+    tracks_.restore(std::move(tracks));
+    pressedColliders_.clear(); // recomputed for the next tick's sweep
     // The resident tiles' CPU copies now hold the restored state: the GPU copies and simulations are dropped and made
     // again from them by the next prepare().
     tiles_.clear();
