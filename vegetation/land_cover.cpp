@@ -59,8 +59,9 @@ struct ClassifiedRaster {
     std::vector<glm::vec4> intensities;
 };
 
-std::string pixelText(const RasterBand& raster, size_t i) {
-    return "(" + std::to_string(i % raster.width) + ", " + std::to_string(i / raster.width) + ")";
+// Pixel i of `raster`, whose top-left pixel is pixel `origin` of the file (a window's offset), in the file's terms.
+std::string pixelText(const RasterBand& raster, size_t i, glm::uvec2 origin) {
+    return "(" + std::to_string(i % raster.width + origin.x) + ", " + std::to_string(i / raster.width + origin.y) + ")";
 }
 
 std::string valueText(double v) {
@@ -80,7 +81,8 @@ std::string tableCodes(const LandCoverTable& table) {
     return text.empty() ? "none" : text;
 }
 
-ClassifiedRaster classify(const RasterBand& raster, const LandCoverParams& params, const std::string& what) {
+ClassifiedRaster classify(const RasterBand& raster, const LandCoverParams& params, const std::string& what,
+                          glm::uvec2 origin = glm::uvec2(0)) {
     ClassifiedRaster out;
     std::map<int64_t, uint32_t> indexOf;
     for (const auto& [code, intensities] : params.table.classes) {
@@ -112,12 +114,12 @@ ClassifiedRaster classify(const RasterBand& raster, const LandCoverParams& param
         }
         if (!(v >= 0.0 && v <= double(kMaxLandCoverCode) && v == std::floor(v)))
             throw Error(what + ": raster '" + raster.source + "' has the value " + valueText(v) + " at pixel " +
-                        pixelText(raster, i) + ", which is not a class code (a whole number 0.." +
+                        pixelText(raster, i, origin) + ", which is not a class code (a whole number 0.." +
                         std::to_string(kMaxLandCoverCode) + ")");
         const auto it = indexOf.find(int64_t(v));
         if (it == indexOf.end())
             throw Error(what + ": class code " + std::to_string(int64_t(v)) + " of raster '" + raster.source +
-                        "' (first at pixel " + pixelText(raster, i) + ") is not in the table (it has " +
+                        "' (first at pixel " + pixelText(raster, i, origin) + ") is not in the table (it has " +
                         tableCodes(params.table) + ")");
         lastCode = v;
         lastIndex = it->second;
@@ -169,10 +171,8 @@ void boxFilterPlane(std::vector<double>& plane, uint32_t width, uint32_t height,
     });
 }
 
-} // namespace
-
-GrassMap makeLandCoverGrassMap(const RasterBand& raster, const LandCoverParams& params, glm::dvec2 pixelSize,
-                               const std::string& what, uint32_t threads) {
+void checkInputs(const RasterBand& raster, const LandCoverParams& params, glm::dvec2 pixelSize,
+                 const std::string& what) {
     require(raster.width >= 1 && raster.height >= 1 && raster.values.size() == size_t(raster.width) * raster.height,
             what + ": raster '" + raster.source + "' is empty");
     require(pixelSize.x > 0.0 && pixelSize.y > 0.0 && std::isfinite(pixelSize.x) && std::isfinite(pixelSize.y),
@@ -180,6 +180,13 @@ GrassMap makeLandCoverGrassMap(const RasterBand& raster, const LandCoverParams& 
     require(params.borderWidth >= 0.0 && params.borderWidth <= kMaxLandCoverBorder,
             what + ": the border width must be 0.." + valueText(kMaxLandCoverBorder) + " m");
     require(params.table.channels == 3 || params.table.channels == 4, what + ": the table needs 3 or 4 channels");
+}
+
+} // namespace
+
+GrassMap makeLandCoverGrassMap(const RasterBand& raster, const LandCoverParams& params, glm::dvec2 pixelSize,
+                               const std::string& what, uint32_t threads) {
+    checkInputs(raster, params, pixelSize, what);
     const ClassifiedRaster classes = classify(raster, params, what);
     const uint32_t channels = params.table.channels;
     const glm::dvec2 half = params.borderWidth * 0.5 / pixelSize; // in pixels
@@ -203,6 +210,219 @@ GrassMap loadLandCoverGrassMap(const LandCoverParams& params, double tileSize, c
     }
     const glm::dvec2 pixelSize(tileSize / raster.width, tileSize / raster.height);
     return makeLandCoverGrassMap(raster, params, pixelSize, what, threads);
+}
+
+GrassMap landCoverIntensityBound(const LandCoverParams& params) {
+    const uint32_t channels = params.table.channels;
+    std::vector<float> most(channels, 0.0f); // a nodata pixel without a class: zeros
+    for (const auto& [code, intensities] : params.table.classes)
+        for (uint32_t c = 0; c < channels; ++c) most[c] = std::max(most[c], intensities[int(c)]);
+    return GrassMap(1, 1, channels, std::move(most), "the largest intensities of the land-cover table");
+}
+
+namespace {
+
+std::string shortText(double v) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%g", v);
+    return text;
+}
+
+// The box of pixel i along an axis of n pixels, in the raster's coordinates whatever window holds it: pixels
+// first .. last, the first and the last covered for wFirst and wLast of their width, `length` pixels in all (the
+// box clipped to the raster, as makeLandCoverGrassMap clips it).
+struct AxisBox {
+    uint32_t first = 0, last = 0;
+    double wFirst = 1.0, wLast = 1.0, length = 1.0;
+};
+
+AxisBox axisBox(uint32_t i, uint32_t n, double half) {
+    const double centre = double(i) + 0.5;
+    const double a = std::max(0.0, centre - half), b = std::min(double(n), centre + half);
+    AxisBox box{.first = std::min(uint32_t(a), n - 1), .last = std::min(uint32_t(std::ceil(b)) - 1, n - 1)};
+    box.length = b - a;
+    box.wFirst = box.first == box.last ? box.length : double(box.first + 1) - a;
+    box.wLast = box.first == box.last ? box.length : b - double(box.last);
+    return box;
+}
+
+// The box's pixels in up to three runs of one weight: the first pixel, the inner ones (weight 1), the last.
+struct AxisRun {
+    uint32_t first, last;
+    double weight;
+};
+
+uint32_t axisRuns(const AxisBox& box, AxisRun runs[3]) {
+    uint32_t count = 0;
+    runs[count++] = {box.first, box.first, box.wFirst};
+    if (box.last > box.first + 1) runs[count++] = {box.first + 1, box.last - 1, 1.0};
+    if (box.last > box.first) runs[count++] = {box.last, box.last, box.wLast};
+    return count;
+}
+
+// Counts of one class over rectangles of a window: a summed-area table of whole numbers, so a rectangle's count is
+// exact and the same whichever window holds it.
+class ClassCounts {
+public:
+    ClassCounts(const std::vector<uint32_t>& index, RasterWindow where) : where_(where) {
+        sums_.resize(size_t(where.width + 1) * (where.height + 1));
+        index_ = &index;
+    }
+    void build(uint32_t cls) {
+        const size_t stride = where_.width + 1;
+        for (uint32_t y = 0; y < where_.height; ++y) {
+            uint32_t row = 0;
+            for (uint32_t x = 0; x < where_.width; ++x) {
+                row += (*index_)[size_t(y) * where_.width + x] == cls ? 1u : 0u;
+                sums_[(y + 1) * stride + x + 1] = sums_[y * stride + x + 1] + row;
+            }
+        }
+    }
+    // Pixels of the class in raster columns x0..x1, rows y0..y1 (inside the window).
+    uint32_t count(uint32_t x0, uint32_t x1, uint32_t y0, uint32_t y1) const {
+        const size_t stride = where_.width + 1;
+        const size_t a = x0 - where_.column, b = x1 + 1 - where_.column, c = y0 - where_.row, d = y1 + 1 - where_.row;
+        return sums_[d * stride + b] - sums_[c * stride + b] - sums_[d * stride + a] + sums_[c * stride + a];
+    }
+
+private:
+    RasterWindow where_;
+    const std::vector<uint32_t>* index_;
+    std::vector<uint32_t> sums_;
+};
+
+bool contains(RasterWindow outer, RasterWindow inner) {
+    return inner.column >= outer.column && inner.row >= outer.row &&
+           uint64_t(inner.column) + inner.width <= uint64_t(outer.column) + outer.width &&
+           uint64_t(inner.row) + inner.height <= uint64_t(outer.row) + outer.height;
+}
+
+} // namespace
+
+GrassMap makeLandCoverWindowGrassMap(const RasterBand& window, RasterWindow where, glm::uvec2 rasterSize,
+                                     RasterWindow out, const LandCoverParams& params, glm::dvec2 pixelSize,
+                                     const std::string& what, uint32_t threads) {
+    checkInputs(window, params, pixelSize, what);
+    require(window.width == where.width && window.height == where.height &&
+                contains(RasterWindow{0, 0, rasterSize.x, rasterSize.y}, where) && out.width >= 1 && out.height >= 1 &&
+                contains(where, out),
+            what + ": makeLandCoverWindowGrassMap: the windows do not nest");
+    const glm::dvec2 half = params.borderWidth * 0.5 / pixelSize; // in pixels
+    std::vector<AxisBox> xs(out.width), ys(out.height);
+    for (uint32_t x = 0; x < out.width; ++x) xs[x] = axisBox(out.column + x, rasterSize.x, half.x);
+    for (uint32_t y = 0; y < out.height; ++y) ys[y] = axisBox(out.row + y, rasterSize.y, half.y);
+    require(contains(where, {xs.front().first, ys.front().first, xs.back().last - xs.front().first + 1,
+                             ys.back().last - ys.front().first + 1}),
+            what + ": makeLandCoverWindowGrassMap: the window lacks pixels the border reaches");
+    const ClassifiedRaster classes = classify(window, params, what, {where.column, where.row});
+    const uint32_t channels = params.table.channels;
+    const size_t pixels = size_t(out.width) * out.height;
+    std::vector<double> weighted(pixels * channels, 0.0); // sum over classes of intensity x covered area
+    std::vector<int64_t> alone(pixels, -1);               // the class filling the pixel's box, if one does
+    std::vector<bool> present(classes.intensities.size(), false);
+    for (uint32_t i : classes.index) present[i] = true;
+    ClassCounts counts(classes.index, where);
+    // Class by class in table order, so every pixel's sum is added in the same order wherever it is computed.
+    for (uint32_t cls = 0; cls < classes.intensities.size(); ++cls) {
+        if (!present[cls]) continue;
+        counts.build(cls);
+        const glm::vec4 intensity = classes.intensities[cls];
+        parallelFor(out.height, threads, [&](uint32_t y, uint32_t) {
+            AxisRun rows[3], cols[3];
+            const uint32_t rowRuns = axisRuns(ys[y], rows);
+            for (uint32_t x = 0; x < out.width; ++x) {
+                const AxisBox &bx = xs[x], &by = ys[y];
+                const uint32_t inBox = counts.count(bx.first, bx.last, by.first, by.last);
+                if (inBox == 0) continue;
+                const size_t p = size_t(y) * out.width + x;
+                if (uint64_t(inBox) == uint64_t(bx.last - bx.first + 1) * (by.last - by.first + 1)) {
+                    alone[p] = cls;
+                    continue;
+                }
+                const uint32_t colRuns = axisRuns(bx, cols);
+                double area = 0.0;
+                for (uint32_t r = 0; r < rowRuns; ++r)
+                    for (uint32_t c = 0; c < colRuns; ++c)
+                        area += rows[r].weight * cols[c].weight *
+                                double(counts.count(cols[c].first, cols[c].last, rows[r].first, rows[r].last));
+                for (uint32_t c = 0; c < channels; ++c) weighted[p * channels + c] += double(intensity[int(c)]) * area;
+            }
+        });
+    }
+    std::vector<float> values(pixels * channels);
+    for (size_t p = 0; p < pixels; ++p) {
+        const double area = xs[p % out.width].length * ys[p / out.width].length;
+        for (uint32_t c = 0; c < channels; ++c)
+            values[p * channels + c] = alone[p] >= 0 ? classes.intensities[size_t(alone[p])][int(c)]
+                                                     : float(weighted[p * channels + c] / area);
+    }
+    return GrassMap(out.width, out.height, channels, std::move(values), window.source);
+}
+
+LandCoverGrid landCoverGrid(uint32_t width, uint32_t height, const std::optional<RasterGeoTransform>& geo,
+                            const std::string& source, const LandCoverWorld& world, const std::string& what) {
+    require(world.tilesX >= 1 && world.tilesY >= 1 && world.tileSize > 0.0, what + ": landCoverGrid: no world");
+    const glm::dvec2 worldExtent(world.tilesX * world.tileSize, world.tilesY * world.tileSize);
+    const std::string worldText = shortText(worldExtent.x) + " x " + shortText(worldExtent.y) + " m (" +
+                                  std::to_string(world.tilesX) + " x " + std::to_string(world.tilesY) + " tiles of " +
+                                  shortText(world.tileSize) + " m)";
+    if (geo && geo->metresPerUnit > 0.0) {
+        const glm::dvec2 pixel = glm::dvec2(geo->pixelWidth, geo->pixelHeight) * geo->metresPerUnit;
+        const glm::dvec2 extent = glm::dvec2(width, height) * pixel;
+        if (glm::any(glm::greaterThan(glm::abs(extent - worldExtent), 1e-6 * worldExtent)))
+            throw Error(what + ": raster '" + source + "' covers " + shortText(extent.x) + " x " + shortText(extent.y) +
+                        " m (" + std::to_string(width) + " x " + std::to_string(height) + " pixels of " +
+                        shortText(pixel.x) + " x " + shortText(pixel.y) + " m), but the world covers " + worldText +
+                        ": in a world the land cover must cover the world's extent (crop or warp it, e.g. gdalwarp "
+                        "-te)");
+    }
+    require(width % world.tilesX == 0 && height % world.tilesY == 0,
+            what + ": raster '" + source + "' has " + std::to_string(width) + " x " + std::to_string(height) +
+                " pixels, not a whole number of pixels per tile of the world's " + worldText +
+                "; resample it to a multiple (gdalwarp -ts)");
+    LandCoverGrid grid{.rasterSize = {width, height}, .pixelsPerTile = {width / world.tilesX, height / world.tilesY}};
+    grid.pixelSize = world.tileSize / glm::dvec2(grid.pixelsPerTile);
+    return grid;
+}
+
+namespace {
+
+// The raster pixels of tile (x, y): tile rows count north, raster rows south.
+RasterWindow tilePixels(const LandCoverGrid& grid, glm::uvec2 tile) {
+    const glm::uvec2 tiles = grid.rasterSize / grid.pixelsPerTile;
+    require(tile.x < tiles.x && tile.y < tiles.y, "land cover: the tile is outside the world");
+    return {tile.x * grid.pixelsPerTile.x, (tiles.y - 1 - tile.y) * grid.pixelsPerTile.y, grid.pixelsPerTile.x,
+            grid.pixelsPerTile.y};
+}
+
+} // namespace
+
+RasterWindow landCoverTileWindow(const LandCoverGrid& grid, glm::uvec2 tile, double borderWidth) {
+    const RasterWindow pixels = tilePixels(grid, tile);
+    // The box of a pixel reaches at most ceil(half) pixels beyond it; one more absorbs the rounding of its ends.
+    const glm::dvec2 reach = glm::ceil(borderWidth * 0.5 / grid.pixelSize) + 1.0;
+    const glm::uvec2 margin(std::min(reach.x, double(grid.rasterSize.x)), std::min(reach.y, double(grid.rasterSize.y)));
+    const glm::uvec2 lo(pixels.column, pixels.row);
+    const glm::uvec2 first = glm::uvec2(glm::max(glm::ivec2(lo) - glm::ivec2(margin), glm::ivec2(0)));
+    const glm::uvec2 end = glm::min(lo + grid.pixelsPerTile + margin, grid.rasterSize);
+    return {first.x, first.y, end.x - first.x, end.y - first.y};
+}
+
+GrassMap loadLandCoverTileGrassMap(const LandCoverParams& params, const LandCoverWorld& world, glm::uvec2 tile,
+                                   const std::string& what, uint32_t threads, const InputFolders& folders) {
+    const RasterReadOptions options{.band = params.band, .requireFinite = false, .folders = folders};
+    try {
+        const RasterInfo info = readRasterInfo(params.file, options);
+        const LandCoverGrid grid = landCoverGrid(info.width, info.height, info.geoTransform, info.source, world, what);
+        const RasterWindow where = landCoverTileWindow(grid, tile, params.borderWidth);
+        const RasterBand window = readRasterWindow(params.file, where, options);
+        return makeLandCoverWindowGrassMap(window, where, grid.rasterSize, tilePixels(grid, tile), params,
+                                           grid.pixelSize, what, threads);
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        if (message.rfind(what, 0) == 0) throw;
+        throw Error(what + ": " + message); // which key named the file
+    }
 }
 
 } // namespace sward

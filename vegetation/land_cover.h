@@ -65,4 +65,50 @@ GrassMap makeLandCoverGrassMap(const RasterBand& raster, const LandCoverParams& 
 GrassMap loadLandCoverGrassMap(const LandCoverParams& params, double tileSize, const std::string& what,
                                uint32_t threads = 0, const InputFolders& folders = {});
 
+// The largest intensity of each channel over the table's classes (a nodata pixel's zeros included): no box average
+// exceeds it, so a 1 x 1 map of these values bounds the plants of any map the table makes (predictPlantCount).
+GrassMap landCoverIntensityBound(const LandCoverParams& params);
+
+// A land cover over a world of tiles (issue 51): the raster covers the world's extent, tilesX x tilesY tiles of
+// tileSize metres, north up, its top-left pixel at the world's north-west corner; each tile's grass map is the
+// raster's window over that tile, blurred with the margin its border needs, so that it equals the whole raster's
+// map cut at the tile (the same plants whichever tile generates a border).
+struct LandCoverWorld {
+    uint32_t tilesX = 1, tilesY = 1;
+    double tileSize = 0.0; // metres
+};
+
+// How a raster of rasterSize pixels lies over a world: pixelsPerTile whole pixels per tile along each axis.
+struct LandCoverGrid {
+    glm::uvec2 rasterSize{0}, pixelsPerTile{0};
+    glm::dvec2 pixelSize{0.0}; // metres: tileSize / pixelsPerTile
+};
+
+// Checks that a raster of width x height pixels with georeferencing `geo` covers `world`: a raster georeferenced in
+// metres (a projected system) must span the world's extent (within 1e-6 of it); one without georeferencing or
+// without a linear unit (geographic, unknown) is stretched over it, as one tile's land cover is over its tile.
+// Either way each tile must hold whole pixels (width a multiple of tilesX, height of tilesY). Throws sward::Error
+// prefixed with `what` naming the raster `source` and both extents, or the pixel and tile counts.
+LandCoverGrid landCoverGrid(uint32_t width, uint32_t height, const std::optional<RasterGeoTransform>& geo,
+                            const std::string& source, const LandCoverWorld& world, const std::string& what);
+
+// The pixels of the raster a tile's map reads: the tile's pixels widened by the pixels the border's box reaches,
+// clipped to the raster. Tile (x, y) counts y northwards (tile 0 is the south row, the raster's bottom rows).
+RasterWindow landCoverTileWindow(const LandCoverGrid& grid, glm::uvec2 tile, double borderWidth);
+
+// The grass map of the raster pixels `out` (inside `where`), from `window`, the raster's pixels `where` of a raster
+// of rasterSize pixels of pixelSize metres. Each pixel is the mean over the clipped box of side borderWidth of the
+// class intensities, from exact integer counts of each class in the box: bitwise the same whatever window holds the
+// box (a tile's map equals the whole raster's cut at the tile), within float rounding of makeLandCoverGrassMap, and
+// exactly a class's intensities where the box holds that class alone. Errors as makeLandCoverGrassMap, their pixels
+// in raster coordinates.
+GrassMap makeLandCoverWindowGrassMap(const RasterBand& window, RasterWindow where, glm::uvec2 rasterSize,
+                                     RasterWindow out, const LandCoverParams& params, glm::dvec2 pixelSize,
+                                     const std::string& what, uint32_t threads = 0);
+
+// Reads params.file and makes the grass map of tile (x, y) of `world` (landCoverGrid, landCoverTileWindow,
+// makeLandCoverWindowGrassMap). Errors as loadLandCoverGrassMap and landCoverGrid.
+GrassMap loadLandCoverTileGrassMap(const LandCoverParams& params, const LandCoverWorld& world, glm::uvec2 tile,
+                                   const std::string& what, uint32_t threads = 0, const InputFolders& folders = {});
+
 } // namespace sward
