@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sward {
 
@@ -27,66 +28,148 @@ std::optional<int64_t> latticeIndex(double x, double o, double s) {
     return int64_t(k);
 }
 
-Heightfield proceduralHeights(const Scene& scene, glm::dvec2 lo, glm::dvec2 hi) {
+// The lattice's heights over a window, row-major from the south-west corner. A DEM's nodata and non-finite samples
+// are NaN and heights beyond 1e6 m kept as computed: the caller refuses them inside a tile and skips a skirt side
+// holding one.
+struct Samples {
+    uint32_t columns = 0, rows = 0;
+    int64_t firstColumn = 0, firstRow = 0; // a DEM's pixel of sample (0, rows - 1), the window's north-west one
+    std::vector<float> heights;
+    float at(uint32_t i, uint32_t j) const { return heights[size_t(j) * columns + i]; }
+};
+
+bool usable(float height) {
+    return std::abs(height) <= 1e6f;
+}
+
+Samples proceduralSamples(const Scene& scene, glm::dvec2 lo, glm::dvec2 hi) {
     ProceduralTerrainParams window = scene.terrain.procedural;
     window.origin = lo;
     window.size = float(std::max(hi.x - lo.x, hi.y - lo.y));
     Heightfield square = makeProceduralTerrain(window);
     const double s = window.spacing;
-    const uint32_t columns = uint32_t(std::lround((hi.x - lo.x) / s)) + 1,
-                   rows = uint32_t(std::lround((hi.y - lo.y) / s)) + 1;
-    if (columns == square.columns() && rows == square.rows()) return square;
-    require(columns <= square.columns() && rows <= square.rows(), "worldHeights: the window is not on the lattice");
-    // The terrain is made square; a window of another shape is its south-west part (heights depend on the lattice
+    Samples out{.columns = uint32_t(std::lround((hi.x - lo.x) / s)) + 1,
+                .rows = uint32_t(std::lround((hi.y - lo.y) / s)) + 1};
+    require(out.columns <= square.columns() && out.rows <= square.rows(),
+            "worldHeights: the window is not on the lattice");
+    // The terrain is made square; a window of another shape is its south-west part (a height depends on its lattice
     // point alone).
-    std::vector<float> heights(size_t(columns) * rows);
-    for (uint32_t j = 0; j < rows; ++j)
-        for (uint32_t i = 0; i < columns; ++i) heights[size_t(j) * columns + i] = square.sample(i, j);
-    return Heightfield(columns, rows, square.spacing(), square.origin(), std::move(heights));
+    out.heights.resize(size_t(out.columns) * out.rows);
+    for (uint32_t j = 0; j < out.rows; ++j)
+        for (uint32_t i = 0; i < out.columns; ++i) out.heights[size_t(j) * out.columns + i] = square.sample(i, j);
+    return out;
 }
 
-Heightfield demHeights(const Scene& scene, const WorldLattice& lattice, glm::dvec2 lo, glm::dvec2 hi) {
-    const HeightmapParams& h = scene.terrain.heightmap;
-    const double s = lattice.spacing;
-    const auto i0 = latticeIndex(lo.x, lattice.origin.x, s), i1 = latticeIndex(hi.x, lattice.origin.x, s);
-    const auto j0 = latticeIndex(lo.y, lattice.origin.y, s), j1 = latticeIndex(hi.y, lattice.origin.y, s);
-    require(i0 && i1 && j0 && j1, demName(scene) + ": the window " + xyText(lo) + " .. " + xyText(hi) +
-                                      " does not lie on the DEM's samples (every " + formatNumber(s) + " m from " +
-                                      xyText(lattice.origin) + ")");
-    require(*i0 >= 0 && *j0 >= 0 && *i1 > *i0 && *j1 > *j0 && *i1 < int64_t(h.columns) && *j1 < int64_t(h.rows),
+// The DEM's lattice indices of a window's corner, refused off the lattice or beyond the DEM.
+glm::i64vec2 demIndex(const Scene& scene, const WorldLattice& lattice, glm::dvec2 p, glm::dvec2 lo, glm::dvec2 hi) {
+    const auto i = latticeIndex(p.x, lattice.origin.x, lattice.spacing);
+    const auto j = latticeIndex(p.y, lattice.origin.y, lattice.spacing);
+    require(i && j, demName(scene) + ": the window " + xyText(lo) + " .. " + xyText(hi) +
+                        " does not lie on the DEM's samples (every " + formatNumber(lattice.spacing) + " m from " +
+                        xyText(lattice.origin) + ")");
+    require(*i >= 0 && *j >= 0 && *i < int64_t(lattice.samples.x) && *j < int64_t(lattice.samples.y),
             demName(scene) + ": the window " + xyText(lo) + " .. " + xyText(hi) + " reaches beyond the DEM's " +
-                std::to_string(h.columns) + "x" + std::to_string(h.rows) + " samples, " + xyText(lattice.origin) +
-                " .. " + xyText(lattice.last()));
-    const uint32_t columns = uint32_t(*i1 - *i0 + 1), rows = uint32_t(*j1 - *j0 + 1);
-    const uint32_t topRow = h.rows - 1 - uint32_t(*j1); // raster rows run north to south
+                std::to_string(lattice.samples.x) + "x" + std::to_string(lattice.samples.y) + " samples, " +
+                xyText(lattice.origin) + " .. " + xyText(lattice.last()));
+    return {*i, *j};
+}
+
+Samples demSamples(const Scene& scene, glm::i64vec2 first, glm::i64vec2 last) {
+    const HeightmapParams& h = scene.terrain.heightmap;
+    Samples out{.columns = uint32_t(last.x - first.x + 1),
+                .rows = uint32_t(last.y - first.y + 1),
+                .firstColumn = first.x,
+                .firstRow = int64_t(h.rows) - 1 - last.y}; // raster rows run north to south
     RasterBand raster;
     try {
-        raster = readRasterWindow(h.path, {.column = uint32_t(*i0), .row = topRow, .width = columns, .height = rows},
-                                  {.folders = scene.assets.folders()});
+        raster = readRasterWindow(
+            h.path,
+            {.column = uint32_t(first.x), .row = uint32_t(out.firstRow), .width = out.columns, .height = out.rows},
+            {.folders = scene.assets.folders()});
     } catch (const Error& e) {
         throw Error(scene.source + ": 'terrain.heightmap': " + e.what());
     }
     // Heights as loadHeightfield computes them, so a one-tile scene of the same DEM stands on the same surface.
     const float scale = float(h.heightScale), offset = float(h.heightOffset);
-    std::vector<float> heights(size_t(columns) * rows);
-    for (uint32_t row = 0; row < rows; ++row)
-        for (uint32_t i = 0; i < columns; ++i) {
+    out.heights.resize(size_t(out.columns) * out.rows);
+    for (uint32_t row = 0; row < out.rows; ++row)
+        for (uint32_t i = 0; i < out.columns; ++i) {
             const double value = raster.at(i, row);
-            const float height = float(value) * scale + offset;
-            const uint32_t j = rows - 1 - row;
             const bool hole = raster.isNodata(value) || !std::isfinite(value);
-            if (hole || !(std::abs(height) <= 1e6f)) {
-                const glm::dvec2 p = lattice.origin + s * glm::dvec2(double(*i0 + i), double(*j0 + j));
-                throw Error(demName(scene) + " has " +
-                            (hole ? "a nodata or non-finite sample" : "a height beyond 1e6 m") + " at world " +
-                            xyText(p) + " (pixel " + std::to_string(*i0 + i) + ", " + std::to_string(topRow + row) +
-                            ") inside the world: a world's DEM is not filled; fill it first (e.g. "
-                            "gdal_fillnodata.py) or move 'vegetation.world_origin' / 'world.tiles'");
-            }
-            heights[size_t(j) * columns + i] = height;
+            out.heights[size_t(out.rows - 1 - row) * out.columns + i] =
+                hole ? std::numeric_limits<float>::quiet_NaN() : float(value) * scale + offset;
         }
-    const glm::dvec2 origin = lattice.origin + s * glm::dvec2(double(*i0), double(*j0));
-    return Heightfield(columns, rows, float(s), glm::vec2(origin), std::move(heights));
+    return out;
+}
+
+// Sample (i, j) of the window (its south-west at `lo`) is a hole or beyond 1e6 m: the one error, naming the file,
+// the sample's world position and its pixel. A world's DEM is not filled.
+[[noreturn]] void refuseSample(const Scene& scene, const Samples& samples, glm::dvec2 lo, double spacing, uint32_t i,
+                               uint32_t j) {
+    const glm::dvec2 p = lo + spacing * glm::dvec2(double(i), double(j));
+    const bool hole = std::isnan(samples.at(i, j));
+    throw Error(demName(scene) + " has " + (hole ? "a nodata or non-finite sample" : "a height beyond 1e6 m") +
+                " at world " + xyText(p) + " (pixel " + std::to_string(samples.firstColumn + i) + ", " +
+                std::to_string(samples.firstRow + (samples.rows - 1 - j)) +
+                ") inside the world: a world's DEM is not filled; fill it first (e.g. gdal_fillnodata.py) or move "
+                "'vegetation.world_origin' / 'world.tiles'");
+}
+
+// The heightfield of samples [i0, i0 + columns) x [j0, j0 + rows) of `samples`, its south-west sample at `lo`.
+Heightfield cut(const Scene& scene, const Samples& samples, glm::dvec2 lo, double spacing, uint32_t i0, uint32_t j0,
+                uint32_t columns, uint32_t rows) {
+    std::vector<float> heights(size_t(columns) * rows);
+    for (uint32_t j = 0; j < rows; ++j)
+        for (uint32_t i = 0; i < columns; ++i) {
+            const float h = samples.at(i0 + i, j0 + j);
+            if (!usable(h)) refuseSample(scene, samples, lo - spacing * glm::dvec2(i0, j0), spacing, i0 + i, j0 + j);
+            heights[size_t(j) * columns + i] = h;
+        }
+    return Heightfield(columns, rows, float(spacing), glm::vec2(lo), std::move(heights));
+}
+
+// One side of a skirt: `count` samples from (i, j) in steps of (di, dj); empty when any is missing or unusable.
+std::vector<float> skirtSide(const Samples& samples, bool present, int64_t i, int64_t j, int64_t di, int64_t dj,
+                             uint32_t count) {
+    std::vector<float> side;
+    if (!present) return side;
+    for (uint32_t k = 0; k < count; ++k) {
+        const float h = samples.at(uint32_t(i + di * k), uint32_t(j + dj * k));
+        if (!usable(h)) return {};
+        side.push_back(h);
+    }
+    return side;
+}
+
+// The window's samples and, with `skirt`, one more on each side where the lattice has it: a heightfield over
+// [lo, hi] whose edge normals take the samples beyond.
+Heightfield latticeHeights(const Scene& scene, glm::dvec2 lo, glm::dvec2 hi, bool skirt) {
+    const WorldLattice lattice = worldLattice(scene);
+    const double s = lattice.spacing;
+    const int64_t margin = skirt ? 1 : 0;
+    Samples samples;
+    glm::i64vec2 below{margin, margin},
+        above{margin, margin}; // samples read beyond the window's south-west and north-east
+    if (!lattice.bounded()) {
+        samples = proceduralSamples(scene, lo - double(margin) * s, hi + double(margin) * s);
+    } else {
+        const glm::i64vec2 first = demIndex(scene, lattice, lo, lo, hi), last = demIndex(scene, lattice, hi, lo, hi);
+        require(last.x > first.x && last.y > first.y,
+                demName(scene) + ": the window " + xyText(lo) + " .. " + xyText(hi) + " is empty");
+        below = glm::min(first, glm::i64vec2(margin));
+        above = glm::min(glm::i64vec2(lattice.samples) - int64_t(1) - last, glm::i64vec2(margin));
+        samples = demSamples(scene, first - below, last + above);
+    }
+    const uint32_t columns = samples.columns - uint32_t(below.x + above.x);
+    const uint32_t rows = samples.rows - uint32_t(below.y + above.y);
+    Heightfield field = cut(scene, samples, lo, s, uint32_t(below.x), uint32_t(below.y), columns, rows);
+    if (skirt)
+        field.setSkirt(
+            HeightfieldSkirt{.south = skirtSide(samples, below.y > 0, below.x, 0, 1, 0, columns),
+                             .north = skirtSide(samples, above.y > 0, below.x, samples.rows - 1, 1, 0, columns),
+                             .west = skirtSide(samples, below.x > 0, 0, below.y, 0, 1, rows),
+                             .east = skirtSide(samples, above.x > 0, samples.columns - 1, below.y, 0, 1, rows)});
+    return field;
 }
 
 } // namespace
@@ -103,8 +186,11 @@ WorldLattice worldLattice(const Scene& scene) {
 }
 
 Heightfield worldHeights(const Scene& scene, glm::dvec2 lo, glm::dvec2 hi) {
-    if (!demWorld(scene)) return proceduralHeights(scene, lo, hi);
-    return demHeights(scene, worldLattice(scene), lo, hi);
+    return latticeHeights(scene, lo, hi, false);
+}
+
+Heightfield worldTileHeights(const Scene& scene, glm::dvec2 lo, glm::dvec2 hi) {
+    return latticeHeights(scene, lo, hi, true);
 }
 
 std::pair<float, float> worldHeightRange(const Scene& scene) {
@@ -123,7 +209,7 @@ std::pair<float, float> worldHeightRange(const Scene& scene) {
         for (double x = 0.0; x < cells.x; x += kChunk) {
             const glm::dvec2 a = lo + lattice.spacing * glm::dvec2(x, y);
             const glm::dvec2 b = lo + lattice.spacing * glm::min(glm::dvec2(x, y) + kChunk, cells);
-            const Heightfield part = demHeights(scene, lattice, a, b);
+            const Heightfield part = worldHeights(scene, a, b);
             least = std::min(least, part.minHeight());
             most = std::max(most, part.maxHeight());
         }

@@ -41,6 +41,11 @@ WorldLattice worldLattice(const Scene& scene);
 // naming its world position and its pixel (a world's DEM is not filled: a hole is an error).
 Heightfield worldHeights(const Scene& scene, glm::dvec2 lo, glm::dvec2 hi);
 
+// worldHeights of a tile's square with a one-sample skirt (HeightfieldSkirt) where the lattice goes on (always for
+// the procedural terrain; a DEM's edge, or a side holding a nodata sample, has none): its edge vertices' normals are
+// central differences, bitwise those of the neighbouring tile's edge.
+Heightfield worldTileHeights(const Scene& scene, glm::dvec2 lo, glm::dvec2 hi);
+
 // Bounds of every height of the world's tiles, the same whichever are resident: the procedural terrain's
 // +-amplitude / 2; a DEM's smallest and largest height over the world's tiles (read strip by strip).
 std::pair<float, float> worldHeightRange(const Scene& scene);

@@ -45,7 +45,7 @@ std::string mib(uint64_t bytes) {
 // errors (a nodata sample) name the tile too.
 Heightfield tileHeights(const Scene& scene, TileCoord coord, glm::dvec2 origin) {
     try {
-        return worldHeights(scene, origin, origin + double(scene.vegetation.tileSize));
+        return worldTileHeights(scene, origin, origin + double(scene.vegetation.tileSize));
     } catch (const Error& e) {
         if (!demWorld(scene)) throw;
         throw Error(std::string(e.what()) + " (in " + tileName(coord.x, coord.y) + ")");

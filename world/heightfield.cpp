@@ -59,9 +59,26 @@ glm::vec3 Heightfield::normal(glm::vec2 xy) const {
 glm::vec3 Heightfield::vertexNormal(uint32_t i, uint32_t j) const {
     uint32_t i0 = i > 0 ? i - 1 : i, i1 = std::min(i + 1, columns_ - 1);
     uint32_t j0 = j > 0 ? j - 1 : j, j1 = std::min(j + 1, rows_ - 1);
-    float dx = (sample(i1, j) - sample(i0, j)) / (float(i1 - i0) * spacing_);
-    float dy = (sample(i, j1) - sample(i, j0)) / (float(j1 - j0) * spacing_);
+    float left = sample(i0, j), right = sample(i1, j), below = sample(i, j0), above = sample(i, j1);
+    // Beyond an edge the skirt's sample, so the difference is central as in the neighbouring tile (bitwise: the same
+    // samples, the same 2 * spacing).
+    float across = float(i1 - i0), along = float(j1 - j0);
+    if (i == 0 && !skirt_.west.empty()) left = skirt_.west[j], across += 1.0f;
+    if (i == columns_ - 1 && !skirt_.east.empty()) right = skirt_.east[j], across += 1.0f;
+    if (j == 0 && !skirt_.south.empty()) below = skirt_.south[i], along += 1.0f;
+    if (j == rows_ - 1 && !skirt_.north.empty()) above = skirt_.north[i], along += 1.0f;
+    float dx = (right - left) / (across * spacing_);
+    float dy = (above - below) / (along * spacing_);
     return glm::normalize(glm::vec3(-dx, -dy, 1.0f));
+}
+
+void Heightfield::setSkirt(HeightfieldSkirt skirt) {
+    auto check = [](const std::vector<float>& side, uint32_t length) {
+        require(side.empty() || side.size() == length, "heightfield skirt: a side does not match its edge");
+        for (float h : side) require(std::isfinite(h), "heightfield skirt: a non-finite height");
+    };
+    check(skirt.south, columns_), check(skirt.north, columns_), check(skirt.west, rows_), check(skirt.east, rows_);
+    skirt_ = std::move(skirt);
 }
 
 std::optional<double> Heightfield::raycast(glm::dvec3 origin, glm::dvec3 direction, double maxDistance) const {

@@ -18,6 +18,13 @@
 
 namespace sward {
 
+// The samples just beyond a heightfield's edges (a world tile's neighbours' edge-adjacent samples), used only by
+// vertexNormal: south and north hold `columns` samples (rows -1 and rows), west and east `rows` (columns -1 and
+// columns). An empty side keeps one-sided differences there.
+struct HeightfieldSkirt {
+    std::vector<float> south, north, west, east;
+};
+
 class Heightfield {
 public:
     Heightfield() = default;
@@ -38,8 +45,12 @@ public:
     float height(glm::vec2 xy) const;
     // Unit normal of the rendered triangle under xy (flat, as rasterised).
     glm::vec3 normal(glm::vec2 xy) const;
-    // Smooth per-vertex normal (central differences), used for shading.
+    // Smooth per-vertex normal (central differences, one-sided at an edge without skirt), used for shading.
     glm::vec3 vertexNormal(uint32_t i, uint32_t j) const;
+    // Gives the edge vertices' normals the samples beyond them, so a tile's edge normals are bitwise its neighbour's.
+    // Requires each side empty or of its edge's length, every sample finite.
+    void setSkirt(HeightfieldSkirt skirt);
+    const HeightfieldSkirt& skirt() const { return skirt_; }
     // Distance t along a unit-length ray to the first hit of the rendered surface, if any within maxDistance.
     std::optional<double> raycast(glm::dvec3 origin, glm::dvec3 direction, double maxDistance) const;
 
@@ -50,6 +61,7 @@ private:
     float spacing_ = 1.0f;
     glm::vec2 origin_{0.0f};
     std::vector<float> heights_;
+    HeightfieldSkirt skirt_;
     float minHeight_ = 0.0f, maxHeight_ = 0.0f;
 };
 
