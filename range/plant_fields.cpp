@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "common/parallel_for.h"
+#include "scene/range_sensors.h"
 
 #include <thread>
 
@@ -160,7 +161,8 @@ void PlantFields::setTick(const WindParams& wind, double time, std::span<const g
     for (Field& f : fields_) {
         const FieldVegetation& field = tile_.fields[f.index];
         const glm::dvec2 lo(field.boundsMin), hi(field.boundsMax);
-        const glm::dvec2 nearest = glm::clamp(centre, lo - 2.0, hi + 2.0); // plants lean out of the field's box
+        const glm::dvec2 nearest =
+            glm::clamp(centre, lo - kPlantLean, hi + kPlantLean); // plants lean out of the field's box
         f.inReach = field.plantCount() > 0 && glm::distance(nearest, centre) <= reach;
         if (f.inReach) {
             inReach.push_back(f.index);

@@ -17,6 +17,10 @@ class RangeRecorder {
 public:
     // `r` must outlive the recorder, with its tile (a one-tile scene; null without vegetation) and atlas still
     // present: build it before createSceneGpu releases the CPU copies (it keeps the tile of a scene with range sensors).
+    // A world (r.world): each sweep casts against the resident tiles within the sensors' reach, read as they are then
+    // (their CPU copies: a world simulation's tiles read back first, rangeFrameState); every tile within
+    // 'max_range_m' + 2 m (plants lean out of their tile) of any origin of a sweep must be resident, which the sweep's
+    // start as an interest point (rangeSensorStarts) within 'world.load_radius' guarantees.
     explicit RangeRecorder(const SceneResources& r, uint32_t threads = 0);
     ~RangeRecorder();
 
@@ -32,10 +36,13 @@ public:
         std::shared_ptr<const std::vector<GroundPatch>> patches;
         double windTimeOffset = 0.0;
     };
-    // Every sensor's sweep of frame `frame` (starting at the frame's time).
+    // Every sensor's sweep of frame `frame` (starting at the frame's time). A world: throws sward::Error naming
+    // 'world.load_radius' when a sensor's reach (its range, 2 m and how far it moves in the sweep) exceeds it.
     std::vector<RangeScan> sweep(uint32_t frame, const FrameState& state);
     // The same, with each scan's files written through `dataset`.
     void record(DatasetWriter& dataset, uint32_t frame, const FrameState& state);
+    // The files of scans sweep() made for frame `frame`.
+    void write(DatasetWriter& dataset, uint32_t frame, const std::vector<RangeScan>& scans) const;
 
     const RayScene& rays() const { return *rays_; }
     // Wall time of the latest sweep(): preparing the scene (plants, objects) and casting, milliseconds.
@@ -45,6 +52,8 @@ public:
     Timings timings() const { return timings_; }
 
 private:
+    std::vector<RangeScan> sweepWorld(uint32_t frame, const FrameState& state);
+
     const SceneResources& r_;
     uint32_t threads_;
     std::unique_ptr<RayScene> rays_;

@@ -91,22 +91,24 @@ bool chooseReturn(std::vector<SubHit>& hits, RangeReturn mode, float& range, flo
 
 } // namespace
 
+PosedTriangles posedObject(const Scene& scene, size_t k, const ObjectModel& model, const Ground& ground, double time) {
+    const std::vector<glm::dmat4> nodes = objectNodeTransforms(scene.objects[k], model, ground, time);
+    PosedTriangles posed;
+    posed.label = objectLabel(k);
+    for (size_t n = 0; n < model.nodes.size(); ++n)
+        for (const ModelPrimitive& prim : model.nodes[n].primitives) {
+            const uint32_t base = uint32_t(posed.positions.size());
+            for (const glm::vec3& p : prim.positions)
+                posed.positions.push_back(glm::vec3(nodes[n] * glm::dvec4(p, 1.0)));
+            for (uint32_t i : prim.indices) posed.indices.push_back(base + i);
+        }
+    return posed;
+}
+
 std::vector<PosedTriangles> posedObjects(const RangeWorld& world, double time) {
     std::vector<PosedTriangles> out;
-    for (size_t k = 0; k < world.scene.objects.size() && k < world.models.size(); ++k) {
-        const ObjectModel& model = world.models[k];
-        const std::vector<glm::dmat4> nodes = objectNodeTransforms(world.scene.objects[k], model, world.terrain, time);
-        PosedTriangles posed;
-        posed.label = objectLabel(k);
-        for (size_t n = 0; n < model.nodes.size(); ++n)
-            for (const ModelPrimitive& prim : model.nodes[n].primitives) {
-                const uint32_t base = uint32_t(posed.positions.size());
-                for (const glm::vec3& p : prim.positions)
-                    posed.positions.push_back(glm::vec3(nodes[n] * glm::dvec4(p, 1.0)));
-                for (uint32_t i : prim.indices) posed.indices.push_back(base + i);
-            }
-        out.push_back(std::move(posed));
-    }
+    for (size_t k = 0; k < world.scene.objects.size() && k < world.models.size(); ++k)
+        out.push_back(posedObject(world.scene, k, world.models[k], world.terrain, time));
     return out;
 }
 
@@ -177,6 +179,32 @@ void sweepColumn(const SweepContext& x, RangeScan& scan, uint32_t c, std::vector
 }
 
 } // namespace
+
+namespace {
+
+// The first `count` distinct firing times' origins (xy) of a sweep: sweepOrigins.
+std::vector<glm::dvec2> firstOrigins(const Scene& scene, const RangeSensorParams& s, double frameTime, uint32_t count) {
+    const RangeMount& m = s.mount;
+    if (m.kind == RangeMount::Kind::Fixed) return {glm::dvec2(m.position)};
+    require(m.kind == RangeMount::Kind::Path,
+            scene.source + ": range sensor '" + s.name + "': 'mount.object' in a world is not supported yet");
+    const uint32_t times = std::min(count, s.type == RangeSensorType::TimeOfFlight ? 1u : s.columns());
+    std::vector<glm::dvec2> origins;
+    for (uint32_t c = 0; c < times; ++c) origins.push_back(pathPoseXY(m.path, frameTime + columnTime(s, c)));
+    return origins;
+}
+
+} // namespace
+
+std::vector<glm::dvec2> sweepOrigins(const Scene& scene, const RangeSensorParams& s, double frameTime) {
+    return firstOrigins(scene, s, frameTime, ~0u);
+}
+
+std::vector<glm::dvec2> rangeSensorStarts(const Scene& scene, double frameTime) {
+    std::vector<glm::dvec2> starts;
+    for (const RangeSensorParams& s : scene.rangeSensors) starts.push_back(firstOrigins(scene, s, frameTime, 1)[0]);
+    return starts;
+}
 
 RangeScan sweepSensor(const RayScene& rays, const RangeWorld& world, uint32_t sensorIndex, uint32_t frame,
                       double frameTime, uint32_t threads) {

@@ -45,6 +45,16 @@ struct RangeWorld {
 
 // The scene objects' triangles at simulation time `time`, world space, labelled as the truth pass labels them.
 std::vector<PosedTriangles> posedObjects(const RangeWorld& world, double time);
+// Object k's (of scene.objects, with its `model`) standing on `ground` (a world: its objectGround).
+PosedTriangles posedObject(const Scene& scene, size_t k, const ObjectModel& model, const Ground& ground, double time);
+
+// The xy of a sensor's origin at each distinct firing time of its sweep from `frameTime` (one for a fixed mount or a
+// ToF camera, else one per column), without ground: where a world needs its tiles. Fixed and path mounts only (an
+// object's node needs the object's ground): throws sward::Error naming the sensor for an object mount.
+std::vector<glm::dvec2> sweepOrigins(const Scene& scene, const RangeSensorParams& sensor, double frameTime);
+// Where each range sensor's sweep of the frame at `frameTime` starts (xy): interest points of a world (the tiles its
+// rays meet are made resident around them, as around the cameras).
+std::vector<glm::dvec2> rangeSensorStarts(const Scene& scene, double frameTime);
 
 // Sensor `sensorIndex` (of scene.rangeSensors) sweeping from `frameTime` (frame `frame`) through `rays`, which must hold
 // the world of that frame's tick. Threads as parallelFor.

@@ -61,36 +61,86 @@ void groundTriangles(const Ground& ground, std::vector<glm::vec3>& positions, st
 } // namespace
 
 struct RayScene::Impl {
+    // A tile's ground and plants: one for a one-tile scene, those setTiles gave in a world.
+    struct Tile {
+        RayTile source;
+        RTCScene ground = nullptr;
+        std::unique_ptr<PlantFields> plants; // null without vegetation
+    };
+    // What a top-level instance id holds (rebuildTop), for the label of a hit.
+    struct Instance {
+        enum class Kind { None, Ground, Objects, Patches, Field } kind = Kind::None;
+        uint32_t tile = 0, field = 0;
+    };
+
     AtlasAlpha atlas;
+    const VegetationParams& vegetation;
+    uint32_t nearBlades = 0;
+    bool world = false;
     RTCDevice device = nullptr;
-    RTCScene groundScene = nullptr, objectScene = nullptr, patchScene = nullptr, top = nullptr;
+    RTCScene objectScene = nullptr, patchScene = nullptr, top = nullptr;
+    std::vector<Tile> tiles;
+    std::vector<Instance> instances; // by top-level instance id
     std::vector<uint32_t> objectLabels;
     std::set<std::pair<int32_t, int32_t>> patchedBlocks; // the coarse ground's holes
     std::vector<uint32_t> patchIndices;                  // the patches' triangles, for the rut at a hit
     std::vector<float> patchRuts;                        // per patch point
 
-    std::unique_ptr<PlantFields> plants; // null without vegetation
-
-    Impl(const Ground& ground, const Atlas& a, const VegetationParams& vegetation, const VegetationTile* tile,
-         uint32_t nearBlades)
-        : atlas(a) {
+    Impl(const Atlas& a, const VegetationParams& v, uint32_t blades, bool isWorld)
+        : atlas(a), vegetation(v), nearBlades(blades), world(isWorld) {
         // One build thread: the BVHs (and so which of two equally near surfaces a ray meets first) are the same on
         // every machine and run.
         device = rtcNewDevice("threads=1,set_affinity=0");
         require(device != nullptr, "range sensors: Embree could not start (rtcNewDevice)");
+    }
+
+    Tile makeTile(const RayTile& source) {
+        Tile tile{.source = source};
         std::vector<glm::vec3> positions;
         std::vector<uint32_t> indices;
-        groundTriangles(ground, positions, indices);
-        groundScene = rtcNewScene(device);
-        if (RTCGeometry geom = addTriangles(device, groundScene, positions, indices, 0)) {
+        groundTriangles(*source.ground, positions, indices);
+        tile.ground = rtcNewScene(device);
+        if (RTCGeometry geom = addTriangles(device, tile.ground, positions, indices, 0)) {
             rtcSetGeometryUserData(geom, this);
             rtcSetGeometryIntersectFilterFunction(geom, &Impl::groundHole);
             rtcCommitGeometry(geom);
         }
-        rtcCommitScene(groundScene);
+        rtcCommitScene(tile.ground);
         check("building the ground");
-        if (tile) plants = std::make_unique<PlantFields>(device, *tile, vegetation, atlas, nearBlades);
-        setObjects({});
+        if (source.plants)
+            tile.plants = std::make_unique<PlantFields>(device, *source.plants, vegetation, atlas, nearBlades);
+        return tile;
+    }
+
+    void releaseTile(Tile& tile) {
+        tile.plants.reset(); // its scenes first
+        if (tile.ground) rtcReleaseScene(tile.ground), tile.ground = nullptr;
+    }
+
+    void setTiles(std::span<const RayTile> given) {
+        require(world, "RayScene::setTiles: a one-tile scene has its tile");
+        std::vector<Tile> next;
+        size_t held = 0;
+        for (const RayTile& t : given) {
+            require(t.ground != nullptr, "RayScene::setTiles: a tile without ground");
+            require(next.empty() || std::pair(next.back().source.coord.y, next.back().source.coord.x) <
+                                        std::pair(t.coord.y, t.coord.x),
+                    "RayScene::setTiles: tiles must ascend in (y, x)");
+            // Both lists ascend: a held tile is found by walking them together.
+            while (held < tiles.size() &&
+                   std::pair(tiles[held].source.coord.y, tiles[held].source.coord.x) < std::pair(t.coord.y, t.coord.x))
+                releaseTile(tiles[held++]);
+            Tile* same = held < tiles.size() && tiles[held].source.coord == t.coord ? &tiles[held] : nullptr;
+            if (same && same->source.ground == t.ground && same->source.plants == t.plants) {
+                next.push_back(std::move(*same)), same->ground = nullptr, ++held;
+            } else {
+                if (same) releaseTile(*same), ++held;
+                next.push_back(makeTile(t));
+            }
+        }
+        for (; held < tiles.size(); ++held) releaseTile(tiles[held]);
+        tiles = std::move(next);
+        rebuildTop();
     }
 
     // The coarse ground has a hole over every block drawn as a rut patch (terrain_holes.frag).
@@ -141,8 +191,8 @@ struct RayScene::Impl {
     RangeHit hitOf(const RTCRay& ray, const RTCHit& hit, glm::dvec3 direction) const;
 
     ~Impl() {
-        plants.reset(); // its scenes first, then the device
-        for (RTCScene s : {groundScene, objectScene, patchScene, top})
+        for (Tile& tile : tiles) releaseTile(tile); // their scenes first, then the device
+        for (RTCScene s : {objectScene, patchScene, top})
             if (s) rtcReleaseScene(s);
         rtcReleaseDevice(device);
     }
@@ -167,16 +217,28 @@ struct RayScene::Impl {
     }
 
     // The top level: instances of the ground, the objects and the fields in reach (a function of this tick only).
+    // A one-tile scene: its ground 0, the objects 1, the rut patches 2, field f at 3 + f. A world: the objects and
+    // patches the same, then each tile in order, its ground and its fields in reach, numbered on from 3.
     void rebuildTop() {
         if (top) rtcReleaseScene(top);
         top = rtcNewScene(device);
-        attachInstance(device, top, groundScene, kGroundInstance);
-        attachInstance(device, top, objectScene, kObjectsInstance);
-        if (patchScene) attachInstance(device, top, patchScene, kPatchesInstance);
-        if (plants)
-            plants->forEachInReach([&](RTCScene field, uint32_t index) {
-                attachInstance(device, top, field, kFirstFieldInstance + index);
-            });
+        instances.assign(kFirstFieldInstance, Instance{});
+        auto attach = [&](RTCScene scene, uint32_t id, Instance what) {
+            attachInstance(device, top, scene, id);
+            if (instances.size() <= id) instances.resize(id + 1);
+            instances[id] = what;
+        };
+        if (!world) attach(tiles[0].ground, kGroundInstance, {Instance::Kind::Ground, 0, 0});
+        attach(objectScene, kObjectsInstance, {Instance::Kind::Objects, 0, 0});
+        if (patchScene) attach(patchScene, kPatchesInstance, {Instance::Kind::Patches, 0, 0});
+        uint32_t next = kFirstFieldInstance;
+        for (uint32_t t = 0; t < tiles.size(); ++t) {
+            if (world) attach(tiles[t].ground, next++, {Instance::Kind::Ground, t, 0});
+            if (tiles[t].plants)
+                tiles[t].plants->forEachInReach([&](RTCScene field, uint32_t index) {
+                    attach(field, world ? next++ : kFirstFieldInstance + index, {Instance::Kind::Field, t, index});
+                });
+        }
         rtcCommitScene(top);
         check("building the top level");
     }
@@ -184,15 +246,29 @@ struct RayScene::Impl {
 
 RayScene::RayScene(const Ground& ground, const Atlas& atlas, const VegetationParams& vegetation,
                    const VegetationTile* tile, uint32_t nearBlades)
-    : impl_(std::make_unique<Impl>(ground, atlas, vegetation, tile, nearBlades)) {}
+    : impl_(std::make_unique<Impl>(atlas, vegetation, nearBlades, false)) {
+    impl_->tiles.push_back(impl_->makeTile({TileCoord{}, &ground, tile}));
+    impl_->setObjects({});
+}
+
+RayScene::RayScene(const Atlas& atlas, const VegetationParams& vegetation, uint32_t nearBlades)
+    : impl_(std::make_unique<Impl>(atlas, vegetation, nearBlades, true)) {
+    impl_->setObjects({});
+}
 
 RayScene::~RayScene() = default;
 
+void RayScene::setTiles(std::span<const RayTile> tiles) {
+    impl_->setTiles(tiles);
+}
+
 void RayScene::setPlants(const WindParams& wind, double time, std::span<const gpu::PlantDynamic> dynamics,
                          glm::dvec2 centre, double reach, uint32_t threads) {
-    if (!impl_->plants) return;
-    impl_->plants->setTick(wind, time, dynamics, centre, reach, threads);
-    impl_->rebuildTop();
+    require(!impl_->world || dynamics.empty(), "RayScene::setPlants: a world's tiles hold their own dynamic records");
+    bool any = false;
+    for (Impl::Tile& tile : impl_->tiles)
+        if (tile.plants) tile.plants->setTick(wind, time, dynamics, centre, reach, threads), any = true;
+    if (any) impl_->rebuildTop();
 }
 
 void RayScene::setObjects(const std::vector<PosedTriangles>& objects) {
@@ -204,7 +280,10 @@ void RayScene::setGroundPatches(const std::vector<GroundPatch>& patches) {
 }
 
 uint64_t RayScene::plantsPrepared() const {
-    return impl_->plants ? impl_->plants->prepared() : 0;
+    uint64_t prepared = 0;
+    for (const Impl::Tile& tile : impl_->tiles)
+        if (tile.plants) prepared += tile.plants->prepared();
+    return prepared;
 }
 
 // The hit of one ray as RangeHit: distance, the truth label of what it hit, the normal facing the ray.
@@ -212,15 +291,23 @@ RangeHit RayScene::Impl::hitOf(const RTCRay& ray, const RTCHit& hit, glm::dvec3 
     RangeHit out;
     if (hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
     out.distance = ray.tfar;
-    const uint32_t instance = hit.instID[0];
-    if (instance == kGroundInstance)
+    const Instance& instance = instances[hit.instID[0]];
+    switch (instance.kind) {
+    case Instance::Kind::Ground:
         out.label = gpu::kSemanticGround << gpu::kInstanceBits;
-    else if (instance == kObjectsInstance)
+        break;
+    case Instance::Kind::Objects:
         out.label = objectLabels[hit.geomID];
-    else if (instance == kPatchesInstance)
+        break;
+    case Instance::Kind::Patches:
         out.label = patchLabel(hit.primID, hit.u, hit.v);
-    else
-        out.label = plants->label(instance - kFirstFieldInstance, hit.primID);
+        break;
+    case Instance::Kind::Field:
+        out.label = tiles[instance.tile].plants->label(instance.field, hit.primID);
+        break;
+    case Instance::Kind::None:
+        break;
+    }
     glm::vec3 n = glm::normalize(glm::vec3(hit.Ng_x, hit.Ng_y, hit.Ng_z));
     if (glm::dot(glm::dvec3(n), direction) > 0.0) n = -n;
     out.normal = n;

@@ -1,7 +1,7 @@
 // RayScene: exactly what the cameras draw at one tick, for rays cast on the CPU with Embree (range sensors).
 //
 // - Ground: the drawn triangulation (a heightfield's cells split along the (i, j)-(i+1, j+1) diagonal, or the mesh's
-//   triangles), one Embree triangle geometry built once.
+//   triangles), one Embree triangle geometry built once (in a world: one per tile, built when the tile is first given).
 // - Plants: every plant in the near LOD's four quads (vegetation/expansion_reference.h: the same records, wind, bend,
 //   felled and cut states as the GPU expansion), whole quads, the atlas's level-0 alpha tested at 0.5 with bilinear
 //   filtering at each hit, so rays pass through the gaps between blades. One Embree user geometry per 25 m field,
@@ -11,6 +11,10 @@
 // - Objects: the scene objects' triangles posed at the tick (setObjects).
 // - Ruts: the ground's rut patches at the tick, at their finest level (setGroundPatches), the coarse ground holed
 //   under them as the renderer draws it; a hit where the rut is at least kTrackLabelDepth deep is labelled track.
+//
+// A world (scene.world, several tiles) gives its tiles with setTiles: the ground and plants of each, ascending (y, x),
+// instanced in that order, so the scene (and every hit) depends only on which tiles are given, never on which others
+// happen to be resident or in what order they were given before.
 //
 // Closest hits are unique: among hits at the same distance the lowest (geometry, primitive, triangle) key wins, so the
 // result does not depend on traversal order. Embree builds on one thread (its BVHs do not depend on the machine), and
@@ -53,19 +57,33 @@ struct GroundPatch {
     std::vector<glm::vec4> points;
 };
 
+// One tile of a world as the range sensors see it (RayScene::setTiles).
+struct RayTile {
+    TileCoord coord;
+    const Ground* ground = nullptr;
+    const VegetationTile* plants = nullptr; // null: bare ground
+};
+
 class RayScene {
 public:
     // `tile` (null: no plants) must outlive the scene; its dynamic records are read by setPlants. `nearBlades`:
     // lod.near_blades, the grass plants' blades instead of their quads (as the cameras draw them).
     RayScene(const Ground& ground, const Atlas& atlas, const VegetationParams& vegetation, const VegetationTile* tile,
              uint32_t nearBlades = 0);
+    // A world's scene: no ground and no plants until setTiles gives them.
+    RayScene(const Atlas& atlas, const VegetationParams& vegetation, uint32_t nearBlades = 0);
     ~RayScene();
     RayScene(const RayScene&) = delete;
     RayScene& operator=(const RayScene&) = delete;
 
+    // A world's tiles for the next casts, ascending (y, x), replacing the previous ones: a tile given before (the same
+    // coordinate, ground and plants) keeps its ground BVH and its fields. Each must stay valid until the next
+    // setTiles; setPlants then reads every tile's own dynamic records. Requires the world constructor.
+    void setTiles(std::span<const RayTile> tiles);
+
     // The plants at simulation time `time` (wind) in the interaction state `dynamics` (the tile's whole dynamic record
-    // buffer, in tile order, as the GPU holds it; empty: the tile's own records): quads of every field whose box lies
-    // within `reach` metres of `centre` (xy); plants of other fields are not hit. Threads as parallelFor.
+    // buffer, in tile order, as the GPU holds it; empty: the tile's own records; a world: empty, each tile's own): quads
+    // of every field whose box lies within `reach` metres of `centre` (xy); plants of other fields are not hit. Threads as parallelFor.
     void setPlants(const WindParams& wind, double time, std::span<const gpu::PlantDynamic> dynamics, glm::dvec2 centre,
                    double reach, uint32_t threads = 0);
     // The scene objects' triangles at this tick (replaces the previous ones).

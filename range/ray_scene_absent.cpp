@@ -13,10 +13,15 @@ RayScene::RayScene(const Ground&, const Atlas&, const VegetationParams&, const V
     requireComponent(Component::Embree, "the range sensors' ray casting");
 }
 
+RayScene::RayScene(const Atlas&, const VegetationParams&, uint32_t) {
+    requireComponent(Component::Embree, "the range sensors' ray casting");
+}
+
 RayScene::~RayScene() = default;
 
 // Not reached: no RayScene is ever constructed in this build.
 void RayScene::setPlants(const WindParams&, double, std::span<const gpu::PlantDynamic>, glm::dvec2, double, uint32_t) {}
+void RayScene::setTiles(std::span<const RayTile>) {}
 void RayScene::setObjects(const std::vector<PosedTriangles>&) {}
 void RayScene::setGroundPatches(const std::vector<GroundPatch>&) {}
 RangeHit RayScene::cast(glm::dvec3, glm::dvec3, double, double) const {

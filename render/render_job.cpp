@@ -266,12 +266,19 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
             gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras, exposure));
         auto state = std::make_shared<RangeFrameState>();
         if (range.active()) *state = rangeFrameState(gpu, r, ruts);
+        // A world's sweeps cast against its resident tiles, which the next frame may evict: cast now, write later.
+        auto scans = std::make_shared<std::optional<std::vector<RangeScan>>>();
+        if (range.active() && r.world) *scans = range.sweep(frame, state->view(options.time));
         const double rendered = clock.now();
         t.renderSeconds = rendered - renderStart;
-        writer.start([&dataset, &progress, &done, &rig, &range, &options, &clock, &t, frame, images, cameras, state] {
+        writer.start([&dataset, &progress, &done, &rig, &range, &options, &clock, &t, frame, images, cameras, state,
+                      scans] {
             clock.timeWrite(t, [&] {
                 dataset.writeFrame(frame, *images, cameras->left, rig.baseline);
-                if (range.active()) range.record(dataset, frame, state->view(options.time));
+                if (*scans)
+                    range.write(dataset, frame, **scans);
+                else if (range.active())
+                    range.record(dataset, frame, state->view(options.time));
             });
             progress.frameDone(++done, frame);
         });

@@ -64,6 +64,10 @@ struct RangeSensorParams {
     uint32_t columns() const; // azimuth steps (LiDAR, scanner) or image width (ToF)
 };
 
+// How far (xy, metres) a plant may reach out of the box of its roots' field, or of its tile: the margin of the fields
+// and world tiles a range sensor's rays can meet (range/plant_fields.cpp, range/range_recorder.cpp, checkWorldDrawable).
+inline constexpr double kPlantLean = 2.0;
+
 // The presets' names, for messages and docs: "VLP-16", "HDL-32E", "OS1-64" (LiDAR), "LMS111", "UST-10LX" (scanner),
 // "ToF-VGA" (time of flight).
 std::vector<std::string> rangeSensorPresets();

@@ -288,6 +288,18 @@ def land_cover(data):
     return edit
 
 
+def utm_cover(env, width, height):
+    """A grassland land cover (ESRI ASCII grid) of width x height pixels of 10 m in UTM zone 32N, as the scene's."""
+    rows = "\n".join(" ".join(["30"] * width) for _ in range(height))
+    env.write("cover.asc", f"ncols {width}\nnrows {height}\nxllcorner 500000\nyllcorner 4100000\ncellsize 10\n{rows}\n")
+    env.write("cover.prj", 'PROJCS["WGS_1984_UTM_Zone_32N",GEOGCS["GCS_WGS_1984",DATUM["D_WGS_1984",SPHEROID['
+              '"WGS_1984",6378137.0,298.257223563]],PRIMEM["Greenwich",0.0],UNIT["Degree",0.0174532925199433]],'
+              'PROJECTION["Transverse_Mercator"],PARAMETER["False_Easting",500000.0],PARAMETER["False_Northing",0.0],'
+              'PARAMETER["Central_Meridian",9.0],PARAMETER["Scale_Factor",0.9996],PARAMETER["Latitude_Of_Origin",0.0],'
+              'UNIT["Meter",1.0]]')
+    return {"file": "cover.asc", "preset": "esa_worldcover"}
+
+
 def atlas(png, json_text):
     def edit(scene, env):
         entry = {}
@@ -416,10 +428,6 @@ CASES = [
          scene_with(set_key(["vehicles"], [{"path": {"points": [[40, 40], [60, 60]]}, "rut_depth": 0.02,
                                             "tread_pitch": 0.1, "tread_depth": 0.05}])), 1,
          r"'vehicles\[0\]\.tread_depth' must not exceed 'rut_depth'"),
-    Case("ruts in a world of several tiles", "sward-render",
-         scene_with(lambda s, env: s.update(vehicles=[{"path": {"points": [[40, 40], [60, 60]]}, "rut_depth": 0.05}],
-                                            world={"tiles": [2, 2]})),
-         1, r"ruts \('rut_depth'\) in a world are not supported yet"),
     # Range sensors.
     Case("range sensor preset unknown", "sward-render",
          scene_with(set_key(["range_sensors"], [{"preset": "VLP-17", "mount": {"position": [50, 50, 0]}}])), 1,
@@ -450,9 +458,15 @@ CASES = [
     Case("world budget over the GPU's memory", "sward-render",
          scene_with(lambda s, env: s.update(world={"tiles": [2, 2], "memory_budget_mib": 4096})), 1,
          r"'world\.memory_budget_mib' \(4096 MiB\) is more than the GPU '.+' has \(\d+ MiB of device-local memory\)"),
-    Case("range sensors in a world", "sward-render",
-         scene_with(lambda s, env: s.update(range_sensors=[{"mount": {"position": [50, 50, 0]}}], world={"tiles": [2, 2]})),
-         1, r"'range_sensors' in a world are not supported yet"),
+    Case("range sensor reaching beyond a world's load_radius", "sward-render",
+         scene_with(lambda s, env: s.update(range_sensors=[{"range": [0.5, 250], "mount": {"position": [50, 50, 0]}}],
+                                            world={"tiles": [2, 2], "load_radius": 200})),
+         1, r"'range_sensors\[0\]' \('sensor0'\): its 'range' \(250 m\) plus 2 m must not exceed "
+            r"'world\.load_radius' \(200 m\)"),
+    Case("range sensor on an object in a world", "sward-render",
+         scene_with(lambda s, env: s.update(range_sensors=[{"mount": {"object": "rover", "node": "mast"}}],
+                                            world={"tiles": [2, 2]})),
+         1, r"'range_sensors\[0\]' \('sensor0'\): 'mount\.object' in a world is not supported yet"),
     # Motion ground truth.
     Case("flow in a world", "sward-render",
          scene_with(lambda s, env: s.update(render=dict(s.get("render", {}), flow=True), world={"tiles": [2, 2]})),
@@ -470,11 +484,11 @@ CASES = [
          scene_with(set_key(["world"], {"load_radius": 200, "evict_radius": 150})), 1,
          r"'world\.evict_radius' \(150 m\) must be larger than 'world\.load_radius' \(200 m\)"),
     Case("world of 0 tiles", "sward-render", scene_with(set_key(["world"], {"tiles": [0, 4]})), 1, r"'world\.tiles'"),
-    Case("world on a heightmap ground", "sward-render",
+    Case("world on a PNG heightmap", "sward-render",
          scene_with(lambda s, env: (env.write("dem.png", png_bytes()),
                                     s.update(terrain={"heightmap": {"file": "dem.png", "metres_per_pixel": 1}},
                                              world={"tiles": [4, 4]}), s)[-1]),
-         1, r"'world' needs the procedural terrain: a world of 'terrain\.heightmap'"),
+         1, r"'terrain\.heightmap' \('.*dem\.png'\): a world reads its DEM window by window through GDAL"),
     Case("world whose plants reach beyond its view distance", "sward-render",
          scene_with(lambda s, env: s.update(world={"tiles": [2, 2], "view_distance": 100},
                                             lod={"near": 10, "mid": 40, "far": 150, "band": 4})), 1,
@@ -485,10 +499,10 @@ CASES = [
     Case("world with a grass_map", "sward-render",
          scene_with(lambda s, env: (grass_map(png_bytes())(s, env), s.update(world={"tiles": [4, 4]}), s)[-1]), 1,
          r"'grass_map' \(one tile's map\) is not supported in a world"),
-    Case("world with gusts", "sward-render",
-         scene_with(lambda s, env: s.update(world={"tiles": [2, 2], "load_radius": 200}, gusts={"count": 3},
-                                            lod={"near": 10, "mid": 40, "far": 150, "band": 4})), 1,
-         r"'gusts' in a world of several tiles are not supported yet"),
+    Case("mismatched land-cover extent", "sward-render",
+         scene_with(lambda s, env: s.update(land_cover=utm_cover(env, 30, 20), world={"tiles": [2, 2]})), 1,
+         r"'land_cover': raster '.*cover\.asc' covers 300 x 200 m \(30 x 20 pixels of 10 x 10 m\), but the world "
+         r"covers 200 x 200 m \(2 x 2 tiles of 100 m\): in a world the land cover must cover the world's extent"),
     Case("world collider wider than the load radius", "sward-render",
          scene_with(lambda s, env: s.update(world={"tiles": [2, 2], "load_radius": 2, "view_distance": 2},
                                             lod={"near": 0.5, "mid": 1, "far": 1.5, "band": 0.5},
