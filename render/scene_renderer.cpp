@@ -8,12 +8,14 @@
 #include "render/sky_constants.h"
 #include "render/track_renderer.h"
 #include "render/vegetation_renderer.h"
+#include "scene/world_ground.h"
 #include "shared/config.h"
 #include "shared/gpu_layout.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cstring>
+#include <tuple>
 
 namespace sward {
 
@@ -66,18 +68,21 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, const Ground& ter
     addTile(vegetation ? vegetation->coord : TileCoord{}, terrain, vegetation, cover);
 }
 
-SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, VkSampleCountFlagBits samples, const Atlas* atlas)
+SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, VkSampleCountFlagBits samples, const Atlas* atlas,
+                             const std::vector<ObjectModel>* models)
     : ctx_(ctx), scene_(scene), samples_(samples == VK_SAMPLE_COUNT_4_BIT ? 4 : 1) {
-    require(scene.world.enabled && scene.objects.empty(), "SceneRenderer: a world scene without objects");
+    require(scene.world.enabled && (scene.objects.empty() || models),
+            "SceneRenderer: a world scene, with its objects' models");
     writeSkyConstants(scene_, frameTemplate_);
     viewDistance_ = scene.world.viewDistance;
-    // The procedural ground's heights lie within +-amplitude / 2 (world/heightfield.h): the same shadow depth range
-    // whichever tiles are resident.
-    terrainMinHeight_ = -0.5f * std::abs(scene.terrain.procedural.amplitude);
-    terrainMaxHeight_ = 0.5f * std::abs(scene.terrain.procedural.amplitude);
+    // Bounds of the world's heights (procedural: +-amplitude / 2; a DEM's under the tiles): the same shadow depth
+    // range whichever tiles are resident.
+    std::tie(terrainMinHeight_, terrainMaxHeight_) = worldHeightRange(scene);
     fitShadowImage(atlas != nullptr);
     uploadGroundTextures(nullptr);
     createPipelines(atlas, VegetationRenderer::instanceCapacityFor(UINT32_MAX));
+    if (!scene.objects.empty()) objects_ = std::make_unique<ObjectRenderer>(ctx, scene_, plantPassFormats(), *models);
+    if (scene.world.horizon && scene.terrain.source == TerrainParams::Source::Procedural) addHorizonRing(atlas);
 }
 
 VegetationPassFormats SceneRenderer::plantPassFormats() const {
@@ -196,6 +201,7 @@ void SceneRenderer::createPipelines(const Atlas* atlas, uint32_t instanceCapacit
 SceneRenderer::~SceneRenderer() {
     ctx_.submitter.waitIdle();
     for (TileCoord coord : tiles()) removeTile(coord);
+    releaseHorizonRing();
     vegetation_.reset();
     objects_.reset();
     tracks_.reset();
@@ -284,7 +290,8 @@ void SceneRenderer::writeConstants(uint32_t slot, const Camera& camera, const Sh
         if (vegetation_) c.shadowParams.w = float(vegetation_->shadowAtlasLevel(2.0 * drawn.radius / drawn.mapSize));
     }
     c.debug = glm::uvec4(debugFlags_, 0u, 0u, 0u);
-    c.coverBand = glm::vec4(scene_.lod.farLimit, scene_.lod.band, scene_.lod.midToFar, 0.0f);
+    c.coverBand = glm::vec4(scene_.lod.farLimit, scene_.lod.band, scene_.lod.midToFar,
+                            horizon_ ? float(viewDistance_) : 0.0f); // the ground disc (horizon_ring.glsl)
     if (flow) {
         c.viewProjPrevious = glm::mat4(flow->previous[view]->viewProjection());
         c.viewProjNext = glm::mat4(flow->next[view]->viewProjection());
@@ -391,10 +398,11 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const Descr
                                                               : terrainShadowPipeline_;
     bindPipeline(cmd, pipeline);
     const DescriptorBinding textures = sampledImage(gpu::kBindingGroundTextures, groundTextures_.view, groundSampler_);
+    uint32_t drawn = 0; // the tile's index among those drawn (TrackRenderer::update's tiles)
     for (const auto& [key, tile] : tiles_) {
-        const double dx = std::max({0.0, tile.boundsMin.x - reference.x, reference.x - tile.boundsMax.x});
-        const double dy = std::max({0.0, tile.boundsMin.y - reference.y, reference.y - tile.boundsMax.y});
-        if (std::sqrt(dx * dx + dy * dy) > viewDistance_) continue;
+        if (!tileDrawn(tile, reference)) continue;
+        const uint32_t tileIndex = drawn++;
+        if (ruts && tileIndex > 0) bindPipeline(cmd, pipeline); // the previous tile's patches bound their own
         const DescriptorBinding cover = sampledImage(gpu::kBindingCoverMap, tile.cover.view, coverSampler_);
         const DescriptorBinding weights =
             sampledImage(gpu::kBindingGroundMaterials, tile.groundWeights.view, coverSampler_);
@@ -425,16 +433,27 @@ void SceneRenderer::drawTerrain(VkCommandBuffer cmd, PlantPass pass, const Descr
             vkCmdBindIndexBuffer(cmd, tile.indices.handle, 0, VK_INDEX_TYPE_UINT32);
             vkCmdDrawIndexed(cmd, tile.indexCount, 1, 0, 0, 0);
         }
-        if (!ruts) continue; // ruts: a one-tile scene, the patches over its ground
+        if (!ruts) continue; // ruts: the patches overlapping this tile, with its cover
         if (pass == PlantPass::Main)
-            tracks_->drawMain(cmd, frame, shadowBinding(), cover, textures, weights, constants);
+            tracks_->drawMain(cmd, frame, shadowBinding(), cover, textures, weights, constants, tileIndex);
         else
-            tracks_->drawTruth(cmd, frame, cover, constants, pass == PlantPass::TruthFlow);
+            tracks_->drawTruth(cmd, frame, cover, constants, pass == PlantPass::TruthFlow, tileIndex);
     }
+    if (horizon_ && pass != PlantPass::Shadow) drawHorizonRing(cmd, pass, frame); // beyond the shadow cascades
+}
+
+bool SceneRenderer::tileDrawn(const TerrainTile& tile, const glm::dvec3& reference) const {
+    const double dx = std::max({0.0, tile.boundsMin.x - reference.x, reference.x - tile.boundsMax.x});
+    const double dy = std::max({0.0, tile.boundsMin.y - reference.y, reference.y - tile.boundsMax.y});
+    return std::sqrt(dx * dx + dy * dy) <= viewDistance_;
 }
 
 void SceneRenderer::setGroundTracks(const GroundTracks* tracks, const Ground* ground) {
     if (tracks_) tracks_->setSource(tracks, ground);
+}
+
+void SceneRenderer::setWorldGroundTracks(const GroundTracks* tracks) {
+    if (tracks_) tracks_->setWorldSource(tracks, scene_);
 }
 
 glm::uvec4 groundMaterialConstants(const Scene& scene) {
@@ -550,9 +569,14 @@ void SceneRenderer::recordViews(VkCommandBuffer cmd, std::span<const View> views
     if (objects_) objects_->update(timeSeconds, dataSlot, flow ? &flowTimes : nullptr);
     if (tracks_) {
         ScopedGpuTimer timed(timers, cmd, "tracks"); // the ruts' uploads: every pass is timed (docs/release.md)
-        tracks_->update(
-            cmd, reference,
-            views.size() == 2 ? stereoFrustumPlanes(reference, *views[1].camera) : reference.frustumPlanes(), dataSlot);
+        // A world draws each patch with every drawn tile it overlaps (drawTerrain's tiles, in its order).
+        std::vector<TrackTileRect> drawn;
+        for (const auto& [key, tile] : tiles_)
+            if (world() && tileDrawn(tile, reference.position)) drawn.push_back({tile.boundsMin, tile.boundsMax});
+        tracks_->update(cmd, reference,
+                        views.size() == 2 ? stereoFrustumPlanes(reference, *views[1].camera)
+                                          : reference.frustumPlanes(),
+                        dataSlot, world() ? std::span<const TrackTileRect>(drawn) : TrackRenderer::kOneTile);
     }
 
     if (expand) recordExpansion(cmd, views, timeSeconds, frameIndex, timers);

@@ -70,11 +70,13 @@ public:
     SceneRenderer(Context& ctx, const Scene& scene, const Ground& terrain, VkSampleCountFlagBits samples,
                   const VegetationTile* vegetation = nullptr, const Atlas* atlas = nullptr,
                   const std::vector<ObjectModel>* models = nullptr, const CoverMap* cover = nullptr);
-    // A world (scene.world, procedural ground, no objects): starts with no tile; the owner of the WorldTiles adds
+    // A world (scene.world, procedural ground): starts with no tile; the owner of the WorldTiles adds
     // and removes tiles as they become resident. `atlas` null: bare ground. Only tiles within
     // world.view_distance (<= load_radius, within which WorldTiles keeps every tile resident) of the reference
-    // camera are drawn, so a frame is the same whichever tiles beyond it happen to be resident.
-    SceneRenderer(Context& ctx, const Scene& scene, VkSampleCountFlagBits samples, const Atlas* atlas);
+    // camera are drawn, so a frame is the same whichever tiles beyond it happen to be resident. The scene's objects
+    // (`models`: loadObjectModels; required with objects) each stand on their own lattice ground (objectGround).
+    SceneRenderer(Context& ctx, const Scene& scene, VkSampleCountFlagBits samples, const Atlas* atlas,
+                  const std::vector<ObjectModel>* models = nullptr);
     ~SceneRenderer();
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
@@ -127,6 +129,9 @@ public:
     // The ruts to draw (a scene whose colliders press them, sceneMakesRuts), pressed into `ground`; both must outlive
     // the renderer. Each frame uploads the blocks changed since the last one.
     void setGroundTracks(const GroundTracks* tracks, const Ground* ground);
+    // A world's ruts (render/world_simulation.h), drawn over every tile within the view distance; `tracks` must
+    // outlive the renderer.
+    void setWorldGroundTracks(const GroundTracks* tracks);
 
     VegetationRenderer* vegetation() { return vegetation_.get(); }
     // The wind, sun and sky of the next frames (a program's change between frames, render/session.h): the sky's
@@ -139,6 +144,7 @@ public:
     ObjectRenderer* objects() { return objects_.get(); } // null when the scene has no objects
     uint32_t samples() const { return samples_; }
     bool world() const { return std::isfinite(viewDistance_); } // a world of several tiles
+    uint32_t horizonTriangles() const; // the world's horizon ring (render/horizon_ring.h); 0 without one
 
 private:
     // A resident tile's ground: its mesh and its far cover (1x1 "nothing" without one, so the binding is valid).
@@ -171,6 +177,11 @@ private:
     ShadowCascadeParams makeShadowCascadeParams(bool vegetation) const;
     void fitShadowImage(bool vegetation); // shadowParams_; throws if the device cannot hold the shadow image
     void createShadowMap();
+    bool tileDrawn(const TerrainTile& tile, const glm::dvec3& reference) const; // within the view distance
+    // A world's horizon ring (render/horizon_ring.cpp): made by the world constructor, drawn after the tiles.
+    void addHorizonRing(const Atlas* atlas);
+    void drawHorizonRing(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame);
+    void releaseHorizonRing();
     // The tiles' ground within the view distance of `reference`; the main pass binds each tile's cover.
     void drawTerrain(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame, const glm::dvec3& reference);
     // `frameSlot`: frame-constants slot (frame x view); `slot`: vegetation constants slot (frame).
@@ -189,6 +200,7 @@ private:
     uint32_t samples_ = 1;
     std::map<TileKey, TerrainTile> tiles_;
     double viewDistance_ = INFINITY; // world.view_distance in a world
+    std::unique_ptr<TerrainTile> horizon_; // a world's horizon ring (world.horizon)
     float terrainMinHeight_ = 0.0f, terrainMaxHeight_ = 0.0f;
     const Ground* objectGround_ = nullptr; // what objects stand on (one-tile scenes)
     // Frame constants per data slot: one per view, then one per shadow cascade (the shadow pass's draws).

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Terrain: the static ground mesh (heightfield grid or the scene's glTF ground), positions already in world space.
 #include "shared/frame.glsl"
+#include "shared/horizon_ring.glsl"
 
 layout(constant_id = 0) const uint PASS = kPassMain; // kPassMain or kPassShadow (truth: terrain_truth.vert)
 
@@ -19,7 +20,7 @@ layout(location = 6) out float outRut; // unpressed: ruts are drawn as patches o
 layout(location = 7) out float outLoose;
 
 void main() {
-    vec4 world = vec4(inPosition.xyz, 1.0);
+    vec4 world = vec4(groundVertexPosition(inPosition, inNormal, inUvLayer), 1.0);
     gl_Position = (PASS == kPassShadow ? frame.shadowViewProj : frame.viewProj) * world;
     outWorld = world.xyz;
     outNormal = inNormal.xyz;

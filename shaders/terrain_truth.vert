@@ -7,6 +7,7 @@
 // vertex-input draw.
 #include "shared/frame.glsl"
 #include "shared/flow_vertex.glsl"
+#include "shared/horizon_ring.glsl"
 
 layout(set = 0, binding = kBindingMeshVertices, std430) readonly buffer VertexBlock { TerrainVertex vertices[]; };
 layout(set = 0, binding = kBindingMeshIndices, std430) readonly buffer IndexBlock { uint indices[]; };
@@ -16,12 +17,17 @@ layout(location = 2) out float outViewDepth;
 layout(location = 5) flat out vec3 outNormal; // camera frame, unit, facing the camera
 layout(location = 6) out float outRut;         // unpressed (ruts: track.vert)
 
+// terrain.vert's position of vertex v (a horizon ring's rim sunk as there).
+vec3 drawnVertex(uint v) {
+    return groundVertexPosition(vertices[v].positionHeight, vertices[v].normal, vertices[v].uvLayer);
+}
+
 void main() {
     uint first = uint(gl_VertexIndex) - uint(gl_VertexIndex) % 3u;
-    vec3 p0 = vertices[indices[first]].positionHeight.xyz;
-    vec3 p1 = vertices[indices[first + 1u]].positionHeight.xyz;
-    vec3 p2 = vertices[indices[first + 2u]].positionHeight.xyz;
-    vec4 world = vec4(vertices[indices[gl_VertexIndex]].positionHeight.xyz, 1.0);
+    vec3 p0 = drawnVertex(indices[first]);
+    vec3 p1 = drawnVertex(indices[first + 1u]);
+    vec3 p2 = drawnVertex(indices[first + 2u]);
+    vec4 world = vec4(drawnVertex(indices[gl_VertexIndex]), 1.0);
     gl_Position = frame.viewProj * world;
     outWorld = world.xyz;
     outViewDepth = (frame.view * world).z;

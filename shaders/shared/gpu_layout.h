@@ -71,7 +71,9 @@ struct FrameConstants {
                          // the drawn cascade (plant.vert culls the others), w the atlas level every plant of the
                          // draw reads its alpha from (VegetationRenderer::shadowAtlasLevel; plantShadowAlpha)
     uvec4 debug;         // x kDebug* flags (sward-view overlays; 0 for renders), yzw unused
-    vec4 coverBand;      // x lod.far, y lod.band (the plants' dissolve band around it), z lod.mid, w unused
+    vec4 coverBand;      // x lod.far, y lod.band (the plants' dissolve band around it), z lod.mid, w the ground disc:
+                         // a world's tiles are drawn within w of shadowOrigin.xy and its horizon ring beyond
+                         // (horizon_ring.glsl); 0: no disc (one-tile scenes, a world without a ring)
     // Cascaded sun shadows (world/sun_shadow.h, shadow.glsl): cascade k is tile k of a row of square maps.
     mat4 shadowCascades[kMaxShadowCascades]; // world -> cascade k's clip space (orthographic, reversed Z)
     vec4 shadowTiles[kMaxShadowCascades];    // cascade k's tile in the shadow image: x u offset, y u scale, z v scale,
@@ -107,8 +109,13 @@ struct TerrainTileConstants {
     uvec4 material; // x the bare ground's material (kGroundMaterial*, terrain.material); y 1: some category has
                     // a material of its own (vegetation.categories[i].ground_material), blended in by the tile's
                     // ground material weights (kBindingGroundMaterials), 0: they are not read; z the categories'
-                    // materials, 8 bits each, category 0 lowest (the terrain's where a category has none); w unused
+                    // materials, 8 bits each, category 0 lowest (the terrain's where a category has none); w what
+                    // is drawn: kGroundTile or kGroundHorizonRing (render/horizon_ring.h)
 };
+
+// TerrainTileConstants::material.w: a tile's ground, or a world's horizon ring (drawn beyond the ground disc).
+SWARD_CONST(uint, kGroundTile, 0u);
+SWARD_CONST(uint, kGroundHorizonRing, 1u);
 
 // Ground material presets (terrain.material; ground_material.glsl holds their albedos and textures).
 SWARD_CONST(uint, kGroundMaterialSoil, 0u);
@@ -131,10 +138,11 @@ struct DebugLineVertex {
 // Vertex of the terrain mesh (vertex buffer, binding 0).
 struct TerrainVertex {
     vec4 positionHeight; // xyz world position, w unused
-    vec4 normal;         // xyz smooth normal, w unused
+    vec4 normal;         // xyz smooth normal, w the horizon ring's rim width (horizon_ring.glsl), 0: not the ring
     vec4 albedo;         // rgb: linear base colour of a mesh ground's material; a = 1 draws it, a = 0 the
                          // procedural soil / turf of heightfield grounds
-    vec4 uvLayer;        // xy: the material texture's coordinate; z: its layer in the ground textures, -1: none
+    vec4 uvLayer;        // xy: the material texture's coordinate; z: its layer in the ground textures, -1: none;
+                         // w the horizon ring's floor height (its rim sinks to it), 0 elsewhere
 };
 
 // Vegetation expansion: the three levels of detail of paper Figure 3.

@@ -9,6 +9,7 @@
 #include "shared/frame.glsl"
 #include "shared/ground_cover.glsl"
 #include "shared/flow_fragment.glsl"
+#include "shared/horizon_ring.glsl"
 #ifdef SWARD_TERRAIN_HOLES
 #include "shared/ground_tracks.glsl"
 #endif
@@ -25,8 +26,10 @@ void main() {
 #ifdef SWARD_TERRAIN_HOLES
     if (inTrackPatch(inWorld.xy)) discard;
 #endif
+    if (groundHiddenHere(inWorld.xy, tile.material.w)) discard;
     outDepthBits = floatBitsToUint(inViewDepth);
-    bool turf = turfAt(inWorld) >= 0.5;
+    // The horizon ring is the terrain's coarse surface, labelled ground: its cover is a look from afar, not turf.
+    bool turf = tile.material.w != kGroundHorizonRing && turfAt(inWorld) >= 0.5;
     uint semantic = inRut >= kTrackLabelDepth ? kSemanticTrack : turf ? kSemanticTurf : kSemanticGround;
     outLabel = uvec2(semantic << kInstanceBits, 0u);
     outNormal = vec4(inNormal, 0.0);

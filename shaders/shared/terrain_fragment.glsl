@@ -11,6 +11,7 @@
 #include "shared/frame.glsl"
 #include "shared/ground_cover.glsl"
 #include "shared/ground_material.glsl"
+#include "shared/horizon_ring.glsl"
 #ifdef SWARD_TERRAIN_HOLES
 #include "shared/ground_tracks.glsl"
 #endif
@@ -119,6 +120,7 @@ void main() {
 #ifdef SWARD_TERRAIN_HOLES
     if (inTrackPatch(inWorld.xy)) discard;
 #endif
+    if (groundHiddenHere(inWorld.xy, tile.material.w)) discard;
     vec3 n = normalize(inNormal);
     float pressed = clamp(inRut / kRutFullDepth, 0.0, 1.0);
     float footprint = groundFootprint(inWorld);
@@ -127,7 +129,7 @@ void main() {
     float shadow = sunShadow(inWorld);
     vec2 uv = coverUv(inWorld);
     vec4 cover = groundCover(uv);
-    float turf = turfAt(inWorld);
+    float turf = tile.material.w == kGroundHorizonRing ? 0.0 : turfAt(inWorld); // the ring is ground, seen from afar
     if (turf > 0.0) {
         GroundSample t = turfGround(cover.rgb, ground.albedo, inWorld.xy, footprint);
         pressTurf(t, pressed);
