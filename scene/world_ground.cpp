@@ -108,10 +108,18 @@ Samples demSamples(const Scene& scene, glm::i64vec2 first, glm::i64vec2 last) {
                                uint32_t j) {
     const glm::dvec2 p = lo + spacing * glm::dvec2(double(i), double(j));
     const bool hole = std::isnan(samples.at(i, j));
+    // The tile holding it (on a border: the one east / north of it), whichever read met it first.
+    const glm::dvec2 tile =
+        glm::floor((p - glm::dvec2(scene.vegetation.worldOrigin)) / double(scene.vegetation.tileSize));
+    const glm::dvec2 tiles(scene.world.tilesX, scene.world.tilesY);
+    const glm::dvec2 inside = glm::min(tile, tiles - 1.0);
+    const std::string where = tile.x >= 0.0 && tile.y >= 0.0 && tile.x <= tiles.x && tile.y <= tiles.y
+                                  ? " in tile (" + formatNumber(inside.x) + ", " + formatNumber(inside.y) + ")"
+                                  : " near the world";
     throw Error(demName(scene) + " has " + (hole ? "a nodata or non-finite sample" : "a height beyond 1e6 m") +
                 " at world " + xyText(p) + " (pixel " + std::to_string(samples.firstColumn + i) + ", " +
-                std::to_string(samples.firstRow + (samples.rows - 1 - j)) +
-                ") inside the world: a world's DEM is not filled; fill it first (e.g. gdal_fillnodata.py) or move "
+                std::to_string(samples.firstRow + (samples.rows - 1 - j)) + ")" + where +
+                ": a world's DEM is not filled; fill it first (e.g. gdal_fillnodata.py) or move "
                 "'vegetation.world_origin' / 'world.tiles'");
 }
 

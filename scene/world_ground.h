@@ -38,7 +38,7 @@ WorldLattice worldLattice(const Scene& scene);
 // bitwise whichever window it is read in. A DEM's heights are the raster's values times height_scale plus
 // height_offset (as loadHeightfield computes them). Throws sward::Error naming the scene, 'terrain.heightmap' and
 // the file for a window off the lattice or beyond the DEM, and for a nodata or non-finite sample inside the window,
-// naming its world position and its pixel (a world's DEM is not filled: a hole is an error).
+// naming its world position, its pixel and the tile holding it (a world's DEM is not filled: a hole is an error).
 Heightfield worldHeights(const Scene& scene, glm::dvec2 lo, glm::dvec2 hi);
 
 // worldHeights of a tile's square with a one-sample skirt (HeightfieldSkirt) where the lattice goes on (always for

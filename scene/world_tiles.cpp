@@ -41,17 +41,6 @@ std::string mib(uint64_t bytes) {
     return formatNumber(std::ceil(double(bytes) / 1048576.0)) + " MiB";
 }
 
-// The tile's heights: the world's ground over its square, its edge samples shared with its neighbours. A DEM's
-// errors (a nodata sample) name the tile too.
-Heightfield tileHeights(const Scene& scene, TileCoord coord, glm::dvec2 origin) {
-    try {
-        return worldTileHeights(scene, origin, origin + double(scene.vegetation.tileSize));
-    } catch (const Error& e) {
-        if (!demWorld(scene)) throw;
-        throw Error(std::string(e.what()) + " (in " + tileName(coord.x, coord.y) + ")");
-    }
-}
-
 } // namespace
 
 // A tile with an active field stays resident until its plants have sprung back: recovery runs only on resident tiles,
@@ -67,7 +56,11 @@ WorldTile generateWorldTile(const Scene& scene, TileCoord coord, uint32_t thread
     require(w.enabled && coord.x >= 0 && coord.y >= 0 && uint32_t(coord.x) < w.tilesX && uint32_t(coord.y) < w.tilesY,
             "generateWorldTile: " + tileName(coord.x, coord.y) + " is not a tile of the scene's world");
     const glm::dvec2 origin = tileOrigin(scene, coord.x, coord.y);
-    WorldTile tile{.coord = coord, .ground = Ground(tileHeights(scene, coord, origin), scene.terrain.selection)};
+    // The world's ground over the tile's square, its edge samples shared with its neighbours (a DEM's nodata sample:
+    // an error naming the tile).
+    WorldTile tile{.coord = coord,
+                   .ground = Ground(worldTileHeights(scene, origin, origin + double(scene.vegetation.tileSize)),
+                                    scene.terrain.selection)};
     tile.vegetation.coord = coord;
     if (scene.vegetationEnabled) {
         const GrassMap map = buildGrassMap(scene, scene.vegetation.tileSize, origin);
@@ -363,6 +356,17 @@ void WorldTiles::workerLoop() {
         if (error && !error_) error_ = error;
         wake_.notify_all();
     }
+}
+
+void WorldTiles::clear() {
+    {
+        std::unique_lock lock(mutex_);
+        queue_.clear();
+        wake_.wait(lock, [&] { return !inFlight_; });
+        finished_.clear();
+    }
+    resident_.clear();
+    kept_.clear();
 }
 
 void WorldTiles::stopWorker() {

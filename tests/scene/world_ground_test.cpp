@@ -185,7 +185,7 @@ TEST(GisWorldErrors, NodataInsideATileNamesTheFileTheTileAndThePosition) {
             generateWorldTile(scene, {1, 1}, 1);
         },
         {"<gis>: 'terrain.heightmap' ('" + dem + "') has a nodata or non-finite sample at world (25, 32)",
-         "pixel 25, 10", "not filled", "tile (1, 1)"});
+         "(pixel 25, 10) in tile (1, 1): a world's DEM is not filled"});
 }
 
 TEST(GisWorldErrors, ADemInDegreesIsRefusedInAWorld) {
