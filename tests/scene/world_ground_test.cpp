@@ -2,6 +2,7 @@
 // window by window. Each tile's heights are checked against the test's own GDAL read of the DEM, borders bitwise
 // shared, edge normals bitwise those of the neighbour, cameras and actors on the same surface, a 20,000 x 20,000 DEM
 // streamed within the budget, and every refusal as one error naming the keys or the file.
+#include "scene/terrain.h"
 #include "scene/world_ground.h"
 #include "scene/world_tiles.h"
 
@@ -214,4 +215,21 @@ TEST(GisWorldErrors, TilesBeyondTheDemOrOffItsSamplesAreRefusedNamingTheKeys) {
     large["vegetation"]["tile_size"] = 50;
     large["vegetation"]["field_size"] = 10;
     expectError([&] { parseScene(large, "<gis>"); }, {"holds no whole tile of 'vegetation.tile_size' (50 m)"});
+}
+
+TEST(GisWorld, AWorldOfOneTileReadsOnlyItsWindow) {
+    // One tile goes through the one-tile path (buildTerrain): its window of the DEM, not the whole raster.
+    const std::string dem = writeTestDem("one.tif");
+    nlohmann::json json = gisJson(dem, {{"tiles", {1, 1}}});
+    json["vegetation"]["world_origin"] = {20, 20};
+    const Scene scene = parseScene(json, "<gis>");
+    const Ground ground = buildTerrain(scene);
+    const Heightfield& h = *ground.heightfield();
+    EXPECT_EQ(h.columns(), 21u);
+    EXPECT_EQ(h.origin(), glm::vec2(20.0f));
+    const std::vector<float> pixels = readDemPixels(dem, kColumns, kRows);
+    EXPECT_EQ(h.sample(0, 0), pixels[size_t(kRows - 1 - 20) * kColumns + 20]);
+    EXPECT_EQ(h.sample(20, 20), pixels[size_t(kRows - 1 - 40) * kColumns + 40]);
+    EXPECT_EQ(vegetationOn(scene, ground).worldOrigin, glm::vec2(20.0f));
+    EXPECT_EQ(vegetationOn(scene, ground).tileSize, 20.0f);
 }
