@@ -1,6 +1,8 @@
 #include "scene/land_cover_params.h"
 
+#include "common/error.h"
 #include "common/parse_number.h"
+#include "scene/scene.h"
 
 #include <map>
 #include <string>
@@ -48,6 +50,31 @@ LandCoverParams parseLandCoverParams(JsonReader& r) {
             r.fail(r.name("nodata") + " is class code " + std::to_string(*p.nodataCode) + ", which the table lacks");
     }
     return p;
+}
+
+LandCoverWorld landCoverWorld(const Scene& scene) {
+    return {.tilesX = scene.world.tilesX, .tilesY = scene.world.tilesY, .tileSize = double(scene.vegetation.tileSize)};
+}
+
+LandCoverGrid worldLandCoverGrid(const Scene& scene) {
+    const std::string what = scene.source + ": 'land_cover'";
+    RasterInfo info;
+    try {
+        info = readRasterInfo(scene.landCover.file, {.band = scene.landCover.band, .folders = scene.assets.folders()});
+    } catch (const Error& e) {
+        throw Error(what + ": " + e.what()); // which key named the file
+    }
+    return landCoverGrid(info.width, info.height, info.geoTransform, info.source, landCoverWorld(scene), what);
+}
+
+GrassMap worldLandCoverGrassMap(const Scene& scene, glm::dvec2 origin, uint32_t threads) {
+    const VegetationParams& v = scene.vegetation;
+    // generateWorldTile's tiles lie on the world's grid: the nearest whole tile is exact.
+    const glm::dvec2 tile = glm::round((origin - glm::dvec2(v.worldOrigin)) / double(v.tileSize));
+    require(tile.x >= 0.0 && tile.y >= 0.0 && tile.x < scene.world.tilesX && tile.y < scene.world.tilesY,
+            scene.source + ": worldLandCoverGrassMap: the tile is outside the world");
+    return loadLandCoverTileGrassMap(scene.landCover, landCoverWorld(scene), glm::uvec2(tile),
+                                     scene.source + ": 'land_cover'", threads, scene.assets.folders());
 }
 
 } // namespace sward

@@ -13,4 +13,16 @@ namespace sward {
 // with at least one class and hold the nodata code. Errors name the file and the JSON path.
 LandCoverParams parseLandCoverParams(JsonReader& r);
 
+struct Scene;
+
+// The world a scene's land cover covers: world.tiles tiles of vegetation.tile_size (issue 51).
+LandCoverWorld landCoverWorld(const Scene& scene);
+
+// A world's land cover from its raster's header (readRasterInfo: no pixels are read): the checks of landCoverGrid.
+// Throws sward::Error naming the scene, 'land_cover' and the raster.
+LandCoverGrid worldLandCoverGrid(const Scene& scene);
+
+// The land cover's grass map over the world tile whose south-west corner is `origin` (loadLandCoverTileGrassMap).
+GrassMap worldLandCoverGrassMap(const Scene& scene, glm::dvec2 origin, uint32_t threads = 0);
+
 } // namespace sward

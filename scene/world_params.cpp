@@ -5,6 +5,7 @@
 #include "scene/land_cover_params.h"
 #include "scene/scene.h"
 #include "scene/world_ground.h"
+#include "vegetation/cover_map.h"
 #include "vegetation/placement.h"
 
 #include <algorithm>
@@ -169,7 +170,8 @@ uint64_t predictedTileBytes(const Scene& scene, bool farCover) {
                  clusters * v.categoryCount;
         if (farCover) coverTexels = std::pow(double(MeadowMapParams{}.resolution), 2.0); // one per meadow texel
         if (farCover && landCover) { // one per land-cover pixel, in blocks beyond kMaxCoverMapEdge
-            const glm::dvec2 edges = glm::min(glm::dvec2(worldLandCoverGrid(scene).pixelsPerTile), double(kMaxCoverMapEdge));
+            const glm::dvec2 pixels(worldLandCoverGrid(scene).pixelsPerTile);
+            const glm::dvec2 edges = glm::min(pixels, double(kMaxCoverMapEdge));
             coverTexels = edges.x * edges.y;
         }
     }

@@ -1,0 +1,149 @@
+// A world's land cover (issue 51, part B): each tile's grass map is the land-cover raster's window over the tile,
+// bitwise the whole raster's map cut there; a raster whose georeferenced extent is not the world's is one error
+// naming both; the budget's per-tile bound holds with intensities above 1; tiles are the same streamed or resident.
+#include "scene/land_cover_params.h"
+#include "scene/world_params.h"
+#include "scene/world_tiles.h"
+
+#include "test_files.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+using namespace sward;
+using namespace sward::test;
+
+namespace {
+
+// An ESRI ASCII grid of width x height class codes code(x, y) (top row first), 10 m pixels, with a projected
+// coordinate system in metres (UTM zone 32N) when `utm`.
+std::string writeGrid(const std::filesystem::path& path, uint32_t width, uint32_t height,
+                      const std::function<int(uint32_t, uint32_t)>& code, bool utm) {
+    std::ofstream grid(path);
+    grid << "ncols " << width << "\nnrows " << height << "\nxllcorner 500000\nyllcorner 4100000\ncellsize 10\n";
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) grid << code(x, y) << (x + 1 == width ? "\n" : " ");
+    if (utm)
+        std::ofstream(std::filesystem::path(path).replace_extension(".prj"))
+            << R"(PROJCS["WGS_1984_UTM_Zone_32N",GEOGCS["GCS_WGS_1984",DATUM["D_WGS_1984",SPHEROID["WGS_1984",)"
+            << R"(6378137.0,298.257223563]],PRIMEM["Greenwich",0.0],UNIT["Degree",0.0174532925199433]],)"
+            << R"(PROJECTION["Transverse_Mercator"],PARAMETER["False_Easting",500000.0],PARAMETER["False_Northing",)"
+            << R"(0.0],PARAMETER["Central_Meridian",9.0],PARAMETER["Scale_Factor",0.9996],)"
+            << R"(PARAMETER["Latitude_Of_Origin",0.0],UNIT["Meter",1.0]])";
+    return path.string();
+}
+
+// Patches of grassland, shrubland, tree cover and water, 10 m pixels.
+int patch(uint32_t x, uint32_t y) {
+    const int classes[] = {30, 20, 10, 80, 30};
+    return classes[(x / 3 + 2 * (y / 2) + (x * y) % 3) % 5];
+}
+
+// 3 x 2 tiles of 50 m over a land cover of 15 x 10 pixels (10 m), at a low density.
+nlohmann::json worldJson(const std::string& landCover) {
+    return {{"seed", 3},
+            {"terrain", {{"size", 50}, {"spacing", 2}, {"amplitude", 3}}},
+            {"vegetation", {{"tile_size", 50}, {"field_size", 25}, {"density_multiplier", 0.05}}},
+            {"land_cover", {{"file", landCover}, {"preset", "esa_worldcover"}, {"border", 15}}},
+            {"world", {{"tiles", {3, 2}}, {"load_radius", 30}, {"evict_radius", 40}}}};
+}
+
+template <class T> bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+bool sameTile(const WorldTile& a, const WorldTile& b) {
+    if (a.vegetation.fields.size() != b.vegetation.fields.size() || a.bytes != b.bytes) return false;
+    for (size_t f = 0; f < a.vegetation.fields.size(); ++f)
+        if (!sameBytes(a.vegetation.fields[f].staticRecords, b.vegetation.fields[f].staticRecords)) return false;
+    return true;
+}
+
+} // namespace
+
+TEST(WorldLandCover, EachTilesGrassMapIsTheWholeRastersMapCutAtTheTile) {
+    SWARD_SKIP_WITHOUT(Gdal);
+    const auto dir = tempDir();
+    const std::string file = writeGrid(dir / "cover.asc", 15, 10, patch, true);
+    const Scene scene = parseScene(worldJson("cover.asc"), (dir / "scene.json").string());
+    const RasterBand raster = readRasterBand(file);
+    const RasterWindow all{.width = 15, .height = 10};
+    const GrassMap whole =
+        makeLandCoverWindowGrassMap(raster, all, {15, 10}, all, scene.landCover, {10.0, 10.0}, "test");
+    for (int32_t ty = 0; ty < 2; ++ty)
+        for (int32_t tx = 0; tx < 3; ++tx) {
+            const GrassMap map = buildGrassMap(scene, 50.0f, glm::dvec2(50.0 * tx, 50.0 * ty));
+            ASSERT_EQ(map.width(), 5u);
+            ASSERT_EQ(map.height(), 5u);
+            std::vector<float> expected;
+            for (uint32_t y = 0; y < 5; ++y) { // tile row 1 is the raster's top half
+                const size_t row = size_t(1 - ty) * 5 + y;
+                const auto first = whole.values().begin() + ptrdiff_t((row * 15 + size_t(tx) * 5) * 3);
+                expected.insert(expected.end(), first, first + 15);
+            }
+            EXPECT_EQ(map.values(), expected) << "tile " << tx << ", " << ty;
+        }
+}
+
+TEST(WorldLandCover, MismatchedExtentIsOneErrorNamingBothExtents) {
+    SWARD_SKIP_WITHOUT(Gdal);
+    const auto dir = tempDir();
+    writeGrid(dir / "cover.asc", 16, 10, patch, true); // 160 m across a 150 m world
+    expectError([&] { parseScene(worldJson("cover.asc"), (dir / "scene.json").string()); },
+                {"scene.json: 'land_cover': raster '", "cover.asc' covers 160 x 100 m (16 x 10 pixels of 10 x 10 m), "
+                                                       "but the world covers 150 x 100 m (3 x 2 tiles of 50 m)"});
+    writeGrid(dir / "plain.asc", 16, 10, patch, false); // no coordinate system: stretched, but 16 pixels over 3 tiles
+    expectError([&] { parseScene(worldJson("plain.asc"), (dir / "scene.json").string()); },
+                {"plain.asc' has 16 x 10 pixels, not a whole number of pixels per tile"});
+    nlohmann::json withGrassMap = worldJson("cover.asc");
+    withGrassMap.erase("land_cover");
+    withGrassMap["grass_map"] = "map.png";
+    expectError([&] { parseScene(withGrassMap, (dir / "scene.json").string()); },
+                {"'grass_map' (one tile's map) is not supported in a world", "'land_cover'"});
+}
+
+// predictedTileBytes bounded the meadow's intensities, never over 1; a land cover's reach kMaxLandCoverIntensity.
+// With grassland at 3 x the preset and density_multiplier 0.2, a tile holds more plants than the meadow bound allows.
+TEST(WorldLandCover, TheBudgetsTileBoundHoldsIntensitiesOverOne) {
+    SWARD_SKIP_WITHOUT(Gdal);
+    const auto dir = tempDir();
+    writeGrid(
+        dir / "cover.asc", 15, 10, [](uint32_t, uint32_t) { return 30; }, true);
+    nlohmann::json json = worldJson("cover.asc");
+    json["land_cover"]["table"] = {{"30", {0.15, 3.0, 0.9}}};
+    json["vegetation"]["density_multiplier"] = 0.2;
+    const Scene scene = parseScene(json, (dir / "scene.json").string());
+    const WorldTile tile = generateWorldTile(scene, {2, 1}, 1);
+    Scene meadow = scene;
+    meadow.landCover = {};
+    EXPECT_GT(tile.bytes, predictedTileBytes(meadow)) << "the meadow's bound would not hold";
+    EXPECT_LE(tile.bytes, predictedTileBytes(scene));
+    EXPECT_GE(tile.bytes * 105, predictedTileBytes(scene) * 100) << "and it stays tight";
+    std::printf("[ figures  ] tile %llu bytes, bound %llu, the meadow's bound %llu\n", (unsigned long long)tile.bytes,
+                (unsigned long long)predictedTileBytes(scene), (unsigned long long)predictedTileBytes(meadow));
+}
+
+// The tiles a small load radius makes resident along a flight, evicting behind it, are bitwise those generated
+// alone with everything resident.
+TEST(WorldLandCover, TilesAreTheSameStreamedOrResident) {
+    SWARD_SKIP_WITHOUT(Gdal);
+    const auto dir = tempDir();
+    writeGrid(dir / "cover.asc", 15, 10, patch, true);
+    const Scene scene = parseScene(worldJson("cover.asc"), (dir / "scene.json").string());
+    WorldTiles streamed(scene, 1);
+    uint32_t checked = 0;
+    for (double x = 5.0; x <= 145.0; x += 20.0) {
+        const glm::dvec2 point(x, 0.6 * x);
+        streamed.waitFor({&point, 1});
+        for (TileCoord coord : streamed.residentTiles()) {
+            EXPECT_TRUE(sameTile(*streamed.find(coord), generateWorldTile(scene, coord, 2)))
+                << "tile " << coord.x << ", " << coord.y;
+            ++checked;
+        }
+    }
+    EXPECT_GT(streamed.stats().evicted, 0u);
+    EXPECT_GT(checked, 6u);
+}
