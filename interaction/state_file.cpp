@@ -257,7 +257,7 @@ TileInteractionState readTileState(WorldStateReader& r, const WorldInteractionSt
 
 void saveWorldState(const std::string& path, const WorldInteractionState& state) {
     std::vector<uint8_t> bytes(std::begin(kWorldMagic), std::end(kWorldMagic));
-    put(bytes, kWorldStateFileVersion);
+    put(bytes, state.tracks.empty() ? kWorldStateFileVersion : kWorldStateTracksVersion);
     put(bytes, uint32_t(state.tiles.size()));
     put(bytes, state.tick);
     put(bytes, state.tilesX);
@@ -276,6 +276,7 @@ void saveWorldState(const std::string& path, const WorldInteractionState& state)
             putDynamics(bytes, f.dynamics);
         }
     }
+    if (!state.tracks.empty()) putTracks(bytes, state.tracks);
     put(bytes, fnv1a64(bytes));
     writeBytesAtomically(path, bytes.data(), bytes.size());
 }
@@ -283,7 +284,9 @@ void saveWorldState(const std::string& path, const WorldInteractionState& state)
 WorldInteractionState loadWorldState(const std::string& path, uint64_t seed) {
     const std::vector<uint8_t> bytes = readStateBytes(path, kMaxWorldStateBytes, "world state file");
     const std::string what = path + ": not a valid world state file: ";
-    requireHeader(bytes, kWorldMagic, kWorldHeaderBytes, kWorldStateFileVersion, what);
+    const bool tracks = bytes.size() >= 12 && get<uint32_t>(bytes, 8) == kWorldStateTracksVersion;
+    requireHeader(bytes, kWorldMagic, kWorldHeaderBytes, tracks ? kWorldStateTracksVersion : kWorldStateFileVersion,
+                  what);
     // The checksum first: a corrupt count is then reported as corruption, not as a truncated file.
     requireChecksum(bytes, what);
     WorldInteractionState state;
@@ -301,6 +304,12 @@ WorldInteractionState loadWorldState(const std::string& path, uint64_t seed) {
     state.tiles.reserve(tiles);
     for (uint32_t t = 0; t < tiles; ++t)
         state.tiles.push_back(readTileState(r, state, t == 0 ? nullptr : &state.tiles.back()));
+    if (tracks) {
+        const uint32_t blocks = r.take<uint32_t>();
+        r.need(uint64_t(blocks) * kTrackBlockBytes, " for " + std::to_string(blocks) + " track blocks");
+        state.tracks = readTracks(bytes, size_t(r.data() - bytes.data()) - 4, what);
+        r.skip(blocks * kTrackBlockBytes);
+    }
     require(r.done(), what + "bytes left after the last tile");
     return state;
 }

@@ -19,6 +19,7 @@
 //   per tile, ascending (y, x): int32 x, int32 y, uint32 field count
 //     per field, ascending index: uint32 field, uint32 active (0 or 1), uint64 last contact tick,
 //                                 uint32 plant count, that many gpu::PlantDynamic
+//   version 3 only (a world with ruts): the track section, as the tile state's
 //   uint64 FNV-1a 64 of every byte before it
 // written and checked like the tile state file.
 #pragma once
@@ -59,12 +60,16 @@ void saveInteractionState(const std::string& path, const InteractionState& state
 InteractionState loadInteractionState(const std::string& path);
 
 inline constexpr uint32_t kWorldStateFileVersion = 2; // 2: the seed
+// A world state holding ruts: version 2 and the track section. A world without ruts still writes version 2, so its
+// files stay the bytes they were; both versions are read.
+inline constexpr uint32_t kWorldStateTracksVersion = 3;
 
 struct WorldInteractionState {
     uint64_t tick = 0;                       // the next tick to simulate
     uint32_t tilesX = 0, tilesY = 0;         // the world's size in tiles
     uint64_t seed = 0;                       // the scene's seed: a state of another seed fits no tile's plants
     std::vector<TileInteractionState> tiles; // tiles with touched fields, ascending (y, x)
+    TrackBlocks tracks;                      // the world's ruts (GroundTracks::blocks), world-wide
 };
 
 // Writes a world state atomically. Requires tiles inside the world, ascending (y, x), each field list ascending.

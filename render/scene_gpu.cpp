@@ -18,9 +18,11 @@ SceneGpu createSceneGpu(Context& ctx, SceneResources& resources, uint32_t sample
                                      " MiB of device-local memory)");
         gpu.renderer = std::make_unique<SceneRenderer>(ctx, resources.scene,
                                                        samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT,
-                                                       resources.atlas ? &*resources.atlas : nullptr);
+                                                       resources.atlas ? &*resources.atlas : nullptr,
+                                                       &resources.models);
         resources.atlas.reset();
-        if (mode != SimulationMode::None && resources.vegetation && sceneHasColliders(resources.scene))
+        if (mode != SimulationMode::None && (resources.vegetation || sceneMakesRuts(resources.scene)) &&
+            sceneHasColliders(resources.scene))
             gpu.worldSimulation = std::make_unique<WorldSimulation>(ctx, resources, *gpu.renderer);
         return gpu;
     }

@@ -2,6 +2,7 @@
 
 #include "engine/barriers.h"
 #include "engine/resources.h"
+#include "scene/world_tiles.h"
 
 #include <algorithm>
 #include <bit>
@@ -103,10 +104,16 @@ void TrackRenderer::setSource(const GroundTracks* tracks, const Ground* ground) 
     tracks_ = tracks;
     ground_ = ground;
     mesh_ = ground ? groundDrawMesh(*ground) : GroundDrawMesh{};
+    world_ = nullptr;
     generation_ = ~uint64_t(0);
     seen_ = 0;
     slots_.clear();
     blockCount_ = 0;
+}
+
+void TrackRenderer::setWorldSource(const GroundTracks* tracks, const Scene& scene) {
+    setSource(tracks, nullptr);
+    world_ = &scene;
 }
 
 std::vector<gpu::TerrainVertex> trackPatchVertices(const GroundTracks& tracks, const Ground& ground,
@@ -131,8 +138,18 @@ std::vector<gpu::TerrainVertex> trackPatchVertices(const GroundTracks& tracks, c
     return patch;
 }
 
+std::vector<gpu::TerrainVertex> worldTrackPatchVertices(const GroundTracks& tracks, const Scene& scene,
+                                                        TrackBlockKey key) {
+    const int64_t i0 = int64_t(key.x) * gpu::kTrackBlockCells - gpu::kTrackPatchRing;
+    const int64_t j0 = int64_t(key.y) * gpu::kTrackBlockCells - gpu::kTrackPatchRing;
+    const Ground ground = latticeGround(scene, glm::dvec2(trackVertexPosition(i0, j0)),
+                                        glm::dvec2(trackVertexPosition(i0 + kSide - 1, j0 + kSide - 1)), 0.0);
+    return trackPatchVertices(tracks, ground, groundDrawMesh(ground), key);
+}
+
 void TrackRenderer::uploadBlock(VkCommandBuffer cmd, uint32_t slot, TrackBlockKey key) {
-    const std::vector<gpu::TerrainVertex> patch = trackPatchVertices(*tracks_, *ground_, mesh_, key);
+    const std::vector<gpu::TerrainVertex> patch =
+        world_ ? worldTrackPatchVertices(*tracks_, *world_, key) : trackPatchVertices(*tracks_, *ground_, mesh_, key);
     glm::vec2 heights(INFINITY, -INFINITY);
     for (const gpu::TerrainVertex& vertex : patch)
         heights = glm::vec2(std::min(heights.x, vertex.positionHeight.z), std::max(heights.y, vertex.positionHeight.z));
@@ -168,17 +185,14 @@ void TrackRenderer::reserve(uint32_t blocks) {
     vertices_ =
         createBuffer(ctx_, capacity_ * kPatchBytes,
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryIntent::DeviceLocal);
-    retireBuffer(ctx_, visible_);
-    visible_ = createBuffer(ctx_, uint64_t(capacity_) * sizeof(uint32_t) * gpu::kFrameDataSlots,
-                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryIntent::Upload);
     heights_.resize(capacity_);
     seen_ = 0;
 }
 
 void TrackRenderer::update(VkCommandBuffer cmd, const Camera& reference, const std::array<glm::vec4, 5>& planes,
-                           uint32_t dataSlot) {
+                           uint32_t dataSlot, std::span<const TrackTileRect> tiles) {
     upload(cmd);
-    if (active()) cull(reference, planes, dataSlot);
+    if (active()) cull(reference, planes, dataSlot, tiles);
 }
 
 void TrackRenderer::upload(VkCommandBuffer cmd) {
@@ -206,14 +220,17 @@ void TrackRenderer::upload(VkCommandBuffer cmd) {
     seen_ = tracks_->revision();
 }
 
-// The patches whose box (the block, its ring, its lowest and highest vertex) reaches into the frustum, in block order
-// within each level of detail: level 0 where a lattice cell spans at least a pixel at the box's nearest point to the
-// reference camera, level 1 (every 2nd vertex) down to half a pixel, level 2 (every 4th) beyond.
-void TrackRenderer::cull(const Camera& reference, const std::array<glm::vec4, 5>& planes, uint32_t dataSlot) {
+// The patches whose box (the block, its ring, its lowest and highest vertex) reaches into the frustum, per drawn tile
+// those overlapping it, in block order within each level of detail: level 0 where a lattice cell spans at least a
+// pixel at the box's nearest point to the reference camera, level 1 (every 2nd vertex) down to half a pixel, level 2
+// (every 4th) beyond.
+void TrackRenderer::cull(const Camera& reference, const std::array<glm::vec4, 5>& planes, uint32_t dataSlot,
+                         std::span<const TrackTileRect> tiles) {
     constexpr float kBlockMetres = gpu::kTrackCell * float(gpu::kTrackBlockCells);
     constexpr float kRingMetres = gpu::kTrackCell * float(gpu::kTrackPatchRing);
     const double level0Distance = reference.fy * gpu::kTrackCell; // a cell is one pixel there
-    std::array<std::vector<uint32_t>, gpu::kTrackLodLevels> levels;
+    std::vector<std::array<std::vector<uint32_t>, gpu::kTrackLodLevels>> levels(tiles.size());
+    uint32_t entries = 0;
     for (const auto& [key, slot] : slots_) {
         const glm::vec3 lo(float(key.x) * kBlockMetres - kRingMetres, float(key.y) * kBlockMetres - kRingMetres,
                            heights_[slot].x);
@@ -229,33 +246,47 @@ void TrackRenderer::cull(const Camera& reference, const std::array<glm::vec4, 5>
         const double distance =
             glm::distance(reference.position, glm::clamp(reference.position, glm::dvec3(lo), glm::dvec3(hi)));
         const uint32_t level = distance < level0Distance ? 0 : distance < 2.0 * level0Distance ? 1 : 2;
-        levels[level].push_back(slot | level << gpu::kTrackLodShift);
+        for (size_t t = 0; t < tiles.size(); ++t)
+            if (double(hi.x) >= tiles[t].min.x && double(lo.x) <= tiles[t].max.x && double(hi.y) >= tiles[t].min.y &&
+                double(lo.y) <= tiles[t].max.y)
+                levels[t][level].push_back(slot | level << gpu::kTrackLodShift), ++entries;
     }
-    uint32_t* visible = reinterpret_cast<uint32_t*>(visible_.mapped()) + size_t(dataSlot) * capacity_;
+    // Room for every entry; frames still in flight keep reading the buffer they were recorded with.
+    if (entries > visibleCapacity_ || !visible_) {
+        visibleCapacity_ = std::max({16u, capacity_, std::bit_ceil(entries)});
+        retireBuffer(ctx_, visible_);
+        visible_ = createBuffer(ctx_, uint64_t(visibleCapacity_) * sizeof(uint32_t) * gpu::kFrameDataSlots,
+                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryIntent::Upload);
+    }
+    uint32_t* visible = reinterpret_cast<uint32_t*>(visible_.mapped()) + size_t(dataSlot) * visibleCapacity_;
     visibleCount_ = 0;
-    for (uint32_t level = 0; level < gpu::kTrackLodLevels; ++level) {
-        firstVisible_[level] = visibleCount_;
-        std::copy(levels[level].begin(), levels[level].end(), visible + visibleCount_);
-        visibleCount_ += uint32_t(levels[level].size());
+    firstVisible_.assign(tiles.size(), {});
+    for (size_t t = 0; t < tiles.size(); ++t) {
+        for (uint32_t level = 0; level < gpu::kTrackLodLevels; ++level) {
+            firstVisible_[t][level] = visibleCount_;
+            std::copy(levels[t][level].begin(), levels[t][level].end(), visible + visibleCount_);
+            visibleCount_ += uint32_t(levels[t][level].size());
+        }
+        firstVisible_[t][gpu::kTrackLodLevels] = visibleCount_;
     }
-    firstVisible_[gpu::kTrackLodLevels] = visibleCount_;
     dataSlot_ = dataSlot;
 }
 
-void TrackRenderer::drawVisible(VkCommandBuffer cmd, bool indexed) const {
+void TrackRenderer::drawVisible(VkCommandBuffer cmd, bool indexed, uint32_t tileIndex) const {
+    const std::array<uint32_t, gpu::kTrackLodLevels + 1>& first = firstVisible_[tileIndex];
     for (uint32_t level = 0; level < gpu::kTrackLodLevels; ++level) {
-        const uint32_t instances = firstVisible_[level + 1] - firstVisible_[level];
+        const uint32_t instances = first[level + 1] - first[level];
         if (instances == 0) continue;
         if (indexed)
             vkCmdDrawIndexed(cmd, firstIndex_[level + 1] - firstIndex_[level], instances, firstIndex_[level], 0,
-                             firstVisible_[level]);
+                             first[level]);
         else
-            vkCmdDraw(cmd, patchDrawVertices(level), instances, 0, firstVisible_[level]);
+            vkCmdDraw(cmd, patchDrawVertices(level), instances, 0, first[level]);
     }
 }
 
 DescriptorBinding TrackRenderer::visibleBinding() const {
-    const uint64_t bytes = uint64_t(capacity_) * sizeof(uint32_t);
+    const uint64_t bytes = uint64_t(visibleCapacity_) * sizeof(uint32_t);
     return storageBuffer(gpu::kBindingMeshIndices, visible_.handle, dataSlot_ * bytes, bytes);
 }
 
@@ -265,26 +296,27 @@ DescriptorBinding TrackRenderer::tableBinding() const {
 
 void TrackRenderer::drawMain(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& shadow,
                              const DescriptorBinding& cover, const DescriptorBinding& textures,
-                             const DescriptorBinding& groundMaterials, const gpu::TerrainTileConstants& tile) {
-    if (visibleCount_ == 0) return;
+                             const DescriptorBinding& groundMaterials, const gpu::TerrainTileConstants& tile,
+                             uint32_t tileIndex) {
+    if (tileIndex >= firstVisible_.size() || firstVisible_[tileIndex][0] == firstVisible_[tileIndex].back()) return;
     bindPipeline(cmd, patchMain_);
     pushDescriptors(ctx_.device, cmd, patchMain_,
                     {frame, shadow, cover, textures, groundMaterials,
                      storageBuffer(gpu::kBindingMeshVertices, vertices_.handle), visibleBinding()});
     pushConstants(cmd, patchMain_, tile);
     vkCmdBindIndexBuffer(cmd, gridIndices_.handle, 0, VK_INDEX_TYPE_UINT32);
-    drawVisible(cmd, true);
+    drawVisible(cmd, true, tileIndex);
 }
 
 void TrackRenderer::drawTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, const DescriptorBinding& cover,
-                              const gpu::TerrainTileConstants& tile, bool flow) {
-    if (visibleCount_ == 0) return;
+                              const gpu::TerrainTileConstants& tile, bool flow, uint32_t tileIndex) {
+    if (tileIndex >= firstVisible_.size() || firstVisible_[tileIndex][0] == firstVisible_[tileIndex].back()) return;
     const Pipeline& pipeline = flow ? patchTruthFlow_ : patchTruth_;
     bindPipeline(cmd, pipeline);
     pushDescriptors(ctx_.device, cmd, pipeline,
                     {frame, storageBuffer(gpu::kBindingMeshVertices, vertices_.handle), visibleBinding(), cover});
     pushConstants(cmd, pipeline, tile);
-    drawVisible(cmd, false);
+    drawVisible(cmd, false, tileIndex);
 }
 
 } // namespace sward

@@ -17,8 +17,8 @@ WorldSimulation::TileSimulation::TileSimulation(Context& ctx, const Scene& scene
 
 WorldSimulation::WorldSimulation(Context& ctx, SceneResources& resources, SceneRenderer& renderer, uint32_t threads)
     : ctx_(ctx), resources_(resources), renderer_(renderer), threads_(resolveThreadCount(threads)) {
-    require(resources.world != nullptr && renderer.vegetation() != nullptr,
-            "WorldSimulation: needs a world whose vegetation is drawn");
+    require(resources.world != nullptr && (renderer.vegetation() != nullptr || sceneMakesRuts(resources.scene)),
+            "WorldSimulation: needs a world whose vegetation is drawn or whose colliders press ruts");
     if (sceneMakesRuts(resources.scene)) renderer.setWorldGroundTracks(&tracks_);
     resources.world->setBeforeEvict([this](WorldTile& tile) {
         readBack(tile);
@@ -65,6 +65,10 @@ void WorldSimulation::prepare(std::span<const glm::dvec2> around) {
     lastColliders_ = worldColliders(scene, resources_.models, tick_);
     lastColliders_.insert(lastColliders_.end(), external_.begin(), external_.end());
     reaching_.clear();
+    if (!renderer_.vegetation()) { // bare ground: the colliders press ruts only
+        prepared_ = tick_;
+        return;
+    }
     for (const Collider& collider : lastColliders_)
         for (TileCoord coord : tilesReached(scene, collider)) {
             if (!waitForTiles_ && world.find(coord) == nullptr) continue; // sward-view: no pass on a missing tile

@@ -74,7 +74,7 @@ public:
     // pressed wherever colliders go: they need no tile.
     void setWaitForTiles(bool wait) { waitForTiles_ = wait; }
     const std::vector<Collider>& lastColliders() const { return lastColliders_; } // of the latest tick
-    const GroundTracks& tracks() const { return tracks_; }                         // the world's ruts
+    const GroundTracks& tracks() const { return tracks_; }                        // the world's ruts
     uint32_t simulatedTiles() const { return uint32_t(tiles_.size()); }
     uint64_t contacts() const { return contacts_; } // summed over all ticks and tiles
 

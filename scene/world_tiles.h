@@ -131,6 +131,9 @@ public:
     // generated. Returns its tick. Throws sward::Error naming the file; the world is unchanged then.
     // `tracks` (optional) gets the world's ruts saved with it.
     uint64_t restoreState(const std::string& path, TrackBlocks* tracks = nullptr);
+    // Every tile dropped, resident or evicted, with its touched fields, as before the first waitFor: a new episode (the
+    // Python module's reset). No eviction hook is called. Waits for the worker's tile in progress and drops it.
+    void clear();
 
 private:
     using Key = std::pair<int32_t, int32_t>; // (y, x): maps iterate in (y, x) order

@@ -117,3 +117,29 @@ TEST(WorldStateFile, CorruptFilesAreRefusedNamingTheFile) {
     EXPECT_NE(errorOf([&] { loadWorldState(path, 0); }).find(path + ": cannot open the world state file"),
               std::string::npos);
 }
+
+// A world's ruts ride in the world state (version 3); a world without ruts writes version 2, its bytes as before.
+TEST(WorldStateFile, RutsAreSavedAsVersion3AndAWorldWithoutThemStaysVersion2) {
+    WorldInteractionState state{.tick = 7, .tilesX = 2, .tilesY = 2};
+    state.tiles = {captureTouchedFields(touchedTile())};
+    const std::string path = (tempDir() / "world.state").string();
+    auto version = [&] {
+        std::ifstream in(path, std::ios::binary);
+        in.seekg(8);
+        uint32_t v = 0;
+        in.read(reinterpret_cast<char*>(&v), sizeof v);
+        return v;
+    };
+    saveWorldState(path, state);
+    EXPECT_EQ(version(), 2u);
+    EXPECT_TRUE(loadWorldState(path, 0).tracks.empty());
+    TrackBlock block(gpu::kTrackBlockCells * gpu::kTrackBlockCells, 0.0f);
+    block[33] = 0.04f;
+    state.tracks = {{TrackBlockKey{-3, 2}, block}, {TrackBlockKey{5, 2}, block}};
+    saveWorldState(path, state);
+    EXPECT_EQ(version(), 3u);
+    const WorldInteractionState back = loadWorldState(path, 0);
+    EXPECT_EQ(back.tracks, state.tracks);
+    ASSERT_EQ(back.tiles.size(), 1u);
+    EXPECT_EQ(back.tiles[0].fields.size(), state.tiles[0].fields.size());
+}
