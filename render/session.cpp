@@ -68,11 +68,16 @@ void Session::reset(std::optional<Scene> scene) {
 }
 
 void Session::restart() {
-    // A world: its tiles, resident and evicted, with every touched field and kept state, dropped and built again.
-    if (resources_.world) return reset(initial_);
     resources_.scene = initial_;
     if (ObjectRenderer* objects = gpu_.renderer->objects()) objects->resetObjects(initial_.objects);
     gpu_.renderer->setWeather(initial_.wind, initial_.sun, initial_.sky);
+    if (resources_.world) { // every tile, resident or evicted, dropped with its touched fields: generated again
+        const bool simulated = gpu_.worldSimulation != nullptr;
+        gpu_.worldSimulation.reset(); // its tiles' interaction and the ruts
+        resources_.world->clear();
+        syncWorldTiles(*gpu_.renderer, *resources_.world);
+        if (simulated) gpu_.worldSimulation = std::make_unique<WorldSimulation>(*ctx_, resources_, *gpu_.renderer);
+    }
     if (gpu_.simulation) { // a new interaction: tick 0, no ruts, the plants' records as generated
         const bool plants = gpu_.simulation->hasPlants();
         gpu_.simulation.reset();

@@ -58,8 +58,9 @@ public:
     // scene, built and checked as the constructor builds it (on failure the session is as it was), on the device
     // (and output image, when size and samples agree) already open. Without, the scene as it was built — camera,
     // objects, wind, sun and sky as loaded, no program colliders, no driven vehicle — and a new interaction at rest
-    // (frame 0, no ruts, every plant as generated), keeping every buffer. Either way the frames that follow are those
-    // of a new Session of that scene, bitwise. Refused while a frame observer (a recorder) is attached.
+    // (frame 0, no ruts, every plant as generated), keeping every buffer; a world drops every tile, resident or evicted,
+    // with its touched fields (WorldTiles::clear), generated again as the frames need them. Either way the frames that
+    // follow are those of a new Session of that scene, bitwise. Refused while a frame observer (a recorder) is attached.
     void reset(std::optional<Scene> scene = std::nullopt);
     // Whether frames are metered for auto-exposure (then step renders the last W ticks it runs).
     bool autoExposed() const { return autoExposure_.has_value(); }
