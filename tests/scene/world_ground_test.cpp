@@ -169,8 +169,10 @@ TEST(GisWorld, ADemFarLargerThanMemoryStreamsWithinTheBudget) {
     EXPECT_GE(most, 2u);
     EXPECT_GT(world.stats().evicted, 0u);
     const long rss = peakRssKib();
-    std::printf("20,000 x 20,000 DEM: %llu tiles generated, %u resident at most, peak RSS %.1f MiB\n",
-                static_cast<unsigned long long>(world.stats().generated), most, double(rss) / 1024.0);
+    std::printf("20,000 x 20,000 DEM: %llu tiles of 101 x 101 samples generated in %.3f s, %u resident at most, peak "
+                "RSS %.1f MiB\n",
+                static_cast<unsigned long long>(world.stats().generated), world.stats().generationSeconds, most,
+                double(rss) / 1024.0);
     EXPECT_LT(rss, 400L * 1024) << "KiB"; // well below the DEM's 1.6 GB of doubles
 }
 
@@ -232,4 +234,13 @@ TEST(GisWorld, AWorldOfOneTileReadsOnlyItsWindow) {
     EXPECT_EQ(h.sample(20, 20), pixels[size_t(kRows - 1 - 40) * kColumns + 40]);
     EXPECT_EQ(vegetationOn(scene, ground).worldOrigin, glm::vec2(20.0f));
     EXPECT_EQ(vegetationOn(scene, ground).tileSize, 20.0f);
+}
+
+TEST(GisWorld, TheBudgetPricesTheDemsSamples) {
+    // The same tiles on a DEM of 0.5 m instead of 1 m: (41^2 - 21^2) more terrain vertices of 4 bytes each.
+    const std::string dem = writeTestDem("priced.tif");
+    nlohmann::json fine = gisJson(dem, {{"tiles", {1, 1}}});
+    fine["terrain"]["heightmap"]["metres_per_pixel"] = 0.5;
+    const uint64_t coarse = predictedTileBytes(parseScene(gisJson(dem), "<gis>"));
+    EXPECT_EQ(predictedTileBytes(parseScene(fine, "<gis>")) - coarse, uint64_t(41 * 41 - 21 * 21) * 4);
 }
