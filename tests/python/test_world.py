@@ -95,6 +95,10 @@ def test_program_colliders_press_the_same_plants_streamed_or_resident(tmp_path):
         sim.step(2)
         untouched = sim.render()
     assert untouched["left"].tobytes() != streamed[2]["left"].tobytes()
+    with sward.Simulator(world_scene(tmp_path), vegetation=False) as bare:  # tiles of bare ground: no plant to press
+        with pytest.raises(sward.Error, match="set_colliders: the scene has no vegetation to interact with"):
+            bare.set_colliders([{"centre": [31.0, 20.0, 0.0]}])
+        assert bare.render()["record"]["colliders"] == []
 
 
 def rover_world(tmp, load_radius=12.0):
