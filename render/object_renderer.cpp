@@ -1,9 +1,11 @@
 #include "render/object_renderer.h"
 
+#include "scene/world_objects.h"
 #include "shared/config.h"
 #include "shared/object_layout.h"
 
 #include <cstring>
+#include <optional>
 
 namespace sward {
 
@@ -13,7 +15,17 @@ ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Ground& t
 
 ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Ground& terrain,
                                const VegetationPassFormats& formats, std::vector<ObjectModel> models)
-    : ctx_(ctx), terrain_(terrain), objects_(scene.objects), models_(std::move(models)) {
+    : ObjectRenderer(ctx, scene, &terrain, formats, std::move(models)) {}
+
+ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& world, const VegetationPassFormats& formats,
+                               std::vector<ObjectModel> models)
+    : ObjectRenderer(ctx, world, nullptr, formats, std::move(models)) {}
+
+ObjectRenderer::ObjectRenderer(Context& ctx, const Scene& scene, const Ground* terrain,
+                               const VegetationPassFormats& formats, std::vector<ObjectModel> models)
+    : ctx_(ctx), terrain_(terrain), world_(terrain ? nullptr : &scene), objects_(scene.objects),
+      models_(std::move(models)) {
+    require(terrain || scene.world.enabled, "ObjectRenderer: objects stand on a terrain or in a world");
     require(models_.size() == objects_.size(), "ObjectRenderer: one model per scene object is required");
     std::vector<gpu::ObjectVertex> vertices;
     std::vector<uint32_t> indices;
@@ -141,7 +153,9 @@ void ObjectRenderer::update(double time, uint32_t slot, const std::array<double,
     for (double t : times) {
         for (size_t k = 0; k < objects_.size(); ++k) {
             const bool hidden = k < hidden_.size() && hidden_[k];
-            for (const glm::dmat4& m : objectNodeTransforms(objects_[k], models_[k], terrain_, t))
+            const std::optional<Ground> own =
+                terrain_ ? std::nullopt : std::optional<Ground>(objectGround(*world_, objects_[k], models_[k], t));
+            for (const glm::dmat4& m : objectNodeTransforms(objects_[k], models_[k], terrain_ ? *terrain_ : *own, t))
                 transforms.push_back(
                     hidden ? gpu::ObjectTransform{glm::mat4(0.0f), glm::mat4(0.0f)}
                            : gpu::ObjectTransform{glm::mat4(m), glm::mat4(glm::transpose(glm::inverse(m)))});

@@ -9,11 +9,11 @@
 #pragma once
 
 #include "engine/context.h"
-#include "world/ground.h"
-#include "scene/objects.h"
 #include "engine/pipelines.h"
-#include "scene/scene.h"
 #include "render/vegetation_renderer.h" // VegetationPassFormats: the same pass formats
+#include "scene/objects.h"
+#include "scene/scene.h"
+#include "world/ground.h"
 
 namespace sward {
 
@@ -24,6 +24,10 @@ public:
     ObjectRenderer(Context& ctx, const Scene& scene, const Ground& terrain, const VegetationPassFormats& formats);
     // Same, with models already loaded by loadObjectModels(scene.objects, ...) (e.g. shared with the collision pass).
     ObjectRenderer(Context& ctx, const Scene& scene, const Ground& terrain, const VegetationPassFormats& formats,
+                   std::vector<ObjectModel> models);
+    // A world of several tiles (`world` must outlive the renderer): each object stands on its own lattice ground
+    // (objectGround, scene/world_objects.h), whichever tiles are resident.
+    ObjectRenderer(Context& ctx, const Scene& world, const VegetationPassFormats& formats,
                    std::vector<ObjectModel> models);
     ~ObjectRenderer();
     ObjectRenderer(const ObjectRenderer&) = delete;
@@ -54,11 +58,14 @@ public:
     void recordTruth(VkCommandBuffer cmd, const DescriptorBinding& frame, uint32_t slot = 0, bool flow = false);
 
 private:
+    ObjectRenderer(Context& ctx, const Scene& scene, const Ground* terrain, const VegetationPassFormats& formats,
+                   std::vector<ObjectModel> models);
     void draw(VkCommandBuffer cmd, const Pipeline& pipeline, std::initializer_list<DescriptorBinding> bindings);
     DescriptorBinding transformsBinding(uint32_t slot) const;
 
     Context& ctx_;
-    const Ground& terrain_;
+    const Ground* terrain_; // null: a world's objects, each on its objectGround
+    const Scene* world_ = nullptr;
     std::vector<ObjectParams> objects_;
     std::vector<ObjectModel> models_;
     std::vector<uint32_t> firstTransform_; // per object: index of its first node's transform

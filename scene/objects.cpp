@@ -52,8 +52,8 @@ ObjectParams parseObject(JsonReader r, size_t k, const std::vector<ObjectParams>
     o.scale = r.number("scale", o.scale, 0.001, 1000.0);
     o.yawDegrees = r.number("yaw_deg", o.yawDegrees, -360.0, 360.0);
     o.alignToTerrain = r.boolean("align_to_terrain", o.alignToTerrain);
-    o.path = parsePath(r.required("path", "{\"points\": [[x, y], ...], \"speed\": ...}"), r.source(),
-                       r.childPath("path"));
+    o.path =
+        parsePath(r.required("path", "{\"points\": [[x, y], ...], \"speed\": ...}"), r.source(), r.childPath("path"));
     std::vector<JsonReader> colliders = r.objects("colliders");
     if (colliders.size() > kMaxCollidersPerObject)
         r.fail(r.name("colliders") + " has more than " + std::to_string(kMaxCollidersPerObject) + " entries");
@@ -185,44 +185,51 @@ std::vector<Collider> objectColliders(const std::vector<ObjectParams>& objects, 
                                       const Ground& terrain, double time) {
     std::vector<Collider> colliders;
     for (size_t k = 0; k < objects.size(); ++k) {
-        const ObjectParams& object = objects[k];
-        if (object.colliders.empty()) continue;
-        const ObjectModel& model = modelOf(models, k);
-        const glm::dmat4 world = objectPose(object, model, terrain, time).worldFromModel;
-        const float scale = float(object.scale);
-        for (size_t i = 0; i < object.colliders.size(); ++i) {
-            const ObjectColliderParams& p = object.colliders[i];
-            const int node = model.findNode(p.node);
-            require(node >= 0,
-                    "object '" + object.name + "': model '" + model.path + "' has no node named '" + p.node + "'");
-            const glm::dmat4 toWorld = world * model.nodes[size_t(node)].modelFromNode;
-            auto at = [&](glm::dvec3 local) { return glm::vec3(glm::dvec3(toWorld * glm::dvec4(local, 1.0))); };
-            const uint32_t id = uint32_t(200000 + 100 * k + i);
-            const glm::dvec3 centre(p.offset);
-            Collider c;
-            if (p.kind == ColliderKind::Downwash) {
-                c = makeDownwash(id, at(centre), p.radius * scale, p.length * scale, p.force);
+        if (objects[k].colliders.empty()) continue;
+        const std::vector<Collider> own = objectColliders(objects[k], modelOf(models, k), k, terrain, time);
+        colliders.insert(colliders.end(), own.begin(), own.end());
+    }
+    return colliders;
+}
+
+std::vector<Collider> objectColliders(const ObjectParams& object, const ObjectModel& model, size_t k,
+                                      const Ground& terrain, double time) {
+    std::vector<Collider> colliders;
+    if (object.colliders.empty()) return colliders;
+    const glm::dmat4 world = objectPose(object, model, terrain, time).worldFromModel;
+    const float scale = float(object.scale);
+    for (size_t i = 0; i < object.colliders.size(); ++i) {
+        const ObjectColliderParams& p = object.colliders[i];
+        const int node = model.findNode(p.node);
+        require(node >= 0,
+                "object '" + object.name + "': model '" + model.path + "' has no node named '" + p.node + "'");
+        const glm::dmat4 toWorld = world * model.nodes[size_t(node)].modelFromNode;
+        auto at = [&](glm::dvec3 local) { return glm::vec3(glm::dvec3(toWorld * glm::dvec4(local, 1.0))); };
+        const uint32_t id = uint32_t(200000 + 100 * k + i);
+        const glm::dvec3 centre(p.offset);
+        Collider c;
+        if (p.kind == ColliderKind::Downwash) {
+            c = makeDownwash(id, at(centre), p.radius * scale, p.length * scale, p.force);
+        } else {
+            if (p.shape == ColliderShape::Sphere) {
+                c = makeSphere(id, at(centre), p.radius * scale, p.force, p.kind);
+            } else if (p.shape == ColliderShape::Capsule) {
+                // Sizes ignore node scales (only the object's scale applies): the axis direction is unit.
+                glm::vec3 half = glm::vec3(glm::normalize(glm::dvec3(toWorld[p.axis]))) * (0.5f * p.length * scale);
+                glm::vec3 middle = at(centre);
+                c = makeCapsule(id, middle - half, middle + half, p.radius * scale, p.force, p.kind);
             } else {
-                if (p.shape == ColliderShape::Sphere) {
-                    c = makeSphere(id, at(centre), p.radius * scale, p.force, p.kind);
-                } else if (p.shape == ColliderShape::Capsule) {
-                    // Sizes ignore node scales (only the object's scale applies): the axis direction is unit.
-                    glm::vec3 half = glm::vec3(glm::normalize(glm::dvec3(toWorld[p.axis]))) * (0.5f * p.length * scale);
-                    glm::vec3 middle = at(centre);
-                    c = makeCapsule(id, middle - half, middle + half, p.radius * scale, p.force, p.kind);
-                } else {
-                    // The node's axes in world space, scale and any shear removed (Gram-Schmidt).
-                    glm::dvec3 x = glm::normalize(glm::dvec3(toWorld[0]));
-                    glm::dvec3 y = glm::normalize(glm::dvec3(toWorld[1]) - x * glm::dot(x, glm::dvec3(toWorld[1])));
-                    // A box is symmetric, so a mirrored node's box is the same box in a right-handed frame.
-                    glm::dvec3 z = glm::cross(x, y);
-                    c = makeBox(id, at(centre), p.halfExtents * scale, glm::mat3(glm::dmat3(x, y, z)), p.force, p.kind);
-                }
-                if (p.kind == ColliderKind::Mower) c = makeMower(c, p.cutHeight);
-                c.rut = p.rut;
+                // The node's axes in world space, scale and any shear removed (Gram-Schmidt).
+                glm::dvec3 x = glm::normalize(glm::dvec3(toWorld[0]));
+                glm::dvec3 y = glm::normalize(glm::dvec3(toWorld[1]) - x * glm::dot(x, glm::dvec3(toWorld[1])));
+                // A box is symmetric, so a mirrored node's box is the same box in a right-handed frame.
+                glm::dvec3 z = glm::cross(x, y);
+                c = makeBox(id, at(centre), p.halfExtents * scale, glm::mat3(glm::dmat3(x, y, z)), p.force, p.kind);
             }
-            colliders.push_back(c);
+            if (p.kind == ColliderKind::Mower) c = makeMower(c, p.cutHeight);
+            c.rut = p.rut;
         }
+        colliders.push_back(c);
     }
     return colliders;
 }

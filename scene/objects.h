@@ -97,5 +97,8 @@ std::vector<glm::dmat4> objectNodeTransforms(const ObjectParams& object, const O
 // 200000 + 100 * object + collider. `models` as returned by loadObjectModels. Append these to actorColliders().
 std::vector<Collider> objectColliders(const std::vector<ObjectParams>& objects, const std::vector<ObjectModel>& models,
                                       const Ground& terrain, double time);
+// Object k's colliders alone, with the same ids: an object of a world stands on its own ground (world_objects.h).
+std::vector<Collider> objectColliders(const ObjectParams& object, const ObjectModel& model, size_t k,
+                                      const Ground& terrain, double time);
 
 } // namespace sward

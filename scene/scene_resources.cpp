@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "scene/terrain.h"
+#include "scene/world_objects.h"
 
 namespace sward {
 
@@ -30,6 +31,7 @@ SceneResources buildSceneResources(Scene scene, bool withVegetation, uint32_t th
             r.scene.vegetationEnabled = false; // tiles of bare ground: nothing to generate
         }
         r.world = std::make_unique<WorldTiles>(r.scene, threads, std::move(looks));
+        r.models = loadObjectModels(r.scene.objects, r.scene.source);
         return r;
     }
     r.terrain = buildTerrain(r.scene);
@@ -46,7 +48,7 @@ SceneResources buildSceneResources(Scene scene, bool withVegetation, uint32_t th
 }
 
 std::vector<Collider> sceneColliders(const SceneResources& r, uint64_t tick) {
-    if (r.world) return worldActorColliders(r.scene, double(tick) * r.scene.sequence.timeStep);
+    if (r.world) return worldColliders(r.scene, r.models, tick);
     return sceneColliders(r.scene, r.models, r.terrain, tick);
 }
 

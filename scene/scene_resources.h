@@ -37,7 +37,7 @@ struct SceneResources {
 // cover when the vegetation is drawn).
 SceneResources buildSceneResources(Scene scene, bool withVegetation = true, uint32_t threads = 0);
 
-// The colliders acting during tick `tick`: sceneColliders on the scene's terrain, or in a world worldActorColliders.
+// The colliders acting during tick `tick`: sceneColliders on the scene's terrain, or in a world worldColliders.
 std::vector<Collider> sceneColliders(const SceneResources& r, uint64_t tick);
 
 } // namespace sward
