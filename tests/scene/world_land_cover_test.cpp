@@ -1,6 +1,7 @@
 // A world's land cover (issue 51, part B): each tile's grass map is the land-cover raster's window over the tile,
 // bitwise the whole raster's map cut there; a raster whose georeferenced extent is not the world's is one error
-// naming both; the budget's per-tile bound holds with intensities above 1; tiles are the same streamed or resident.
+// naming both; the budget's per-tile bound holds with intensities above 1; tiles are the same streamed or resident,
+// on a procedural and on a DEM ground.
 #include "scene/land_cover_params.h"
 #include "scene/world_params.h"
 #include "scene/world_tiles.h"
@@ -51,6 +52,31 @@ nlohmann::json worldJson(const std::string& landCover) {
             {"world", {{"tiles", {3, 2}}, {"load_radius", 30}, {"evict_radius", 40}}}};
 }
 
+// The maps of every tile of the scene's world equal the whole raster's map (read here with readRasterBand) cut at
+// the tile, bitwise; `pixels` per tile along each side.
+void expectTileMapsAreTheWholeRastersCut(const Scene& scene, const std::string& file, uint32_t pixels) {
+    const RasterBand raster = readRasterBand(file);
+    const RasterWindow all{.width = raster.width, .height = raster.height};
+    const double tileSize = scene.vegetation.tileSize;
+    const GrassMap whole = makeLandCoverWindowGrassMap(raster, all, {raster.width, raster.height}, all, scene.landCover,
+                                                       glm::dvec2(tileSize / pixels), "test");
+    const uint32_t tilesY = scene.world.tilesY;
+    for (uint32_t ty = 0; ty < tilesY; ++ty)
+        for (uint32_t tx = 0; tx < scene.world.tilesX; ++tx) {
+            const glm::dvec2 origin = glm::dvec2(scene.vegetation.worldOrigin) + tileSize * glm::dvec2(tx, ty);
+            const GrassMap map = buildGrassMap(scene, float(tileSize), origin);
+            ASSERT_EQ(map.width(), pixels);
+            ASSERT_EQ(map.height(), pixels);
+            std::vector<float> expected;
+            for (uint32_t y = 0; y < pixels; ++y) { // tile rows count north, raster rows south
+                const size_t row = size_t(tilesY - 1 - ty) * pixels + y;
+                const auto first = whole.values().begin() + ptrdiff_t((row * raster.width + size_t(tx) * pixels) * 3);
+                expected.insert(expected.end(), first, first + 3 * pixels);
+            }
+            EXPECT_EQ(map.values(), expected) << "tile " << tx << ", " << ty;
+        }
+}
+
 template <class T> bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
     return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
@@ -69,23 +95,49 @@ TEST(WorldLandCover, EachTilesGrassMapIsTheWholeRastersMapCutAtTheTile) {
     const auto dir = tempDir();
     const std::string file = writeGrid(dir / "cover.asc", 15, 10, patch, true);
     const Scene scene = parseScene(worldJson("cover.asc"), (dir / "scene.json").string());
-    const RasterBand raster = readRasterBand(file);
-    const RasterWindow all{.width = 15, .height = 10};
-    const GrassMap whole =
-        makeLandCoverWindowGrassMap(raster, all, {15, 10}, all, scene.landCover, {10.0, 10.0}, "test");
-    for (int32_t ty = 0; ty < 2; ++ty)
-        for (int32_t tx = 0; tx < 3; ++tx) {
-            const GrassMap map = buildGrassMap(scene, 50.0f, glm::dvec2(50.0 * tx, 50.0 * ty));
-            ASSERT_EQ(map.width(), 5u);
-            ASSERT_EQ(map.height(), 5u);
-            std::vector<float> expected;
-            for (uint32_t y = 0; y < 5; ++y) { // tile row 1 is the raster's top half
-                const size_t row = size_t(1 - ty) * 5 + y;
-                const auto first = whole.values().begin() + ptrdiff_t((row * 15 + size_t(tx) * 5) * 3);
-                expected.insert(expected.end(), first, first + 15);
-            }
-            EXPECT_EQ(map.values(), expected) << "tile " << tx << ", " << ty;
+    expectTileMapsAreTheWholeRastersCut(scene, file, 5);
+}
+
+// A GIS world: a 61 x 41 sample DEM of 1 m (UTM) gives 3 x 2 tiles of 20 m from its south-west sample; the land
+// cover of 6 x 4 pixels of 10 m covers the same 60 x 40 m. Each tile's map is the whole raster's cut at the tile,
+// plants grow, and the tiles a small load radius streams equal those generated alone.
+TEST(WorldLandCover, OnADemWorldTooTilesTakeTheirWindowAndStreamAlike) {
+    SWARD_SKIP_WITHOUT(Gdal);
+    const auto dir = tempDir();
+    writeGrid(
+        dir / "dem.asc", 61, 41, [](uint32_t x, uint32_t y) { return int((x * 7 + y * 3) % 11); }, true);
+    std::filesystem::path demPath = dir / "dem.asc";
+    { // 1 m samples: rewrite the header's cell size
+        std::string text = readText(demPath);
+        text.replace(text.find("cellsize 10"), 11, "cellsize 1");
+        std::ofstream(demPath) << text;
+    }
+    const std::string file = writeGrid(dir / "cover.asc", 6, 4, patch, true);
+    nlohmann::json json = worldJson("cover.asc");
+    json["terrain"] = {{"heightmap", {{"file", "dem.asc"}}}};
+    json["vegetation"] = {{"tile_size", 20}, {"field_size", 10}, {"density_multiplier", 0.05}};
+    json["world"] = {{"load_radius", 12}, {"evict_radius", 20}};
+    const Scene scene = parseScene(json, (dir / "scene.json").string());
+    ASSERT_EQ(scene.world.tilesX, 3u);
+    ASSERT_EQ(scene.world.tilesY, 2u);
+    expectTileMapsAreTheWholeRastersCut(scene, file, 2);
+    WorldTiles streamed(scene, 1);
+    uint32_t checked = 0;
+    uint64_t plants = 0;
+    const glm::dvec2 origin(scene.vegetation.worldOrigin);
+    for (double x = 2.0; x <= 58.0; x += 8.0) {
+        const glm::dvec2 point = origin + glm::dvec2(x, 0.6 * x);
+        streamed.waitFor({&point, 1});
+        for (TileCoord coord : streamed.residentTiles()) {
+            EXPECT_TRUE(sameTile(*streamed.find(coord), generateWorldTile(scene, coord, 2)))
+                << "tile " << coord.x << ", " << coord.y;
+            ++checked;
         }
+    }
+    for (const FieldVegetation& f : generateWorldTile(scene, {1, 1}, 1).vegetation.fields) plants += f.plantCount();
+    EXPECT_GT(streamed.stats().evicted, 0u);
+    EXPECT_GT(checked, 6u);
+    EXPECT_GT(plants, 100u);
 }
 
 TEST(WorldLandCover, MismatchedExtentIsOneErrorNamingBothExtents) {
@@ -122,6 +174,13 @@ TEST(WorldLandCover, TheBudgetsTileBoundHoldsIntensitiesOverOne) {
     EXPECT_GT(tile.bytes, predictedTileBytes(meadow)) << "the meadow's bound would not hold";
     EXPECT_LE(tile.bytes, predictedTileBytes(scene));
     EXPECT_GE(tile.bytes * 105, predictedTileBytes(scene) * 100) << "and it stays tight";
+    // Drawn, a tile carries its far cover: one texel per land-cover pixel (5 x 5 here), made from its map.
+    const std::vector<CategoryLook> looks(scene.vegetation.categoryCount, CategoryLook{glm::vec3(0.2f), 0.01});
+    const WorldTile drawn = generateWorldTile(scene, {2, 1}, 1, looks);
+    EXPECT_EQ(drawn.cover.width, 5u);
+    EXPECT_EQ(drawn.cover.height, 5u);
+    EXPECT_GT(drawn.bytes, tile.bytes);
+    EXPECT_LE(drawn.bytes, predictedTileBytes(scene, true));
     std::printf("[ figures  ] tile %llu bytes, bound %llu, the meadow's bound %llu\n", (unsigned long long)tile.bytes,
                 (unsigned long long)predictedTileBytes(scene), (unsigned long long)predictedTileBytes(meadow));
 }
