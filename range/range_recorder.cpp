@@ -77,10 +77,8 @@ std::vector<RangeScan> RangeRecorder::sweepWorld(uint32_t frame, const FrameStat
     std::set<std::pair<int32_t, int32_t>> wanted; // (y, x)
     for (const RangeSensorParams& sensor : scene.rangeSensors) {
         const std::vector<glm::dvec2> origins = sweepOrigins(scene, sensor, time);
-        glm::dvec2 lo = origins[0], hi = origins[0];
         double motion = 0.0;
-        for (const glm::dvec2& o : origins)
-            lo = glm::min(lo, o), hi = glm::max(hi, o), motion = std::max(motion, glm::distance(o, origins[0]));
+        for (const glm::dvec2& o : origins) motion = std::max(motion, glm::distance(o, origins[0]));
         // A plant stands in its tile but leans out of it, as out of its field (range/plant_fields.cpp).
         const double reach = sensor.maxRange + motion + kPlantLean;
         require(reach <= scene.world.loadRadius,
@@ -89,7 +87,7 @@ std::vector<RangeScan> RangeRecorder::sweepWorld(uint32_t frame, const FrameStat
                     formatNumber(kPlantLean) + " m and its motion in the sweep), beyond 'world.load_radius' (" +
                     formatNumber(scene.world.loadRadius) + " m): its rays would meet tiles that need not be resident");
         for (TileCoord coord : tilesWithin(scene, origins[0], reach)) wanted.insert({coord.y, coord.x});
-        grounds.push_back(latticeGround(scene, lo, hi, 1.0));
+        grounds.push_back(sweepGround(scene, sensor, time));
         starts.push_back(origins[0]), reaches.push_back(reach);
     }
     std::vector<RayTile> tiles;

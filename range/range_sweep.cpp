@@ -3,6 +3,7 @@
 #include "common/error.h"
 #include "common/hash.h"
 #include "common/parallel_for.h"
+#include "scene/world_tiles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -198,6 +199,13 @@ std::vector<glm::dvec2> firstOrigins(const Scene& scene, const RangeSensorParams
 
 std::vector<glm::dvec2> sweepOrigins(const Scene& scene, const RangeSensorParams& s, double frameTime) {
     return firstOrigins(scene, s, frameTime, ~0u);
+}
+
+Ground sweepGround(const Scene& scene, const RangeSensorParams& sensor, double frameTime) {
+    const std::vector<glm::dvec2> origins = sweepOrigins(scene, sensor, frameTime);
+    glm::dvec2 lo = origins[0], hi = origins[0];
+    for (const glm::dvec2& o : origins) lo = glm::min(lo, o), hi = glm::max(hi, o);
+    return latticeGround(scene, lo, hi, 1.0);
 }
 
 std::vector<glm::dvec2> rangeSensorStarts(const Scene& scene, double frameTime) {

@@ -52,6 +52,9 @@ PosedTriangles posedObject(const Scene& scene, size_t k, const ObjectModel& mode
 // ToF camera, else one per column), without ground: where a world needs its tiles. Fixed and path mounts only (an
 // object's node needs the object's ground): throws sward::Error naming the sensor for an object mount.
 std::vector<glm::dvec2> sweepOrigins(const Scene& scene, const RangeSensorParams& sensor, double frameTime);
+// The ground a range sensor of a world stands on during its sweep from `frameTime`: the world's lattice ground around
+// the sweep's origins (latticeGround: the tiles' heights bitwise), as a camera stands on cameraGround.
+Ground sweepGround(const Scene& scene, const RangeSensorParams& sensor, double frameTime);
 // Where each range sensor's sweep of the frame at `frameTime` starts (xy): interest points of a world (the tiles its
 // rays meet are made resident around them, as around the cameras).
 std::vector<glm::dvec2> rangeSensorStarts(const Scene& scene, double frameTime);

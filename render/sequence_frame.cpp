@@ -45,6 +45,14 @@ RigCameras sequenceRigAt(const SceneResources& r, uint32_t width, uint32_t heigh
 nlohmann::json sequenceFrameRecord(const SceneResources& r, const RigCameras& rig, uint32_t width, uint32_t height,
                                    uint32_t frame, double timeOffset, std::span<const Collider> acting) {
     nlohmann::json record = frameRecord(r.scene, r.models, r.terrain, rig, frame, timeOffset, acting);
+    // A world's range sensors stand on its lattice ground around their sweeps, as they cast (range/range_sweep.h).
+    for (size_t k = 0; r.world && k < r.scene.rangeSensors.size(); ++k) {
+        const RangeSensorParams& s = r.scene.rangeSensors[k];
+        const double start = double(frame) * r.scene.sequence.timeStep, end = start + columnTime(s, s.columns() - 1);
+        const Ground ground = sweepGround(r.scene, s, start);
+        record["range_sensors"][k]["start_pose"] = matrixJson(rangeSensorPose(r.scene, s, ground, r.models, start));
+        record["range_sensors"][k]["end_pose"] = matrixJson(rangeSensorPose(r.scene, s, ground, r.models, end));
+    }
     // A shutter's sub-frames (render/motion_blur.h): their count ("auto" follows the motion) and times.
     const SensorParams& sensor = r.scene.camera.rig.sensor;
     const std::vector<double> exposure = frameExposureTimes(r, sensor, width, height, frame);

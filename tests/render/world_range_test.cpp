@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <map>
 #include <set>
 #include <utility>
 
@@ -31,7 +33,7 @@ constexpr double kTile = 20.0;
 // 3 m south of the border y = 20, at 4 m/s, behind a rover that presses the grass along y = 21 (on the border).
 // Every plant within the LiDAR's 15 m is drawn in the near LOD (the range sensors' LOD), out to lod.near 16 m.
 // `loadRadius` 18 m streams (evict 22 m: tile column 0 goes by frame 140); 400 m keeps every tile resident.
-Scene lidarWorld(double loadRadius) {
+nlohmann::json lidarWorldJson(double loadRadius) {
     nlohmann::json json = nlohmann::json::parse(R"({
         "seed": 11,
         "terrain": {"size": 20, "spacing": 1, "amplitude": 2, "feature_size": 50, "octaves": 3},
@@ -54,7 +56,11 @@ Scene lidarWorld(double loadRadius) {
     json["range_sensors"][0]["elevations_deg"] = elevations;
     json["world"]["load_radius"] = loadRadius;
     json["world"]["evict_radius"] = loadRadius + 4.0;
-    return parseScene(json, "lidar world");
+    return json;
+}
+
+Scene lidarWorld(double loadRadius) {
+    return parseScene(lidarWorldJson(loadRadius), "lidar world");
 }
 
 struct LidarRun {
@@ -186,4 +192,32 @@ TEST_F(GpuTest, WorldLidarPointsAreBitwiseTheSameStreamedOrResident) {
         EXPECT_GE(tiles.size(), 3u) << "frame " << frames[f];
         EXPECT_EQ(streamed.frames[f].depth, resident.frames[f].depth) << "frame " << frames[f];
     }
+}
+
+// sward-render casts a world's sweeps before the next frame may evict their tiles: the streamed and the resident
+// world's datasets are the same file for file (range files, frames.jsonl with the LiDAR's poses on the world's ground,
+// images), across the border x = 20 m.
+TEST_F(GpuTest, WorldLidarDatasetsAreTheSameStreamedOrResident) {
+    std::map<double, std::string> out;
+    for (double loadRadius : {18.0, 400.0}) {
+        const std::string dir = sward::test::tempDir("world-lidar-" + std::to_string(int(loadRadius)));
+        std::ofstream(dir + "/scene.json") << lidarWorldJson(loadRadius).dump(1);
+        std::string err;
+        ASSERT_EQ(sward::test::runSwardRender(
+                      dir + "/scene.json --out " + dir + "/out --frames 40:42 --resolution 64x48", err),
+                  0)
+            << err;
+        out[loadRadius] = dir + "/out";
+    }
+    EXPECT_GE(sward::test::expectSameRunFiles(out[18.0], out[400.0]), 12u);
+    EXPECT_FALSE(sward::test::readFile(out[18.0] + "/range/lidar/000041.ply").empty());
+    // The LiDAR stands 2.2 m above the ground it is drawn on, as the camera on the same path does.
+    std::istringstream lines(sward::test::readFile(out[18.0] + "/frames.jsonl"));
+    uint32_t records = 0;
+    for (std::string line; std::getline(lines, line); ++records) {
+        const nlohmann::json record = nlohmann::json::parse(line);
+        EXPECT_NEAR(double(record["range_sensors"][0]["start_pose"][2][3]), double(record["left_pose"][2][3]), 1e-6)
+            << line;
+    }
+    EXPECT_EQ(records, 200u); // the whole sequence
 }
