@@ -66,7 +66,8 @@ VegetationRenderer::Tile::Tile(Context& ctx, const VegetationTile& tile, uint64_
 }
 
 VegetationRenderer::Tile::~Tile() {
-    for (Buffer* b : {&constants, &clusterCounts, &draws, &stats, &clusterOrder}) retireBuffer(ctx, *b);
+    for (Buffer* b : {&constants, &clusterCounts, &draws, &stats, &clusterOrder, &keptStates[0], &keptStates[1]})
+        if (b->handle) retireBuffer(ctx, *b);
 }
 
 PipelineLayoutDesc VegetationRenderer::drawLayout(bool withShadowMap) const {
@@ -146,7 +147,6 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const A
 VegetationRenderer::~VegetationRenderer() {
     ctx_.submitter.waitIdle();
     tiles_.clear();
-    for (Buffer& b : keptStates_) destroyBuffer(ctx_, b);
     for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &truthPipeline_,
                         &truthFlowPipeline_, &shadowPipeline_, &bakePipeline_, &staticPipeline_, &floorPipeline_})
         destroyPipeline(ctx_.device, *p);
@@ -241,8 +241,10 @@ DescriptorBinding VegetationRenderer::constantsBinding(const Tile& tile, uint32_
 
 void VegetationRenderer::addTile(const VegetationTile& tile) {
     require(!hasTile(tile.coord), "VegetationRenderer: the tile is resident already");
-    tiles_.emplace(TileKey(tile.coord.y, tile.coord.x),
-                   std::make_unique<Tile>(ctx_, tile, constantsStride_ * gpu::kFrameDataSlots));
+    const auto [it, added] =
+        tiles_.emplace(TileKey(tile.coord.y, tile.coord.x),
+                       std::make_unique<Tile>(ctx_, tile, constantsStride_ * gpu::kFrameDataSlots));
+    if (truthFlowPipeline_.handle) startKeptStates(*it->second); // a world's tile made resident with flow on
 }
 
 void VegetationRenderer::removeTile(TileCoord coord) {
@@ -390,11 +392,12 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
                                 {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(),
                                  shadowMap, plants});
             else if (pass == PlantPass::TruthFlow)
-                pushDescriptors(ctx_.device, cmd, p,
-                                {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(),
-                                 plants, storageBuffer(gpu::kBindingFlowStatics, tile->buffers.statics.handle),
-                                 storageBuffer(gpu::kBindingFlowDynamicsPrevious, keptStates_[latestKept_ ^ 1u].handle),
-                                 storageBuffer(gpu::kBindingFlowDynamicsNext, tile->buffers.dynamics.handle)});
+                pushDescriptors(
+                    ctx_.device, cmd, p,
+                    {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(), plants,
+                     storageBuffer(gpu::kBindingFlowStatics, tile->buffers.statics.handle),
+                     storageBuffer(gpu::kBindingFlowDynamicsPrevious, tile->keptStates[latestKept_ ^ 1u].handle),
+                     storageBuffer(gpu::kBindingFlowDynamicsNext, tile->buffers.dynamics.handle)});
             else
                 pushDescriptors(ctx_.device, cmd, p,
                                 {frame, constantsBinding(*tile, slot), instances, atlasCellsBinding(), atlasBinding(),
@@ -443,7 +446,6 @@ GraphicsPipelineDesc VegetationRenderer::truthPipelineDesc() const {
 
 void VegetationRenderer::enableFlow() {
     if (truthFlowPipeline_.handle) return;
-    require(tiles_.size() == 1, "motion ground truth (render.flow) needs a scene of one tile");
     PipelineLayoutDesc layout = drawLayout(false);
     for (uint32_t binding :
          {gpu::kBindingFlowStatics, gpu::kBindingFlowDynamicsPrevious, gpu::kBindingFlowDynamicsNext})
@@ -451,27 +453,32 @@ void VegetationRenderer::enableFlow() {
             layoutBinding(binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT));
     truthFlowPipeline_ =
         createGraphicsPipeline(ctx_.device, truthFlowPipelineDesc(truthPipelineDesc(), formats_.truthFlow), layout);
-    // Both kept states start as the live records, so neither is ever read uninitialised.
-    const Buffer& live = onlyTile().buffers.dynamics;
+    for (auto& [key, tile] : tiles_) startKeptStates(*tile);
+}
+
+// Both kept states start as the live records, so neither is ever read uninitialised.
+void VegetationRenderer::startKeptStates(Tile& tile) {
+    const Buffer& live = tile.buffers.dynamics;
     const VkBufferCopy region{.size = live.size};
-    for (Buffer& kept : keptStates_)
+    for (Buffer& kept : tile.keptStates)
         kept = createBuffer(ctx_, live.size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                             MemoryIntent::DeviceLocal);
     ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
-        for (const Buffer& kept : keptStates_) vkCmdCopyBuffer(cmd, live.handle, kept.handle, 1, &region);
+        for (const Buffer& kept : tile.keptStates) vkCmdCopyBuffer(cmd, live.handle, kept.handle, 1, &region);
     });
 }
 
 void VegetationRenderer::recordKeepState(VkCommandBuffer cmd) {
     require(truthFlowPipeline_.handle, "VegetationRenderer::recordKeepState: enableFlow() first");
-    const Buffer& live = onlyTile().buffers.dynamics;
     latestKept_ ^= 1u;
-    // The interaction tick's compute writes -> this copy; the copy's reads -> the next tick's writes (its barrier).
+    // The interaction tick's compute writes -> these copies; the copies' reads -> the next tick's writes (its barrier).
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    const VkBufferCopy region{.size = live.size};
-    vkCmdCopyBuffer(cmd, live.handle, keptStates_[latestKept_].handle, 1, &region);
-    // The copy -> the truth pass's vertex reads, and the live records' next writers (a tick's compute).
+    for (const auto& [key, tile] : tiles_) { // every resident tile: any may be drawn, and later simulated
+        const VkBufferCopy region{.size = tile->buffers.dynamics.size};
+        vkCmdCopyBuffer(cmd, tile->buffers.dynamics.handle, tile->keptStates[latestKept_].handle, 1, &region);
+    }
+    // The copies -> the truth pass's vertex reads, and the live records' next writers (a tick's compute).
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                   VK_ACCESS_2_SHADER_STORAGE_READ_BIT);

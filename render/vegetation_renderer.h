@@ -88,12 +88,13 @@ public:
     void draw(VkCommandBuffer cmd, PlantPass pass, const DescriptorBinding& frame, const DescriptorBinding& shadowMap,
               uint32_t slot, uint32_t lodMask = (1u << gpu::kLodCount) - 1u);
 
-    // Motion ground truth (render.flow; one-tile scenes): the truth pass with flow places each plant's points with its
-    // state at the previous tick and at the next. enableFlow() makes the pipeline and two buffers for kept states;
-    // recordKeepState() copies the live dynamic records into one of them, alternately. A draw with TruthFlow reads
-    // the state kept before the latest keep as the previous tick's and the live records as the next tick's: so keep
-    // the state of tick t - 1, render tick t, keep tick t's state and run tick t + 1, then draw the truth. enableFlow()
-    // fills both with the live records: plants no simulation moves need no keep at all.
+    // Motion ground truth (render.flow): the truth pass with flow places each plant's points with its state at the
+    // previous tick and at the next. enableFlow() makes the pipeline and, for every resident tile, two buffers for kept
+    // states; recordKeepState() copies every resident tile's live dynamic records into one of them, alternately. A draw
+    // with TruthFlow reads the state kept before the latest keep as the previous tick's and the live records as the
+    // next tick's: so keep the state of tick t - 1, render tick t, keep tick t's state and run tick t + 1, then draw
+    // the truth. Both kept states start as the live records, at enableFlow() and for a tile added after it (a world's
+    // tile made resident: no tick changed it while it was not), so plants no simulation moves need no keep at all.
     void enableFlow();
     void recordKeepState(VkCommandBuffer cmd);
 
@@ -152,6 +153,7 @@ private:
         Buffer clusterOrder;
         uint64_t orderStride = 0;
         bool expanded = false; // by the latest expand(): within reach of the camera; draw() draws only these
+        Buffer keptStates[2];  // PlantDynamic[plants] of two earlier ticks (enableFlow())
     };
     using TileKey = std::pair<int32_t, int32_t>; // (y, x): the map iterates in the frame's tile order
 
@@ -170,6 +172,7 @@ private:
     void expandTile(VkCommandBuffer cmd, const Tile& tile, uint32_t slot, bool firstTile);
     bool withinReach(const Tile& tile, const glm::dvec3& camera) const;
     Tile& onlyTile();
+    void startKeptStates(Tile& tile); // both kept states the live records (waits)
     DescriptorBinding constantsBinding(const Tile& tile, uint32_t slot) const;
     DescriptorBinding atlasCellsBinding() const;
     DescriptorBinding atlasBinding() const;
@@ -194,8 +197,7 @@ private:
     Pipeline mainPipeline_, truthPipeline_, shadowPipeline_;
     Pipeline truthFlowPipeline_;                             // enableFlow()
     std::array<Pipeline, 4> bladePipelines_;                 // by PlantPass; bladePipeline()
-    Buffer keptStates_[2];                                   // PlantDynamic[plants] of two earlier ticks (enableFlow())
-    uint32_t latestKept_ = 0;                                // the buffer recordKeepState() wrote last
+    uint32_t latestKept_ = 0;                                // the tiles' kept state recordKeepState() wrote last
     Pipeline bakePipeline_, staticPipeline_, floorPipeline_; // created on first use (benchmarks, tests)
     MainShading mainShading_ = MainShading::Full;
     VegetationPassFormats formats_;
