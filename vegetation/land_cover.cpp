@@ -366,33 +366,45 @@ LandCoverGrid landCoverGrid(uint32_t width, uint32_t height, const std::optional
     const std::string worldText = shortText(worldExtent.x) + " x " + shortText(worldExtent.y) + " m (" +
                                   std::to_string(world.tilesX) + " x " + std::to_string(world.tilesY) + " tiles of " +
                                   shortText(world.tileSize) + " m)";
+    const std::string rasterText = "raster '" + source + "'";
+    LandCoverGrid grid{.rasterSize = {width, height}};
     if (geo && geo->metresPerUnit > 0.0) {
+        // Its own pixels, in metres: they must tile the world's tiles, and the raster reach over the whole world.
         const glm::dvec2 pixel = glm::dvec2(geo->pixelWidth, geo->pixelHeight) * geo->metresPerUnit;
+        const glm::dvec2 perTile = world.tileSize / pixel, whole = glm::round(perTile);
+        require(glm::all(glm::greaterThanEqual(whole, glm::dvec2(1.0))) &&
+                    glm::all(glm::lessThanEqual(glm::abs(perTile - whole), 1e-6 * whole)),
+                what + ": " + rasterText + " has pixels of " + shortText(pixel.x) + " x " + shortText(pixel.y) +
+                    " m, which do not divide the world's tiles of " + shortText(world.tileSize) +
+                    " m into whole pixels; resample it (gdalwarp -tr)");
+        grid.pixelsPerTile = glm::uvec2(whole);
         const glm::dvec2 extent = glm::dvec2(width, height) * pixel;
-        if (glm::any(glm::greaterThan(glm::abs(extent - worldExtent), 1e-6 * worldExtent)))
-            throw Error(what + ": raster '" + source + "' covers " + shortText(extent.x) + " x " + shortText(extent.y) +
+        if (uint64_t(world.tilesX) * grid.pixelsPerTile.x > width ||
+            uint64_t(world.tilesY) * grid.pixelsPerTile.y > height)
+            throw Error(what + ": " + rasterText + " covers " + shortText(extent.x) + " x " + shortText(extent.y) +
                         " m (" + std::to_string(width) + " x " + std::to_string(height) + " pixels of " +
                         shortText(pixel.x) + " x " + shortText(pixel.y) + " m), but the world covers " + worldText +
-                        ": in a world the land cover must cover the world's extent (crop or warp it, e.g. gdalwarp "
-                        "-te)");
+                        ": in a world the land cover must cover the world's extent (from its south-west corner)");
+    } else {
+        // Stretched over the world, as one tile's land cover is over its tile.
+        require(width % world.tilesX == 0 && height % world.tilesY == 0,
+                what + ": " + rasterText + " has " + std::to_string(width) + " x " + std::to_string(height) +
+                    " pixels, not a whole number of pixels per tile of the world's " + worldText +
+                    "; resample it to a multiple (gdalwarp -ts)");
+        grid.pixelsPerTile = {width / world.tilesX, height / world.tilesY};
     }
-    require(width % world.tilesX == 0 && height % world.tilesY == 0,
-            what + ": raster '" + source + "' has " + std::to_string(width) + " x " + std::to_string(height) +
-                " pixels, not a whole number of pixels per tile of the world's " + worldText +
-                "; resample it to a multiple (gdalwarp -ts)");
-    LandCoverGrid grid{.rasterSize = {width, height}, .pixelsPerTile = {width / world.tilesX, height / world.tilesY}};
     grid.pixelSize = world.tileSize / glm::dvec2(grid.pixelsPerTile);
     return grid;
 }
 
 namespace {
 
-// The raster pixels of tile (x, y): tile rows count north, raster rows south.
+// The raster pixels of tile (x, y): tile 0 is the raster's south-west, tile rows count north, raster rows south.
 RasterWindow tilePixels(const LandCoverGrid& grid, glm::uvec2 tile) {
-    const glm::uvec2 tiles = grid.rasterSize / grid.pixelsPerTile;
-    require(tile.x < tiles.x && tile.y < tiles.y, "land cover: the tile is outside the world");
-    return {tile.x * grid.pixelsPerTile.x, (tiles.y - 1 - tile.y) * grid.pixelsPerTile.y, grid.pixelsPerTile.x,
-            grid.pixelsPerTile.y};
+    const glm::uvec2 ppt = grid.pixelsPerTile;
+    require(uint64_t(tile.x + 1) * ppt.x <= grid.rasterSize.x && uint64_t(tile.y + 1) * ppt.y <= grid.rasterSize.y,
+            "land cover: the tile is outside the raster");
+    return {tile.x * ppt.x, grid.rasterSize.y - (tile.y + 1) * ppt.y, ppt.x, ppt.y};
 }
 
 } // namespace

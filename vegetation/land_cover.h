@@ -69,10 +69,10 @@ GrassMap loadLandCoverGrassMap(const LandCoverParams& params, double tileSize, c
 // exceeds it, so a 1 x 1 map of these values bounds the plants of any map the table makes (predictPlantCount).
 GrassMap landCoverIntensityBound(const LandCoverParams& params);
 
-// A land cover over a world of tiles (issue 51): the raster covers the world's extent, tilesX x tilesY tiles of
-// tileSize metres, north up, its top-left pixel at the world's north-west corner; each tile's grass map is the
-// raster's window over that tile, blurred with the margin its border needs, so that it equals the whole raster's
-// map cut at the tile (the same plants whichever tile generates a border).
+// A land cover over a world of tiles (issue 51): the raster's south-west corner lies at the world's south-west
+// corner, north up, and the raster covers the world's tilesX x tilesY tiles of tileSize metres; each tile's grass
+// map is the raster's window over that tile, blurred with the margin its border needs, so that it equals the whole
+// raster's map cut at the tile (the same plants whichever tile generates a border).
 struct LandCoverWorld {
     uint32_t tilesX = 1, tilesY = 1;
     double tileSize = 0.0; // metres
@@ -84,16 +84,18 @@ struct LandCoverGrid {
     glm::dvec2 pixelSize{0.0}; // metres: tileSize / pixelsPerTile
 };
 
-// Checks that a raster of width x height pixels with georeferencing `geo` covers `world`: a raster georeferenced in
-// metres (a projected system) must span the world's extent (within 1e-6 of it); one without georeferencing or
-// without a linear unit (geographic, unknown) is stretched over it, as one tile's land cover is over its tile.
-// Either way each tile must hold whole pixels (width a multiple of tilesX, height of tilesY). Throws sward::Error
-// prefixed with `what` naming the raster `source` and both extents, or the pixel and tile counts.
+// Lays a raster of width x height pixels with georeferencing `geo` over `world`. A raster georeferenced in metres (a
+// projected system) keeps its own pixels, which must divide a tile into whole pixels (within 1e-6), and must reach
+// over the whole world from its south-west corner (it may reach beyond: a larger area's raster, cut at the world's
+// south-west corner; its position is not read from the georeferencing). One without georeferencing or without a
+// linear unit (geographic, unknown) is stretched over the world exactly, as one tile's land cover is over its tile,
+// and needs whole pixels per tile (width a multiple of tilesX, height of tilesY). Throws sward::Error prefixed with
+// `what` naming the raster `source` and both extents, its pixels, or the pixel and tile counts.
 LandCoverGrid landCoverGrid(uint32_t width, uint32_t height, const std::optional<RasterGeoTransform>& geo,
                             const std::string& source, const LandCoverWorld& world, const std::string& what);
 
 // The pixels of the raster a tile's map reads: the tile's pixels widened by the pixels the border's box reaches,
-// clipped to the raster. Tile (x, y) counts y northwards (tile 0 is the south row, the raster's bottom rows).
+// clipped to the raster. Tile (x, y) counts y northwards (tile row 0 is the raster's bottom rows).
 RasterWindow landCoverTileWindow(const LandCoverGrid& grid, glm::uvec2 tile, double borderWidth);
 
 // The grass map of the raster pixels `out` (inside `where`), from `window`, the raster's pixels `where` of a raster

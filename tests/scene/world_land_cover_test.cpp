@@ -60,16 +60,15 @@ void expectTileMapsAreTheWholeRastersCut(const Scene& scene, const std::string& 
     const double tileSize = scene.vegetation.tileSize;
     const GrassMap whole = makeLandCoverWindowGrassMap(raster, all, {raster.width, raster.height}, all, scene.landCover,
                                                        glm::dvec2(tileSize / pixels), "test");
-    const uint32_t tilesY = scene.world.tilesY;
-    for (uint32_t ty = 0; ty < tilesY; ++ty)
+    for (uint32_t ty = 0; ty < scene.world.tilesY; ++ty)
         for (uint32_t tx = 0; tx < scene.world.tilesX; ++tx) {
             const glm::dvec2 origin = glm::dvec2(scene.vegetation.worldOrigin) + tileSize * glm::dvec2(tx, ty);
             const GrassMap map = buildGrassMap(scene, float(tileSize), origin);
             ASSERT_EQ(map.width(), pixels);
             ASSERT_EQ(map.height(), pixels);
             std::vector<float> expected;
-            for (uint32_t y = 0; y < pixels; ++y) { // tile rows count north, raster rows south
-                const size_t row = size_t(tilesY - 1 - ty) * pixels + y;
+            for (uint32_t y = 0; y < pixels; ++y) { // tile rows count north from the raster's south edge
+                const size_t row = size_t(raster.height) - size_t(ty + 1) * pixels + y;
                 const auto first = whole.values().begin() + ptrdiff_t((row * raster.width + size_t(tx) * pixels) * 3);
                 expected.insert(expected.end(), first, first + 3 * pixels);
             }
@@ -96,6 +95,10 @@ TEST(WorldLandCover, EachTilesGrassMapIsTheWholeRastersMapCutAtTheTile) {
     const std::string file = writeGrid(dir / "cover.asc", 15, 10, patch, true);
     const Scene scene = parseScene(worldJson("cover.asc"), (dir / "scene.json").string());
     expectTileMapsAreTheWholeRastersCut(scene, file, 5);
+    // A raster of a larger area (200 x 120 m): the world is cut at its south-west corner, the box still clipped to
+    // the raster's own edges.
+    const std::string larger = writeGrid(dir / "larger.asc", 20, 12, patch, true);
+    expectTileMapsAreTheWholeRastersCut(parseScene(worldJson("larger.asc"), (dir / "scene.json").string()), larger, 5);
 }
 
 // A GIS world: a 61 x 41 sample DEM of 1 m (UTM) gives 3 x 2 tiles of 20 m from its south-west sample; the land
@@ -143,9 +146,9 @@ TEST(WorldLandCover, OnADemWorldTooTilesTakeTheirWindowAndStreamAlike) {
 TEST(WorldLandCover, MismatchedExtentIsOneErrorNamingBothExtents) {
     SWARD_SKIP_WITHOUT(Gdal);
     const auto dir = tempDir();
-    writeGrid(dir / "cover.asc", 16, 10, patch, true); // 160 m across a 150 m world
+    writeGrid(dir / "cover.asc", 14, 10, patch, true); // 140 m across a 150 m world
     expectError([&] { parseScene(worldJson("cover.asc"), (dir / "scene.json").string()); },
-                {"scene.json: 'land_cover': raster '", "cover.asc' covers 160 x 100 m (16 x 10 pixels of 10 x 10 m), "
+                {"scene.json: 'land_cover': raster '", "cover.asc' covers 140 x 100 m (14 x 10 pixels of 10 x 10 m), "
                                                        "but the world covers 150 x 100 m (3 x 2 tiles of 50 m)"});
     writeGrid(dir / "plain.asc", 16, 10, patch, false); // no coordinate system: stretched, but 16 pixels over 3 tiles
     expectError([&] { parseScene(worldJson("plain.asc"), (dir / "scene.json").string()); },

@@ -125,7 +125,7 @@ TEST(LandCoverWorld, ErrorsNameTheRasterPixelInTheWholeRaster) {
         {"s.json: 'land_cover': class code 42 of raster 'codes.tif' (first at pixel (19, 13))"});
 }
 
-TEST(LandCoverWorld, GridTakesAnUngeoreferencedRasterOverTheWorldAndChecksAGeoreferencedOnesExtent) {
+TEST(LandCoverWorld, GridStretchesAnUngeoreferencedRasterAndChecksAGeoreferencedOne) {
     const LandCoverWorld world{.tilesX = 4, .tilesY = 2, .tileSize = 500.0};
     const LandCoverGrid stretched = landCoverGrid(400, 100, std::nullopt, "c.tif", world, "test");
     EXPECT_EQ(stretched.pixelsPerTile, glm::uvec2(100, 50));
@@ -133,6 +133,13 @@ TEST(LandCoverWorld, GridTakesAnUngeoreferencedRasterOverTheWorldAndChecksAGeore
     const RasterGeoTransform utm{
         .originX = 500000, .originY = 4100000, .pixelWidth = 10, .pixelHeight = 10, .metresPerUnit = 1.0};
     EXPECT_EQ(landCoverGrid(200, 100, utm, "c.tif", world, "test").pixelsPerTile, glm::uvec2(50, 50));
+    // A larger area's raster: its own 10 m pixels, the world cut at its south-west corner.
+    const LandCoverGrid larger = landCoverGrid(230, 120, utm, "c.tif", world, "test");
+    EXPECT_EQ(larger.pixelsPerTile, glm::uvec2(50, 50));
+    const RasterWindow window = landCoverTileWindow(larger, {0, 0}, 0.0); // tile (0, 0): the bottom-left 50 x 50
+    EXPECT_EQ(window.column, 0u);
+    EXPECT_EQ(window.row + window.height, 120u);
+    EXPECT_EQ(landCoverTileWindow(larger, {3, 1}, 0.0).row, 19u); // 120 - 100 - 1 (margin)
     RasterGeoTransform feet = utm;
     feet.pixelWidth = feet.pixelHeight = 10.0 / 0.3048;
     feet.metresPerUnit = 0.3048;
@@ -141,10 +148,14 @@ TEST(LandCoverWorld, GridTakesAnUngeoreferencedRasterOverTheWorldAndChecksAGeore
     degrees.pixelWidth = degrees.pixelHeight = 1.0 / 12000.0;
     degrees.metresPerUnit = 0.0; // no linear unit: stretched, as one tile's land cover is over its tile
     EXPECT_EQ(landCoverGrid(200, 100, degrees, "c.tif", world, "test").pixelSize, glm::dvec2(10.0, 10.0));
-    expectError([&] { landCoverGrid(210, 100, utm, "c.tif", world, "s.json: 'land_cover'"); },
-                {"s.json: 'land_cover': raster 'c.tif' covers 2100 x 1000 m (210 x 100 pixels of 10 x 10 m), but the "
+    expectError([&] { landCoverGrid(190, 100, utm, "c.tif", world, "s.json: 'land_cover'"); },
+                {"s.json: 'land_cover': raster 'c.tif' covers 1900 x 1000 m (190 x 100 pixels of 10 x 10 m), but the "
                  "world covers 2000 x 1000 m (4 x 2 tiles of 500 m)",
                  "must cover the world's extent"});
+    RasterGeoTransform coarse = utm;
+    coarse.pixelWidth = coarse.pixelHeight = 30.0;
+    expectError([&] { landCoverGrid(100, 100, coarse, "c.tif", world, "key"); },
+                {"key: raster 'c.tif' has pixels of 30 x 30 m, which do not divide the world's tiles of 500 m"});
     expectError([&] { landCoverGrid(402, 100, std::nullopt, "c.tif", world, "key"); },
                 {"key: raster 'c.tif' has 402 x 100 pixels, not a whole number of pixels per tile", "4 x 2 tiles"});
 }
