@@ -2,8 +2,7 @@
 
 #include "common/error.h"
 #include "render/object_renderer.h"
-#include "scene/world_tiles.h"
-#include "world/path.h"
+#include "scene/world_objects.h"
 
 #include <algorithm>
 #include <cmath>
@@ -178,9 +177,9 @@ VehicleState Session::drive(size_t k, const VehicleCommand& command) {
     auto it = vehicles_.find(k);
     if (it == vehicles_.end()) { // from where the object stands at the next frame, facing where its model faces
         const double time = double(next_) * resources_.scene.sequence.timeStep;
-        // In a world, the lattice ground at the object (the xy and heading taken here do not depend on the heights).
-        const glm::dvec2 xy = pathPoseXY(objects[k].path, time);
-        const Ground world = resources_.world ? latticeGround(resources_.scene, xy, xy, 0.0) : Ground();
+        // In a world, the lattice ground the object is drawn on there (scene/world_objects.h).
+        const Ground world =
+            resources_.world ? objectGround(resources_.scene, objects[k], resources_.models[k], time) : Ground();
         const ObjectPose pose =
             objectPose(objects[k], resources_.models[k], resources_.world ? world : resources_.terrain, time);
         const double heading = headingDegreesOf(glm::dvec2(pose.forward)) + objects[k].yawDegrees;

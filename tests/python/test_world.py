@@ -1,7 +1,7 @@
 """The Simulator and the recorder in a world of several tiles (issue 51; docs/python.md, "Worlds"): a world of 2 x 2
 tiles of 40 m whose camera crosses the border x = 40 m while the tiles behind it are evicted. render() returns the
-arrays sward-render writes for the same scene (the instance's `tile` channel too) and the recorder writes its files
-bytewise; colliders of the program's own and a driven rover press the same plants whether the world is streamed or
+arrays sward-render writes for the same scene (the instance's `tile` channel and a LiDAR's points too) and the
+recorder writes its files bytewise; colliders of the program's own and a driven rover press the same plants whether the world is streamed or
 wholly resident; reset() drops every tile's touched state. Run by CTest (Python.Module) with PYTHONPATH=build/python
 and SWARD_RENDER."""
 import json
@@ -49,9 +49,13 @@ def assert_frames_equal(a, b, what):
 
 
 def test_world_frames_and_episode_are_what_sward_render_writes(tmp_path):
-    # A free collider crossing the border with the camera: the world's interaction ticks in both.
+    # A free collider crossing the border with the camera: the world's interaction ticks in both. A LiDAR rides along
+    # (its 7 m range within load_radius): render()'s range arrays are its files' values.
+    lidar = {"name": "lidar", "preset": "VLP-16", "range": [0.3, 7],
+             "mount": {"path": {"points": [[28, 20.5], [90, 20.5]], "speed": 8, "height_above_ground": 1.0}}}
     scene = world_scene(tmp_path, colliders=[{"path": {"points": [[31, 19], [90, 19]], "speed": 8,
-                                                       "height_above_ground": 0.2}, "radius": 0.6}])
+                                                       "height_above_ground": 0.2}, "radius": 0.6}],
+                        range_sensors=[lidar])
     cli = tmp_path / "cli"
     subprocess.run([RENDER, str(scene), "--out", str(cli), "--quiet"], check=True, capture_output=True)
     out = tmp_path / "episode"
@@ -65,6 +69,10 @@ def test_world_frames_and_episode_are_what_sward_render_writes(tmp_path):
         assert any(c["id"] == 100000 for c in frame["record"]["colliders"])
         for kind in KINDS:
             assert item[kind].tobytes() == frame[kind].tobytes(), f"frame {f}: {kind}"
+        points = frame["range"]["lidar"]
+        assert len(points["xyz"]) > 1000
+        for key, values in points.items():
+            assert item["range"]["lidar"][key].tobytes() == values.tobytes(), f"frame {f}: lidar {key}"
     assert (out / "frames.jsonl").read_text() == (cli / "frames.jsonl").read_text()
     manifest = json.loads((cli / "manifest.json").read_text())
     names = [name for name in manifest["files"] if "/" in name] + ["calib.txt", "classes.json"]
