@@ -388,6 +388,12 @@ RenderJobReport runRenderJob(const RenderJobOptions& options) {
                            std::to_string(skipped) + " already complete), " + std::to_string(plan.width) + "x" +
                            std::to_string(plan.height) + ", " + std::to_string(plan.samples) + "x MSAA, " +
                            (stereo ? "stereo" : "mono") + " -> " + options.outDir + " in " + seconds;
+    if (resources.world) { // what streaming did: a track kept across an eviction shows as a restored tile
+        const WorldTileStats& w = resources.world->stats();
+        clock.report.summary += "; world tiles: " + std::to_string(w.generated) + " generated (" +
+                                std::to_string(w.restored) + " restored with kept state), " +
+                                std::to_string(w.evicted) + " evicted";
+    }
     return std::move(clock.report);
 }
 
