@@ -42,6 +42,7 @@ public:
     void spawn(const FlyCamera& camera, const Ground& terrain);
     void deactivate() { active_ = false; }
     bool active() const { return active_; }
+    glm::dvec2 position() const { return rover_.position; }
 
     // One simulation tick: arrow keys of `window` drive it when `keyboard` (else no throttle, no steering).
     void step(GLFWwindow* window, bool keyboard, double autodrive, double dt);

@@ -39,12 +39,12 @@ std::unique_ptr<SceneState> loadSceneState(Context& ctx, const Scene& sceneIn, u
     auto state = std::make_unique<SceneState>(SceneState{.resources = buildSceneResources(std::move(scene)),
                                                          .roverObject = roverObject});
     state->gpu = createSceneGpu(ctx, state->resources, samples, SimulationMode::Always);
-    if (state->gpu.worldSimulation) {
-        // Its ticks wait for tile generation; the viewer never stalls a frame, so in a world it only draws.
-        state->gpu.worldSimulation.reset();
-        std::fprintf(stderr, "sward-view: in a world the vehicles and colliders do not touch the plants here (sward-render "
-                             "and the Python module simulate them)\n");
-    }
+    // A world always simulates (the keyboard rover may press plants and ruts at any time), on the tiles resident as
+    // they are: the viewer never waits for a tile's generation (tools/sward-view/world_drive.h).
+    if (state->resources.world && !state->gpu.worldSimulation &&
+        (state->gpu.renderer->vegetation() || sceneMakesRuts(state->resources.scene)))
+        state->gpu.worldSimulation = std::make_unique<WorldSimulation>(ctx, state->resources, *state->gpu.renderer);
+    if (state->gpu.worldSimulation) state->gpu.worldSimulation->setWaitForTiles(false);
     if (state->roverObject && state->gpu.renderer->objects())
         state->gpu.renderer->objects()->setVisible(*state->roverObject, false);
     state->overlay = std::make_unique<Overlay>(ctx, samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT);

@@ -15,6 +15,7 @@
 #include "test_hooks.h"
 #include "ui.h"
 #include "window.h"
+#include "world_drive.h"
 
 #include <GLFW/glfw3.h>
 
@@ -61,6 +62,7 @@ private:
     void resetCameraAndRover();
     void spawnRover();
     WorldTiles* world() const { return state_->resources.world.get(); }
+    const Ground& roverGround() const; // a world's lattice ground around the rover (WorldDrive), else the scene's
     float groundHeight(glm::dvec2 xy) const;
     void streamWorld(const Camera& camera);
     float canopyHeight() const;
@@ -101,7 +103,8 @@ private:
     PanelState panel_;
     FlyCamera camera_;
     RoverControl rover_;
-    bool driving_ = false; // camera follows the rover, arrow keys drive it
+    mutable std::optional<WorldDrive> worldDrive_; // a world: the rover's ground and the tiles it reached
+    bool driving_ = false;                         // camera follows the rover, arrow keys drive it
     FlyControls flyControls_;
     bool uiVisible_ = true;
     double tickClock_ = 0.0;
@@ -170,10 +173,13 @@ void Viewer::rebuild(const Scene& sceneIn, bool keepInteraction) {
     Scene scene = sceneIn; // may be state_->resources.scene, which is about to go
     // Interaction state survives an MSAA change (same plants): read it back, rebuild, upload it again.
     std::string stateFile;
-    if (keepInteraction && state_ && state_->gpu.simulation) {
+    if (keepInteraction && state_ && (state_->gpu.simulation || state_->gpu.worldSimulation)) {
         stateFile =
             (std::filesystem::temp_directory_path() / ("sward-view-" + std::to_string(getpid()) + ".state")).string();
-        state_->gpu.simulation->saveState(stateFile);
+        if (state_->gpu.simulation)
+            state_->gpu.simulation->saveState(stateFile);
+        else
+            state_->gpu.worldSimulation->saveState(stateFile); // tiles, kept fields and ruts
     }
     ctx_.submitter.waitIdle();
     state_.reset();
@@ -182,8 +188,9 @@ void Viewer::rebuild(const Scene& sceneIn, bool keepInteraction) {
     // Kept interaction needs the very same plants; otherwise the panel's density applies.
     if (!keepInteraction) scene.vegetation.densityMultiplier = panel_.density;
     state_ = loadSceneState(ctx_, scene, samples());
-    if (!stateFile.empty() && state_->gpu.simulation) {
-        state_->gpu.simulation->restoreState(stateFile);
+    if (!stateFile.empty()) {
+        if (state_->gpu.simulation) state_->gpu.simulation->restoreState(stateFile);
+        if (state_->gpu.worldSimulation) state_->gpu.worldSimulation->restoreState(stateFile);
         std::filesystem::remove(stateFile);
     }
     state_->gpu.renderer->setMainPassOverlay([this](VkCommandBuffer cmd, const DescriptorBinding& frame) {
@@ -191,16 +198,21 @@ void Viewer::rebuild(const Scene& sceneIn, bool keepInteraction) {
     });
     panel_.scene = state_->resources.scene.name + " (" + scenePath_ + ")";
     panel_.fieldCount = state_->resources.tile ? state_->resources.tile->fields.size() : 0;
+    worldDrive_.reset();
+    if (world()) worldDrive_.emplace(state_->resources.scene);
     rover_.setVehicle(state_->resources.scene.actors.vehicles.empty() ? VehicleParams{}
                                                                       : state_->resources.scene.actors.vehicles[0]);
 }
 
 void Viewer::spawnRover() {
-    if (world()) {
-        panel_.message = "driving needs a one-tile scene (a world of several tiles has no interaction yet)";
-        return;
-    }
-    rover_.spawn(camera_, state_->resources.terrain);
+    if (world())
+        rover_.spawn(camera_, worldDrive_->groundAhead(camera_));
+    else
+        rover_.spawn(camera_, state_->resources.terrain);
+}
+
+const Ground& Viewer::roverGround() const {
+    return worldDrive_ ? worldDrive_->groundAround(rover_.position()) : state_->resources.terrain;
 }
 
 // The ground under xy: in a world, of the resident tile there (none yet: the camera is not held up).
@@ -213,9 +225,10 @@ float Viewer::groundHeight(glm::dvec2 xy) const {
 // never waits for a generation (only for the upload of a finished tile).
 void Viewer::streamWorld(const Camera& camera) {
     if (!world()) return;
-    const glm::dvec2 xy(camera.position);
+    std::vector<glm::dvec2> points{glm::dvec2(camera.position)};
+    if (rover_.active()) points.push_back(rover_.position()); // its tiles come as it drives
     try {
-        world()->request({&xy, 1});
+        world()->request(points);
         world()->poll();
     } catch (const Error& e) { // e.g. over the memory budget: keep the tiles there are
         panel_.message = e.what();
@@ -419,6 +432,14 @@ void Viewer::tickSimulation(VkCommandBuffer cmd, GpuTimers& timers) {
     tickClock_ = std::max(tickClock_ - step, 0.0);
     if (rover_.active())
         rover_.step(window_.handle, driving_ && !(ui_ && ui_->wantsKeyboard()), options_.autodrive, step);
+    if (WorldSimulation* ws = state_->gpu.worldSimulation.get()) {
+        worldDrive_->prepareTick(*ws, *world(),
+                                 rover_.active() ? rover_.wheelColliders(roverGround(), roverIndex())
+                                                 : std::vector<Collider>{});
+        timers.begin(cmd, "interaction");
+        ws->recordNextTick(cmd, uint32_t(ws->nextTick() % gpu::kFrameDataSlots));
+        timers.end(cmd);
+    }
     if (!sim) return;
     if (rover_.active())
         sim->setExternalColliders(rover_.wheelColliders(state_->resources.terrain, roverIndex()));
@@ -432,7 +453,7 @@ void Viewer::tickSimulation(VkCommandBuffer cmd, GpuTimers& timers) {
 Camera Viewer::viewCamera(VkExtent2D extent) const {
     double fov = state_->resources.scene.camera.fovYDegrees;
     if (!driving_) return camera_.camera(fov, extent.width, extent.height);
-    return rover_.followCamera(state_->resources.terrain, fov, extent.width, extent.height);
+    return rover_.followCamera(roverGround(), fov, extent.width, extent.height);
 }
 
 void Viewer::buildOverlay(const Camera& camera) {
@@ -450,13 +471,14 @@ void Viewer::buildOverlay(const Camera& camera) {
     if (panel_.clusterBounds && state_->resources.tile) overlay.clusters(*state_->resources.tile, eye, 40.0f);
     // All colliders with the overlay on; without a rover model, the rover's wheels always (they are how it is seen).
     const bool wheelsOnly = rover_.active() && !state_->roverObject;
-    if (sim && (panel_.colliders || wheelsOnly)) {
-        for (const Collider& c : sim->lastColliders())
+    const WorldSimulation* ws = state_->gpu.worldSimulation.get();
+    if ((sim || ws) && (panel_.colliders || wheelsOnly)) {
+        for (const Collider& c : sim ? sim->lastColliders() : ws->lastColliders())
             if (panel_.colliders || RoverControl::isWheel(c, roverIndex()))
                 overlay.collider(c, c.kind == ColliderKind::Gust ? glm::vec3(0.5f, 1.5f, 3.0f)
                                                                  : glm::vec3(4.0f, 4.0f, 0.5f));
     }
-    rover_.show(state_->gpu.renderer->objects(), state_->roverObject, state_->resources.terrain, overlay);
+    rover_.show(state_->gpu.renderer->objects(), state_->roverObject, roverGround(), overlay);
     overlay.upload(uint32_t(frame_));
 }
 
@@ -480,7 +502,9 @@ uint64_t Viewer::recordFrame(const SwapchainImage& image, const Camera& camera, 
     timers.reset(cmd);
     tickSimulation(cmd, timers);
     Simulation* sim = state_->gpu.simulation.get();
-    const double simTime = sim ? double(sim->nextTick()) * state_->resources.scene.sequence.timeStep : 0.0;
+    const WorldSimulation* ws = state_->gpu.worldSimulation.get();
+    const uint64_t tick = sim ? sim->nextTick() : ws ? ws->nextTick() : 0;
+    const double simTime = double(tick) * state_->resources.scene.sequence.timeStep;
     state_->gpu.renderer->record(cmd, *main_, truth, camera, simTime, uint32_t(frame_), &timers);
     if (keyShot) screenshots_.recordKeyShotReadback(cmd, *main_);
     timers.begin(cmd, "present");
@@ -522,11 +546,19 @@ void Viewer::printSummary() const {
                 "size(s), tick %llu\n",
                 state_->resources.scene.name.c_str(), (unsigned long long)frame_, e.width, e.height,
                 (unsigned long long)swapchain_.generation(), recreations_,
-                (unsigned long long)(state_->gpu.simulation ? state_->gpu.simulation->nextTick() : 0));
+                (unsigned long long)(state_->gpu.simulation        ? state_->gpu.simulation->nextTick()
+                                     : state_->gpu.worldSimulation ? state_->gpu.worldSimulation->nextTick()
+                                                                   : 0));
     if (world())
         std::printf("sward-view: world: %u tile(s) resident, %u pending, %llu generated, %llu evicted, %.0f MiB\n",
                     world()->residentCount(), world()->pendingTiles(), (unsigned long long)world()->stats().generated,
                     (unsigned long long)world()->stats().evicted, double(world()->residentBytes()) / 1048576.0);
+    if (worldDrive_ && rover_.active()) {
+        const WorldSimulation* ws = state_->gpu.worldSimulation.get();
+        std::printf("sward-view: world: %s; tick %llu, %llu contact(s), %zu rut block(s)\n",
+                    worldDrive_->summary().c_str(), (unsigned long long)(ws ? ws->nextTick() : 0),
+                    (unsigned long long)(ws ? ws->contacts() : 0), ws ? ws->tracks().blocks().size() : size_t(0));
+    }
 }
 
 } // namespace

@@ -170,6 +170,28 @@ TEST(SwardView, AWorldStreamsItsTilesAroundTheCamera) {
     EXPECT_GT(double(grass) / double(image.total()), 0.15) << r.output;
 }
 
+// The keyboard rover in a world (tools/sward-view/world_drive.h): spawned where the camera looks near the border x = 80 m
+// of tiles (1, 1) and (2, 1), autodriven at 1 m/s for 120 ticks across it, following it. Its wheels reach both tiles
+// and press the plants of the tiles resident then (the viewer never waits for a generation; tile (2, 1) is requested
+// from the first frame and ready long before the rover comes) and ruts in the ground.
+TEST(SwardView, TheRoverDrivesAcrossAWorldsTileBorderPressingBothTiles) {
+    const std::string scene =
+        (std::filesystem::path(SWARD_VIEW_WORLD_SCENE).parent_path() / "small_world_rover.json").string();
+    RunResult r = run(underXvfb(scene + " --validation --size 160x120 --samples 1 --frames 120 --autodrive 1"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(countLines(r.output, "sward: validation"), 0) << r.output;
+    const size_t at = r.output.find("sward-view: world: rover's wheels reached ");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+    EXPECT_NE(line.find("reached 2 tile(s) (1,1) (2,1)"), std::string::npos) << line;
+    EXPECT_NE(line.find("pressed the plants of 2 tile(s) (1,1) (2,1)"), std::string::npos) << line;
+    unsigned long long contacts = 0, blocks = 0;
+    std::sscanf(line.c_str() + line.find("; tick"), "; tick %*u, %llu contact(s), %llu rut block(s)", &contacts,
+                &blocks);
+    EXPECT_GT(contacts, 0u) << line;
+    EXPECT_GT(blocks, 0u) << line;
+}
+
 TEST(SwardView, MissingSceneIsOneClearError) {
     RunResult r = run(std::string(SWARD_VIEW_EXE) + " /nonexistent/scene.json --frames 1");
     EXPECT_EQ(r.exitCode, 1) << r.output;
