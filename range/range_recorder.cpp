@@ -76,7 +76,8 @@ std::vector<RangeScan> RangeRecorder::sweepWorld(uint32_t frame, const FrameStat
     std::vector<double> reaches;
     std::set<std::pair<int32_t, int32_t>> wanted; // (y, x)
     for (const RangeSensorParams& sensor : scene.rangeSensors) {
-        const std::vector<glm::dvec2> origins = sweepOrigins(scene, sensor, time);
+        Ground ground = sweepGround(scene, r_.models, sensor, time);
+        const std::vector<glm::dvec2> origins = sweepOrigins(scene, r_.models, sensor, ground, time);
         double motion = 0.0;
         for (const glm::dvec2& o : origins) motion = std::max(motion, glm::distance(o, origins[0]));
         // A plant stands in its tile but leans out of it, as out of its field (range/plant_fields.cpp).
@@ -87,7 +88,7 @@ std::vector<RangeScan> RangeRecorder::sweepWorld(uint32_t frame, const FrameStat
                     formatNumber(kPlantLean) + " m and its motion in the sweep), beyond 'world.load_radius' (" +
                     formatNumber(scene.world.loadRadius) + " m): its rays would meet tiles that need not be resident");
         for (TileCoord coord : tilesWithin(scene, origins[0], reach)) wanted.insert({coord.y, coord.x});
-        grounds.push_back(sweepGround(scene, sensor, time));
+        grounds.push_back(std::move(ground));
         starts.push_back(origins[0]), reaches.push_back(reach);
     }
     std::vector<RayTile> tiles;

@@ -183,34 +183,78 @@ void sweepColumn(const SweepContext& x, RangeScan& scan, uint32_t c, std::vector
 
 namespace {
 
-// The first `count` distinct firing times' origins (xy) of a sweep: sweepOrigins.
-std::vector<glm::dvec2> firstOrigins(const Scene& scene, const RangeSensorParams& s, double frameTime, uint32_t count) {
+// A sweep's distinct firing times after `frameTime`, the first `count` of them: one for a ToF camera (a global
+// shutter), else one per column.
+std::vector<double> firingTimes(const RangeSensorParams& s, double frameTime, uint32_t count) {
+    std::vector<double> times;
+    const uint32_t n = std::min(count, s.type == RangeSensorType::TimeOfFlight ? 1u : s.columns());
+    for (uint32_t c = 0; c < n; ++c) times.push_back(frameTime + columnTime(s, c));
+    return times;
+}
+
+// The scene object a sensor is mounted on (mount.object).
+size_t mountObject(const Scene& scene, const std::vector<ObjectModel>& models, const RangeSensorParams& s) {
+    size_t k = 0;
+    while (k < scene.objects.size() && scene.objects[k].name != s.mount.object) ++k;
+    require(k < scene.objects.size() && k < models.size(), scene.source + ": range sensor '" + s.name +
+                                                               "': 'mount.object' names no scene object: '" +
+                                                               s.mount.object + "'");
+    return k;
+}
+
+// The xy a sweep's ground must cover (fixed, path: the sensor's origins; object: the object's path positions) and the
+// margin around them (object: its footprint, as objectGround's, bounded by the model's farthest corner).
+void sweepArea(const Scene& scene, const std::vector<ObjectModel>& models, const RangeSensorParams& s, double frameTime,
+               glm::dvec2& lo, glm::dvec2& hi, double& margin) {
     const RangeMount& m = s.mount;
-    if (m.kind == RangeMount::Kind::Fixed) return {glm::dvec2(m.position)};
-    require(m.kind == RangeMount::Kind::Path,
-            scene.source + ": range sensor '" + s.name + "': 'mount.object' in a world is not supported yet");
-    const uint32_t times = std::min(count, s.type == RangeSensorType::TimeOfFlight ? 1u : s.columns());
-    std::vector<glm::dvec2> origins;
-    for (uint32_t c = 0; c < times; ++c) origins.push_back(pathPoseXY(m.path, frameTime + columnTime(s, c)));
-    return origins;
+    std::vector<glm::dvec2> xy;
+    margin = 1.0;
+    if (m.kind == RangeMount::Kind::Fixed) {
+        xy.push_back(glm::dvec2(m.position));
+    } else if (m.kind == RangeMount::Kind::Path) {
+        for (double t : firingTimes(s, frameTime, ~0u)) xy.push_back(pathPoseXY(m.path, t));
+    } else {
+        const size_t k = mountObject(scene, models, s);
+        const ObjectModel& model = models[k];
+        const glm::dvec2 corner =
+            glm::max(glm::abs(glm::dvec2(model.boundsMin)), glm::abs(glm::dvec2(model.boundsMax)));
+        margin += std::sqrt(2.0) * glm::length(corner) * scene.objects[k].scale;
+        for (double t : firingTimes(s, frameTime, ~0u)) xy.push_back(pathPoseXY(scene.objects[k].path, t));
+    }
+    lo = hi = xy[0];
+    for (const glm::dvec2& p : xy) lo = glm::min(lo, p), hi = glm::max(hi, p);
 }
 
 } // namespace
 
-std::vector<glm::dvec2> sweepOrigins(const Scene& scene, const RangeSensorParams& s, double frameTime) {
-    return firstOrigins(scene, s, frameTime, ~0u);
+Ground sweepGround(const Scene& scene, const std::vector<ObjectModel>& models, const RangeSensorParams& sensor,
+                   double frameTime) {
+    glm::dvec2 lo, hi;
+    double margin = 0.0;
+    sweepArea(scene, models, sensor, frameTime, lo, hi, margin);
+    return latticeGround(scene, lo, hi, margin);
 }
 
-Ground sweepGround(const Scene& scene, const RangeSensorParams& sensor, double frameTime) {
-    const std::vector<glm::dvec2> origins = sweepOrigins(scene, sensor, frameTime);
-    glm::dvec2 lo = origins[0], hi = origins[0];
-    for (const glm::dvec2& o : origins) lo = glm::min(lo, o), hi = glm::max(hi, o);
-    return latticeGround(scene, lo, hi, 1.0);
+std::vector<glm::dvec2> sweepOrigins(const Scene& scene, const std::vector<ObjectModel>& models,
+                                     const RangeSensorParams& s, const Ground& ground, double frameTime,
+                                     uint32_t count) {
+    if (s.mount.kind == RangeMount::Kind::Fixed) return {glm::dvec2(s.mount.position)};
+    std::vector<glm::dvec2> origins;
+    for (double t : firingTimes(s, frameTime, count))
+        origins.push_back(s.mount.kind == RangeMount::Kind::Path
+                              ? pathPoseXY(s.mount.path, t)
+                              : glm::dvec2(rangeSensorPose(scene, s, ground, models, t)[3]));
+    return origins;
 }
 
-std::vector<glm::dvec2> rangeSensorStarts(const Scene& scene, double frameTime) {
+std::vector<glm::dvec2> rangeSensorStarts(const Scene& scene, const std::vector<ObjectModel>& models,
+                                          double frameTime) {
     std::vector<glm::dvec2> starts;
-    for (const RangeSensorParams& s : scene.rangeSensors) starts.push_back(firstOrigins(scene, s, frameTime, 1)[0]);
+    for (const RangeSensorParams& s : scene.rangeSensors) {
+        const Ground ground =
+            s.mount.kind == RangeMount::Kind::Object ? sweepGround(scene, models, s, frameTime) : Ground();
+        starts.push_back(sweepOrigins(scene, models, s, ground, frameTime, 1)[0]);
+    }
     return starts;
 }
 

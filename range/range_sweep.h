@@ -48,16 +48,21 @@ std::vector<PosedTriangles> posedObjects(const RangeWorld& world, double time);
 // Object k's (of scene.objects, with its `model`) standing on `ground` (a world: its objectGround).
 PosedTriangles posedObject(const Scene& scene, size_t k, const ObjectModel& model, const Ground& ground, double time);
 
-// The xy of a sensor's origin at each distinct firing time of its sweep from `frameTime` (one for a fixed mount or a
-// ToF camera, else one per column), without ground: where a world needs its tiles. Fixed and path mounts only (an
-// object's node needs the object's ground): throws sward::Error naming the sensor for an object mount.
-std::vector<glm::dvec2> sweepOrigins(const Scene& scene, const RangeSensorParams& sensor, double frameTime);
-// The ground a range sensor of a world stands on during its sweep from `frameTime`: the world's lattice ground around
-// the sweep's origins (latticeGround: the tiles' heights bitwise), as a camera stands on cameraGround.
-Ground sweepGround(const Scene& scene, const RangeSensorParams& sensor, double frameTime);
+// The ground a range sensor of a world stands on during its sweep from `frameTime`: the world's lattice ground
+// (latticeGround: the tiles' heights bitwise) around the sensor's origins (fixed, path mounts), or under its object's
+// footprint along the object's path (object mounts; `models` as loadObjectModels returns them), as a camera stands on
+// cameraGround or its object's objectGround. Throws sward::Error naming the sensor for a mount on no scene object.
+Ground sweepGround(const Scene& scene, const std::vector<ObjectModel>& models, const RangeSensorParams& sensor,
+                   double frameTime);
+// The xy of a sensor's origin at the first `count` distinct firing times of its sweep from `frameTime` (one for a fixed
+// mount or a ToF camera, else one per column), standing on `ground` (sweepGround; unused for fixed and path mounts):
+// where a world needs its tiles.
+std::vector<glm::dvec2> sweepOrigins(const Scene& scene, const std::vector<ObjectModel>& models,
+                                     const RangeSensorParams& sensor, const Ground& ground, double frameTime,
+                                     uint32_t count = ~0u);
 // Where each range sensor's sweep of the frame at `frameTime` starts (xy): interest points of a world (the tiles its
 // rays meet are made resident around them, as around the cameras).
-std::vector<glm::dvec2> rangeSensorStarts(const Scene& scene, double frameTime);
+std::vector<glm::dvec2> rangeSensorStarts(const Scene& scene, const std::vector<ObjectModel>& models, double frameTime);
 
 // Sensor `sensorIndex` (of scene.rangeSensors) sweeping from `frameTime` (frame `frame`) through `rays`, which must hold
 // the world of that frame's tick. Threads as parallelFor.

@@ -49,7 +49,7 @@ nlohmann::json sequenceFrameRecord(const SceneResources& r, const RigCameras& ri
     for (size_t k = 0; r.world && k < r.scene.rangeSensors.size(); ++k) {
         const RangeSensorParams& s = r.scene.rangeSensors[k];
         const double start = double(frame) * r.scene.sequence.timeStep, end = start + columnTime(s, s.columns() - 1);
-        const Ground ground = sweepGround(r.scene, s, start);
+        const Ground ground = sweepGround(r.scene, r.models, s, start);
         record["range_sensors"][k]["start_pose"] = matrixJson(rangeSensorPose(r.scene, s, ground, r.models, start));
         record["range_sensors"][k]["end_pose"] = matrixJson(rangeSensorPose(r.scene, s, ground, r.models, end));
     }
@@ -222,7 +222,7 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
                 for (double s : {-0.5, 0.5})
                     around.push_back(glm::dvec2(rigAt(t + s * sensor->params().shutterSeconds).left.position));
         // The range sensors' sweeps start within load_radius of the tiles their rays meet (range/range_recorder.h).
-        for (const glm::dvec2& start : rangeSensorStarts(r.scene, time)) around.push_back(start);
+        for (const glm::dvec2& start : rangeSensorStarts(r.scene, r.models, time)) around.push_back(start);
     }
     if (gpu.worldSimulation && target.hasFlow()) {
         prepareWorldFlowTicks(gpu, frame, around);

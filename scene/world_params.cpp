@@ -144,8 +144,6 @@ void checkWorldDrawable(const Scene& scene) {
     for (size_t k = 0; k < scene.rangeSensors.size(); ++k) {
         const RangeSensorParams& s = scene.rangeSensors[k];
         const std::string name = "'range_sensors[" + std::to_string(k) + "]' ('" + s.name + "')";
-        if (s.mount.kind == RangeMount::Kind::Object)
-            fail(name + ": 'mount.object' in a world is not supported yet (mount it on a path or a fixed position)");
         if (s.maxRange + kPlantLean > w.loadRadius)
             fail(name + ": its 'range' (" + formatNumber(s.maxRange) + " m) plus " + formatNumber(kPlantLean) +
                  " m must not exceed " +

@@ -8,6 +8,7 @@
 #include "range/range_recorder.h"
 #include "render/scene_gpu.h"
 #include "render/sequence_frame.h"
+#include "scene/rover_model.h"
 #include "scene/scene_resources.h"
 #include "shared/gpu_layout.h"
 
@@ -59,7 +60,29 @@ nlohmann::json lidarWorldJson(double loadRadius) {
     return json;
 }
 
-Scene lidarWorld(double loadRadius) {
+// The same world with the LiDAR 0.3 m above the camera mount of a rover (an object, its chassis pressing the grass)
+// that drives where the vehicle did; the rover's model is written into `dir`.
+nlohmann::json roverLidarWorldJson(double loadRadius, const std::string& dir) {
+    nlohmann::json json = lidarWorldJson(loadRadius);
+    saveRoverGltf(dir + "/rover.gltf");
+    json.erase("vehicles");
+    json["objects"] = {{{"name", "rover"},
+                        {"model", "rover.gltf"},
+                        {"scale", 2},
+                        {"path", {{"points", {{14, 21}, {78, 21}}}, {"speed", 4}}},
+                        {"colliders",
+                         {{{"node", "chassis"},
+                           {"shape", "box"},
+                           {"half_extents", {0.4, 0.55, 0.3}},
+                           {"offset", {0, 0, -0.15}},
+                           {"force", 2}}}}}};
+    json["range_sensors"][0]["mount"] = {{"object", "rover"}, {"node", "camera_mount"}, {"offset", {0, 0, 0.3}}};
+    json["range_sensors"][0].erase("angle_range_deg"); // a full turn: the track behind the rover too
+    return json;
+}
+
+Scene lidarWorld(double loadRadius, const std::string& roverDir = "") {
+    if (!roverDir.empty()) return parseScene(roverLidarWorldJson(loadRadius, roverDir), roverDir + "/scene.json");
     return parseScene(lidarWorldJson(loadRadius), "lidar world");
 }
 
@@ -72,12 +95,14 @@ struct LidarRun {
 };
 
 // Renders `frames` (ascending) at width x height and sweeps the LiDAR after each, as sward-render does.
+// `roverDir`: the LiDAR on the rover (roverLidarWorldJson).
 LidarRun drive(Context& ctx, double loadRadius, const std::vector<uint32_t>& frames, uint32_t width = kWidth,
-               uint32_t height = kHeight) {
-    SceneResources r = buildSceneResources(lidarWorld(loadRadius), true, 2);
+               uint32_t height = kHeight, const std::string& roverDir = "") {
+    SceneResources r = buildSceneResources(lidarWorld(loadRadius, roverDir), true, 2);
     RangeRecorder range(r, 2);
     RutPatchCache ruts;
     SceneGpu gpu = createSceneGpu(ctx, r, 1, SimulationMode::WhenSceneHasColliders);
+    EXPECT_TRUE(gpu.worldSimulation != nullptr);
 
     OffscreenFrame target(ctx, width, height, 1);
     LidarRun run;
@@ -192,6 +217,41 @@ TEST_F(GpuTest, WorldLidarPointsAreBitwiseTheSameStreamedOrResident) {
         EXPECT_GE(tiles.size(), 3u) << "frame " << frames[f];
         EXPECT_EQ(streamed.frames[f].depth, resident.frames[f].depth) << "frame " << frames[f];
     }
+}
+
+// A LiDAR on a rover (an object on its own lattice ground) sweeps the same points streamed as resident; it sees the
+// ground and plants of several tiles and the grass the rover's chassis pressed.
+TEST_F(GpuTest, WorldLidarOnARoverIsBitwiseTheSameStreamedOrResident) {
+    const std::string dir = sward::test::tempDir("world-rover-lidar");
+    const std::vector<uint32_t> frames{85, 140};
+    const LidarRun streamed = drive(*ctx, 18.0, frames, 64, 48, dir);
+    const LidarRun resident = drive(*ctx, 400.0, frames, 64, 48, dir);
+    EXPECT_GT(streamed.stats.evicted, 0u);
+    EXPECT_EQ(resident.stats.evicted, 0u);
+    uint64_t felled = 0, rover = 0;
+    for (size_t f = 0; f < frames.size(); ++f) {
+        const RangeScan& a = streamed.scans[f];
+        const RangeScan& b = resident.scans[f];
+        EXPECT_GT(a.points.size(), 5000u) << "frame " << frames[f];
+        ASSERT_EQ(a.points.size(), b.points.size()) << "frame " << frames[f];
+        EXPECT_EQ(a.ranges, b.ranges) << "frame " << frames[f];
+        EXPECT_EQ(a.startPose, b.startPose) << "frame " << frames[f];
+        std::set<std::pair<int, int>> tiles;
+        uint64_t different = 0;
+        for (size_t i = 0; i < a.points.size(); ++i) {
+            const RangePoint &p = a.points[i], &q = b.points[i];
+            different += p.world != q.world || p.label != q.label || p.intensity != q.intensity;
+            tiles.insert(tileOf(p.world));
+            felled += (p.label >> gpu::kInstanceBits) == gpu::kSemanticFelled;
+            rover += (p.label >> gpu::kInstanceBits) == gpu::kSemanticObject;
+        }
+        EXPECT_EQ(different, 0u) << "frame " << frames[f];
+        EXPECT_GE(tiles.size(), 2u) << "frame " << frames[f];
+    }
+    std::printf("rover LiDAR: %zu and %zu points, %llu felled, %llu on the rover\n", streamed.scans[0].points.size(),
+                streamed.scans[1].points.size(), (unsigned long long)felled, (unsigned long long)rover);
+    EXPECT_GT(felled, 0u) << "the rover's chassis presses the grass it drives over";
+    EXPECT_GT(rover, 0u) << "the objects are in the ray scene (the LiDAR sees the rover it rides)";
 }
 
 // sward-render casts a world's sweeps before the next frame may evict their tiles: the streamed and the resident
