@@ -53,6 +53,13 @@ nlohmann::json sequenceFrameRecord(const SceneResources& r, const RigCameras& ri
         record["range_sensors"][k]["start_pose"] = matrixJson(rangeSensorPose(r.scene, s, ground, r.models, start));
         record["range_sensors"][k]["end_pose"] = matrixJson(rangeSensorPose(r.scene, s, ground, r.models, end));
     }
+    // A world's objects stand on their own lattice ground, as they are drawn (scene/world_objects.h).
+    for (size_t k = 0; r.world && k < r.scene.objects.size() && k < r.models.size(); ++k) {
+        const double time = double(frame) * r.scene.sequence.timeStep;
+        const Ground ground = objectGround(r.scene, r.scene.objects[k], r.models[k], time);
+        const ObjectPose pose = objectPose(r.scene.objects[k], r.models[k], ground, time);
+        record["objects"][k]["pose"] = matrixJson(pose.worldFromModel);
+    }
     // A shutter's sub-frames (render/motion_blur.h): their count ("auto" follows the motion) and times.
     const SensorParams& sensor = r.scene.camera.rig.sensor;
     const std::vector<double> exposure = frameExposureTimes(r, sensor, width, height, frame);
@@ -138,7 +145,8 @@ void prepareWorldFlowTicks(SceneGpu& gpu, uint32_t frame, std::span<const glm::d
 // recorded only with `tickNext` (the first band's truth: the later bands' find it run).
 FrameImages renderFlowFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t frame, double time,
                             const RigCameras& cameras, const std::function<void(VkCommandBuffer)>& prologue,
-                            bool colour, std::optional<double> rowTime = {}, bool tickNext = true) {
+                            bool colour, std::optional<double> rowTime = {}, bool tickNext = true,
+                            const std::function<void()>& beforeNextTick = {}) {
     const uint32_t width = cameras.left.width, height = cameras.left.height;
     const double step = r.scene.sequence.timeStep;
     const RigCameras previous = rowTime ? sequenceRigAt(r, width, height, frame > 0 ? *rowTime - step : *rowTime)
@@ -149,7 +157,11 @@ FrameImages renderFlowFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneRe
     FlowTicks flow{.previous = {&previous.left, &previous.right},
                    .next = {&next.left, &next.right},
                    .timeStep = r.scene.sequence.timeStep,
-                   .beforeTruth = [&](VkCommandBuffer cmd) { recordFlowTick(gpu, cmd, frame + 1); }};
+                   .beforeTruth =
+                       [&](VkCommandBuffer cmd) {
+                           if (beforeNextTick) beforeNextTick(); // the CPU state of tick f, before f + 1 changes it
+                           recordFlowTick(gpu, cmd, frame + 1);
+                       }};
     if (!tickNext) flow.beforeTruth = {};
     return target.render(*gpu.renderer, cameras.left, time, frame, prologue, stereo ? &cameras.right : nullptr, &flow,
                          colour);
@@ -175,7 +187,8 @@ FrameImages readOutSensor(const SceneResources& r, const SensorModel& sensor, co
 // tick with the first), the rows of each copied out. With a shutter each band's motion_blur is its exposure's.
 FrameImages renderReadout(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
                           uint32_t height, uint32_t frame, double timeOffset, const SensorParams& sensor,
-                          size_t exposureSamples, const std::function<void(VkCommandBuffer)>& tick) {
+                          size_t exposureSamples, const std::function<void(VkCommandBuffer)>& tick,
+                          const std::function<void()>& beforeNextTick) {
     const bool stereo = r.scene.camera.rig.stereo();
     const double time = double(frame) * r.scene.sequence.timeStep, half = 0.5 * sensor.shutterSeconds;
     auto rigAt = [&](double t) { return sequenceRigAt(r, width, height, t); };
@@ -187,7 +200,8 @@ FrameImages renderReadout(SceneGpu& gpu, OffscreenFrame& target, const SceneReso
     auto truthAt = [&](double t, bool first) {
         const RigCameras rig = rigAt(t);
         FrameImages images = target.hasFlow()
-                                 ? renderFlowFrame(gpu, target, r, frame, timeOffset + t, rig, {}, false, t, first)
+                                 ? renderFlowFrame(gpu, target, r, frame, timeOffset + t, rig, {}, false, t, first,
+                                                   beforeNextTick)
                                  : target.render(*gpu.renderer, rig.left, timeOffset + t, frame, {},
                                                  stereo ? &rig.right : nullptr, nullptr, false);
         if (exposureSamples > 0)
@@ -203,7 +217,7 @@ FrameImages renderReadout(SceneGpu& gpu, OffscreenFrame& target, const SceneReso
 FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
                                 uint32_t height, uint32_t frame, double timeOffset,
                                 const std::optional<SensorModel>& sensor, RigCameras& cameras,
-                                AutoExposure* autoExposure) {
+                                AutoExposure* autoExposure, const std::function<void()>& beforeNextTick) {
     const double time = double(frame) * r.scene.sequence.timeStep;
     const bool stereo = r.scene.camera.rig.stereo();
     cameras = sequenceRig(r, width, height, frame);
@@ -244,7 +258,8 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
     if (target.hasFlow()) tick = flowPrologue(gpu, frame);
     if (sensor && sensor->params().readoutSeconds > 0.0) { // a rolling shutter: each band of rows at its own time
         FrameImages images =
-            renderReadout(gpu, target, r, width, height, frame, timeOffset, sensor->params(), exposure.size(), tick);
+            renderReadout(gpu, target, r, width, height, frame, timeOffset, sensor->params(), exposure.size(), tick,
+                          beforeNextTick);
         return readOutSensor(r, *sensor, cameras, frame, std::move(images), autoExposure);
     }
     ExposureColour blurred;
@@ -254,7 +269,8 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
     }
     const bool colour = exposure.empty(); // else the truth alone, at the exposure's middle
     FrameImages images = target.hasFlow()
-                             ? renderFlowFrame(gpu, target, r, frame, timeOffset + time, cameras, tick, colour)
+                             ? renderFlowFrame(gpu, target, r, frame, timeOffset + time, cameras, tick, colour, {},
+                                               true, beforeNextTick)
                              : target.render(*gpu.renderer, cameras.left, timeOffset + time, frame, tick,
                                              stereo ? &cameras.right : nullptr, nullptr, colour);
     if (!colour) {
@@ -271,10 +287,28 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
 RangeFrameState rangeFrameState(SceneGpu& gpu, const SceneResources& r, RutPatchCache& ruts) {
     RangeFrameState state;
     if (!gpu.simulation && !gpu.worldSimulation) return state;
-    // A world's CPU tiles hold the plants' state the range sensors see, once read back; its ruts lie on the world's
-    // lattice ground (worldTrackPatchVertices).
+    // A world's CPU tiles hold the plants' state the range sensors see, once read back.
     if (gpu.worldSimulation) gpu.worldSimulation->readBackTiles();
     if (gpu.simulation && gpu.simulation->hasPlants()) state.dynamics = gpu.simulation->gpu().readDynamics();
+    state.patches = rangeRutPatches(gpu, r, ruts);
+    return state;
+}
+
+// The plants' state kept before the next tick: VegetationRenderer::recordKeepState copied the live records of tick f
+// there, in the frame's command buffer, just before tick f + 1 (render.flow keeps it for the truth's backward flow).
+RangeFrameState rangeFlowFrameState(SceneGpu& gpu, std::shared_ptr<const std::vector<GroundPatch>> patches) {
+    RangeFrameState state;
+    if (!gpu.simulation && !gpu.worldSimulation) return state; // no tick moves a plant
+    if (gpu.worldSimulation && gpu.renderer->vegetation()) gpu.worldSimulation->readBackKeptStates();
+    if (gpu.simulation && gpu.simulation->hasPlants()) state.dynamics = gpu.renderer->vegetation()->readKeptState();
+    state.patches = std::move(patches);
+    return state;
+}
+
+std::shared_ptr<const std::vector<GroundPatch>> rangeRutPatches(SceneGpu& gpu, const SceneResources& r,
+                                                                RutPatchCache& ruts) {
+    if (!gpu.simulation && !gpu.worldSimulation) return nullptr;
+    // A world's ruts lie on the world's lattice ground (worldTrackPatchVertices).
     const GroundTracks& tracks = gpu.worldSimulation ? gpu.worldSimulation->tracks() : gpu.simulation->tracks();
     if (tracks.revision() != ruts.revision) {
         if (!r.world && !ruts.mesh && !tracks.blocks().empty()) ruts.mesh = groundDrawMesh(r.terrain);
@@ -289,8 +323,7 @@ RangeFrameState rangeFrameState(SceneGpu& gpu, const SceneResources& r, RutPatch
         ruts.patches = patches->empty() ? nullptr : std::move(patches);
         ruts.revision = tracks.revision();
     }
-    state.patches = ruts.patches;
-    return state;
+    return ruts.patches;
 }
 
 } // namespace sward
