@@ -82,7 +82,7 @@ SceneRenderer::SceneRenderer(Context& ctx, const Scene& scene, VkSampleCountFlag
     uploadGroundTextures(nullptr);
     createPipelines(atlas, VegetationRenderer::instanceCapacityFor(UINT32_MAX));
     if (!scene.objects.empty()) objects_ = std::make_unique<ObjectRenderer>(ctx, scene_, plantPassFormats(), *models);
-    if (scene.world.horizon && scene.terrain.source == TerrainParams::Source::Procedural) addHorizonRing(atlas);
+    if (scene.world.horizon && scene.terrain.source != TerrainParams::Source::Mesh) addHorizonRing(atlas);
 }
 
 VegetationPassFormats SceneRenderer::plantPassFormats() const {

@@ -80,7 +80,7 @@ WorldParams parseWorldParams(JsonReader r) {
 double horizonSpacing(const Scene& scene) {
     const WorldParams& w = scene.world;
     if (w.horizonSpacing > 0.0) return w.horizonSpacing;
-    const double spacing = scene.terrain.procedural.spacing;
+    const double spacing = worldLattice(scene).spacing; // the procedural terrain's or the DEM's
     const double cells = double(std::max(w.tilesX, w.tilesY)) * scene.vegetation.tileSize / spacing;
     return spacing * std::max(1.0, std::ceil(cells / kDefaultHorizonCells - 1e-9));
 }
@@ -116,10 +116,11 @@ void checkWorldScene(const Scene& scene) {
              formatNumber(kMaxWorldExtent) + " m a world may span (plant positions are floats)");
     checkWorldBudget(scene);
     // The ring's vertices are the fine lattice's samples at every k-th vertex, so it meets the tiles' ground there.
-    if (w.horizon && w.horizonSpacing > 0.0 && scene.terrain.source == TerrainParams::Source::Procedural) {
-        if (!wholeMultiple(w.horizonSpacing, t.spacing))
-            fail("'world.horizon.spacing' (" + formatNumber(w.horizonSpacing) +
-                 " m) must be a whole multiple of 'terrain.spacing' (" + formatNumber(t.spacing) +
+    if (w.horizon && w.horizonSpacing > 0.0) {
+        const double lattice = worldLattice(scene).spacing;
+        if (!wholeMultiple(w.horizonSpacing, lattice))
+            fail("'world.horizon.spacing' (" + formatNumber(w.horizonSpacing) + " m) must be a whole multiple of " +
+                 (demWorld(scene) ? "the DEM's sample spacing (" : "'terrain.spacing' (") + formatNumber(lattice) +
                  " m): the horizon ring samples the terrain's lattice");
         if (extent / w.horizonSpacing > kMaxHeightfieldCells)
             fail("'world.horizon.spacing' (" + formatNumber(w.horizonSpacing) + " m) gives " +

@@ -124,12 +124,16 @@ void main() {
     vec3 n = normalize(inNormal);
     float pressed = clamp(inRut / kRutFullDepth, 0.0, 1.0);
     float footprint = groundFootprint(inWorld);
-    GroundSample ground = bareGroundHere(footprint);
+    // The horizon ring lies beyond the plants' range, where the soil's patches and clods are far below a pixel: its
+    // material's mean albedo, without the noise octaves that made most of the ring's cost (render/horizon_ring.h).
+    bool ring = tile.material.w == kGroundHorizonRing;
+    GroundSample ground = ring ? GroundSample(groundMaterialPreset(tile.material.x).albedo, vec2(0.0))
+                               : bareGroundHere(footprint);
     pressRut(ground, pressed, inLoose, footprint);
     float shadow = sunShadow(inWorld);
     vec2 uv = coverUv(inWorld);
     vec4 cover = groundCover(uv);
-    float turf = tile.material.w == kGroundHorizonRing ? 0.0 : turfAt(inWorld); // the ring is ground, seen from afar
+    float turf = ring ? 0.0 : turfAt(inWorld); // the ring is ground, seen from afar
     if (turf > 0.0) {
         GroundSample t = turfGround(cover.rgb, ground.albedo, inWorld.xy, footprint);
         pressTurf(t, pressed);

@@ -27,7 +27,7 @@ Scene ringWorld(double loadRadius, bool vegetation) {
     nlohmann::json json = nlohmann::json::parse(R"({
         "seed": 7,
         "terrain": {"size": 40, "spacing": 1, "amplitude": 8, "feature_size": 70, "octaves": 3},
-        "vegetation": {"tile_size": 40, "field_size": 20},
+        "vegetation": {"tile_size": 40, "field_size": 20, "density_multiplier": 0.1},
         "world": {"tiles": [8, 8], "view_distance": 16, "memory_budget_mib": 512, "horizon": {"spacing": 4}},
         "camera": {"path": {"points": [[12, 10], [200, 198]], "speed": 10, "height_above_ground": 3},
                    "look_ahead": 120, "look_at_height_above_ground": -8, "fov_y_deg": 40},
