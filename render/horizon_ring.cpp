@@ -1,6 +1,7 @@
 #include "render/horizon_ring.h"
 
 #include "render/scene_renderer.h"
+#include "scene/land_cover_params.h"
 #include "scene/world_horizon.h"
 #include "shared/gpu_layout.h"
 #include "vegetation/grass_map.h"
@@ -24,10 +25,13 @@ GroundDrawMesh horizonRingMesh(const Heightfield& heights, float floorHeight) {
 CoverMap horizonCover(const Scene& scene, const Heightfield& heights, std::span<const CategoryLook> looks) {
     const float side = std::max(heights.extent().x, heights.extent().y);
     const uint32_t cells = std::max(heights.columns(), heights.rows()) - 1;
-    const GrassMap map = makeMeadowGrassMap({.resolution = std::clamp(cells, 1u, kMaxCoverMapEdge),
-                                             .tileSize = side,
-                                             .seed = scene.seed,
-                                             .origin = glm::dvec2(heights.origin())});
+    const uint32_t resolution = std::clamp(cells, 1u, kMaxCoverMapEdge);
+    // A world's land cover, point-sampled like the meadow (issue 51, part B), else the procedural meadow.
+    const glm::dvec2 origin(heights.origin());
+    const GrassMap map =
+        !scene.landCover.file.empty()
+            ? worldLandCoverPointMap(scene, origin, side, resolution)
+            : makeMeadowGrassMap({.resolution = resolution, .tileSize = side, .seed = scene.seed, .origin = origin});
     VegetationParams params = scene.vegetation;
     params.worldOrigin = heights.origin();
     params.tileSize = side;
@@ -48,7 +52,7 @@ void SceneRenderer::addHorizonRing(const Atlas* atlas) {
     ring->boundsMin = glm::dvec2(heights.origin());
     ring->boundsMax = glm::dvec2(heights.origin() + heights.extent());
     CoverMap cover;
-    if (atlas && scene_.vegetationEnabled && scene_.grassMapPath.empty() && scene_.landCover.file.empty())
+    if (atlas && scene_.vegetationEnabled && scene_.grassMapPath.empty())
         cover = horizonCover(scene_, heights, categoryLooks(*atlas, scene_.vegetation));
     uploadCoverMap(*ring, &cover);
     horizon_ = std::move(ring);

@@ -23,7 +23,8 @@ struct Scene;
 // floor, so every ring triangle the disc's edge crosses lies below the tiles' ground there.
 GroundDrawMesh horizonRingMesh(const Heightfield& heights, float floorHeight);
 
-// The ring's far cover: the scene's procedural meadow (makeMeadowGrassMap) over the square of the ring's longer side,
+// The ring's far cover: the scene's procedural meadow (makeMeadowGrassMap), or a world's land cover point-sampled
+// (worldLandCoverPointMap), over the square of the ring's longer side,
 // one grass-map texel per ring cell (at most kMaxCoverMapEdge a side), seen from afar through the categories' looks
 // (makeCoverMap). Point samples of the meadow: the ring shows its large patches, not its few-metre clusters.
 CoverMap horizonCover(const Scene& scene, const Heightfield& heights, std::span<const CategoryLook> looks);

@@ -77,4 +77,10 @@ GrassMap worldLandCoverGrassMap(const Scene& scene, glm::dvec2 origin, uint32_t 
                                      scene.source + ": 'land_cover'", threads, scene.assets.folders());
 }
 
+GrassMap worldLandCoverPointMap(const Scene& scene, glm::dvec2 origin, double side, uint32_t resolution) {
+    return loadLandCoverPointGrassMap(scene.landCover, landCoverWorld(scene),
+                                      origin - glm::dvec2(scene.vegetation.worldOrigin), side, resolution,
+                                      scene.source + ": 'land_cover'", scene.assets.folders());
+}
+
 } // namespace sward

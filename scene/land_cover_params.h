@@ -22,6 +22,10 @@ LandCoverWorld landCoverWorld(const Scene& scene);
 // Throws sward::Error naming the scene, 'land_cover' and the raster.
 LandCoverGrid worldLandCoverGrid(const Scene& scene);
 
+// The land cover point-sampled over the square of `side` metres whose south-west corner is `origin` (world xy), one
+// texel per resolution x resolution cell (loadLandCoverPointGrassMap): a horizon ring's far cover.
+GrassMap worldLandCoverPointMap(const Scene& scene, glm::dvec2 origin, double side, uint32_t resolution);
+
 // The land cover's grass map over the world tile whose south-west corner is `origin` (loadLandCoverTileGrassMap).
 GrassMap worldLandCoverGrassMap(const Scene& scene, glm::dvec2 origin, uint32_t threads = 0);
 

@@ -437,4 +437,41 @@ GrassMap loadLandCoverTileGrassMap(const LandCoverParams& params, const LandCove
     }
 }
 
+GrassMap loadLandCoverPointGrassMap(const LandCoverParams& params, const LandCoverWorld& world, glm::dvec2 offset,
+                                    double side, uint32_t resolution, const std::string& what,
+                                    const InputFolders& folders) {
+    require(resolution >= 1 && side > 0.0, what + ": loadLandCoverPointGrassMap: an empty map");
+    const RasterReadOptions options{.band = params.band, .requireFinite = false, .folders = folders};
+    try {
+        const RasterInfo info = readRasterInfo(params.file, options);
+        const LandCoverGrid grid = landCoverGrid(info.width, info.height, info.geoTransform, info.source, world, what);
+        const uint32_t channels = params.table.channels;
+        const double texel = side / resolution;
+        // Each texel column's raster column, or none beyond the raster.
+        std::vector<int64_t> columns(resolution);
+        for (uint32_t c = 0; c < resolution; ++c) {
+            const double x = std::floor((offset.x + (c + 0.5) * texel) / grid.pixelSize.x);
+            columns[c] = x >= 0.0 && x < grid.rasterSize.x ? int64_t(x) : -1;
+        }
+        std::vector<float> values(size_t(resolution) * resolution * channels, 0.0f);
+        for (uint32_t r = 0; r < resolution; ++r) { // the top row is north
+            const double y = std::floor((offset.y + (double(resolution - r) - 0.5) * texel) / grid.pixelSize.y);
+            if (!(y >= 0.0 && y < grid.rasterSize.y)) continue;
+            const uint32_t row = grid.rasterSize.y - 1 - uint32_t(y);
+            const RasterBand line = readRasterWindow(params.file, {0, row, grid.rasterSize.x, 1}, options);
+            const ClassifiedRaster classes = classify(line, params, what, {0, row});
+            for (uint32_t c = 0; c < resolution; ++c) {
+                if (columns[c] < 0) continue;
+                const glm::vec4 v = classes.intensities[classes.index[size_t(columns[c])]];
+                for (uint32_t k = 0; k < channels; ++k) values[(size_t(r) * resolution + c) * channels + k] = v[int(k)];
+            }
+        }
+        return GrassMap(resolution, resolution, channels, std::move(values), info.source);
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        if (message.rfind(what, 0) == 0) throw;
+        throw Error(what + ": " + message); // which key named the file
+    }
+}
+
 } // namespace sward

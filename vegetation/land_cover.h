@@ -108,6 +108,14 @@ GrassMap makeLandCoverWindowGrassMap(const RasterBand& window, RasterWindow wher
                                      RasterWindow out, const LandCoverParams& params, glm::dvec2 pixelSize,
                                      const std::string& what, uint32_t threads = 0);
 
+// The land cover's class intensities point-sampled (no border blur) at the centres of a resolution x resolution
+// grass map over the square of `side` metres whose south-west corner lies `offset` metres from the world's south-west
+// corner: the far cover of a coarse view of the world (a horizon ring), not a tile's map. Texels beyond the raster
+// have zero intensities. Reads the raster row by row (readRasterWindow). Errors as loadLandCoverTileGrassMap.
+GrassMap loadLandCoverPointGrassMap(const LandCoverParams& params, const LandCoverWorld& world, glm::dvec2 offset,
+                                    double side, uint32_t resolution, const std::string& what,
+                                    const InputFolders& folders = {});
+
 // Reads params.file and makes the grass map of tile (x, y) of `world` (landCoverGrid, landCoverTileWindow,
 // makeLandCoverWindowGrassMap). Errors as loadLandCoverGrassMap and landCoverGrid.
 GrassMap loadLandCoverTileGrassMap(const LandCoverParams& params, const LandCoverWorld& world, glm::uvec2 tile,

@@ -101,6 +101,25 @@ TEST(WorldLandCover, EachTilesGrassMapIsTheWholeRastersMapCutAtTheTile) {
     expectTileMapsAreTheWholeRastersCut(parseScene(worldJson("larger.asc"), (dir / "scene.json").string()), larger, 5);
 }
 
+// The horizon ring's far cover over a square of the world's longer side: each texel the class intensities of the
+// land-cover pixel under its centre, zero beyond the raster.
+TEST(WorldLandCover, PointMapSamplesTheClassUnderEachTexel) {
+    SWARD_SKIP_WITHOUT(Gdal);
+    const auto dir = tempDir();
+    writeGrid(dir / "cover.asc", 15, 10, patch, true);
+    const Scene scene = parseScene(worldJson("cover.asc"), (dir / "scene.json").string());
+    const GrassMap map = worldLandCoverPointMap(scene, glm::dvec2(0.0), 150.0, 15);
+    ASSERT_EQ(map.width(), 15u);
+    ASSERT_EQ(map.height(), 15u);
+    for (uint32_t r = 0; r < 15; ++r)
+        for (uint32_t c = 0; c < 15; ++c) {
+            const glm::vec4 expected =
+                r < 5 ? glm::vec4(0.0f) : *scene.landCover.table.find(patch(c, r - 5)); // rows 0..4: y 100 .. 150 m
+            for (uint32_t k = 0; k < 3; ++k)
+                ASSERT_EQ(map.values()[(size_t(r) * 15 + c) * 3 + k], expected[int(k)]) << c << ", " << r;
+        }
+}
+
 // A GIS world: a 61 x 41 sample DEM of 1 m (UTM) gives 3 x 2 tiles of 20 m from its south-west sample; the land
 // cover of 6 x 4 pixels of 10 m covers the same 60 x 40 m. Each tile's map is the whole raster's cut at the tile,
 // plants grow, and the tiles a small load radius streams equal those generated alone.
