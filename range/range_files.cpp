@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <utility>
 
 namespace sward {
 
@@ -20,12 +21,14 @@ std::string rangePly(const RangeScan& scan, const std::string& comment) {
                       std::to_string(scan.points.size()) +
                       "\nproperty float x\nproperty float y\nproperty float z\nproperty double wx\nproperty double wy\n"
                       "property double wz\nproperty float intensity\nproperty float time\nproperty ushort ring\n"
-                      "property ushort column\nproperty uchar class\nproperty uint instance\nend_header\n";
-    out.reserve(out.size() + scan.points.size() * 53);
+                      "property ushort column\nproperty uchar class\nproperty uint instance\n" +
+                      (scan.tiles ? "property uint tile\n" : "") + "end_header\n";
+    out.reserve(out.size() + scan.points.size() * (scan.tiles ? 57 : 53));
     for (const RangePoint& p : scan.points) {
         appendLittleEndian(out, p.sensor.x, p.sensor.y, p.sensor.z, p.world.x, p.world.y, p.world.z, p.intensity,
                            p.time, uint16_t(p.ring), uint16_t(p.column), uint8_t(p.label >> gpu::kInstanceBits),
                            uint32_t(p.label & ((1u << gpu::kInstanceBits) - 1u)));
+        if (scan.tiles) appendLittleEndian(out, p.tile); // a world: instance ids count within a tile
     }
     return out;
 }
@@ -38,9 +41,10 @@ std::string kittiBin(const RangeScan& scan) {
 }
 
 std::string semanticKittiLabel(const RangeScan& scan) {
-    std::map<uint32_t, uint32_t> numbers; // truth instance id -> 1.. in ascending order
+    // (tile, truth instance id) -> 1.. in ascending order; the tile is 0 but in a world, where ids count within a tile.
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> numbers;
     for (const RangePoint& p : scan.points)
-        if (uint32_t id = p.label & ((1u << gpu::kInstanceBits) - 1u)) numbers[id] = 0;
+        if (uint32_t id = p.label & ((1u << gpu::kInstanceBits) - 1u)) numbers[{p.tile, id}] = 0;
     require(numbers.size() <= 0xffffu, "a SemanticKITTI .label holds at most 65535 instances per scan (this scan has " +
                                            std::to_string(numbers.size()) + ")");
     uint32_t next = 0;
@@ -49,7 +53,7 @@ std::string semanticKittiLabel(const RangeScan& scan) {
     out.reserve(scan.points.size() * 4);
     for (const RangePoint& p : scan.points) {
         const uint32_t id = p.label & ((1u << gpu::kInstanceBits) - 1u);
-        const uint32_t instance = id ? numbers[id] & 0xffffu : 0u;
+        const uint32_t instance = id ? numbers[{p.tile, id}] & 0xffffu : 0u;
         appendLittleEndian(out, uint32_t((p.label >> gpu::kInstanceBits) | (instance << 16)));
     }
     return out;

@@ -16,7 +16,8 @@ RangeRecorder::RangeRecorder(const SceneResources& r, uint32_t threads) : r_(r),
     if (r.scene.rangeSensors.empty()) return;
     if (r.world) { // the tiles come with each sweep
         require(!r.withVegetation() || r.atlas, "range sensors: the vegetation was released before them");
-        rays_ = std::make_unique<RayScene>(r.atlas ? *r.atlas : Atlas{}, r.scene.vegetation, r.scene.lod.nearBlades);
+        rays_ = std::make_unique<RayScene>(r.atlas ? *r.atlas : Atlas{}, r.scene.vegetation, r.scene.world.tilesX,
+                                           r.scene.lod.nearBlades);
         return;
     }
     const VegetationTile* tile = r.withVegetation() && r.tile ? &*r.tile : nullptr;

@@ -61,11 +61,12 @@ std::vector<SubRay> subRays(const RangeSensorParams& s) {
 
 struct SubHit {
     float distance, energy;
-    uint32_t label, index;
+    uint32_t label, index, tile;
 };
 
 // The echoes of a beam from its sub-rays' hits (sorted by distance): the reported one's range, energy and label.
-bool chooseReturn(std::vector<SubHit>& hits, RangeReturn mode, float& range, float& energy, uint32_t& label) {
+bool chooseReturn(std::vector<SubHit>& hits, RangeReturn mode, float& range, float& energy, uint32_t& label,
+                  uint32_t& tile) {
     if (hits.empty()) return false;
     std::sort(hits.begin(), hits.end(), [](const SubHit& a, const SubHit& b) {
         return a.distance < b.distance || (a.distance == b.distance && a.index < b.index);
@@ -82,7 +83,7 @@ bool chooseReturn(std::vector<SubHit>& hits, RangeReturn mode, float& range, flo
         }
         const float r = e > 0.0 ? float(weighted / e) : hits[begin].distance;
         const bool take = !found || mode == RangeReturn::Last || (mode == RangeReturn::Strongest && float(e) > energy);
-        if (take) range = r, energy = float(e), label = strongest->label;
+        if (take) range = r, energy = float(e), label = strongest->label, tile = strongest->tile;
         found = true;
         if (mode == RangeReturn::First) break;
         begin = end;
@@ -162,11 +163,11 @@ void sweepColumn(const SweepContext& x, RangeScan& scan, uint32_t c, std::vector
                 const float cosine = float(std::abs(glm::dot(glm::dvec3(found[k].normal), dirs[k])));
                 hits.push_back({found[k].distance,
                                 float(x.pattern[first + k].weight) * reflectance(found[k].label) * cosine,
-                                found[k].label, first + k});
+                                found[k].label, first + k, found[k].tile});
             }
         }
         RangePoint p;
-        if (!chooseReturn(hits, s.returnMode, p.range, p.intensity, p.label)) continue;
+        if (!chooseReturn(hits, s.returnMode, p.range, p.intensity, p.label, p.tile)) continue;
         const uint64_t key = hashKey({kRangeNoiseDomain, x.world.scene.seed, x.sensorIndex, x.frame, c, ring});
         if (s.dropout > 0.0 && unitDouble(mix64(key ^ 0x9e3779b97f4a7c15ull)) < s.dropout) continue;
         if (s.rangeNoise > 0.0) p.range = float(double(p.range) + s.rangeNoise * standardNormal(key));
@@ -263,6 +264,7 @@ RangeScan sweepSensor(const RayScene& rays, const RangeWorld& world, uint32_t se
     const RangeSensorParams& s = world.scene.rangeSensors.at(sensorIndex);
     RangeScan scan;
     scan.channels = s.channels(), scan.columns = s.columns();
+    scan.tiles = world.scene.world.enabled && uint64_t(world.scene.world.tilesX) * world.scene.world.tilesY > 1;
     scan.ranges.assign(size_t(scan.channels) * scan.columns, 0.0f);
     scan.startPose = rangeSensorPose(world.scene, s, world.terrain, world.models, frameTime + columnTime(s, 0));
     scan.endPose =

@@ -27,6 +27,7 @@ struct RangePoint {
     float time = 0.0f;      // seconds after the sweep's start
     uint32_t ring = 0, column = 0;
     uint32_t label = 0; // (semantic class << 24) | instance of the surface that returned most of the echo
+    uint32_t tile = 0;  // a world's plant: that surface's tile, y * tiles_x + x + 1 (RangeHit::tile); else 0
 };
 
 struct RangeScan {
@@ -34,6 +35,7 @@ struct RangeScan {
     std::vector<RangePoint> points;          // beams with a return, in firing order (column, then ring)
     std::vector<float> ranges;               // per beam, ring-major (ring * columns + column): range, 0 = no return
     glm::dmat4 startPose{1.0}, endPose{1.0}; // world-from-sensor at the first and the last column's time
+    bool tiles = false;                      // a world of several tiles: each point names its plant's tile
 };
 
 // What a sweep needs of the scene besides the RayScene.

@@ -77,6 +77,7 @@ struct RayScene::Impl {
     const VegetationParams& vegetation;
     uint32_t nearBlades = 0;
     bool world = false;
+    uint32_t tilesX = 1;
     RTCDevice device = nullptr;
     RTCScene objectScene = nullptr, patchScene = nullptr, top = nullptr;
     std::vector<Tile> tiles;
@@ -251,8 +252,9 @@ RayScene::RayScene(const Ground& ground, const Atlas& atlas, const VegetationPar
     impl_->setObjects({});
 }
 
-RayScene::RayScene(const Atlas& atlas, const VegetationParams& vegetation, uint32_t nearBlades)
+RayScene::RayScene(const Atlas& atlas, const VegetationParams& vegetation, uint32_t tilesX, uint32_t nearBlades)
     : impl_(std::make_unique<Impl>(atlas, vegetation, nearBlades, true)) {
+    impl_->tilesX = tilesX;
     impl_->setObjects({});
 }
 
@@ -304,6 +306,10 @@ RangeHit RayScene::Impl::hitOf(const RTCRay& ray, const RTCHit& hit, glm::dvec3 
         break;
     case Instance::Kind::Field:
         out.label = tiles[instance.tile].plants->label(instance.field, hit.primID);
+        if (world) {
+            const TileCoord coord = tiles[instance.tile].source.coord;
+            out.tile = uint32_t(coord.y) * tilesX + uint32_t(coord.x) + 1;
+        }
         break;
     case Instance::Kind::None:
         break;

@@ -39,6 +39,7 @@ struct RangeHit {
     float distance = 0.0f;  // along the ray's unit direction, metres; 0 = nothing hit
     uint32_t label = 0;     // (semantic class << kInstanceBits) | instance id, as the truth pass writes it
     glm::vec3 normal{0.0f}; // unit world normal of the surface hit, facing the ray's origin
+    uint32_t tile = 0;      // a world's plant: its tile, y * tiles_x + x + 1 (the truth images' tile channel); else 0
     bool hit() const { return distance > 0.0f; }
 };
 
@@ -70,8 +71,8 @@ public:
     // lod.near_blades, the grass plants' blades instead of their quads (as the cameras draw them).
     RayScene(const Ground& ground, const Atlas& atlas, const VegetationParams& vegetation, const VegetationTile* tile,
              uint32_t nearBlades = 0);
-    // A world's scene: no ground and no plants until setTiles gives them.
-    RayScene(const Atlas& atlas, const VegetationParams& vegetation, uint32_t nearBlades = 0);
+    // A world's scene (`tilesX` tiles along x, for RangeHit::tile): no ground and no plants until setTiles gives them.
+    RayScene(const Atlas& atlas, const VegetationParams& vegetation, uint32_t tilesX, uint32_t nearBlades = 0);
     ~RayScene();
     RayScene(const RayScene&) = delete;
     RayScene& operator=(const RayScene&) = delete;

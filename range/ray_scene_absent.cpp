@@ -13,7 +13,7 @@ RayScene::RayScene(const Ground&, const Atlas&, const VegetationParams&, const V
     requireComponent(Component::Embree, "the range sensors' ray casting");
 }
 
-RayScene::RayScene(const Atlas&, const VegetationParams&, uint32_t) {
+RayScene::RayScene(const Atlas&, const VegetationParams&, uint32_t, uint32_t) {
     requireComponent(Component::Embree, "the range sensors' ray casting");
 }
 

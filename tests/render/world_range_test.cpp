@@ -143,7 +143,8 @@ TEST_F(GpuTest, WorldLidarPointsAgreeWithTheCameraDepthAcrossTileBorders) {
     const Camera& camera = run.cameras[0];
     ASSERT_EQ(im.tiles.size(), im.labels.size());
     std::vector<double> relative, plantRelative;
-    std::set<std::pair<int, int>> tiles, plantTiles;
+    std::set<std::pair<int, int>> tiles;
+    std::set<uint32_t> plantTiles; // RangePoint::tile
     uint32_t plants = 0, felled = 0, ground = 0;
     for (const RangePoint& p : run.scans[0].points) {
         const glm::dvec3 pixel = camera.project(p.world);
@@ -160,7 +161,7 @@ TEST_F(GpuTest, WorldLidarPointsAgreeWithTheCameraDepthAcrossTileBorders) {
                 const bool sameClass = s == semantic || (semantic == gpu::kSemanticGround &&
                                                          (s == gpu::kSemanticTurf || s == gpu::kSemanticTrack));
                 same = same && sameClass && (im.labels[i] & ((1u << gpu::kInstanceBits) - 1)) == instance &&
-                       (!isPlant(semantic) || im.tiles[i] == uint32_t(ty * 4 + tx + 1));
+                       im.tiles[i] == p.tile;
             }
         if (!same) continue;
         // Inverse depth is linear across the image of a plane: interpolate it bilinearly.
@@ -170,7 +171,7 @@ TEST_F(GpuTest, WorldLidarPointsAgreeWithTheCameraDepthAcrossTileBorders) {
                                (inv(x0, y0 + 1) * (1 - fx) + inv(x0 + 1, y0 + 1) * fx) * fy;
         relative.push_back(std::abs(pixel.z * inverse - 1.0));
         tiles.insert({tx, ty});
-        if (isPlant(semantic)) plantRelative.push_back(relative.back()), plantTiles.insert({tx, ty});
+        if (isPlant(semantic)) plantRelative.push_back(relative.back()), plantTiles.insert(p.tile);
         plants += isPlant(semantic);
         felled += semantic == gpu::kSemanticFelled;
         ground += semantic == gpu::kSemanticGround;
@@ -209,7 +210,7 @@ TEST_F(GpuTest, WorldLidarPointsAreBitwiseTheSameStreamedOrResident) {
         uint64_t different = 0;
         for (size_t i = 0; i < a.points.size(); ++i) {
             const RangePoint &p = a.points[i], &q = b.points[i];
-            different += p.world != q.world || p.sensor != q.sensor || p.label != q.label ||
+            different += p.world != q.world || p.sensor != q.sensor || p.label != q.label || p.tile != q.tile ||
                          p.intensity != q.intensity || p.ring != q.ring || p.column != q.column;
             tiles.insert(tileOf(p.world));
         }
@@ -240,7 +241,7 @@ TEST_F(GpuTest, WorldLidarOnARoverIsBitwiseTheSameStreamedOrResident) {
         uint64_t different = 0;
         for (size_t i = 0; i < a.points.size(); ++i) {
             const RangePoint &p = a.points[i], &q = b.points[i];
-            different += p.world != q.world || p.label != q.label || p.intensity != q.intensity;
+            different += p.world != q.world || p.label != q.label || p.tile != q.tile || p.intensity != q.intensity;
             tiles.insert(tileOf(p.world));
             felled += (p.label >> gpu::kInstanceBits) == gpu::kSemanticFelled;
             rover += (p.label >> gpu::kInstanceBits) == gpu::kSemanticObject;
@@ -270,7 +271,10 @@ TEST_F(GpuTest, WorldLidarDatasetsAreTheSameStreamedOrResident) {
         out[loadRadius] = dir + "/out";
     }
     EXPECT_GE(sward::test::expectSameRunFiles(out[18.0], out[400.0]), 12u);
-    EXPECT_FALSE(sward::test::readFile(out[18.0] + "/range/lidar/000041.ply").empty());
+    // A world's points name their plants' tiles (instance ids count within a tile).
+    EXPECT_NE(sward::test::readFile(out[18.0] + "/range/lidar/000041.ply")
+                  .find("property uint instance\nproperty uint tile\n"),
+              std::string::npos);
     // The LiDAR stands 2.2 m above the ground it is drawn on, as the camera on the same path does.
     std::istringstream lines(sward::test::readFile(out[18.0] + "/frames.jsonl"));
     uint32_t records = 0;
