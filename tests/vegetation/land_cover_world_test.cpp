@@ -98,6 +98,17 @@ TEST(LandCoverWorld, TileMapFromItsWindowEqualsTheWholeRastersMapCutAtTheTile) {
     }
 }
 
+TEST(LandCoverWorld, WindowMapIsTheSameForAnyThreadCount) {
+    const RasterBand raster = patchwork(24, 16);
+    const RasterWindow all{.width = 24, .height = 16}, out{.column = 3, .row = 2, .width = 17, .height = 11};
+    const GrassMap one = makeLandCoverWindowGrassMap(raster, all, {24, 16}, out, worldCover(9.0), {2, 2}, "test", 1);
+    for (uint32_t threads : {2u, 3u, 8u})
+        EXPECT_EQ(
+            makeLandCoverWindowGrassMap(raster, all, {24, 16}, out, worldCover(9.0), {2, 2}, "test", threads).values(),
+            one.values())
+            << threads;
+}
+
 TEST(LandCoverWorld, BoxHoldingOneClassGivesExactlyItsIntensities) {
     const RasterBand raster = codes(12, 4, [](uint32_t x, uint32_t) { return x < 6 ? kGrass : kShrub; });
     const RasterWindow all{.width = 12, .height = 4};
