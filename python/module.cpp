@@ -45,7 +45,8 @@ py::array_t<float> colour(const std::vector<uint16_t>& rendered, uint32_t width,
 }
 
 // A range sensor's sweep as the dataset's files hold it (range/range_files.h): per point, in firing order, "xyz"
-// (sensor frame), "world", "intensity", "time", "ring", "column", "class", "instance"; a scanner's "ranges" per angle
+// (sensor frame), "world", "intensity", "time", "ring", "column", "class", "instance" (and "tile" in a world of several
+// tiles); a scanner's "ranges" per angle
 // (NaN: no return); a ToF camera's planar "depth" image (+inf: no return).
 py::dict rangeDict(const RangeSensorParams& sensor, const RangeScan& scan) {
     py::dict d;
@@ -69,6 +70,11 @@ py::dict rangeDict(const RangeSensorParams& sensor, const RangeScan& scan) {
     }
     d["xyz"] = xyz, d["world"] = world, d["intensity"] = intensity, d["time"] = time;
     d["ring"] = ring, d["column"] = column, d["class"] = semantic, d["instance"] = instance;
+    if (scan.tiles) { // a world: instance ids count within a tile (the PLY's tile property)
+        py::array_t<uint32_t> tile(n);
+        for (py::ssize_t i = 0; i < n; ++i) tile.mutable_at(i) = scan.points[size_t(i)].tile;
+        d["tile"] = tile;
+    }
     if (sensor.type == RangeSensorType::Scanner) {
         std::vector<float> ranges = scan.ranges;
         for (float& r : ranges) r = r > 0.0f ? r : std::nanf("");

@@ -358,6 +358,8 @@ def _read_range(root, name, frame):
         out["world"] = np.stack([points["wx"], points["wy"], points["wz"]], axis=1)
         for key in _PLY_COLUMNS:
             out[key] = points[key].copy()
+        if "tile" in points.dtype.names:  # a world of several tiles: instance ids count within a tile
+            out["tile"] = points["tile"].copy()
     scan = file(".json")
     if scan.is_file():
         ranges = _read_json(scan).get("ranges")
