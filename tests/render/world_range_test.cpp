@@ -112,6 +112,9 @@ LidarRun drive(Context& ctx, double loadRadius, const std::vector<uint32_t>& fra
         run.cameras.push_back(cameras.left);
         const RangeFrameState state = rangeFrameState(gpu, r, ruts);
         run.scans.push_back(std::move(range.sweep(frame, state.view(0.0)).at(0)));
+        std::printf("frame %u: %zu points, %u tiles resident, sweep prepared in %.1f ms, cast in %.1f ms\n", frame,
+                    run.scans.back().points.size(), r.world->residentCount(), range.timings().prepareMs,
+                    range.timings().castMs);
         run.mostResident = std::max(run.mostResident, r.world->residentCount());
     }
     run.stats = r.world->stats();
