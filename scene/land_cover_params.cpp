@@ -33,6 +33,16 @@ void readTable(const nlohmann::json& json, JsonReader t, LandCoverTable& table) 
     t.finish();
 }
 
+// The world tile whose south-west corner is `origin`: generateWorldTile's tiles lie on the world's grid, so the
+// nearest whole tile is exact.
+glm::uvec2 worldTileAt(const Scene& scene, glm::dvec2 origin, const char* what) {
+    const VegetationParams& v = scene.vegetation;
+    const glm::dvec2 tile = glm::round((origin - glm::dvec2(v.worldOrigin)) / double(v.tileSize));
+    require(tile.x >= 0.0 && tile.y >= 0.0 && tile.x < scene.world.tilesX && tile.y < scene.world.tilesY,
+            scene.source + ": " + what + ": the tile is outside the world");
+    return glm::uvec2(tile);
+}
+
 } // namespace
 
 LandCoverParams parseLandCoverParams(JsonReader& r) {
@@ -68,12 +78,7 @@ LandCoverGrid worldLandCoverGrid(const Scene& scene) {
 }
 
 GrassMap worldLandCoverGrassMap(const Scene& scene, glm::dvec2 origin, uint32_t threads) {
-    const VegetationParams& v = scene.vegetation;
-    // generateWorldTile's tiles lie on the world's grid: the nearest whole tile is exact.
-    const glm::dvec2 tile = glm::round((origin - glm::dvec2(v.worldOrigin)) / double(v.tileSize));
-    require(tile.x >= 0.0 && tile.y >= 0.0 && tile.x < scene.world.tilesX && tile.y < scene.world.tilesY,
-            scene.source + ": worldLandCoverGrassMap: the tile is outside the world");
-    return loadLandCoverTileGrassMap(scene.landCover, landCoverWorld(scene), glm::uvec2(tile),
+    return loadLandCoverTileGrassMap(scene.landCover, landCoverWorld(scene), worldTileAt(scene, origin, "'land_cover'"),
                                      scene.source + ": 'land_cover'", threads, scene.assets.folders());
 }
 
@@ -81,6 +86,47 @@ GrassMap worldLandCoverPointMap(const Scene& scene, glm::dvec2 origin, double si
     return loadLandCoverPointGrassMap(scene.landCover, landCoverWorld(scene),
                                       origin - glm::dvec2(scene.vegetation.worldOrigin), side, resolution,
                                       scene.source + ": 'land_cover'", scene.assets.folders());
+}
+
+namespace {
+
+GrassMap loadWorldGrassMap(const Scene& scene) {
+    try {
+        return loadGrassMap(scene.grassMapPath);
+    } catch (const Error& e) {
+        throw Error(scene.source + ": 'grass_map': " + e.what()); // which key named the file
+    }
+}
+
+LandCoverGrid grassMapGrid(const Scene& scene, const GrassMap& map) {
+    return landCoverGrid(map.width(), map.height(), std::nullopt, map.source(), landCoverWorld(scene),
+                         scene.source + ": 'grass_map'");
+}
+
+} // namespace
+
+GrassMap worldGrassMapBound(const Scene& scene, glm::uvec2& pixelsPerTile) {
+    const GrassMap map = loadWorldGrassMap(scene);
+    pixelsPerTile = grassMapGrid(scene, map).pixelsPerTile;
+    std::vector<float> most(map.channels(), 0.0f);
+    for (size_t i = 0; i < map.values().size(); ++i)
+        most[i % map.channels()] = std::max(most[i % map.channels()], map.values()[i]);
+    return GrassMap(1, 1, map.channels(), std::move(most), "the largest intensities of " + map.source());
+}
+
+GrassMap worldGrassMapWindow(const Scene& scene, glm::dvec2 origin) {
+    const GrassMap map = loadWorldGrassMap(scene);
+    const LandCoverGrid grid = grassMapGrid(scene, map);
+    const glm::uvec2 tile = worldTileAt(scene, origin, "worldGrassMapWindow"), ppt = grid.pixelsPerTile;
+    const uint32_t channels = map.channels(), top = map.height() - (tile.y + 1) * ppt.y;
+    std::vector<float> values;
+    values.reserve(size_t(ppt.x) * ppt.y * channels);
+    for (uint32_t y = top; y < top + ppt.y; ++y) {
+        const auto row =
+            map.values().begin() + ptrdiff_t((size_t(y) * map.width() + size_t(tile.x) * ppt.x) * channels);
+        values.insert(values.end(), row, row + ptrdiff_t(ppt.x * channels));
+    }
+    return GrassMap(ppt.x, ppt.y, channels, std::move(values), map.source());
 }
 
 } // namespace sward

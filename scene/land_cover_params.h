@@ -26,6 +26,14 @@ LandCoverGrid worldLandCoverGrid(const Scene& scene);
 // texel per resolution x resolution cell (loadLandCoverPointGrassMap): a horizon ring's far cover.
 GrassMap worldLandCoverPointMap(const Scene& scene, glm::dvec2 origin, double side, uint32_t resolution);
 
+// A world's `grass_map` (issue 51): the image stretched over the world's tiles, north up, whole pixels per tile (the
+// rule of a land cover without georeferencing, landCoverGrid), each tile's map its pixels (no blur: windows of the
+// image are the image). Loads and checks it: the largest intensity of each channel as a 1 x 1 map (the budget's
+// bound) and its pixels per tile. Throws sward::Error naming the scene, 'grass_map' and the file.
+GrassMap worldGrassMapBound(const Scene& scene, glm::uvec2& pixelsPerTile);
+// The grass map's pixels over the world tile whose south-west corner is `origin`.
+GrassMap worldGrassMapWindow(const Scene& scene, glm::dvec2 origin);
+
 // The land cover's grass map over the world tile whose south-west corner is `origin` (loadLandCoverTileGrassMap).
 GrassMap worldLandCoverGrassMap(const Scene& scene, glm::dvec2 origin, uint32_t threads = 0);
 

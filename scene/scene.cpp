@@ -342,6 +342,7 @@ Atlas buildAtlas(const Scene& scene) {
 }
 
 GrassMap buildGrassMap(const Scene& scene, float tileSize, glm::dvec2 origin) {
+    if (!scene.grassMapPath.empty() && scene.world.enabled) return worldGrassMapWindow(scene, origin);
     if (!scene.grassMapPath.empty()) return loadGrassMap(scene.grassMapPath);
     if (!scene.landCover.file.empty() && scene.world.enabled) return worldLandCoverGrassMap(scene, origin);
     if (!scene.landCover.file.empty())

@@ -91,9 +91,7 @@ void checkWorldScene(const Scene& scene) {
     if (scene.terrain.source == TerrainParams::Source::Mesh)
         fail("'world' needs the procedural terrain or a DEM ('terrain.heightmap'): a world of 'terrain.mesh' is not "
              "supported yet");
-    if (!scene.grassMapPath.empty())
-        fail("'grass_map' (one tile's map) is not supported in a world: give the world's vegetation as a "
-             "'land_cover' raster covering the world, or none for the procedural meadow on every tile");
+    if (glm::uvec2 pixels; !scene.grassMapPath.empty()) worldGrassMapBound(scene, pixels); // whole pixels per tile
     if (!scene.landCover.file.empty()) worldLandCoverGrid(scene); // it covers the world in whole pixels per tile
     const ProceduralTerrainParams& t = scene.terrain.procedural;
     const VegetationParams& v = scene.vegetation;
@@ -161,15 +159,18 @@ uint64_t predictedTileBytes(const Scene& scene, bool farCover) {
     const double clusters = fields * v.clustersPerField() * v.clustersPerField();
     double plants = 0.0, coverTexels = 0.0;
     if (scene.vegetationEnabled) {
-        // The meadow's intensities never exceed 1, a land cover's its table's largest (up to kMaxLandCoverIntensity);
-        // rounding adds at most one plant per cluster and category.
+        // The meadow's intensities never exceed 1, a land cover's its table's largest (up to kMaxLandCoverIntensity), a
+        // grass_map's its largest value per channel; rounding adds at most one plant per cluster and category.
         static const GrassMap full(1, 1, 3, {1.0f, 1.0f, 1.0f}, "full intensity");
-        const bool landCover = !scene.landCover.file.empty();
-        plants = predictPlantCount(landCover ? landCoverIntensityBound(scene.landCover) : full, v) +
-                 clusters * v.categoryCount;
-        if (farCover) coverTexels = std::pow(double(MeadowMapParams{}.resolution), 2.0); // one per meadow texel
-        if (farCover && landCover) { // one per land-cover pixel, in blocks beyond kMaxCoverMapEdge
-            const glm::dvec2 pixels(worldLandCoverGrid(scene).pixelsPerTile);
+        const bool landCover = !scene.landCover.file.empty(), grassMap = !scene.grassMapPath.empty();
+        glm::uvec2 mapPixels(MeadowMapParams{}.resolution);
+        const GrassMap bound = landCover  ? landCoverIntensityBound(scene.landCover)
+                               : grassMap ? worldGrassMapBound(scene, mapPixels)
+                                          : full;
+        plants = predictPlantCount(bound, v) + clusters * v.categoryCount;
+        if (landCover) mapPixels = worldLandCoverGrid(scene).pixelsPerTile;
+        if (farCover) { // one per grass-map texel, in blocks beyond kMaxCoverMapEdge
+            const glm::dvec2 pixels(mapPixels);
             const glm::dvec2 edges = glm::min(pixels, double(kMaxCoverMapEdge));
             coverTexels = edges.x * edges.y;
         }

@@ -499,9 +499,10 @@ CASES = [
     Case("world horizon neither false nor an object", "sward-render",
          scene_with(set_key(["world"], {"tiles": [2, 2], "horizon": "far"})), 1,
          r"'world\.horizon' must be false, true or an object with 'spacing'"),
-    Case("world with a grass_map", "sward-render",
+    Case("world grass_map without whole pixels per tile", "sward-render",
          scene_with(lambda s, env: (grass_map(png_bytes())(s, env), s.update(world={"tiles": [4, 4]}), s)[-1]), 1,
-         r"'grass_map' \(one tile's map\) is not supported in a world"),
+         r"'grass_map': raster '.*map\.png' has 1 x 1 pixels, not a whole number of pixels per tile of the world's "
+         r"400 x 400 m \(4 x 4 tiles of 100 m\)"),
     Case("mismatched land-cover extent", "sward-render",
          scene_with(lambda s, env: s.update(land_cover=utm_cover(env, 20, 15), world={"tiles": [2, 2]})), 1,
          r"'land_cover': raster '.*cover\.asc' covers 200 x 150 m \(20 x 15 pixels of 10 x 10 m\), but the world "

@@ -172,11 +172,41 @@ TEST(WorldLandCover, MismatchedExtentIsOneErrorNamingBothExtents) {
     writeGrid(dir / "plain.asc", 16, 10, patch, false); // no coordinate system: stretched, but 16 pixels over 3 tiles
     expectError([&] { parseScene(worldJson("plain.asc"), (dir / "scene.json").string()); },
                 {"plain.asc' has 16 x 10 pixels, not a whole number of pixels per tile"});
-    nlohmann::json withGrassMap = worldJson("cover.asc");
-    withGrassMap.erase("land_cover");
-    withGrassMap["grass_map"] = "map.png";
-    expectError([&] { parseScene(withGrassMap, (dir / "scene.json").string()); },
-                {"'grass_map' (one tile's map) is not supported in a world", "'land_cover'"});
+}
+
+// A grass_map in a world: the image stretched over the world's tiles, each tile's map its pixels; the budget bounds a
+// tile by the image's largest values; an image without whole pixels per tile is refused naming both counts.
+TEST(WorldLandCover, AGrassMapIsCutIntoTheWorldsTiles) {
+    const auto dir = tempDir();
+    std::vector<float> values;
+    for (uint32_t i = 0; i < 15 * 10; ++i)
+        for (uint32_t c = 0; c < 3; ++c) values.push_back(float((i * 7 + c * 3) % 16) / 15.0f);
+    writePng(dir / "map.png", 15, 10, 3, 8, values);
+    nlohmann::json json = worldJson("unused");
+    json.erase("land_cover");
+    json["grass_map"] = "map.png";
+    const Scene scene = parseScene(json, (dir / "scene.json").string());
+    const GrassMap whole = loadGrassMap((dir / "map.png").string());
+    for (int32_t ty = 0; ty < 2; ++ty)
+        for (int32_t tx = 0; tx < 3; ++tx) {
+            const GrassMap map = buildGrassMap(scene, 50.0f, glm::dvec2(50.0 * tx, 50.0 * ty));
+            ASSERT_EQ(map.width(), 5u);
+            ASSERT_EQ(map.height(), 5u);
+            std::vector<float> expected;
+            for (uint32_t y = 0; y < 5; ++y) {
+                const auto first = whole.values().begin() + ptrdiff_t(((size_t(1 - ty) * 5 + y) * 15 + tx * 5) * 3);
+                expected.insert(expected.end(), first, first + 15);
+            }
+            EXPECT_EQ(map.values(), expected) << "tile " << tx << ", " << ty;
+        }
+    const WorldTile tile = generateWorldTile(scene, {1, 1}, 1);
+    EXPECT_GT(tile.vegetation.fields.size(), 0u);
+    EXPECT_LE(tile.bytes, predictedTileBytes(scene));
+    writePng(dir / "odd.png", 16, 10, 3, 8, std::vector<float>(16 * 10 * 3, 0.5f));
+    json["grass_map"] = "odd.png";
+    expectError([&] { parseScene(json, (dir / "scene.json").string()); },
+                {"scene.json: 'grass_map': raster '", "odd.png' has 16 x 10 pixels, not a whole number of pixels per "
+                                                      "tile of the world's 150 x 100 m (3 x 2 tiles of 50 m)"});
 }
 
 // predictedTileBytes bounded the meadow's intensities, never over 1; a land cover's reach kMaxLandCoverIntensity.
