@@ -180,18 +180,26 @@ uint64_t bytesNeeded(const DatasetWriter& dataset, const JobPlan& plan, const st
     return dataset.frameBytesUpperBound(plan.width, plan.height) + sequenceBytes + manifestBytes + kSmallFiles;
 }
 
+// A frame's range sensors, rendered with flow: the state its sweep sees and, in a world, the sweep itself.
+struct FlowFrameSweep {
+    RangeFrameState state;
+    std::optional<std::vector<RangeScan>> scans;
+};
+
 // renderFrames with flow (render.flow): a frame's files need its neighbours' truth (dataset/flow_truth.h), so the
 // frames render in order from the one before the first to write to the one after the last (those not to be written
 // only for their truth), and frame f is written once f + 1 has rendered.
 void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, const JobPlan& plan,
                       const std::vector<uint32_t>& todo, DatasetWriter& dataset,
                       const std::optional<SensorModel>& sensor, const RenderJobOptions& options, BackgroundTask& writer,
-                      Progress& progress, JobClock& clock, AutoExposure* autoExposure) {
+                      Progress& progress, JobClock& clock, AutoExposure* autoExposure, RangeRecorder& range,
+                      RutPatchCache& ruts) {
     if (todo.empty()) return; // a complete dataset
     const double baseline = r.scene.camera.rig.baseline;
     const std::set<uint32_t> toWrite(todo.begin(), todo.end());
     std::shared_ptr<const FrameImages> previous, current;
     std::shared_ptr<const RigCameras> currentCameras;
+    std::shared_ptr<const FlowFrameSweep> currentSweep;
     uint32_t done = 0, started = 0;
     // From the frame before the first (its truth), or the first of its auto-exposure window (its meter).
     const uint32_t first = autoExposure ? autoExposure->framesToRender({todo.front()}).front() : todo.front();
@@ -200,24 +208,40 @@ void renderFlowFrames(SceneGpu& gpu, OffscreenFrame& target, SceneResources& r, 
         if (options.onProgress) options.onProgress(started, total);
         const double renderStart = clock.now();
         auto cameras = std::make_shared<RigCameras>();
+        // The range sensors see the plants and ruts of the frame's own tick, as its cameras drew them, though its next
+        // tick has run by the time it returns (rangeFlowFrameState).
+        std::shared_ptr<const std::vector<GroundPatch>> patches;
+        const bool sweep = range.active() && toWrite.contains(frame);
         auto images = std::make_shared<const FrameImages>(renderSequenceFrame(
-            gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras, autoExposure));
+            gpu, target, r, plan.width, plan.height, frame, options.time, sensor, *cameras, autoExposure,
+            sweep ? std::function<void()>([&] { patches = rangeRutPatches(gpu, r, ruts); }) : nullptr));
+        auto frameSweep = std::make_shared<FlowFrameSweep>();
+        if (sweep) {
+            frameSweep->state = rangeFlowFrameState(gpu, std::move(patches));
+            // A world's sweeps cast against its resident tiles, which the next frame may evict: cast now.
+            if (r.world) frameSweep->scans = range.sweep(frame, frameSweep->state.view(options.time));
+        }
         if (current && toWrite.contains(frame - 1)) {
             RenderJobReport::Frame& t = clock.report.frames[started++]; // the render that completed its truth
             t.renderSeconds = clock.now() - renderStart;
             const double rendered = clock.now();
-            writer.start(
-                [&dataset, &progress, &done, &clock, &t, baseline, frame, previous, current, images, currentCameras] {
-                    clock.timeWrite(t, [&] {
-                        const FlowNeighbours neighbours{frame - 1 > 0 ? previous.get() : nullptr, images.get()};
-                        dataset.writeFrame(frame - 1, *current, currentCameras->left, baseline, &neighbours);
-                    });
-                    progress.frameDone(++done, frame - 1);
+            writer.start([&dataset, &progress, &done, &clock, &t, &range, &options, baseline, frame, previous, current,
+                          images, currentCameras, currentSweep] {
+                clock.timeWrite(t, [&] {
+                    const FlowNeighbours neighbours{frame - 1 > 0 ? previous.get() : nullptr, images.get()};
+                    dataset.writeFrame(frame - 1, *current, currentCameras->left, baseline, &neighbours);
+                    if (currentSweep->scans)
+                        range.write(dataset, frame - 1, *currentSweep->scans);
+                    else if (range.active())
+                        range.record(dataset, frame - 1, currentSweep->state.view(options.time));
                 });
+                progress.frameDone(++done, frame - 1);
+            });
             t.waitSeconds = clock.now() - rendered;
         }
         previous = std::exchange(current, images);
         currentCameras = cameras;
+        currentSweep = std::move(frameSweep);
     }
     writer.wait();
     if (options.onProgress) options.onProgress(total, total);
@@ -247,7 +271,8 @@ void renderFrames(Context& ctx, SceneResources& r, const JobPlan& plan, const st
         autoExposure.emplace(sensor->params().autoExposure, r.scene.sequence.timeStep);
     AutoExposure* exposure = autoExposure ? &*autoExposure : nullptr;
     if (r.scene.render.flow) {
-        renderFlowFrames(gpu, target, r, plan, todo, dataset, sensor, options, writer, progress, clock, exposure);
+        renderFlowFrames(gpu, target, r, plan, todo, dataset, sensor, options, writer, progress, clock, exposure, range,
+                         ruts);
         return;
     }
     size_t i = 0;

@@ -157,11 +157,10 @@ FrameImages renderFlowFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneRe
     FlowTicks flow{.previous = {&previous.left, &previous.right},
                    .next = {&next.left, &next.right},
                    .timeStep = r.scene.sequence.timeStep,
-                   .beforeTruth =
-                       [&](VkCommandBuffer cmd) {
-                           if (beforeNextTick) beforeNextTick(); // the CPU state of tick f, before f + 1 changes it
-                           recordFlowTick(gpu, cmd, frame + 1);
-                       }};
+                   .beforeTruth = [&](VkCommandBuffer cmd) {
+                       if (beforeNextTick) beforeNextTick(); // the CPU state of tick f, before f + 1 changes it
+                       recordFlowTick(gpu, cmd, frame + 1);
+                   }};
     if (!tickNext) flow.beforeTruth = {};
     return target.render(*gpu.renderer, cameras.left, time, frame, prologue, stereo ? &cameras.right : nullptr, &flow,
                          colour);
@@ -199,11 +198,10 @@ FrameImages renderReadout(SceneGpu& gpu, OffscreenFrame& target, const SceneReso
     };
     auto truthAt = [&](double t, bool first) {
         const RigCameras rig = rigAt(t);
-        FrameImages images = target.hasFlow()
-                                 ? renderFlowFrame(gpu, target, r, frame, timeOffset + t, rig, {}, false, t, first,
-                                                   beforeNextTick)
-                                 : target.render(*gpu.renderer, rig.left, timeOffset + t, frame, {},
-                                                 stereo ? &rig.right : nullptr, nullptr, false);
+        FrameImages images = target.hasFlow() ? renderFlowFrame(gpu, target, r, frame, timeOffset + t, rig, {}, false,
+                                                                t, first, beforeNextTick)
+                                              : target.render(*gpu.renderer, rig.left, timeOffset + t, frame, {},
+                                                              stereo ? &rig.right : nullptr, nullptr, false);
         if (exposureSamples > 0)
             images.motionBlur = motionBlurLengths(rigAt(t - half).left, rig.left, rigAt(t + half).left, images.depth);
         return images;
@@ -257,9 +255,8 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
     }
     if (target.hasFlow()) tick = flowPrologue(gpu, frame);
     if (sensor && sensor->params().readoutSeconds > 0.0) { // a rolling shutter: each band of rows at its own time
-        FrameImages images =
-            renderReadout(gpu, target, r, width, height, frame, timeOffset, sensor->params(), exposure.size(), tick,
-                          beforeNextTick);
+        FrameImages images = renderReadout(gpu, target, r, width, height, frame, timeOffset, sensor->params(),
+                                           exposure.size(), tick, beforeNextTick);
         return readOutSensor(r, *sensor, cameras, frame, std::move(images), autoExposure);
     }
     ExposureColour blurred;
@@ -268,11 +265,10 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
         tick = {};
     }
     const bool colour = exposure.empty(); // else the truth alone, at the exposure's middle
-    FrameImages images = target.hasFlow()
-                             ? renderFlowFrame(gpu, target, r, frame, timeOffset + time, cameras, tick, colour, {},
-                                               true, beforeNextTick)
-                             : target.render(*gpu.renderer, cameras.left, timeOffset + time, frame, tick,
-                                             stereo ? &cameras.right : nullptr, nullptr, colour);
+    FrameImages images = target.hasFlow() ? renderFlowFrame(gpu, target, r, frame, timeOffset + time, cameras, tick,
+                                                            colour, {}, true, beforeNextTick)
+                                          : target.render(*gpu.renderer, cameras.left, timeOffset + time, frame, tick,
+                                                          stereo ? &cameras.right : nullptr, nullptr, colour);
     if (!colour) {
         images.rgbaHalf = std::move(blurred.left);
         images.rightRgbaHalf = std::move(blurred.right);

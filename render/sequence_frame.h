@@ -13,6 +13,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 
@@ -48,10 +49,12 @@ nlohmann::json sequenceFrameRecord(const SceneResources& r, const RigCameras& ri
 // frame's already ran it, and the next tick runs before the truth passes (FlowTicks), so the simulation ends one tick
 // ahead; frames must then come in increasing order. `autoExposure` (camera.sensor.auto_exposure): meters the frame and
 // applies the exposure of its window (render/auto_exposure.h), recorded in FrameImages::autoExposure.
+// `beforeNextTick` (flow only): called while the frame is recorded, once its own tick has run and before the next
+// tick's is recorded: the CPU state of the frame's tick (the range sensors' rut patches, rangeFlowFrameState).
 FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
                                 uint32_t height, uint32_t frame, double timeOffset,
                                 const std::optional<SensorModel>& sensor, RigCameras& cameras,
-                                AutoExposure* autoExposure = nullptr);
+                                AutoExposure* autoExposure = nullptr, const std::function<void()>& beforeNextTick = {});
 
 // What the range sensors (range/range_recorder.h) see of a rendered frame besides the scene: the plants' interaction
 // state (the GPU's dynamic records after the frame's tick) and the ground's rut patches as the track renderer draws
@@ -70,5 +73,15 @@ struct RutPatchCache {
 };
 // The state of the frame `gpu` rendered last (reads the dynamic records back: waits for the GPU).
 RangeFrameState rangeFrameState(SceneGpu& gpu, const SceneResources& r, RutPatchCache& ruts);
+// The ruts as the range sensors see them now: the latest revision's patches (null: no rut).
+std::shared_ptr<const std::vector<GroundPatch>> rangeRutPatches(SceneGpu& gpu, const SceneResources& r,
+                                                                RutPatchCache& ruts);
+// The same state for a frame rendered with flow (render.flow). Such a frame runs its next tick (f + 1) before its
+// truth passes, so after it the live plant records and the ruts are those of tick f + 1, one tick later than its
+// cameras drew. The sweep of frame f must see tick f, as without flow: the plants' state is read from the copy the flow
+// kept just before tick f + 1 (VegetationRenderer::readKeptState; a world's simulated tiles take it into their CPU
+// copies, WorldSimulation::readBackKeptStates), and the ruts are `patches`, taken by rangeRutPatches from
+// renderSequenceFrame's beforeNextTick. So a dataset's range files are bitwise the same with flow on or off.
+RangeFrameState rangeFlowFrameState(SceneGpu& gpu, std::shared_ptr<const std::vector<GroundPatch>> patches);
 
 } // namespace sward

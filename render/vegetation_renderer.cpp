@@ -461,7 +461,9 @@ void VegetationRenderer::startKeptStates(Tile& tile) {
     const Buffer& live = tile.buffers.dynamics;
     const VkBufferCopy region{.size = live.size};
     for (Buffer& kept : tile.keptStates)
-        kept = createBuffer(ctx_, live.size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        kept = createBuffer(ctx_, live.size,
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                             MemoryIntent::DeviceLocal);
     ctx_.submitter.immediate([&](VkCommandBuffer cmd) {
         for (const Buffer& kept : tile.keptStates) vkCmdCopyBuffer(cmd, live.handle, kept.handle, 1, &region);
@@ -482,6 +484,15 @@ void VegetationRenderer::recordKeepState(VkCommandBuffer cmd) {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                   VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+std::vector<gpu::PlantDynamic> VegetationRenderer::readKeptState(std::optional<TileCoord> coord) {
+    require(truthFlowPipeline_.handle, "VegetationRenderer::readKeptState: enableFlow() first");
+    const Tile& tile = coord ? *tiles_.at(TileKey(coord->y, coord->x)) : onlyTile();
+    std::vector<gpu::PlantDynamic> out(tile.buffers.plantCount);
+    const std::vector<uint8_t> bytes = readBuffer(ctx_, tile.keptStates[latestKept_], 0, out.size() * sizeof(out[0]));
+    if (!bytes.empty()) std::memcpy(out.data(), bytes.data(), bytes.size());
+    return out;
 }
 
 gpu::ExpansionStats VegetationRenderer::readStats() {

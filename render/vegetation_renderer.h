@@ -28,6 +28,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <optional>
 #include <utility>
 
 namespace sward {
@@ -97,6 +98,11 @@ public:
     // tile made resident: no tick changed it while it was not), so plants no simulation moves need no keep at all.
     void enableFlow();
     void recordKeepState(VkCommandBuffer cmd);
+    // The dynamic records recordKeepState() copied last from resident tile `coord` (none: the only tile; reads back,
+    // waits): after a frame with flow, the plants' state of the frame's own tick, which its cameras drew, while the
+    // live records already hold the next tick's (the range sensors' sweep of that frame, render/sequence_frame.h).
+    // Requires enableFlow().
+    std::vector<gpu::PlantDynamic> readKeptState(std::optional<TileCoord> coord = {});
 
     // Statistics of the latest expansion, summed over the tiles (reads back; waits for the GPU). info.w: 0.
     gpu::ExpansionStats readStats();

@@ -33,10 +33,11 @@ WorldSimulation::~WorldSimulation() {
 
 // The tile's dynamic records live on the GPU while it is simulated: the CPU copy (what WorldTiles keeps and saves)
 // takes them, with the field activity, field by field (the buffer packs the fields in field order).
-void WorldSimulation::readBack(WorldTile& tile) {
+void WorldSimulation::readBack(WorldTile& tile, bool kept) {
     const auto it = tiles_.find(Key(tile.coord.y, tile.coord.x));
     if (it == tiles_.end()) return; // never simulated: the CPU copy is the GPU's
-    const std::vector<gpu::PlantDynamic> dynamics = it->second->gpu.readDynamics();
+    const std::vector<gpu::PlantDynamic> dynamics =
+        kept ? renderer_.vegetation()->readKeptState(tile.coord) : it->second->gpu.readDynamics();
     for (FieldVegetation& field : tile.vegetation.fields)
         std::copy_n(dynamics.begin() + field.firstPlant, field.plantCount(), field.dynamicRecords.begin());
     it->second->world.writeActivity(tile.vegetation);
@@ -156,6 +157,10 @@ void WorldSimulation::pressRuts() {
 
 void WorldSimulation::readBackTiles() {
     for (auto& [key, sim] : tiles_) readBack(*resources_.world->find(TileCoord{key.second, key.first}));
+}
+
+void WorldSimulation::readBackKeptStates() {
+    for (auto& [key, sim] : tiles_) readBack(*resources_.world->find(TileCoord{key.second, key.first}), true);
 }
 
 void WorldSimulation::saveState(const std::string& path) {

@@ -61,6 +61,11 @@ public:
     // Reads every simulated tile's dynamic records back into its CPU tile, as before an eviction: the resident tiles
     // then hold the plants' state after the latest tick (what the range sensors cast against).
     void readBackTiles();
+    // The same with the state VegetationRenderer::recordKeepState kept last instead of the live records: after a frame
+    // with flow, whose next tick has run, the plants' state its cameras drew (render/sequence_frame.h). A simulated
+    // tile's CPU copy is never its live state (the GPU's ticks move on), and every eviction and save reads the live
+    // records back again first.
+    void readBackKeptStates();
     // The whole world's interaction state (WorldTiles::saveState after reading every simulated tile back).
     void saveState(const std::string& path);
     // Restores a state saved by saveState; returns its tick. The renderer's tiles are uploaded again.
@@ -87,7 +92,7 @@ private:
         InteractionGpu gpu;
     };
     TileSimulation& simulationOf(TileCoord coord);
-    void readBack(WorldTile& tile);
+    void readBack(WorldTile& tile, bool kept = false);
     std::vector<glm::dvec2> interestPoints(uint64_t tick) const;
     void pressRuts();
 

@@ -322,10 +322,6 @@ Scene parseScene(const nlohmann::json& json, const std::string& source, const As
     root.finish();
     checkSceneLimits(scene);
     if (scene.world.enabled) checkWorldScene(scene);
-    // The range sensors read the plants' state after the frame's tick; with flow the next tick has run by then.
-    if (scene.render.flow && !scene.rangeSensors.empty())
-        root.fail("'render.flow' together with 'range_sensors' is not supported yet: the range sensors would see the "
-                  "plants one tick later than the cameras");
     return scene;
 }
 

@@ -468,10 +468,6 @@ CASES = [
                                             world={"tiles": [2, 2]})),
          1, r"range sensor 'sensor0': 'mount\.object' names no scene object: 'rover'"),
     # Motion ground truth.
-    Case("flow with range sensors", "sward-render",
-         scene_with(lambda s, env: s.update(render=dict(s.get("render", {}), flow=True),
-                                            range_sensors=[{"mount": {"position": [50, 50, 0]}}])),
-         1, r"'render\.flow' together with 'range_sensors' is not supported yet"),
     Case("flow not a boolean", "sward-render", scene_with(set_key(["render", "flow"], "yes")), 1, r"'render\.flow'"),
     # Worlds of many tiles.
     Case("world budget too small for the tiles around one camera", "sward-render",
