@@ -30,7 +30,12 @@ float turfAt(vec3 world) {
     vec2 warp = 0.8 * vec2(valueNoise(world.xy, 3.0, 81u), valueNoise(world.xy, 3.0, 84u)) +
                 0.25 * vec2(valueNoise(world.xy, 0.7, 82u), valueNoise(world.xy, 0.7, 85u)) +
                 0.06 * vec2(valueNoise(world.xy, 0.15, 83u), valueNoise(world.xy, 0.15, 86u));
-    return turfFraction(groundCover(coverUv(world + vec3(warp - 0.555, 0.0))).a);
+    vec2 uv = coverUv(world + vec3(warp - 0.555, 0.0));
+    // Within half a metre of a tile's border the displaced point may lie in the neighbouring tile, whose cover this
+    // draw does not bind: it reads this tile's edge instead, so a world's tiles meet without a line of bare ground
+    // (and of `ground` labels) along every border.
+    if (inCoverTile(coverUv(world))) uv = clamp(uv, vec2(0.0), vec2(1.0));
+    return turfFraction(groundCover(uv).a);
 }
 
 #endif
