@@ -3,6 +3,7 @@
 #include "common/error.h"
 #include "common/parse_number.h"
 #include "scene/scene.h"
+#include "scene/world_ground.h"
 
 #include <map>
 #include <string>
@@ -63,7 +64,21 @@ LandCoverParams parseLandCoverParams(JsonReader& r) {
 }
 
 LandCoverWorld landCoverWorld(const Scene& scene) {
-    return {.tilesX = scene.world.tilesX, .tilesY = scene.world.tilesY, .tileSize = double(scene.vegetation.tileSize)};
+    LandCoverWorld world{
+        .tilesX = scene.world.tilesX, .tilesY = scene.world.tilesY, .tileSize = double(scene.vegetation.tileSize)};
+    // A DEM georeferenced in metres puts the world somewhere on Earth: a georeferenced land cover lies where its own
+    // georeferencing puts it, so the two line up as in any GIS (the DEM's spacing from its header only: an explicit
+    // metres_per_pixel overrides the georeferencing, and the land cover then starts at the world's corner).
+    const HeightmapParams& h = scene.terrain.heightmap;
+    if (!demWorld(scene) || h.metresPerPixel > 0.0) return world;
+    const RasterInfo dem = readRasterInfo(h.path, {.folders = scene.assets.folders()});
+    if (!dem.geoTransform || !(dem.geoTransform->metresPerUnit > 0.0)) return world;
+    const RasterGeoTransform& g = *dem.geoTransform;
+    const glm::dvec2 southWestSample(g.originX + 0.5 * g.pixelWidth, g.originY - (dem.height - 0.5) * g.pixelHeight);
+    world.projectedOrigin = southWestSample + (glm::dvec2(scene.vegetation.worldOrigin) - h.origin) / g.metresPerUnit;
+    world.metresPerUnit = g.metresPerUnit;
+    world.tolerance = 0.5 * h.spacing;
+    return world;
 }
 
 LandCoverGrid worldLandCoverGrid(const Scene& scene) {

@@ -359,6 +359,34 @@ GrassMap makeLandCoverWindowGrassMap(const RasterBand& window, RasterWindow wher
     return GrassMap(out.width, out.height, channels, std::move(values), window.source);
 }
 
+namespace {
+
+// Pixels from a metric raster's west and south edges to the world's south-west corner: 0 without a projected origin
+// (the raster starts there); else where the georeferencing of both puts it, on the raster's pixel grid.
+glm::uvec2 projectedOffset(const RasterGeoTransform& geo, uint32_t height, const LandCoverWorld& world,
+                           const std::string& what) {
+    if (!world.projectedOrigin) return glm::uvec2(0);
+    const glm::dvec2 southWest(geo.originX, geo.originY - double(height) * geo.pixelHeight);
+    // Metres east / north of the raster's corner (the same coordinate system is assumed: GDAL's WKT is not compared).
+    const glm::dvec2 metres = *world.projectedOrigin * world.metresPerUnit - southWest * geo.metresPerUnit;
+    const glm::dvec2 pixels = metres / (glm::dvec2(geo.pixelWidth, geo.pixelHeight) * geo.metresPerUnit);
+    const glm::dvec2 whole = glm::round(pixels);
+    const glm::dvec2 off = glm::abs(pixels - whole) * glm::dvec2(geo.pixelWidth, geo.pixelHeight) * geo.metresPerUnit;
+    require(glm::all(glm::lessThanEqual(off, glm::dvec2(world.tolerance + 1e-6))),
+            what + ": the world's south-west corner lies " + shortText(pixels.x) + ", " + shortText(pixels.y) +
+                " pixels from the raster's south-west corner, " + shortText(std::max(off.x, off.y)) +
+                " m off its pixel grid (at most half a DEM sample, " + shortText(world.tolerance) +
+                " m); resample it onto the DEM's (gdalwarp -tap, or -te from the world's corner)");
+    require(whole.x >= 0.0 && whole.y >= 0.0,
+            what + ": the world's south-west corner lies " + shortText(-metres.x) + " m west / " +
+                shortText(-metres.y) +
+                " m south of the raster's south-west corner (by their georeferencing): the "
+                "land cover must cover the world's extent");
+    return glm::uvec2(whole);
+}
+
+} // namespace
+
 LandCoverGrid landCoverGrid(uint32_t width, uint32_t height, const std::optional<RasterGeoTransform>& geo,
                             const std::string& source, const LandCoverWorld& world, const std::string& what) {
     require(world.tilesX >= 1 && world.tilesY >= 1 && world.tileSize > 0.0, what + ": landCoverGrid: no world");
@@ -378,13 +406,16 @@ LandCoverGrid landCoverGrid(uint32_t width, uint32_t height, const std::optional
                     " m, which do not divide the world's tiles of " + shortText(world.tileSize) +
                     " m into whole pixels; resample it (gdalwarp -tr)");
         grid.pixelsPerTile = glm::uvec2(whole);
+        grid.offset = projectedOffset(*geo, height, world, what + ": " + rasterText);
         const glm::dvec2 extent = glm::dvec2(width, height) * pixel;
-        if (uint64_t(world.tilesX) * grid.pixelsPerTile.x > width ||
-            uint64_t(world.tilesY) * grid.pixelsPerTile.y > height)
+        if (uint64_t(grid.offset.x) + uint64_t(world.tilesX) * grid.pixelsPerTile.x > width ||
+            uint64_t(grid.offset.y) + uint64_t(world.tilesY) * grid.pixelsPerTile.y > height)
             throw Error(what + ": " + rasterText + " covers " + shortText(extent.x) + " x " + shortText(extent.y) +
                         " m (" + std::to_string(width) + " x " + std::to_string(height) + " pixels of " +
                         shortText(pixel.x) + " x " + shortText(pixel.y) + " m), but the world covers " + worldText +
-                        ": in a world the land cover must cover the world's extent (from its south-west corner)");
+                        ": in a world the land cover must cover the world's extent (" +
+                        (world.projectedOrigin ? "where its georeferencing puts it" : "from its south-west corner") +
+                        ")");
     } else {
         // Stretched over the world, as one tile's land cover is over its tile.
         require(width % world.tilesX == 0 && height % world.tilesY == 0,
@@ -402,9 +433,10 @@ namespace {
 // The raster pixels of tile (x, y): tile 0 is the raster's south-west, tile rows count north, raster rows south.
 RasterWindow tilePixels(const LandCoverGrid& grid, glm::uvec2 tile) {
     const glm::uvec2 ppt = grid.pixelsPerTile;
-    require(uint64_t(tile.x + 1) * ppt.x <= grid.rasterSize.x && uint64_t(tile.y + 1) * ppt.y <= grid.rasterSize.y,
+    require(uint64_t(grid.offset.x) + uint64_t(tile.x + 1) * ppt.x <= grid.rasterSize.x &&
+                uint64_t(grid.offset.y) + uint64_t(tile.y + 1) * ppt.y <= grid.rasterSize.y,
             "land cover: the tile is outside the raster");
-    return {tile.x * ppt.x, grid.rasterSize.y - (tile.y + 1) * ppt.y, ppt.x, ppt.y};
+    return {grid.offset.x + tile.x * ppt.x, grid.rasterSize.y - grid.offset.y - (tile.y + 1) * ppt.y, ppt.x, ppt.y};
 }
 
 } // namespace
@@ -450,12 +482,13 @@ GrassMap loadLandCoverPointGrassMap(const LandCoverParams& params, const LandCov
         // Each texel column's raster column, or none beyond the raster.
         std::vector<int64_t> columns(resolution);
         for (uint32_t c = 0; c < resolution; ++c) {
-            const double x = std::floor((offset.x + (c + 0.5) * texel) / grid.pixelSize.x);
+            const double x = std::floor((offset.x + (c + 0.5) * texel) / grid.pixelSize.x) + grid.offset.x;
             columns[c] = x >= 0.0 && x < grid.rasterSize.x ? int64_t(x) : -1;
         }
         std::vector<float> values(size_t(resolution) * resolution * channels, 0.0f);
         for (uint32_t r = 0; r < resolution; ++r) { // the top row is north
-            const double y = std::floor((offset.y + (double(resolution - r) - 0.5) * texel) / grid.pixelSize.y);
+            const double y =
+                std::floor((offset.y + (double(resolution - r) - 0.5) * texel) / grid.pixelSize.y) + grid.offset.y;
             if (!(y >= 0.0 && y < grid.rasterSize.y)) continue;
             const uint32_t row = grid.rasterSize.y - 1 - uint32_t(y);
             const RasterBand line = readRasterWindow(params.file, {0, row, grid.rasterSize.x, 1}, options);

@@ -76,18 +76,28 @@ GrassMap landCoverIntensityBound(const LandCoverParams& params);
 struct LandCoverWorld {
     uint32_t tilesX = 1, tilesY = 1;
     double tileSize = 0.0; // metres
+    // The world's south-west corner in a georeferenced ground's projected coordinates (a DEM world: the DEM's
+    // south-west sample plus world_origin - terrain.heightmap.origin) and their metres per unit. Absent: the world
+    // has no georeferencing of its own (procedural ground, or a DEM without it).
+    std::optional<glm::dvec2> projectedOrigin;
+    double metresPerUnit = 1.0;
+    // How far (metres) the corner may lie off the land cover's pixel grid and still take its nearest pixel corner: a
+    // DEM's samples are its pixels' centres, half a sample off the grid of a land cover of the same area.
+    double tolerance = 0.0;
 };
 
-// How a raster of rasterSize pixels lies over a world: pixelsPerTile whole pixels per tile along each axis.
+// How a raster of rasterSize pixels lies over a world: pixelsPerTile whole pixels per tile along each axis, the
+// world's south-west corner `offset` pixels from the raster's west and south edges.
 struct LandCoverGrid {
-    glm::uvec2 rasterSize{0}, pixelsPerTile{0};
+    glm::uvec2 rasterSize{0}, pixelsPerTile{0}, offset{0};
     glm::dvec2 pixelSize{0.0}; // metres: tileSize / pixelsPerTile
 };
 
 // Lays a raster of width x height pixels with georeferencing `geo` over `world`. A raster georeferenced in metres (a
 // projected system) keeps its own pixels, which must divide a tile into whole pixels (within 1e-6), and must reach
-// over the whole world from its south-west corner (it may reach beyond: a larger area's raster, cut at the world's
-// south-west corner; its position is not read from the georeferencing). One without georeferencing or without a
+// over the whole world: where the world has a projected origin (a DEM world) the raster lies where its
+// georeferencing puts it (the world's corner on its nearest pixel corner, within world.tolerance), else from the world's
+// south-west corner (it may reach beyond: a larger area's raster, cut there). One without georeferencing or without a
 // linear unit (geographic, unknown) is stretched over the world exactly, as one tile's land cover is over its tile,
 // and needs whole pixels per tile (width a multiple of tilesX, height of tilesY). Throws sward::Error prefixed with
 // `what` naming the raster `source` and both extents, its pixels, or the pixel and tile counts.

@@ -162,6 +162,55 @@ TEST(WorldLandCover, OnADemWorldTooTilesTakeTheirWindowAndStreamAlike) {
     EXPECT_GT(plants, 100u);
 }
 
+// On a georeferenced DEM the land cover lies where its own georeferencing puts it, as in any GIS: a raster of a larger
+// area, reaching 20 m further west and south, gives every tile the same map as the raster cut at the world's corner
+// (borders off, so the boxes do not reach the extra pixels). The DEM's samples are its pixels' centres, 0.5 m off the
+// land cover's grid: the world's corner takes the nearest pixel corner. A world_origin moved 10 m east and north
+// moves the land cover with it: the map of tile (0, 0) is then the map 1 pixel further in.
+TEST(WorldLandCover, OnAGeoreferencedDemTheLandCoverLiesWhereItsGeoreferencingPutsIt) {
+    SWARD_SKIP_WITHOUT(Gdal);
+    const auto dir = tempDir();
+    writeGrid(
+        dir / "dem.asc", 61, 41, [](uint32_t x, uint32_t y) { return int((x * 7 + y * 3) % 11); }, true);
+    {
+        std::string text = readText(dir / "dem.asc");
+        text.replace(text.find("cellsize 10"), 11, "cellsize 1");
+        std::ofstream(dir / "dem.asc") << text;
+    }
+    writeGrid(dir / "cover.asc", 6, 4, patch, true);
+    writeGrid(
+        dir / "larger.asc", 8, 6, [](uint32_t x, uint32_t y) { return x >= 2 && y < 4 ? patch(x - 2, y) : 80; }, true);
+    { // the larger raster's corner 20 m west and south
+        std::string text = readText(dir / "larger.asc");
+        text.replace(text.find("xllcorner 500000"), 16, "xllcorner 499980");
+        text.replace(text.find("yllcorner 4100000"), 17, "yllcorner 4099980");
+        std::ofstream(dir / "larger.asc") << text;
+    }
+    auto scene = [&](const std::string& cover, double shift) {
+        nlohmann::json json = worldJson(cover);
+        json["terrain"] = {{"heightmap", {{"file", "dem.asc"}}}};
+        json["land_cover"]["border"] = 0;
+        json["vegetation"] = {{"tile_size", 20}, {"field_size", 10}, {"density_multiplier", 0.05}};
+        json["world"] = {{"load_radius", 12}, {"evict_radius", 20}};
+        if (shift > 0.0) json["vegetation"]["world_origin"] = {shift, shift}, json["world"]["tiles"] = {2, 1};
+        return parseScene(json, (dir / "scene.json").string());
+    };
+    const Scene exact = scene("cover.asc", 0.0), larger = scene("larger.asc", 0.0);
+    for (uint32_t ty = 0; ty < 2; ++ty)
+        for (uint32_t tx = 0; tx < 3; ++tx) {
+            const glm::dvec2 origin = glm::dvec2(exact.vegetation.worldOrigin) + 20.0 * glm::dvec2(tx, ty);
+            EXPECT_EQ(buildGrassMap(larger, 20.0f, origin).values(), buildGrassMap(exact, 20.0f, origin).values())
+                << "tile " << tx << ", " << ty;
+        }
+    const Scene moved = scene("larger.asc", 10.0);
+    const GrassMap inner = buildGrassMap(moved, 20.0f, glm::dvec2(moved.vegetation.worldOrigin));
+    const GrassMap whole = buildGrassMap(exact, 20.0f, glm::dvec2(exact.vegetation.worldOrigin));
+    // Tile (0, 0) of the moved world: pixels 1..2 east and north of the exact world's corner; the exact world's tile
+    // (0, 0) holds pixels 0..1, so the moved tile's south-west pixel is the exact tile's north-east one.
+    ASSERT_EQ(inner.width(), 2u);
+    for (uint32_t k = 0; k < 3; ++k) EXPECT_EQ(inner.values()[2 * 3 + k], whole.values()[1 * 3 + k]) << k;
+}
+
 TEST(WorldLandCover, MismatchedExtentIsOneErrorNamingBothExtents) {
     SWARD_SKIP_WITHOUT(Gdal);
     const auto dir = tempDir();
