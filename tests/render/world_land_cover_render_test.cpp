@@ -2,6 +2,7 @@
 // bitwise the same whether tiles come and go around the camera or all stay resident, the horizon ring's far cover
 // taken from the land cover too.
 #include "gpu_test.h"
+#include "world_flight.h"
 
 #include "common/optional_components.h"
 #include "render/scene_gpu.h"
@@ -54,26 +55,10 @@ Scene landCoverWorld(const std::string& cover, double loadRadius) {
     return parseScene(json, "land-cover world");
 }
 
-struct Flight {
-    std::vector<FrameImages> frames;
-    uint32_t evicted = 0;
-};
+using Flight = sward::test::WorldFlight;
 
 Flight fly(Context& ctx, const std::string& cover, double loadRadius, uint32_t frames) {
-    SceneResources r = buildSceneResources(landCoverWorld(cover, loadRadius), true, 2);
-    SceneGpu gpu = createSceneGpu(ctx, r, 1, SimulationMode::None);
-    OffscreenFrame target(ctx, kWidth, kHeight, 1);
-    Flight flight;
-    for (uint32_t frame = 0; frame < frames; ++frame) {
-        const double time = 1.0 * frame;
-        const RigCameras rig = sceneRig(r.scene, cameraGround(r.scene, time), r.models, kWidth, kHeight, time);
-        const glm::dvec2 camera(rig.left.position);
-        r.world->waitFor({&camera, 1});
-        syncWorldTiles(*gpu.renderer, *r.world);
-        flight.frames.push_back(target.render(*gpu.renderer, rig.left, time, frame, {}, &rig.right));
-    }
-    flight.evicted = uint32_t(r.world->stats().evicted);
-    return flight;
+    return sward::test::flyWorld(ctx, landCoverWorld(cover, loadRadius), kWidth, kHeight, frames);
 }
 
 } // namespace

@@ -1,6 +1,7 @@
 // Drawing a world of several tiles (issue 15, part 3): frames of a flight across tiles are bitwise the same whether
 // the tiles come and go around the camera (streamed) or all stay resident, and the tiles meet without a gap.
 #include "gpu_test.h"
+#include "world_flight.h"
 
 #include "render/scene_gpu.h"
 #include "render/sequence_frame.h"
@@ -39,29 +40,10 @@ Scene smallWorld(double loadRadius) {
     return parseScene(json, "small world");
 }
 
-struct Flight {
-    std::vector<FrameImages> frames;
-    std::vector<Camera> cameras; // left
-    uint32_t mostTilesDrawn = 0, evicted = 0;
-};
+using Flight = sward::test::WorldFlight;
 
 Flight fly(Context& ctx, double loadRadius, uint32_t frames) {
-    SceneResources r = buildSceneResources(smallWorld(loadRadius), true, 2);
-    SceneGpu gpu = createSceneGpu(ctx, r, 1, SimulationMode::None);
-    OffscreenFrame target(ctx, kWidth, kHeight, 1);
-    Flight flight;
-    for (uint32_t frame = 0; frame < frames; ++frame) {
-        const double time = 1.0 * frame;
-        const RigCameras rig = sceneRig(r.scene, cameraGround(r.scene, time), r.models, kWidth, kHeight, time);
-        const glm::dvec2 camera(rig.left.position);
-        r.world->waitFor({&camera, 1});
-        syncWorldTiles(*gpu.renderer, *r.world);
-        flight.mostTilesDrawn = std::max(flight.mostTilesDrawn, gpu.renderer->tileCount());
-        flight.frames.push_back(target.render(*gpu.renderer, rig.left, time, frame, {}, &rig.right));
-        flight.cameras.push_back(rig.left);
-    }
-    flight.evicted = uint32_t(r.world->stats().evicted);
-    return flight;
+    return sward::test::flyWorld(ctx, smallWorld(loadRadius), kWidth, kHeight, frames);
 }
 
 } // namespace
