@@ -7,7 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <tuple>
 
 namespace sward {
 
@@ -74,6 +80,83 @@ glm::i64vec2 demIndex(const Scene& scene, const WorldLattice& lattice, glm::dvec
     return {*i, *j};
 }
 
+// The DEM's blocks of kDemBlock x kDemBlock pixels most recently read, shared by every reader in the process: the
+// cameras', actors' and objects' small windows of each tick and frame (sward-render computes every frame's record
+// up front: examples/gis-world's 5,050 frames opened its DEM 30,401 times, 21 s) and the tiles' windows then cost
+// one GDAL read per block. A block is the raster's pixels as read, so a height is bitwise the same whether it came
+// from the cache or the file (the file is still opened once, by fitWorldToDem at every scene load, so the door logs
+// it and its companions for each dataset's fingerprint). At most kDemCachedBlocks blocks (16 MiB), the least recently used dropped first.
+constexpr uint32_t kDemBlock = 128, kDemCachedBlocks = 128;
+
+class DemBlockCache {
+public:
+    // The raster's pixels [column, column + width) x [row, row + height), row-major from the top row, and its nodata.
+    RasterBand window(const Scene& scene, uint32_t column, uint32_t row, uint32_t width, uint32_t height) {
+        const HeightmapParams& h = scene.terrain.heightmap;
+        RasterBand out{.width = width, .height = height, .values = std::vector<double>(size_t(width) * height)};
+        for (uint32_t by = row / kDemBlock; by <= (row + height - 1) / kDemBlock; ++by)
+            for (uint32_t bx = column / kDemBlock; bx <= (column + width - 1) / kDemBlock; ++bx) {
+                const std::shared_ptr<const RasterBand> block = get(scene, bx, by);
+                out.nodata = block->nodata;
+                const uint32_t x0 = std::max(column, bx * kDemBlock), y0 = std::max(row, by * kDemBlock);
+                const uint32_t x1 = std::min(column + width, bx * kDemBlock + block->width);
+                const uint32_t y1 = std::min(row + height, by * kDemBlock + block->height);
+                for (uint32_t y = y0; y < y1; ++y)
+                    for (uint32_t x = x0; x < x1; ++x)
+                        out.values[size_t(y - row) * width + (x - column)] =
+                            block->at(x - bx * kDemBlock, y - by * kDemBlock);
+            }
+        out.source = h.path;
+        return out;
+    }
+
+private:
+    // The file's path, size and modification time (a DEM rewritten in place is read again), and the block.
+    using Key = std::tuple<std::string, uintmax_t, int64_t, uint32_t, uint32_t>;
+    std::shared_ptr<const RasterBand> get(const Scene& scene, uint32_t bx, uint32_t by) {
+        const HeightmapParams& h = scene.terrain.heightmap;
+        std::error_code sizeError, timeError;
+        const uintmax_t size = std::filesystem::file_size(h.path, sizeError);
+        const auto time = std::filesystem::last_write_time(h.path, timeError);
+        const Key key{h.path, sizeError ? 0 : size, timeError ? 0 : int64_t(time.time_since_epoch().count()), bx, by};
+        {
+            std::lock_guard lock(mutex_);
+            if (auto it = blocks_.find(key); it != blocks_.end()) {
+                it->second.used = ++clock_;
+                return it->second.band;
+            }
+        }
+        const uint32_t x = bx * kDemBlock, y = by * kDemBlock;
+        auto band = std::make_shared<const RasterBand>(readRasterWindow(h.path,
+                                                                        {.column = x,
+                                                                         .row = y,
+                                                                         .width = std::min(kDemBlock, h.columns - x),
+                                                                         .height = std::min(kDemBlock, h.rows - y)},
+                                                                        {.folders = scene.assets.folders()}));
+        std::lock_guard lock(mutex_);
+        if (blocks_.size() >= kDemCachedBlocks) {
+            auto oldest = std::min_element(blocks_.begin(), blocks_.end(),
+                                           [](const auto& a, const auto& b) { return a.second.used < b.second.used; });
+            blocks_.erase(oldest);
+        }
+        blocks_[key] = Entry{band, ++clock_};
+        return band;
+    }
+
+    struct Entry {
+        std::shared_ptr<const RasterBand> band;
+        uint64_t used = 0;
+    };
+    std::mutex mutex_;
+    std::map<Key, Entry> blocks_;
+    uint64_t clock_ = 0;
+};
+
+DemBlockCache& demBlocks() {
+    static DemBlockCache cache;
+    return cache;
+}
+
 Samples demSamples(const Scene& scene, glm::i64vec2 first, glm::i64vec2 last) {
     const HeightmapParams& h = scene.terrain.heightmap;
     Samples out{.columns = uint32_t(last.x - first.x + 1),
@@ -82,10 +165,7 @@ Samples demSamples(const Scene& scene, glm::i64vec2 first, glm::i64vec2 last) {
                 .firstRow = int64_t(h.rows) - 1 - last.y}; // raster rows run north to south
     RasterBand raster;
     try {
-        raster = readRasterWindow(
-            h.path,
-            {.column = uint32_t(first.x), .row = uint32_t(out.firstRow), .width = out.columns, .height = out.rows},
-            {.folders = scene.assets.folders()});
+        raster = demBlocks().window(scene, uint32_t(first.x), uint32_t(out.firstRow), out.columns, out.rows);
     } catch (const Error& e) {
         throw Error(scene.source + ": 'terrain.heightmap': " + e.what());
     }
