@@ -12,13 +12,19 @@ layout(push_constant) uniform Push { TerrainTileConstants tile; };
 // `world` in the cover's tile (u east, v north, 0..1 across the tile).
 vec2 coverUv(vec3 world) { return (world.xy - tile.coverRect.xy) * tile.coverRect.z; }
 
+// Whether uv lies on the tile or within one pixel's footprint beyond its edge. With MSAA a pixel its tile's triangles
+// cover only in part is shaded at its centre, which may lie just beyond the tile: such a pixel of a world's tile border
+// read no cover, a faint line along every border; it reads the tile's edge instead. (The truth pass, 1x, shades only
+// centres its triangles cover.)
 bool inCoverTile(vec2 uv) {
-    return tile.coverRect.z != 0.0 && all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
+    vec2 margin = fwidth(uv);
+    return tile.coverRect.z != 0.0 && all(greaterThanEqual(uv, -margin)) && all(lessThanEqual(uv, 1.0 + margin));
 }
 
-// rgb linear albedo of the cover, a S (m^2 of plant side area per m^2); zero outside the tile or without vegetation.
+// rgb linear albedo of the cover, a S (m^2 of plant side area per m^2); zero off the tile or without vegetation.
 vec4 groundCover(vec2 uv) {
     if (!inCoverTile(uv)) return vec4(0.0);
+    uv = clamp(uv, vec2(0.0), vec2(1.0));
     return texture(coverMap, vec2(uv.x, 1.0 - uv.y)); // the texture's v runs north to south, as the grass map's
 }
 

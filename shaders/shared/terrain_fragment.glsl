@@ -103,7 +103,8 @@ GroundSample bareGroundHere(float footprint) {
     GroundMaterial m = groundMaterialPreset(tile.material.x);
     if (tile.material.y != 0u) {
         vec2 uv = coverUv(inWorld);
-        vec4 weights = inCoverTile(uv) ? texture(groundMaterialWeights, vec2(uv.x, 1.0 - uv.y)) : vec4(0.0);
+        vec2 at = clamp(uv, vec2(0.0), vec2(1.0));
+        vec4 weights = inCoverTile(uv) ? texture(groundMaterialWeights, vec2(at.x, 1.0 - at.y)) : vec4(0.0);
         m = blendGroundMaterials(m, tile.material.z, weights);
     }
     GroundSample g = bareGround(m, inWorld.xy, footprint);
