@@ -3,6 +3,7 @@
 #include "common/json_reader.h"
 #include "common/stopwatch.h"
 
+#include "sanitized_build.h"
 #include "test_files.h"
 
 #include <gtest/gtest.h>
@@ -15,14 +16,6 @@ using namespace sward;
 using sward::test::errorOf;
 
 namespace {
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-#define SWARD_TEST_SANITIZED 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define SWARD_TEST_SANITIZED 1
-#endif
 #if defined(NDEBUG) && !defined(SWARD_TEST_SANITIZED)
 constexpr bool kTimedBuild = true;
 #else
