@@ -107,9 +107,10 @@ TEST_F(GpuTest, VegetationOfTheMeadowAndTheRoverTrackMeasuresLikeARealMeadow) {
     // Issue 47's bounds (before it: saturation 0.70-0.74, value std 0.15-0.17, gradient mean 0.06, Laplacian 0.18 and
     // 0.10-0.12, 46,000-49,000 FAST per megapixel, 99 % sharp texture; far band 82-99.7 % sharp, saturation 0.67-0.73;
     // the real meadows 0.16, 0.109, 0.032, 0.096 and 0.057, 14,000, 71 %; far band 68 %, 0.13). The high band of the
-    // spectrum stays within the real range, so the way there is not a blur. Not yet met, so not asserted (docs/
-    // evaluation.md, "After issue 47"): the rover view's d/dx kurtosis (2.2 against 2.8) and sharp fraction (0.95
-    // against 0.90): dense near cards seen from 1 m.
+    // spectrum stays within the real range, so the way there is not a blur. The rover view, dense grass from 1 m, is
+    // held instead to the real photograph of that view (docs/evaluation.md, "After issue 47"): BotanicGarden's tall
+    // grass from a ground robot measures d/dx kurtosis 1.92 and sharp fraction 0.945 (the rover view 2.17 and 0.961;
+    // with 32 thin near blades 1.26 and 0.985, every edge crisp).
     for (const std::string name : {"meadow", "rover-track"}) {
         const nlohmann::json& vegetation = exampleLook(name).at("summary").at("vegetation");
         const nlohmann::json& far = exampleLook(name).at("summary").at("far");
@@ -124,10 +125,9 @@ TEST_F(GpuTest, VegetationOfTheMeadowAndTheRoverTrackMeasuresLikeARealMeadow) {
         EXPECT_GE(figure(vegetation, "spectrum_slope_high"), -2.8) << name;
         EXPECT_LE(figure(vegetation, "spectrum_slope_high"), -1.7) << name;
         EXPECT_LE(figure(vegetation, "laplacian_rms_2"), 0.085) << name;
-        if (name == "meadow") {
-            EXPECT_GE(figure(vegetation, "dx_excess_kurtosis"), 2.8) << name;
-            EXPECT_LE(figure(vegetation, "sharp_fraction"), 0.90) << name;
-        }
+        const bool meadow = name == "meadow";
+        EXPECT_GE(figure(vegetation, "dx_excess_kurtosis"), meadow ? 2.8 : 1.9) << name;
+        EXPECT_LE(figure(vegetation, "sharp_fraction"), meadow ? 0.90 : 0.97) << name;
         EXPECT_GT(figure(far, "pixels"), 5000.0) << name;
         EXPECT_LE(figure(far, "sharp_fraction"), 0.90) << name;
         EXPECT_LE(figure(far, "saturation_mean"), 0.35) << name;
