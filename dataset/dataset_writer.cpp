@@ -463,10 +463,14 @@ void DatasetWriter::writeStereoFiles(uint32_t frame, const FrameImages& images, 
     writeExrDepth(path(kDepthRightFolder, ".exr"), w, h, images.rightDepth);
     writeExrFloatChannels(path(kDisparityRightFolder, ".exr"), w, h, {"Y"}, {rightDisparity});
     writePfm(path(kDisparityRightFolder, ".pfm"), w, h, rightDisparity);
+    // Each view's mask is the rig's at the view's own time: an unsynchronised rig's other view then (FrameTruth).
+    const bool synchronised = truth.rightDisparityAtLeftTime.empty();
+    const std::vector<float>& rightThen = synchronised ? rightDisparity : truth.rightDisparityAtLeftTime;
+    const std::vector<float>& leftThen = synchronised ? disparity : truth.disparityAtRightTime;
     writePng8(path(kOcclusionFolder, ".png"), w, h, 1,
-              occlusionMaskPixels(visibilityInOtherView(w, h, disparity, rightDisparity, -1)));
+              occlusionMaskPixels(visibilityInOtherView(w, h, disparity, rightThen, -1)));
     writePng8(path(kOcclusionRightFolder, ".png"), w, h, 1,
-              occlusionMaskPixels(visibilityInOtherView(w, h, rightDisparity, disparity, +1)));
+              occlusionMaskPixels(visibilityInOtherView(w, h, rightDisparity, leftThen, +1)));
     writeExr(path(kNormalRightFolder, ".exr"), w, h, 3, images.rightNormals);
 }
 

@@ -21,6 +21,10 @@ struct FrameImages {
     std::vector<uint32_t> rightLabels;   // stereo only: the right view's truth pass, as labels
     std::vector<float> rightNormals;     // stereo only: the right view's truth pass, as normals (in the right
                                          // camera's axes, which are the left's: the rig is rectified)
+    // An unsynchronised rig (camera.sensor.stereo_offset_s): the right view above is the rig's at the right camera's
+    // time. Each view's occlusion mask is the rig's at that view's own time, so these are the other camera's depth
+    // then: the right's at the left's time, the left's at the right's. Empty for a synchronised rig.
+    std::vector<float> rightDepthAtLeftTime, leftDepthAtRightTime;
     // Motion ground truth (render.flow), width*height*4 floats per view: the flow of each pixel's surface point to the
     // next and to the previous tick: x, y pixels (target pixel centre minus this pixel's), z the point's planar depth
     // in that tick's camera, w 1 (0 where the pixel shows sky).

@@ -29,6 +29,10 @@ FrameTruth frameTruth(const FrameImages& images, double focalPx, double baseline
     if (baseline > 0.0) {
         truth.disparity = disparityOfDepth(images.depth);
         truth.rightDisparity = disparityOfDepth(images.rightDepth);
+        if (!images.rightDepthAtLeftTime.empty()) {
+            truth.rightDisparityAtLeftTime = disparityOfDepth(images.rightDepthAtLeftTime);
+            truth.disparityAtRightTime = disparityOfDepth(images.leftDepthAtRightTime);
+        }
     }
     return truth;
 }

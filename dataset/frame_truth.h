@@ -11,11 +11,14 @@
 namespace sward {
 
 struct FrameTruth {
-    std::vector<uint8_t> semantic;  // class per pixel (labels >> gpu::kInstanceBits)
-    std::vector<float> instance;    // instance id per pixel, exact in float32 (ids < 2^24)
-    std::vector<float> tile;        // worlds of several tiles: the plant's tile label per pixel (FrameImages::tiles)
-    std::vector<float> disparity;   // stereo: f * B / depth in pixels, 0 where nothing was hit; empty for mono
+    std::vector<uint8_t> semantic;     // class per pixel (labels >> gpu::kInstanceBits)
+    std::vector<float> instance;       // instance id per pixel, exact in float32 (ids < 2^24)
+    std::vector<float> tile;           // worlds of several tiles: the plant's tile label per pixel (FrameImages::tiles)
+    std::vector<float> disparity;      // stereo: f * B / depth in pixels, 0 where nothing was hit; empty for mono
     std::vector<float> rightDisparity; // the same of the right view's depth, when the frame has it
+    // An unsynchronised rig (FrameImages::rightDepthAtLeftTime): the other view's disparity at each view's own time,
+    // for the occlusion masks; empty for a synchronised rig (the views' own are).
+    std::vector<float> rightDisparityAtLeftTime, disparityAtRightTime;
 };
 
 // The colour as the dataset stores it: alpha is coverage, and every pixel is covered by a surface or by the sky, so

@@ -66,8 +66,13 @@ uint32_t autoMotionSamples(double motionPixels) {
 
 std::vector<double> frameExposureTimes(const SceneResources& r, const SensorParams& sensor, uint32_t width,
                                        uint32_t height, uint32_t frame) {
+    return exposureTimesAt(r, sensor, width, height, double(frame) * r.scene.sequence.timeStep);
+}
+
+std::vector<double> exposureTimesAt(const SceneResources& r, const SensorParams& sensor, uint32_t width,
+                                    uint32_t height, double time) {
     if (!sensor.enabled || sensor.shutterSeconds <= 0.0) return {};
-    const double time = double(frame) * r.scene.sequence.timeStep, half = 0.5 * sensor.shutterSeconds;
+    const double half = 0.5 * sensor.shutterSeconds;
     uint32_t samples = sensor.motionSamples;
     if (samples == 0) {
         const RigCameras start = sequenceRigAt(r, width, height, time - half);

@@ -54,6 +54,10 @@ std::vector<float> motionBlurLengths(const Camera& start, const Camera& centre, 
 // measures the left camera's motion between the rigs at the exposure's two ends.
 std::vector<double> frameExposureTimes(const SceneResources& r, const SensorParams& sensor, uint32_t width,
                                        uint32_t height, uint32_t frame);
+// The same for an exposure centred on any `time` (an unsynchronised rig's right camera, render/sequence_frame.h);
+// frameExposureTimes is this at frame * time_step.
+std::vector<double> exposureTimesAt(const SceneResources& r, const SensorParams& sensor, uint32_t width,
+                                    uint32_t height, double time);
 
 // The running mean of colour images (half bit patterns): a float sum in the order added, divided once and rounded
 // to half once.

@@ -102,16 +102,25 @@ nlohmann::json readoutRecord(const SceneResources& r, const SensorParams& sensor
     if (!sensor.enabled || sensor.readoutSeconds <= 0.0) return nullptr;
     const double time = double(frame) * r.scene.sequence.timeStep;
     const std::vector<ReadoutBand> bands = readoutBands(time, sensor.readoutSeconds, height, sensor.readoutBands);
-    auto row = [&](const ReadoutBand& band) {
+    // An unsynchronised rig's right camera reads its rows around its own time (render/sequence_frame.h).
+    const double offset = sensor.stereoOffsetSeconds;
+    const std::vector<ReadoutBand> rightBands =
+        offset != 0.0 ? readoutBands(time + offset, sensor.readoutSeconds, height, sensor.readoutBands) : bands;
+    auto row = [&](const ReadoutBand& band, const ReadoutBand& rightBand) {
         const RigCameras rig = sequenceRigAt(r, width, height, band.time);
         nlohmann::json json = {{"time", band.time}, {"left_pose", cameraPoseJson(rig.left)}};
-        if (r.scene.camera.rig.stereo()) json["right_pose"] = cameraPoseJson(rig.right);
+        if (offset != 0.0) {
+            json["right_time"] = rightBand.time;
+            json["right_pose"] = cameraPoseJson(sequenceRigAt(r, width, height, rightBand.time).right);
+        } else if (r.scene.camera.rig.stereo()) {
+            json["right_pose"] = cameraPoseJson(rig.right);
+        }
         return json;
     };
     return {{"readout_s", sensor.readoutSeconds},
             {"bands", bands.size()},
-            {"first_row", row(bands.front())},
-            {"last_row", row(bands.back())}};
+            {"first_row", row(bands.front(), rightBands.front())},
+            {"last_row", row(bands.back(), rightBands.back())}};
 }
 
 } // namespace sward

@@ -10,7 +10,9 @@
 // are kept. Fewer bands are cheaper, and the rows of a band share its time. The colour AND every truth image (depth,
 // disparity, labels, normals, flow, motion_blur) of a row are those of its band's render: the truth is per row. With
 // a shutter too, each band's colour is the exposure (render/motion_blur.h) centred on the band's time. Both cameras
-// of a stereo rig read row r at the same time (a synchronised rig). The interaction ticks once per frame: every band
+// of a synchronised stereo rig read row r at the same time; an unsynchronised rig's right camera
+// (camera.sensor.stereo_offset_s, render/sequence_frame.h) reads it at readoutRowTime(t + offset, ...), in a readout
+// of its own whose right view is kept. The interaction ticks once per frame: every band
 // sees the state of the frame's own tick, like a shutter's sub-frames. Cost: about `bands` colour and truth renders
 // per frame (each a full-image render: no scissor yet).
 #pragma once

@@ -64,6 +64,14 @@ nlohmann::json sequenceFrameRecord(const SceneResources& r, const RigCameras& ri
     const SensorParams& sensor = r.scene.camera.rig.sensor;
     const std::vector<double> exposure = frameExposureTimes(r, sensor, width, height, frame);
     if (!exposure.empty()) record["exposure"] = {{"samples", exposure.size()}, {"times", exposure}};
+    // An unsynchronised rig: the right camera's time, its pose then and its exposure's sub-frame times.
+    if (sensor.enabled && sensor.stereoOffsetSeconds != 0.0) {
+        const double rightTime = double(frame) * r.scene.sequence.timeStep + sensor.stereoOffsetSeconds;
+        record["right_time"] = rightTime;
+        record["right_pose"] = cameraPoseJson(sequenceRigAt(r, width, height, rightTime).right);
+        const std::vector<double> right = exposureTimesAt(r, sensor, width, height, rightTime);
+        if (!right.empty()) record["right_exposure"] = {{"samples", right.size()}, {"times", right}};
+    }
     // A rolling shutter's readout (render/rolling_shutter.h): the first and last rows' times and poses.
     if (nlohmann::json readout = readoutRecord(r, sensor, width, height, frame); !readout.is_null())
         record["readout"] = std::move(readout);
@@ -83,8 +91,15 @@ std::optional<SensorModel> checkRigAndSensor(const SceneResources& r, uint32_t w
     // never write a wrong dataset): refused until the kept states are replayed per band.
     const SensorParams& params = r.scene.camera.rig.sensor;
     require(!(params.enabled && params.readoutSeconds > 0.0 && r.scene.render.flow && sceneHasColliders(r.scene)),
-            r.scene.source + ": 'camera.sensor.readout_s' with 'render.flow' in a scene whose colliders press the "
-                             "plants is not supported yet: use a global shutter (readout_s 0) or turn 'render.flow' off");
+            r.scene.source +
+                ": 'camera.sensor.readout_s' with 'render.flow' in a scene whose colliders press the "
+                "plants is not supported yet: use a global shutter (readout_s 0) or turn 'render.flow' off");
+    // So with an unsynchronised rig: its right view renders before the flow's next tick, whose kept plant states its
+    // motion truth would read, where a synchronised render's reads those kept just before that tick.
+    require(!(params.enabled && params.stereoOffsetSeconds != 0.0 && r.scene.render.flow && sceneHasColliders(r.scene)),
+            r.scene.source + ": 'camera.sensor.stereo_offset_s' with 'render.flow' in a scene whose colliders press "
+                             "the plants is not supported yet: use a synchronised rig (stereo_offset_s 0) or turn "
+                             "'render.flow' off");
     if (r.scene.camera.rig.sensor.enabled) {
         try {
             sensor.emplace(r.scene.camera.rig.sensor, Intrinsics::of(rig.left));
@@ -141,8 +156,9 @@ void prepareWorldFlowTicks(SceneGpu& gpu, uint32_t frame, std::span<const glm::d
 
 // renderSequenceFrame with the motion ground truth (render.flow). This tick's plant
 // state is kept before the next tick runs between the main and the truth passes. `rowTime` (a rolling shutter's band,
-// render/rolling_shutter.h): the flow's rigs are those a step before and after that time, and the next tick is
-// recorded only with `tickNext` (the first band's truth: the later bands' find it run).
+// render/rolling_shutter.h, or an unsynchronised rig's right camera's time): the flow's rigs are those a step before
+// and after that time, and the next tick is recorded only with `tickNext` (the first band's truth: the later bands'
+// find it run).
 FrameImages renderFlowFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t frame, double time,
                             const RigCameras& cameras, const std::function<void(VkCommandBuffer)>& prologue,
                             bool colour, std::optional<double> rowTime = {}, bool tickNext = true,
@@ -181,15 +197,16 @@ FrameImages readOutSensor(const SceneResources& r, const SensorModel& sensor, co
     return images;
 }
 
-// A rolling shutter's frame (render/rolling_shutter.h): every band's colour (its exposure of `exposureSamples`
-// sub-frames, or its instant), `tick` before the first, then every band's truth at the band's time (the flow's next
-// tick with the first), the rows of each copied out. With a shutter each band's motion_blur is its exposure's.
+// A rolling shutter's frame (render/rolling_shutter.h) read out around `time`: every band's colour (its exposure of
+// `exposureSamples` sub-frames, or its instant), `tick` before the first, then every band's truth at the band's time
+// (the flow's next tick with the first, if `tickNext`), the rows of each copied out. With a shutter each band's
+// motion_blur is its exposure's.
 FrameImages renderReadout(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
-                          uint32_t height, uint32_t frame, double timeOffset, const SensorParams& sensor,
-                          size_t exposureSamples, const std::function<void(VkCommandBuffer)>& tick,
+                          uint32_t height, uint32_t frame, double time, double timeOffset, const SensorParams& sensor,
+                          size_t exposureSamples, const std::function<void(VkCommandBuffer)>& tick, bool tickNext,
                           const std::function<void()>& beforeNextTick) {
     const bool stereo = r.scene.camera.rig.stereo();
-    const double time = double(frame) * r.scene.sequence.timeStep, half = 0.5 * sensor.shutterSeconds;
+    const double half = 0.5 * sensor.shutterSeconds;
     auto rigAt = [&](double t) { return sequenceRigAt(r, width, height, t); };
     auto colourAt = [&](double t, bool first) {
         return renderBandColour(*gpu.renderer, target, rigAt, stereo, t, sensor.shutterSeconds,
@@ -199,7 +216,7 @@ FrameImages renderReadout(SceneGpu& gpu, OffscreenFrame& target, const SceneReso
     auto truthAt = [&](double t, bool first) {
         const RigCameras rig = rigAt(t);
         FrameImages images = target.hasFlow() ? renderFlowFrame(gpu, target, r, frame, timeOffset + t, rig, {}, false,
-                                                                t, first, beforeNextTick)
+                                                                t, first && tickNext, beforeNextTick)
                                               : target.render(*gpu.renderer, rig.left, timeOffset + t, frame, {},
                                                               stereo ? &rig.right : nullptr, nullptr, false);
         if (exposureSamples > 0)
@@ -210,6 +227,73 @@ FrameImages renderReadout(SceneGpu& gpu, OffscreenFrame& target, const SceneReso
                           colourAt, truthAt);
 }
 
+// The light of the rig's views at `time` (the frame's, or an unsynchronised rig's right camera's), before the lens and
+// the sensor read it out: a rolling shutter's bands, a shutter's exposure (the truth at `time`, its middle) or the
+// instant. `tick` (the frame's) goes before the first render; the flow's next tick before the truth only with
+// `tickNext`. `flowTime`: the flow's rigs are a step before and after it, not the neighbouring frames'.
+FrameImages renderLight(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width, uint32_t height,
+                        uint32_t frame, double time, std::optional<double> flowTime, double timeOffset,
+                        const SensorParams* sensor, std::function<void(VkCommandBuffer)> tick, bool tickNext,
+                        const std::function<void()>& beforeNextTick) {
+    const bool stereo = r.scene.camera.rig.stereo();
+    auto rigAt = [&](double t) { return sequenceRigAt(r, width, height, t); };
+    // A shutter's sub-frame times (render/motion_blur.h); none: the colour is the instant's.
+    const std::vector<double> exposure =
+        sensor ? exposureTimesAt(r, *sensor, width, height, time) : std::vector<double>();
+    if (sensor && sensor->readoutSeconds > 0.0) // a rolling shutter: each band of rows at its own time
+        return renderReadout(gpu, target, r, width, height, frame, time, timeOffset, *sensor, exposure.size(), tick,
+                             tickNext, beforeNextTick);
+    ExposureColour blurred;
+    if (!exposure.empty()) { // the frame's tick runs before the first sub-frame, and only then
+        blurred = renderExposure(*gpu.renderer, target, rigAt, stereo, exposure, timeOffset, frame, tick);
+        tick = {};
+    }
+    const bool colour = exposure.empty(); // else the truth alone, at the exposure's middle
+    const RigCameras cameras = rigAt(time);
+    FrameImages images = target.hasFlow() ? renderFlowFrame(gpu, target, r, frame, timeOffset + time, cameras, tick,
+                                                            colour, flowTime, tickNext, beforeNextTick)
+                                          : target.render(*gpu.renderer, cameras.left, timeOffset + time, frame, tick,
+                                                          stereo ? &cameras.right : nullptr, nullptr, colour);
+    if (!colour) {
+        images.rgbaHalf = std::move(blurred.left);
+        images.rightRgbaHalf = std::move(blurred.right);
+        const double half = 0.5 * sensor->shutterSeconds;
+        images.motionBlur =
+            motionBlurLengths(rigAt(time - half).left, cameras.left, rigAt(time + half).left, images.depth);
+    }
+    return images;
+}
+
+// An unsynchronised rig's frame: the left view of the render at the frame's time (`left`) and the right view of the
+// render at the right camera's (`right`). The other view of each, the rig's at that instant, is kept for the
+// occlusion masks (FrameImages::rightDepthAtLeftTime, leftDepthAtRightTime).
+FrameImages unsynchronisedViews(FrameImages left, FrameImages right) {
+    left.rightDepthAtLeftTime = std::move(left.rightDepth);
+    left.leftDepthAtRightTime = std::move(right.depth);
+    left.rightRgbaHalf = std::move(right.rightRgbaHalf);
+    left.rightDepth = std::move(right.rightDepth);
+    left.rightLabels = std::move(right.rightLabels);
+    left.rightNormals = std::move(right.rightNormals);
+    left.rightFlowForward = std::move(right.rightFlowForward);
+    left.rightFlowBackward = std::move(right.rightFlowBackward);
+    return left;
+}
+
+// The points around which a world keeps its tiles resident for the rig at `time`: the left camera then, at its
+// exposure's sub-frames and at a rolling shutter's first and last rows' exposures.
+void addWorldCameras(const SceneResources& r, uint32_t width, uint32_t height, double time,
+                     const std::optional<SensorModel>& sensor, std::vector<glm::dvec2>& around) {
+    auto rigAt = [&](double t) { return sequenceRigAt(r, width, height, t); };
+    around.push_back(glm::dvec2(rigAt(time).left.position));
+    if (!sensor) return;
+    for (double t : exposureTimesAt(r, sensor->params(), width, height, time))
+        around.push_back(glm::dvec2(rigAt(t).left.position));
+    const double readout = sensor->params().readoutSeconds, shutter = sensor->params().shutterSeconds;
+    if (readout > 0.0)
+        for (double t : {time - 0.5 * readout, time + 0.5 * readout})
+            for (double s : {-0.5, 0.5}) around.push_back(glm::dvec2(rigAt(t + s * shutter).left.position));
+}
+
 } // namespace
 
 FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const SceneResources& r, uint32_t width,
@@ -217,24 +301,17 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
                                 const std::optional<SensorModel>& sensor, RigCameras& cameras,
                                 AutoExposure* autoExposure, const std::function<void()>& beforeNextTick) {
     const double time = double(frame) * r.scene.sequence.timeStep;
-    const bool stereo = r.scene.camera.rig.stereo();
     cameras = sequenceRig(r, width, height, frame);
-    // A shutter's sub-frame times (render/motion_blur.h); none: the colour is the instant's.
-    const std::vector<double> exposure =
-        sensor ? frameExposureTimes(r, sensor->params(), width, height, frame) : std::vector<double>();
-    auto rigAt = [&](double t) { return sequenceRigAt(r, width, height, t); };
+    const SensorParams* params = sensor ? &sensor->params() : nullptr;
+    // An unsynchronised rig: the right camera's exposure and readout are centred on its own time.
+    const double offset = params ? params->stereoOffsetSeconds : 0.0;
     std::function<void(VkCommandBuffer)> tick;
     std::vector<glm::dvec2> around; // a world's cameras: every tile within load_radius of them is drawn
     if (r.world) {
-        around.push_back(glm::dvec2(cameras.left.position));
-        for (double t : exposure) around.push_back(glm::dvec2(rigAt(t).left.position));
-        if (sensor && sensor->params().readoutSeconds > 0.0) // a rolling shutter's first and last rows' exposures
-            for (double t :
-                 {time - 0.5 * sensor->params().readoutSeconds, time + 0.5 * sensor->params().readoutSeconds})
-                for (double s : {-0.5, 0.5})
-                    around.push_back(glm::dvec2(rigAt(t + s * sensor->params().shutterSeconds).left.position));
+        addWorldCameras(r, width, height, time, sensor, around);
         // The range sensors' sweeps start within load_radius of the tiles their rays meet (range/range_recorder.h).
         for (const glm::dvec2& start : rangeSensorStarts(r.scene, r.models, time)) around.push_back(start);
+        if (offset != 0.0) addWorldCameras(r, width, height, time + offset, sensor, around);
     }
     if (gpu.worldSimulation && target.hasFlow()) {
         prepareWorldFlowTicks(gpu, frame, around);
@@ -254,27 +331,21 @@ FrameImages renderSequenceFrame(SceneGpu& gpu, OffscreenFrame& target, const Sce
         tick = [&](VkCommandBuffer cmd) { gpu.simulation->recordNextTick(cmd, frame); };
     }
     if (target.hasFlow()) tick = flowPrologue(gpu, frame);
-    if (sensor && sensor->params().readoutSeconds > 0.0) { // a rolling shutter: each band of rows at its own time
-        FrameImages images = renderReadout(gpu, target, r, width, height, frame, timeOffset, sensor->params(),
-                                           exposure.size(), tick, beforeNextTick);
-        return readOutSensor(r, *sensor, cameras, frame, std::move(images), autoExposure);
-    }
-    ExposureColour blurred;
-    if (!exposure.empty()) { // the frame's tick runs before the first sub-frame, and only then
-        blurred = renderExposure(*gpu.renderer, target, rigAt, stereo, exposure, timeOffset, frame, tick);
-        tick = {};
-    }
-    const bool colour = exposure.empty(); // else the truth alone, at the exposure's middle
-    FrameImages images = target.hasFlow() ? renderFlowFrame(gpu, target, r, frame, timeOffset + time, cameras, tick,
-                                                            colour, {}, true, beforeNextTick)
-                                          : target.render(*gpu.renderer, cameras.left, timeOffset + time, frame, tick,
-                                                          stereo ? &cameras.right : nullptr, nullptr, colour);
-    if (!colour) {
-        images.rgbaHalf = std::move(blurred.left);
-        images.rightRgbaHalf = std::move(blurred.right);
-        const double half = 0.5 * sensor->params().shutterSeconds;
-        images.motionBlur =
-            motionBlurLengths(rigAt(time - half).left, cameras.left, rigAt(time + half).left, images.depth);
+    FrameImages images;
+    if (offset == 0.0) {
+        images =
+            renderLight(gpu, target, r, width, height, frame, time, {}, timeOffset, params, tick, true, beforeNextTick);
+    } else {
+        // An unsynchronised rig: the whole rig rendered at the right camera's time, its right view kept, then at the
+        // frame's time, its left view kept. The right goes first with the frame's tick, so both see that tick's
+        // plants (as a shutter's sub-frames and a readout's bands do); the left's truth then runs the flow's next tick.
+        const double rightTime = time + offset;
+        FrameImages right = renderLight(gpu, target, r, width, height, frame, rightTime, rightTime, timeOffset, params,
+                                        tick, false, {});
+        images = unsynchronisedViews(
+            renderLight(gpu, target, r, width, height, frame, time, {}, timeOffset, params, {}, true, beforeNextTick),
+            std::move(right));
+        cameras.right = sequenceRigAt(r, width, height, rightTime).right;
     }
     // After the exposure's mean: light is integrated first, then the sensor reads it out.
     return sensor ? readOutSensor(r, *sensor, cameras, frame, std::move(images), autoExposure) : images;

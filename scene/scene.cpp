@@ -149,6 +149,9 @@ void readRig(JsonReader& camera, RigParams& rig) {
     if (camera.has("mount")) readMount(camera.child("mount"), rig);
     if (const nlohmann::json* sensor = camera.raw("sensor"))
         rig.sensor = parseSensor(*sensor, camera.source(), camera.childPath("sensor"));
+    if (rig.sensor.stereoOffsetSeconds != 0.0 && !rig.stereo()) // the offset is the right camera's
+        camera.fail("'" + camera.childPath("sensor") + ".stereo_offset_s' needs a stereo rig ('" +
+                    camera.childPath("baseline") + "' > 0): a single camera has no right view to offset");
 }
 
 void readCamera(JsonReader r, CameraParams& c) {

@@ -196,6 +196,7 @@ SensorParams parseSensor(const nlohmann::json& json, const std::string& source, 
     }
     p.readoutSeconds = r.number("readout_s", 0.0, 0.0, kMaxReadoutSeconds);
     p.readoutBands = uint32_t(r.integer("readout_bands", 0, 1, kMaxReadoutBands));
+    p.stereoOffsetSeconds = r.number("stereo_offset_s", 0.0, -kMaxStereoOffsetSeconds, kMaxStereoOffsetSeconds);
     parseSensorElectronics(r, p);
     p.autoExposure = parseAutoExposure(r);
     parseLensOptics(r, p.optics);
@@ -228,6 +229,7 @@ nlohmann::json sensorToJson(const SensorParams& p) {
         json["readout_s"] = p.readoutSeconds;
         if (p.readoutBands != 0) json["readout_bands"] = p.readoutBands; // absent: every row its own band
     }
+    if (p.stereoOffsetSeconds != 0.0) json["stereo_offset_s"] = p.stereoOffsetSeconds; // absent: synchronised
     return json;
 }
 

@@ -52,9 +52,12 @@ struct SensorParams {
     // Rolling shutter (render/rolling_shutter.h): row r read at t + readout_s ((r + 0.5) / H - 0.5).
     double readoutSeconds = 0.0; // 0 = a global shutter (every row at the frame's time)
     uint32_t readoutBands = 0;   // renders per frame, each a band of rows at one time; 0 (or > H) = every row
-    SensorElectronics electronics;       // gain, black level, white balance (scene/sensor_exposure.h)
-    AutoExposureParams autoExposure;     // the exposure from the frames' meters (render/auto_exposure.h)
-    LensOptics optics; // depth of field, MTF blur, chromatic aberration (scene/sensor_optics.h), before all else
+    // An unsynchronised stereo rig (render/sequence_frame.h): the right camera's exposure and readout start this much
+    // later than the left's (negative: earlier); 0 = a synchronised rig. Needs a stereo rig (scene/scene.cpp checks).
+    double stereoOffsetSeconds = 0.0;
+    SensorElectronics electronics;   // gain, black level, white balance (scene/sensor_exposure.h)
+    AutoExposureParams autoExposure; // the exposure from the frames' meters (render/auto_exposure.h)
+    LensOptics optics;     // depth of field, MTF blur, chromatic aberration (scene/sensor_optics.h), before all else
     uint32_t bitDepth = 0; // the digital output raw/ (scene/sensor_raw.h): 8..16 bits; 0 = none
 
     bool hasDistortion() const { return k1 != 0.0 || k2 != 0.0 || k3 != 0.0 || p1 != 0.0 || p2 != 0.0; }
@@ -64,6 +67,7 @@ inline constexpr double kMaxShutterSeconds = 1.0;
 inline constexpr uint32_t kMaxMotionSamples = 64;
 inline constexpr double kMaxReadoutSeconds = 1.0;
 inline constexpr uint32_t kMaxReadoutBands = 16384;
+inline constexpr double kMaxStereoOffsetSeconds = 1.0; // |stereo_offset_s|
 
 // Pinhole intrinsics in pixels (camera.h convention).
 struct Intrinsics {
