@@ -417,12 +417,14 @@ void DatasetWriter::writeFrame(uint32_t frame, const FrameImages& images, const 
     }
     for (uint32_t view = 0; rawBitDepth_ != 0 && view < (stereo_ ? 2u : 1u); ++view) {
         const std::vector<uint16_t>& dn = view == 0 ? images.raw : images.rightRaw;
-        require(dn.size() == size_t(w) * h * 3, "DatasetWriter::writeFrame: a frame with a bit depth needs its raw");
+        const uint32_t channels = dn.size() == size_t(w) * h ? 1 : 3; // 1: a Bayer sensor's mosaic (sensor_raw.h)
+        require(dn.size() == size_t(w) * h * channels,
+                "DatasetWriter::writeFrame: a frame with a bit depth needs its raw");
         const std::string file = path(view == 0 ? kRawFolder : kRawRightFolder, ".png");
         if (rawBitDepth_ > 8) // the DN in the low bits, not shifted up: a 12-bit file's values are 0..4095
-            writePng16(file, w, h, 3, dn);
+            writePng16(file, w, h, channels, dn);
         else
-            writePng8(file, w, h, 3, std::vector<uint8_t>(dn.begin(), dn.end()));
+            writePng8(file, w, h, channels, std::vector<uint8_t>(dn.begin(), dn.end()));
     }
 }
 

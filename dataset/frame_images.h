@@ -38,7 +38,8 @@ struct FrameImages {
         double meter = 0.0, factor = 1.0;
     };
     std::optional<Exposure> autoExposure;
-    // With camera.sensor.bit_depth (scene/sensor_raw.h), width*height*3 each: the views' digital numbers, R, G, B.
+    // With camera.sensor.bit_depth (scene/sensor_raw.h), width*height*3 each: the views' digital numbers, R, G, B
+    // (width*height with camera.sensor.bayer: the mosaic).
     std::vector<uint16_t> raw, rightRaw;
 };
 

@@ -132,8 +132,10 @@ void SensorModel::apply(uint64_t seed, uint32_t frame, uint32_t camera, std::spa
     }
 
     const double epu = params_.electronsPerUnit;
+    const bool mosaic = params_.cfa.enabled(); // one colour per photosite, demosaiced below (scene/sensor_bayer.h)
     for (size_t p = 0; p < size_t(w) * h; ++p) {
         for (uint32_t c = 0; c < 3; ++c) {
+            if (mosaic && c != bayerChannel(params_.cfa.pattern, uint32_t(p % w), uint32_t(p / w))) continue;
             float& value = rgba[p * 4 + c];
             value *= gain_[p];
             if (exposureScale != 1.0) value = float(double(value) * exposureScale); // auto-exposure
@@ -143,6 +145,7 @@ void SensorModel::apply(uint64_t seed, uint32_t frame, uint32_t camera, std::spa
             }
         }
     }
+    if (mosaic) demosaic(params_.cfa, w, h, rgba);
 }
 
 void SensorModel::applyHalf(uint64_t seed, uint32_t frame, uint32_t camera, std::span<uint16_t> rgbaHalf,
@@ -151,7 +154,8 @@ void SensorModel::applyHalf(uint64_t seed, uint32_t frame, uint32_t camera, std:
     std::vector<float> rgba(rgbaHalf.size());
     std::transform(rgbaHalf.begin(), rgbaHalf.end(), rgba.begin(), halfBitsToFloat);
     apply(seed, frame, camera, rgba, exposureScale);
-    if (digital && params_.bitDepth != 0) *digital = rawDigitalImage(params_, rgba); // the ADC reads the float signal
+    if (digital && params_.bitDepth != 0) // the ADC reads the float signal
+        *digital = rawDigitalImage(params_, rgba, intrinsics_.width);
     std::transform(rgba.begin(), rgba.end(), rgbaHalf.begin(), floatToHalfBits);
 }
 
@@ -201,6 +205,7 @@ SensorParams parseSensor(const nlohmann::json& json, const std::string& source, 
     p.autoExposure = parseAutoExposure(r);
     parseLensOptics(r, p.optics);
     parseRawBitDepth(r, p);
+    parseColourFilterArray(r, p);
     r.finish();
     return p;
 }
@@ -220,6 +225,7 @@ nlohmann::json sensorToJson(const SensorParams& p) {
     sensorElectronicsToJson(p.electronics, json);
     lensOpticsToJson(p.optics, json);
     if (p.bitDepth != 0) json["bit_depth"] = p.bitDepth; // absent without a digital output: records as before
+    colourFilterArrayToJson(p.cfa, json);                // absent without a Bayer pattern: records as before
     if (p.autoExposure.enabled) json["auto_exposure"] = autoExposureToJson(p.autoExposure); // absent: as before
     if (p.shutterSeconds > 0.0) { // absent from a scene without a shutter: its records stay as they were
         json["shutter_s"] = p.shutterSeconds;

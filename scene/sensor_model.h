@@ -17,12 +17,15 @@
 //   e' = min(e', full_well)                          when full_well > 0
 //   out = e' / electrons_per_unit                    back to the image's linear units
 //   then gain, white balance, black level and the ADC's clip: scene/sensor_exposure.h (sensorReadout)
+// With a Bayer pattern (camera.sensor.bayer) only each pixel's photosite channel is read out, with its own noise, and
+// the ISP then demosaics the other two (scene/sensor_bayer.h); without one every channel is, as above.
 // n is a standard normal from Box-Muller on two uniforms hashed from (seed, frame, camera, pixel, channel), so
 // the result is a pure function of its inputs: bitwise repeatable, any order, any thread count. Noise is
 // zero-mean (no clamping at 0), so averages over many frames converge to the noise-free image. Alpha is
 // resampled with the colour (it is coverage, which the lens moves) but gets no exposure, vignetting or noise.
 #pragma once
 
+#include "scene/sensor_bayer.h"
 #include "scene/sensor_exposure.h"
 #include "scene/sensor_optics.h"
 
@@ -59,6 +62,7 @@ struct SensorParams {
     AutoExposureParams autoExposure; // the exposure from the frames' meters (render/auto_exposure.h)
     LensOptics optics;     // depth of field, MTF blur, chromatic aberration (scene/sensor_optics.h), before all else
     uint32_t bitDepth = 0; // the digital output raw/ (scene/sensor_raw.h): 8..16 bits; 0 = none
+    ColourFilterArray cfa; // a Bayer mosaic and its demosaicing (scene/sensor_bayer.h); none = three channels
 
     bool hasDistortion() const { return k1 != 0.0 || k2 != 0.0 || k3 != 0.0 || p1 != 0.0 || p2 != 0.0; }
 };

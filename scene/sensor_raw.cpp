@@ -26,8 +26,17 @@ uint16_t rawDigitalNumber(double signal, double whiteLevel, uint32_t bitDepth) {
     return uint16_t(std::floor(x * fullScale + 0.5)); // x * fullScale + 0.5 <= fullScale + 0.5: no overflow
 }
 
-std::vector<uint16_t> rawDigitalImage(const SensorParams& params, std::span<const float> rgba) {
+std::vector<uint16_t> rawDigitalImage(const SensorParams& params, std::span<const float> rgba, uint32_t width) {
     const double white = rawWhiteLevel(params);
+    if (params.cfa.enabled()) { // the photosites' own channel: the mosaic a single-chip camera reads out
+        require(width > 0 && rgba.size() % (size_t(width) * 4) == 0, "rawDigitalImage: image size does not match");
+        const uint32_t height = uint32_t(rgba.size() / 4 / width);
+        std::vector<uint16_t> dn;
+        dn.reserve(size_t(width) * height);
+        for (float signal : bayerMosaic(params.cfa.pattern, width, height, rgba))
+            dn.push_back(rawDigitalNumber(signal, white, params.bitDepth));
+        return dn;
+    }
     std::vector<uint16_t> dn(rgba.size() / 4 * 3);
     for (size_t p = 0; p < rgba.size() / 4; ++p)
         for (size_t c = 0; c < 3; ++c) dn[p * 3 + c] = rawDigitalNumber(rgba[p * 4 + c], white, params.bitDepth);

@@ -7,9 +7,12 @@
 //   white_level = black_level + full_well / electrons_per_unit   with full_well set (the ADC's clip)
 //               = 1                                               otherwise (1 unit of linear radiance is full scale)
 // in double precision with * / + and floor only: the same bits on every machine. The DN are linear (no gamma, no
-// tone curve): the camera's raw output; the preview stays the tone-mapped image. The simulated sensor is
-// three-channel (no colour filter array), so the raw image is RGB and nothing is demosaiced. The pedestal stays in
-// the DN (a black pixel reads black_level / white_level of full scale), as a real camera's raw does.
+// tone curve): the camera's raw output; the preview stays the tone-mapped image. A three-channel sensor (no
+// camera.sensor.bayer) gives an RGB raw image; a Bayer sensor (scene/sensor_bayer.h) gives the single-channel mosaic,
+// each pixel its photosite's own channel's DN (the filter pattern is recorded with the sensor in frames.jsonl), taken
+// before demosaicing: the ISP's interpolation is in the EXR and the preview only. The pedestal stays in the DN (a
+// black pixel reads black_level / white_level of full scale), as a real camera's raw does. White balance is in the DN
+// (sensorReadout applies it per photosite, before the ADC).
 #pragma once
 
 #include <cstdint>
@@ -28,9 +31,10 @@ inline constexpr uint32_t kRawBitDepths[] = {8, 10, 12, 14, 16};
 double rawWhiteLevel(const SensorParams& params);
 // The DN of one channel's signal `signal` with `whiteLevel` at `bitDepth` bits (one of kRawBitDepths).
 uint16_t rawDigitalNumber(double signal, double whiteLevel, uint32_t bitDepth);
-// The R, G, B DN of a linear RGBA float image (alpha dropped): rgba.size() / 4 * 3 values, top row first.
-// Precondition: params.bitDepth is one of kRawBitDepths.
-std::vector<uint16_t> rawDigitalImage(const SensorParams& params, std::span<const float> rgba);
+// The DN of a linear RGBA float image `width` pixels wide, top row first: R, G, B per pixel (alpha dropped;
+// rgba.size() / 4 * 3 values), or with a Bayer pattern one per pixel, its photosite's own channel (the mosaic;
+// rgba.size() / 4 values). Precondition: params.bitDepth is one of kRawBitDepths.
+std::vector<uint16_t> rawDigitalImage(const SensorParams& params, std::span<const float> rgba, uint32_t width);
 
 // Reads "bit_depth" (0 or one of kRawBitDepths; errors name 'camera.sensor.bit_depth') into `params.bitDepth`.
 // A sensor with "enabled": false and a bit depth is refused: it has no signal to digitise.

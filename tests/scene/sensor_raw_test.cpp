@@ -89,7 +89,7 @@ TEST(SensorRaw, TheSensorModelDigitisesItsFloatOutput) {
     std::vector<uint16_t> digital;
     model.applyHalf(7, 3, 0, half, 1.0, &digital);
     ASSERT_EQ(digital.size(), size_t(32) * 24 * 3);
-    EXPECT_EQ(digital, rawDigitalImage(p, floatOut));
+    EXPECT_EQ(digital, rawDigitalImage(p, floatOut, 32));
     uint32_t clipped = 0, maxDifference = 0;
     for (size_t px = 0; px < size_t(32) * 24; ++px)
         for (size_t c = 0; c < 3; ++c) {
