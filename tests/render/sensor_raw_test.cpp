@@ -28,9 +28,7 @@ nlohmann::json rawScene(const nlohmann::json& extraSensorKeys) {
 }
 
 std::string writeScene(const std::string& dir, const std::string& name, const nlohmann::json& scene) {
-    const std::string path = dir + "/" + name + ".json";
-    std::ofstream(path) << scene.dump();
-    return path;
+    return sward::test::writeSceneFile(dir, name, scene.dump());
 }
 
 } // namespace

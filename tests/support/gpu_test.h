@@ -42,6 +42,13 @@ inline std::string readFile(const std::string& path) {
     return text.str();
 }
 
+// Writes the scene text `json` to `dir`/`name`.json and returns that path.
+inline std::string writeSceneFile(const std::string& dir, const std::string& name, const std::string& json) {
+    const std::string path = dir + "/" + name + ".json";
+    std::ofstream(path) << json;
+    return path;
+}
+
 // Runs sward-render with `args` (validation on, quiet); returns its exit status and its stderr in `err`.
 inline int runSwardRender(const std::string& args, std::string& err) {
     const std::string dir = tempDir("render-log");
