@@ -153,6 +153,44 @@ TEST_F(StereoOffsetTest, RightRowsAreReadAtTheirOffsetTimesWithAShutter) {
     }
 }
 
+// The right view of an unsynchronised rig sees the plants of the frame's own interaction tick, as a shutter's
+// sub-frames and a readout's bands do, not those of the tick at its time: the test scene's rover presses the grass in
+// view of a fixed rig, without wind, so over the offset of two ticks only its tracks change. The right truth of frame 1
+// is the synchronised frame 1's, and differs from frame 3's (the rover pressed more plants by then).
+TEST_F(StereoOffsetTest, RightViewSeesTheFramesOwnPressedPlants) {
+    const nlohmann::json overrides = {{"render.resolution", {kW, kH}},
+                                      {"render.samples", 1},
+                                      {"sequence.time_step", kStep},
+                                      {"wind", {{"strength", 0.0}, {"gust_strength", 0.0}, {"flutter", 0.0}}},
+                                      {"camera.sensor", {{"stereo_offset_s", kOffset}}}};
+    // Each sequence from frame 0 on, with its own resources and GPU scene (which takes them over): the rover's
+    // simulation ticks once per frame rendered. `synchronise`: the same sensor without the offset.
+    auto frames = [&](bool synchronise, uint32_t last) {
+        SceneResources r =
+            buildSceneResources(loadSceneInput({.path = std::string(SWARD_TEST_DATA_DIR) + "/dataset_scene.json",
+                                                .overrides = overrides.dump()}),
+                                true);
+        RigCameras rig;
+        std::optional<SensorModel> sensor = checkRigAndSensor(r, kW, kH, 0, rig);
+        EXPECT_TRUE(sensor);
+        if (synchronise) sensor = synchronised(*sensor, rig.left);
+        SceneGpu gpu = createSceneGpu(*ctx, r, 1, SimulationMode::WhenSceneHasColliders);
+        EXPECT_TRUE(gpu.simulation);
+        OffscreenFrame target(*ctx, kW, kH, 1);
+        std::vector<FrameImages> images;
+        for (uint32_t f = 0; f <= last; ++f)
+            images.push_back(renderSequenceFrame(gpu, target, r, kW, kH, f, 0.0, sensor, rig));
+        return images;
+    };
+    const std::vector<FrameImages> offset = frames(false, kFrame), synced = frames(true, kLater);
+    EXPECT_EQ(offset[kFrame].depth, synced[kFrame].depth);
+    EXPECT_EQ(offset[kFrame].rightDepth, synced[kFrame].rightDepth);
+    EXPECT_EQ(offset[kFrame].rightLabels, synced[kFrame].rightLabels);
+    EXPECT_EQ(offset[kFrame].rightNormals, synced[kFrame].rightNormals);
+    // The test can fail: the right camera sees the rover's tracks grow between the two ticks.
+    EXPECT_NE(synced[kFrame].rightDepth, synced[kLater].rightDepth);
+}
+
 // sward-render with an offset of one frame: two shards, and a run resumed after lost files, write the whole run's
 // files; the left files (and occlusion/) are the synchronised dataset's of the same frame, the right ones (and
 // occlusion_right/) of the next frame. And stereo_offset_s 0 writes the very files of a scene without the key.
