@@ -136,7 +136,7 @@ void parseColourFilterArray(JsonReader& reader, SensorParams& params) {
         const auto* found = name ? std::find(std::begin(kPatternNames) + 1, std::end(kPatternNames), *name) : nullptr;
         if (!name || found == std::end(kPatternNames))
             reader.fail(reader.name("bayer") +
-                        " must be null (a three-channel sensor), \"RGGB\", \"BGGR\", \"GRBG\" or " + "\"GBRG\" (got " +
+                        " must be null (a three-channel sensor), \"RGGB\", \"BGGR\", \"GRBG\" or \"GBRG\" (got " +
                         bayer->dump() + ")");
         params.cfa.pattern = BayerPattern(found - std::begin(kPatternNames));
         if (!params.enabled)

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <string>
 
 namespace {
@@ -24,10 +23,6 @@ nlohmann::json bayerScene(const nlohmann::json& extraSensorKeys) {
     return scene;
 }
 
-std::string writeScene(const std::string& dir, const std::string& name, const nlohmann::json& scene) {
-    return sward::test::writeSceneFile(dir, name, scene.dump());
-}
-
 } // namespace
 
 // raw/000000.png is one 16-bit channel: each pixel the DN of its RGGB photosite's channel of the left EXR (within
@@ -35,7 +30,8 @@ std::string writeScene(const std::string& dir, const std::string& name, const nl
 // very same files.
 TEST(SensorBayerDataset, RawIsTheSingleChannelMosaicAndRunsRepeat) {
     const std::string dir = sward::test::tempDir("sensor-bayer");
-    const std::string path = writeScene(dir, "scene", bayerScene({{"bayer", "RGGB"}, {"bit_depth", 12}}));
+    const std::string path =
+        sward::test::writeSceneFile(dir, "scene", bayerScene({{"bayer", "RGGB"}, {"bit_depth", 12}}).dump());
     std::string err;
     for (const char* out : {"/first", "/second"})
         ASSERT_EQ(sward::test::runSwardRender(path + " --out " + dir + out + " --frames 0:1", err), 0) << err;
@@ -64,8 +60,9 @@ TEST(SensorBayerDataset, NullBayerWritesTheThreeChannelSensorsFiles) {
     std::string err;
     for (const auto& [name, keys] : {std::pair{"none", nlohmann::json{{"bit_depth", 8}}},
                                      std::pair{"null", nlohmann::json{{"bit_depth", 8}, {"bayer", nullptr}}}})
-        ASSERT_EQ(sward::test::runSwardRender(
-                      writeScene(dir, name, bayerScene(keys)) + " --out " + dir + "/" + name + " --frames 0:1", err),
+        ASSERT_EQ(sward::test::runSwardRender(sward::test::writeSceneFile(dir, name, bayerScene(keys).dump()) +
+                                                  " --out " + dir + "/" + name + " --frames 0:1",
+                                              err),
                   0)
             << err;
     EXPECT_GT(sward::test::expectSameRunFiles(dir + "/none", dir + "/null"), 5u);

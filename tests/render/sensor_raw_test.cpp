@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <set>
 #include <string>
 
@@ -27,10 +26,6 @@ nlohmann::json rawScene(const nlohmann::json& extraSensorKeys) {
     return scene;
 }
 
-std::string writeScene(const std::string& dir, const std::string& name, const nlohmann::json& scene) {
-    return sward::test::writeSceneFile(dir, name, scene.dump());
-}
-
 } // namespace
 
 // raw/000000.png holds round(left EXR / white * 4095) within 1 DN everywhere (white = black level + full well / epu =
@@ -40,7 +35,7 @@ std::string writeScene(const std::string& dir, const std::string& name, const nl
 TEST(SensorRawDataset, TwelveBitRawIsTheLinearColourQuantised) {
     const std::string dir = sward::test::tempDir("sensor-raw-12");
     std::string err;
-    const std::string path = writeScene(dir, "scene", rawScene({{"bit_depth", 12}}));
+    const std::string path = sward::test::writeSceneFile(dir, "scene", rawScene({{"bit_depth", 12}}).dump());
     ASSERT_EQ(sward::test::runSwardRender(path + " --out " + dir + "/out --frames 0:1", err), 0) << err;
     const double white = 0.0625 + 1875.0 / 2000.0;
     for (const auto& [rawFolder, colourFolder] : {std::pair{"raw", "left"}, std::pair{"raw_right", "right"}}) {
@@ -78,8 +73,9 @@ TEST(SensorRawDataset, TheDigitalOutputChangesNoOtherFile) {
     for (const auto& [name, keys] :
          {std::pair{"none", nlohmann::json::object()}, std::pair{"zero", nlohmann::json{{"bit_depth", 0}}},
           std::pair{"eight", nlohmann::json{{"bit_depth", 8}}}})
-        ASSERT_EQ(sward::test::runSwardRender(
-                      writeScene(dir, name, rawScene(keys)) + " --out " + dir + "/" + name + " --frames 0:1", err),
+        ASSERT_EQ(sward::test::runSwardRender(sward::test::writeSceneFile(dir, name, rawScene(keys).dump()) +
+                                                  " --out " + dir + "/" + name + " --frames 0:1",
+                                              err),
                   0)
             << err;
     const size_t withoutKey = sward::test::expectSameRunFiles(dir + "/none", dir + "/zero"); // frames.jsonl among them
@@ -99,7 +95,7 @@ TEST(SensorRawDataset, TheDigitalOutputChangesNoOtherFile) {
 // Two shards, and a run resumed after a lost raw file, write the very raw files (and all others) of one whole run.
 TEST(SensorRawDataset, ShardsAndResumedRunsWriteTheWholeRunsFiles) {
     const std::string dir = sward::test::tempDir("sensor-raw-shards");
-    const std::string path = writeScene(dir, "scene", rawScene({{"bit_depth", 12}}));
+    const std::string path = sward::test::writeSceneFile(dir, "scene", rawScene({{"bit_depth", 12}}).dump());
     std::string err;
     ASSERT_EQ(sward::test::runSwardRender(path + " --out " + dir + "/whole --frames 0:3", err), 0) << err;
     for (const char* shard : {"0/2", "1/2"})

@@ -17,7 +17,6 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
-#include <fstream>
 
 using namespace sward;
 
@@ -203,10 +202,9 @@ TEST(StereoOffsetDataset, ShardsResumedRunsAndTheSynchronisedDatasetAgree) {
     const std::string dir = sward::test::tempDir("stereo-offset-shards");
     auto write = [&](const std::string& name, const nlohmann::json& sensor) {
         scene["camera"]["sensor"] = sensor;
-        std::ofstream(dir + "/" + name) << scene.dump();
-        return dir + "/" + name;
+        return sward::test::writeSceneFile(dir, name, scene.dump());
     };
-    const std::string path = write("scene.json", {{"stereo_offset_s", kStep}});
+    const std::string path = write("scene", {{"stereo_offset_s", kStep}});
     std::string err;
     ASSERT_EQ(sward::test::runSwardRender(path + " --out " + dir + "/whole --frames 0:2", err), 0) << err;
     for (const char* shard : {"0/2", "1/2"})
@@ -218,7 +216,7 @@ TEST(StereoOffsetDataset, ShardsResumedRunsAndTheSynchronisedDatasetAgree) {
     ASSERT_EQ(sward::test::runSwardRender(path + " --out " + dir + "/parts --frames 0:2", err), 0) << err;
     sward::test::expectSameRunFiles(dir + "/whole", dir + "/parts");
     // Each view's files are the synchronised rig's at its camera's time.
-    const std::string sync = write("sync.json", nlohmann::json::object());
+    const std::string sync = write("sync", nlohmann::json::object());
     ASSERT_EQ(sward::test::runSwardRender(sync + " --out " + dir + "/sync --frames 0:3", err), 0) << err;
     auto file = [&](const std::string& run, const char* folder, uint32_t frame, const char* extension) {
         char name[32];
@@ -237,7 +235,7 @@ TEST(StereoOffsetDataset, ShardsResumedRunsAndTheSynchronisedDatasetAgree) {
         EXPECT_NE(file("whole", "depth_right", frame, ".exr"), file("sync", "depth_right", frame, ".exr")) << frame;
     }
     // stereo_offset_s 0: a synchronised rig, the very files of a sensor without the key.
-    const std::string zero = write("zero.json", {{"stereo_offset_s", 0.0}});
+    const std::string zero = write("zero", {{"stereo_offset_s", 0.0}});
     ASSERT_EQ(sward::test::runSwardRender(zero + " --out " + dir + "/zero --frames 0:2", err), 0) << err;
     EXPECT_GE(sward::test::expectSameRunFiles(dir + "/zero", dir + "/sync"), 2u * 18);
 }
