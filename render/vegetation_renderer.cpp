@@ -13,6 +13,8 @@ namespace sward {
 namespace {
 
 constexpr VkShaderStageFlags kDrawStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+constexpr VkBufferUsageFlags kStorage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
 // Set 0 of every plant draw (expanded or baked): frame and vegetation constants, the instances (or baked
 // vertices), the atlas cell table and the atlas.
@@ -43,13 +45,6 @@ uint32_t VegetationRenderer::shadowAtlasLevel(double texelMetres) const {
     return atlasLevelForTexel(atlasCellHeight_, atlasLevels_, shortest, texelMetres);
 }
 
-namespace {
-
-constexpr VkBufferUsageFlags kStorage =
-    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-
-} // namespace
-
 VegetationRenderer::Tile::Tile(Context& ctx, const VegetationTile& tile, uint64_t constantsBytes)
     : ctx(ctx), coord(tile.coord), boundsMin(glm::dvec2(tile.origin)),
       boundsMax(glm::dvec2(tile.origin) + double(tile.size)), buffers(ctx, tile) {
@@ -78,7 +73,7 @@ PipelineLayoutDesc VegetationRenderer::drawLayout(bool withShadowMap) const {
     return {.bindings = bindings, .pushConstantSize = sizeof(uint32_t), .pushConstantStages = kDrawStages}; // lod
 }
 
-GraphicsPipelineDesc VegetationRenderer::mainPipelineDesc(const char* fragmentShader) const {
+GraphicsPipelineDesc VegetationRenderer::mainPipelineDesc(const char* fragmentShader, bool farBillboards) const {
     const bool msaa = formats_.mainSamples != VK_SAMPLE_COUNT_1_BIT;
     return {
         .vertexShader = "plant.vert",
@@ -88,7 +83,8 @@ GraphicsPipelineDesc VegetationRenderer::mainPipelineDesc(const char* fragmentSh
         .depthFormat = formats_.mainDepth,
         .samples = formats_.mainSamples,
         .alphaToCoverage = msaa,
-        .specialization = {/* PASS= */ gpu::kPassMain, /* ALPHA_TO_COVERAGE= */ msaa ? 1u : 0u},
+        .specialization = {/* PASS= */ gpu::kPassMain, /* ALPHA_TO_COVERAGE= */ msaa ? 1u : 0u,
+                           /* FAR_BILLBOARDS= */ farBillboards ? 1u : 0u},
     };
 }
 
@@ -130,8 +126,9 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const A
                                .pushConstantStages = cs});
 
     PipelineLayoutDesc shadowLayout = drawLayout(false);
+    mainPipeline_ = createGraphicsPipeline(ctx.device, mainPipelineDesc("plant.frag", false), drawLayout(true));
     GraphicsPipelineDesc plants = mainPipelineDesc("plant.frag");
-    mainPipeline_ = createGraphicsPipeline(ctx.device, plants, drawLayout(true));
+    mainFarPipeline_ = createGraphicsPipeline(ctx.device, plants, drawLayout(true));
     truthPipeline_ = createGraphicsPipeline(ctx.device, truthPipelineDesc(), shadowLayout);
     plants.samples = VK_SAMPLE_COUNT_1_BIT;
     plants.alphaToCoverage = false;
@@ -147,7 +144,7 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const A
 VegetationRenderer::~VegetationRenderer() {
     ctx_.submitter.waitIdle();
     tiles_.clear();
-    for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &truthPipeline_,
+    for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &mainFarPipeline_, &truthPipeline_,
                         &truthFlowPipeline_, &shadowPipeline_, &bakePipeline_, &staticPipeline_, &floorPipeline_})
         destroyPipeline(ctx_.device, *p);
     for (Pipeline& p : bladePipelines_) destroyPipeline(ctx_.device, p);
@@ -411,10 +408,13 @@ void VegetationRenderer::draw(VkCommandBuffer cmd, PlantPass pass, const Descrip
                                      sizeof(VkDrawIndexedIndirectCommand));
             if (statistics_) statistics_->end(cmd);
         }
-        bind(pipeline);
+        const Pipeline* bound = nullptr;
         for (uint32_t lod = 0; lod < gpu::kLodCount; ++lod) {
             if (!(lodMask & (1u << lod))) continue;
-            pushConstants(cmd, pipeline, lod);
+            // The main pass shades the far billboards with their own pipeline (plant.frag's FAR_BILLBOARDS).
+            const Pipeline& p = &pipeline == &mainPipeline_ && lod == gpu::kLodFar ? mainFarPipeline_ : pipeline;
+            if (bound != &p) bind(*(bound = &p));
+            pushConstants(cmd, p, lod);
             if (statistics_) statistics_->begin(cmd, std::string(passName) + kLodNames[lod]);
             vkCmdDrawIndexedIndirect(cmd, tile->draws.handle, lod * sizeof(VkDrawIndexedIndirectCommand), 1,
                                      sizeof(VkDrawIndexedIndirectCommand));

@@ -166,7 +166,8 @@ private:
     void uploadAtlas(const Atlas& atlas);
     void uploadCutoutBuffers(); // what cutoutCorners_ decides: cellTables_[cutoutCorners_] and the plant index buffers
     PipelineLayoutDesc drawLayout(bool withShadowMap) const; // the plant draws' layout: main (shadow map) or not
-    GraphicsPipelineDesc mainPipelineDesc(const char* fragmentShader) const;
+    // `farBillboards`: plant.frag's FAR_BILLBOARDS, whether the draws may hold far billboards.
+    GraphicsPipelineDesc mainPipelineDesc(const char* fragmentShader, bool farBillboards = true) const;
     GraphicsPipelineDesc truthPipelineDesc() const; // the truth pass's plant draw (without flow)
     // The near blades' pipeline for `pass` (vegetation_blades.cpp), made on first use.
     const Pipeline& bladePipeline(PlantPass pass);
@@ -200,7 +201,7 @@ private:
     Image atlasImage_;
     VkSampler atlasSampler_ = VK_NULL_HANDLE;
     Pipeline countPipeline_, scanPipeline_, writePipeline_;
-    Pipeline mainPipeline_, truthPipeline_, shadowPipeline_;
+    Pipeline mainPipeline_, mainFarPipeline_, truthPipeline_, shadowPipeline_; // main: near and mid; mainFar: far
     Pipeline truthFlowPipeline_;                             // enableFlow()
     std::array<Pipeline, 4> bladePipelines_;                 // by PlantPass; bladePipeline()
     uint32_t latestKept_ = 0;                                // the tiles' kept state recordKeepState() wrote last

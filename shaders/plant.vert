@@ -35,9 +35,10 @@ layout(location = 8) flat out uint outTile;  // ground truth: the tile's label (
 layout(location = 9) flat out vec3 outNormal; // ground truth: the triangle's camera-frame normal (truthNormal)
 layout(location = 10) flat out mat3 outAlbedo; // colour pass: plantShading (locations 10-15)
 layout(location = 13) flat out vec3 outAlbedoOffset;
-layout(location = 14) out vec3 outSunLight;  // plantSunLight: varies across the card
+layout(location = 14) out vec2 outSunTerms;  // plantSunLight: varies across the card
 layout(location = 15) flat out vec3 outAmbient;
-layout(location = 20) out vec3 outSheen;     // plantSunLight (16-17: flow_vertex.glsl)
+layout(location = 20) flat out vec3 outSunColour; // plantSunLight (16-17: flow_vertex.glsl)
+layout(location = 21) out vec4 outHaze;      // colour pass: hazeAt
 layout(location = 18) flat out vec4 outUvRect; // the cell's atlas rectangle (outUv is in cell coordinates)
 layout(location = 19) flat out vec2 outMerge; // far merging: PlantQuad::repeat (copies across), PlantQuad::opacity
 
@@ -108,14 +109,16 @@ void main() {
         float across = clamp(dot(v.position - quad.base, quad.side) / max(0.5 * quad.width, 1e-6), -1.0, 1.0);
         PlantSunLight sun = plantSunLight(cross(quad.side, quad.rise), quad.side, push.lod == kLodFar ? 0.0 : across, up,
                                           toCamera);
-        outSunLight = sun.diffuse;
-        outSheen = sun.sheen;
+        outSunColour = sun.colour;
+        outSunTerms = sun.terms;
         outShadow = plantShadowCoordinate(v.position, instance.positionHeight.xyz, plantShadowHash(plant));
+        outHaze = hazeAt(v.position);
     }
     if (PASS != kPassMain) {
         outShadow = vec4(0.0);
-        outSunLight = vec3(0.0);
-        outSheen = vec3(0.0);
+        outSunColour = vec3(0.0);
+        outSunTerms = vec2(0.0);
+        outHaze = vec4(0.0);
     }
     if (PASS != kPassTruth) {
         outLabel = 0u;

@@ -6,15 +6,17 @@
 // base and lighter towards its tip.
 #include "shared/frame.glsl"
 #include "shared/shadow.glsl"
+#include "shared/plant_shading.glsl"
 
 layout(location = 0) in vec3 inWorld;
 layout(location = 2) in float inHeightFraction;
 layout(location = 3) in float inAlong;
 layout(location = 4) in vec4 inShadow;
 layout(location = 5) flat in vec3 inAlbedo;
-layout(location = 6) in vec3 inSunLight;
+layout(location = 6) in vec2 inSunTerms;
 layout(location = 7) flat in vec3 inAmbient;
-layout(location = 8) in vec3 inSheen;
+layout(location = 8) flat in vec3 inSunColour;
+layout(location = 12) in vec4 inHaze;
 layout(location = 0) out vec4 outColor;
 
 void main() {
@@ -23,7 +25,7 @@ void main() {
     float depth = clamp(1.0 - inHeightFraction, 0.0, 1.0);
     depth *= depth * depth;
     float sun = plantShadow(inShadow) * (1.0 - 0.45 * depth);
-    vec3 light = inSunLight * sun + inAmbient * (1.0 - 0.65 * depth);
-    outColor = vec4(albedo * light + inSheen * sun, 1.0);
-    outColor.rgb = aerialPerspective(outColor.rgb, inWorld);
+    vec3 light = plantSunDiffuse(inSunColour, inSunTerms) * sun + inAmbient * (1.0 - 0.65 * depth);
+    outColor = vec4(albedo * light + plantSunSheen(inSunTerms) * sun, 1.0);
+    outColor.rgb = applyHaze(outColor.rgb, inHaze);
 }

@@ -33,9 +33,10 @@ layout(location = 2) out float outHeightFraction;
 layout(location = 3) out float outAlong;
 layout(location = 4) out vec4 outShadow;       // colour pass: plantShadowCoordinate
 layout(location = 5) flat out vec3 outAlbedo;  // colour pass: the blade's albedo at its middle
-layout(location = 6) out vec3 outSunLight;     // colour pass: plantSunLight
+layout(location = 6) out vec2 outSunTerms;     // colour pass: plantSunLight
 layout(location = 7) flat out vec3 outAmbient;
-layout(location = 8) out vec3 outSheen;
+layout(location = 8) flat out vec3 outSunColour;
+layout(location = 12) out vec4 outHaze;        // colour pass: hazeAt
 layout(location = 9) flat out uint outLabel;   // ground truth: (semantic class << 24) | instance id
 layout(location = 10) flat out uint outTile;   // ground truth: the tile's label
 layout(location = 11) flat out vec3 outNormal; // ground truth: the triangle's camera-frame normal (truthNormal)
@@ -74,8 +75,9 @@ void main() {
     outHeightFraction = v.heightFraction;
     outAlong = v.along;
     outShadow = vec4(0.0);
-    outSunLight = vec3(0.0);
-    outSheen = vec3(0.0);
+    outSunTerms = vec2(0.0);
+    outSunColour = vec3(0.0);
+    outHaze = vec4(0.0);
     outLabel = 0u;
     outTile = 0u;
     outNormal = vec3(0.0);
@@ -109,8 +111,9 @@ void main() {
         face = dot(face, toCamera) < 0.0 ? -face : face;
         float across = clamp(dot(v.position - p.base, s.outward) / max(0.5 * p.cardWidth, 1e-6), -1.0, 1.0);
         PlantSunLight sun = plantSunLight(face, s.outward, across, p.up, toCamera);
-        outSunLight = sun.diffuse;
-        outSheen = sun.sheen;
+        outSunColour = sun.colour;
+        outSunTerms = sun.terms;
+        outHaze = hazeAt(v.position);
         outShadow = plantShadowCoordinate(v.position, p.base, plantShadowHash(plant));
     }
     gl_Position = (PASS == kPassShadow ? frame.shadowViewProj : frame.viewProj) * vec4(v.position, 1.0);

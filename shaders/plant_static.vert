@@ -20,9 +20,10 @@ layout(location = 6) flat out float outRandom;
 layout(location = 7) flat out uint outLabel; // ground truth only: plant_fragment.glsl declares it for every pass
 layout(location = 10) flat out mat3 outAlbedo; // plantShading (locations 10-15)
 layout(location = 13) flat out vec3 outAlbedoOffset;
-layout(location = 14) out vec3 outSunLight;
+layout(location = 14) out vec2 outSunTerms;
 layout(location = 15) flat out vec3 outAmbient;
-layout(location = 20) out vec3 outSheen;
+layout(location = 20) flat out vec3 outSunColour;
+layout(location = 21) out vec4 outHaze;
 layout(location = 18) flat out vec4 outUvRect; // baked coordinates are the atlas's own
 layout(location = 19) flat out vec2 outMerge;
 
@@ -41,8 +42,9 @@ void main() {
     outAmbient = shading.ambient;
     // Baked vertices keep no card: lit as a card facing up (the same instructions as plant.vert's).
     PlantSunLight sun = plantSunLight(up, vec3(0.0), 0.0, up, normalize(frame.cameraPosition.xyz - v.positionFraction.xyz));
-    outSunLight = sun.diffuse;
-    outSheen = sun.sheen;
+    outSunColour = sun.colour;
+    outSunTerms = sun.terms;
+    outHaze = hazeAt(v.positionFraction.xyz);
     // Baked vertices keep no root: the cascade is chosen per vertex (a timing baseline; its images are not compared).
     outShadow = plantShadowCoordinate(v.positionFraction.xyz, v.positionFraction.xyz, v.uvRandom.z);
     outFade = v.upFade.y;

@@ -52,8 +52,9 @@ vec4 plantTexel() {
 const float kFarColourFootprint = 2.8;
 
 // The colour pass's albedo texel: plantTexel's colour, or for a far billboard the colour over kFarColourFootprint.
-// A loop of 0 or 1 trips, not an if: on lavapipe every lane runs both sides of a branch, but a loop whose count is
-// 0 for the whole draw (bits 21-22 of inFade: the draw's LOD, plant.vert) ends at once, so only the far draw pays.
+// plant.frag calls it only in pipelines that may draw far billboards (FAR_BILLBOARDS). A loop of 0 or 1 trips, not an
+// if: on lavapipe every lane runs both sides of a branch, but a loop whose count is 0 for every lane (bits 21-22 of
+// inFade: the LOD, plant.vert) ends at once, so in a draw of mixed LODs (the baked plants) only far lanes pay.
 vec3 plantColourTexel(vec3 colour) {
     vec2 size = (inUvRect.zw - inUvRect.xy) * kFarColourFootprint;
     vec2 dx = dFdx(inUv) * size, dy = dFdy(inUv) * size;

@@ -6,6 +6,8 @@
 #ifndef SWARD_PLANT_SHADING_GLSL
 #define SWARD_PLANT_SHADING_GLSL
 
+#include "plant_layout.h" // the plant states
+
 struct PlantShading {
     mat3 albedo;       // albedo = albedo * texel.rgb + albedoOffset
     vec3 albedoOffset;
@@ -48,10 +50,19 @@ PlantShading plantShading(uint fade, uint lod, vec3 up, float random, float colo
     return s;
 }
 
+// The sun's light at a corner, before the shadow: `colour` * terms.x reflected and transmitted by the leaf (times the
+// albedo), frame.sunRadiance * terms.y the leaf's specular sheen (added without it). The fragment shaders take the
+// colour flat (which side of the leaf the sun lights changes at most once across a card) and interpolate only the
+// two scalars: on lavapipe each interpolated component costs every fragment lane, and six of them cost the meadow's
+// main pass about 1.1x.
 struct PlantSunLight {
-    vec3 diffuse; // sun light reflected and transmitted by the leaf, times the albedo in plant.frag; before the shadow
-    vec3 sheen;   // the leaf's specular sheen, added without the albedo; before the shadow
+    vec3 colour; // the sun's radiance, tinted when it is transmitted through the leaf
+    vec2 terms;  // x: the irradiance factor of the rounded normal, y: the sheen
 };
+
+// The sun's diffuse light and sheen of a fragment from its PlantSunLight's flat colour and interpolated terms.
+vec3 plantSunDiffuse(vec3 colour, vec2 terms) { return colour * terms.x; }
+vec3 plantSunSheen(vec2 terms) { return frame.sunRadiance.rgb * terms.y; }
 
 // Sun light at one corner of a card (or blade): `face` is its unit normal (either side), `side` its unit horizontal
 // direction, `across` the corner's place across the plant along `side` (-1 .. 1, 0 on the plant's axis), `up` the
@@ -73,11 +84,11 @@ PlantSunLight plantSunLight(vec3 face, vec3 side, float across, vec3 up, vec3 to
     const vec3 kTransmittance = vec3(0.9, 0.9, 0.65); // relative to the albedo: leaves pass more yellow-green light
     bool backlit = dot(face, l) * dot(face, toCamera) < 0.0;
     PlantSunLight s;
-    s.diffuse = frame.sunRadiance.rgb * (irradiance * (backlit ? kTransmittance : vec3(1.0)));
+    s.colour = frame.sunRadiance.rgb * (backlit ? kTransmittance : vec3(1.0));
     float specular = max(dot(n, normalize(l + toCamera)), 0.0);
     specular *= specular;
     specular *= specular;
-    s.sheen = frame.sunRadiance.rgb * (0.03 * specular * specular * max(d, 0.0));
+    s.terms = vec2(irradiance, 0.03 * specular * specular * max(d, 0.0));
     return s;
 }
 
