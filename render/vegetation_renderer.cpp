@@ -144,8 +144,9 @@ VegetationRenderer::VegetationRenderer(Context& ctx, const Scene& scene, const A
 VegetationRenderer::~VegetationRenderer() {
     ctx_.submitter.waitIdle();
     tiles_.clear();
-    for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &mainFarPipeline_, &truthPipeline_,
-                        &truthFlowPipeline_, &shadowPipeline_, &bakePipeline_, &staticPipeline_, &floorPipeline_})
+    for (Pipeline* p : {&countPipeline_, &scanPipeline_, &writePipeline_, &mainPipeline_, &mainFarPipeline_,
+                        &truthPipeline_, &truthFlowPipeline_, &shadowPipeline_, &bakePipeline_, &staticPipeline_,
+                        &floorPipeline_})
         destroyPipeline(ctx_.device, *p);
     for (Pipeline& p : bladePipelines_) destroyPipeline(ctx_.device, p);
     for (Buffer* b : {&instances_, &instancePlants_, &cursor_, &atlasCells_, &cornerIndices_}) destroyBuffer(ctx_, *b);

@@ -24,7 +24,6 @@ layout(set = 0, binding = kBindingFlowDynamicsNext, std430) readonly buffer Flow
 #endif
 
 layout(location = 0) out vec2 outUv;
-layout(location = 1) out vec3 outWorld;
 layout(location = 2) out float outViewDepth;
 layout(location = 3) out vec4 outShadow; // colour pass: plantShadowCoordinate
 layout(location = 4) flat out uint outFade;
@@ -65,7 +64,6 @@ void main() {
     outUv = v.uv;
     outUvRect = quad.uvRect;
     outMerge = vec2(quad.repeat, quad.opacity);
-    outWorld = v.position;
     outViewDepth = (frame.view * vec4(v.position, 1.0)).z;
     outFade = instance.fade | (push.lod << 21); // bits 21-22: the LOD, for the viewer's LOD colours
     outHeightFraction = v.heightFraction;

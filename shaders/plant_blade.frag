@@ -8,7 +8,6 @@
 #include "shared/shadow.glsl"
 #include "shared/plant_shading.glsl"
 
-layout(location = 0) in vec3 inWorld;
 layout(location = 2) in float inHeightFraction;
 layout(location = 3) in float inAlong;
 layout(location = 4) in vec4 inShadow;

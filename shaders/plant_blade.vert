@@ -27,7 +27,6 @@ layout(set = 0, binding = kBindingFlowDynamicsNext, std430) readonly buffer Flow
 };
 #endif
 
-layout(location = 0) out vec3 outWorld;
 layout(location = 1) out float outViewDepth;
 layout(location = 2) out float outHeightFraction;
 layout(location = 3) out float outAlong;
@@ -70,7 +69,6 @@ void main() {
     BladePlant p = bladePlant(instance);
     BladeShape s = plantBlade(p, blade);
     BladeVertex v = bladeVertex(p, s, vertex);
-    outWorld = v.position;
     outViewDepth = (frame.view * vec4(v.position, 1.0)).z;
     outHeightFraction = v.heightFraction;
     outAlong = v.along;

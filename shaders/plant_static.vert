@@ -11,7 +11,6 @@ layout(set = 0, binding = kBindingPlantInstances, std430) readonly buffer Baked 
 layout(set = 0, binding = kBindingAtlasCells, std430) readonly buffer Cells { AtlasCellGpu cells[]; };
 
 layout(location = 0) out vec2 outUv;
-layout(location = 1) out vec3 outWorld;
 layout(location = 2) out float outViewDepth;
 layout(location = 3) out vec4 outShadow;
 layout(location = 4) flat out uint outFade;
@@ -32,7 +31,6 @@ void main() {
     outUv = v.uvRandom.xy;
     outUvRect = vec4(0.0, 0.0, 1.0, 1.0);
     outMerge = vec2(1.0);
-    outWorld = v.positionFraction.xyz;
     outViewDepth = (frame.view * vec4(v.positionFraction.xyz, 1.0)).z;
     // Baked vertices carry no LOD: the LOD overlay shows every plant as far.
     vec3 up = octahedralDecode(v.upFade.x);

@@ -73,7 +73,7 @@ clang -shared -fPIC -O1 tests/sanitize/keep_loaded.c -o "$build/libkeep_loaded.s
 # One suite: its binary under the sanitizers, its log in the build folder; prints one line and returns non-zero on
 # failure. GTEST_SHARD_INDEX / GTEST_TOTAL_SHARDS in the environment run a share of the suite (gtest's sharding).
 sanitize_one() {
-  local name=$1 log="$build/sanitize-${1/\//-of-}.log"
+  local name=$1 log="$build/sanitize-${1/\//-}.log"
   shift
   if "$@" --gtest_brief=1 > "$log" 2>&1; then
     echo "sanitize-and-fuzz: $name passed ($(grep -o '[0-9]* tests\? from [0-9]* test suites\? ran' "$log"))"
@@ -86,7 +86,7 @@ sanitize_one() {
 # The suites are independent processes, run $jobs at a time, longest first, each started as soon as any slot frees
 # (wait -n): the GPU smoke subset (about 130 s) and the scene suite (about 200 s: its streamed-world tests) set the
 # length, so the scene suite runs as two gtest shards. A fixed order waiting on the oldest left a slot idle for
-# minutes: 456 s for these runs against about 250 s now.
+# minutes: 456 s for these runs against 266-289 s now.
 suites=(gpu)
 for suite in $cpu_suites; do
   if [ "$suite" = scene ]; then suites+=(scene/0 scene/1); else suites+=("$suite"); fi

@@ -7,7 +7,6 @@
 layout(set = 0, binding = kBindingAtlas) uniform sampler2D atlas;
 
 layout(location = 0) in vec2 inUv;
-layout(location = 1) in vec3 inWorld;
 layout(location = 2) in float inViewDepth;
 layout(location = 4) flat in uint inFade;
 layout(location = 5) in float inHeightFraction;
